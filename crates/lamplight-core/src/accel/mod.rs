@@ -1,0 +1,7 @@
+//! Acceleration structures: bounding boxes and the bounding volume hierarchy.
+
+mod aabb;
+mod bvh;
+
+pub use aabb::Aabb;
+pub use bvh::{Bvh, BvhStats};

@@ -1,0 +1,176 @@
+//! The lecture's recursive ray tracer (Whitted 1980), run without recursion.
+//!
+//! `trace(ray, d)`: the nearest hit's direct light (ambient, emission, the rough
+//! model over unshadowed lights) plus the weighted radiance of the reflected and
+//! refracted rays, down to the depth limit. The radiance is linear in the radiance
+//! of the secondary rays, so instead of recursing the integrator keeps a work list
+//! of (ray, weight, depth) and sums `weight * direct light`: the stack cannot
+//! overflow whatever the depth limit, and the work is bounded by `2^depth` rays
+//! per camera ray (less with the weight cut-off).
+
+use super::{Integrator, RayCounts};
+use crate::materials::{fresnel_conductor, fresnel_dielectric, Material, Reflection, Refraction};
+use crate::math::{Rgb, Vec3};
+use crate::ray::{offset_origin, Ray};
+use crate::sampling::Rng;
+use crate::scene::{Hit, Scene};
+
+/// Lights whose `N.L` is at or below this are skipped (POV-Ray's threshold).
+const MIN_COSINE: f64 = 1e-10;
+
+/// Whitted ray tracing with a depth limit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Whitted {
+    /// Rays deeper than this return black (camera ray = 1).
+    pub max_depth: u32,
+    /// Secondary rays with weight at or below this in every channel are dropped.
+    pub min_weight: f64,
+}
+
+struct Pending {
+    ray: Ray,
+    weight: Rgb,
+    depth: u32,
+}
+
+impl Integrator for Whitted {
+    fn radiance(&self, scene: &Scene, ray: &Ray, _rng: &mut Rng, counts: &mut RayCounts) -> Rgb {
+        counts.camera += 1;
+        let mut total = Rgb::ZERO;
+        let mut work = vec![Pending { ray: *ray, weight: Rgb::ONE, depth: 1 }];
+        while let Some(Pending { ray, weight, depth }) = work.pop() {
+            let Some(hit) = scene.first_intersect(&ray, f64::INFINITY) else {
+                total += weight * scene.background;
+                continue;
+            };
+            let material = &scene.materials[hit.material];
+            total += weight * direct_light(scene, &ray, &hit, material, counts);
+            if depth >= self.max_depth {
+                continue;
+            }
+            for (dir, w) in smooth_directions(&ray, &hit, material) {
+                let w = weight * w;
+                if w.max_element() <= self.min_weight {
+                    continue;
+                }
+                counts.secondary += 1;
+                let origin = offset_origin(hit.point, hit.geometric_normal, dir, hit.t, hit.error);
+                work.push(Pending { ray: Ray { origin, dir }, weight: w, depth: depth + 1 });
+            }
+        }
+        total
+    }
+}
+
+/// The lecture's `DirectLight`: `Ke + ka*C*La + sum over visible lights of
+/// Lin * (kd*C (L.N) + ks (H.N)^shine)`, skipping lights with `L.N <= 1e-10`.
+pub fn direct_light(scene: &Scene, ray: &Ray, hit: &Hit, material: &Material, counts: &mut RayCounts) -> Rgb {
+    let color = material.color.evaluate(hit.point);
+    let mut radiance = material.emission + material.ka * color * scene.ambient;
+    if !material.is_lit() {
+        return radiance;
+    }
+    let n = hit.normal;
+    let view = -ray.dir;
+    for light in &scene.lights {
+        let Some(sample) = light.illuminate(hit.point) else { continue };
+        let cos_light = n.dot(sample.wi);
+        if cos_light <= MIN_COSINE || hit.geometric_normal.dot(sample.wi) <= 0.0 {
+            continue;
+        }
+        counts.shadow += 1;
+        let origin = offset_origin(hit.point, hit.geometric_normal, sample.wi, hit.t, hit.error);
+        let remaining = sample.distance - (origin - hit.point).length();
+        let visible = scene.transmittance(origin, sample.wi, remaining, light.own_object());
+        if visible == Rgb::ZERO {
+            continue;
+        }
+        let incident = sample.radiance * visible;
+        radiance += incident * material.kd * color * cos_light;
+        let half = (view + sample.wi).normalize();
+        let cos_half = n.dot(half);
+        if cos_half > 0.0 && material.ks != Rgb::ZERO {
+            radiance += incident * material.ks * cos_half.powf(material.shininess);
+        }
+    }
+    radiance
+}
+
+/// Mirror direction of unit `d` about unit `n`: `d - 2 (d.n) n`.
+#[inline]
+pub fn reflect(d: Vec3, n: Vec3) -> Vec3 {
+    d - n * (2.0 * d.dot(n))
+}
+
+/// Refracted direction of unit `d` through a surface with unit normal `n` facing
+/// the ray, `eta = n_i / n_t` (Heckbert's form): with `c = -d.n` and
+/// `k = 1 - eta^2 (1 - c^2)`, `T = eta d + (eta c - sqrt(k)) n`; `None` when `k < 0`
+/// (total internal reflection). Snell's law `n_i sin(i) = n_t sin(t)` holds for `T`.
+#[inline]
+pub fn refract(d: Vec3, n: Vec3, eta: f64) -> Option<Vec3> {
+    let c = -d.dot(n);
+    let k = 1.0 - eta * eta * (1.0 - c * c);
+    if k < 0.0 {
+        return None;
+    }
+    Some((d * eta + n * (eta * c - k.sqrt())).normalize())
+}
+
+/// The reflected and refracted directions with their weights (at most two).
+fn smooth_directions(ray: &Ray, hit: &Hit, material: &Material) -> impl Iterator<Item = (Vec3, Rgb)> {
+    let n = hit.normal;
+    let cos_i = (-ray.dir.dot(n)).clamp(0.0, 1.0);
+    // Relative index n_t / n_i for a boundary of index `ior`, entered from outside
+    // when the ray is on the front face.
+    let relative = |ior: f64| if hit.front_face { ior } else { 1.0 / ior };
+    let reflection = match &material.reflection {
+        Reflection::None => Rgb::ZERO,
+        Reflection::Constant(w) => *w,
+        Reflection::Dielectric { ior, min, max } => Rgb::splat(min + (max - min) * fresnel_dielectric(cos_i, relative(*ior))),
+        Reflection::Conductor { eta, k } => fresnel_conductor(cos_i, *eta, *k),
+    };
+    let refraction = match &material.refraction {
+        Refraction::None => None,
+        Refraction::Fresnel { ior } => {
+            let eta = relative(*ior);
+            refract(ray.dir, n, 1.0 / eta).map(|t| (t, Rgb::splat(1.0 - fresnel_dielectric(cos_i, eta))))
+        }
+        Refraction::Constant { ior, weight } => refract(ray.dir, n, 1.0 / relative(*ior)).map(|t| (t, *weight)),
+    };
+    let reflected = (reflection != Rgb::ZERO).then(|| (reflect(ray.dir, n), reflection));
+    reflected.into_iter().chain(refraction.filter(|(_, w)| *w != Rgb::ZERO))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn snells_law_holds() {
+        let n = Vec3::Y;
+        for deg in [0.0f64, 10.0, 30.0, 60.0, 85.0] {
+            let th = deg.to_radians();
+            let d = Vec3::new(th.sin(), -th.cos(), 0.0);
+            let t = refract(d, n, 1.0 / 1.5).unwrap();
+            let sin_t = t.x;
+            assert!((th.sin() - 1.5 * sin_t).abs() < 1e-12, "{deg} deg");
+            assert!((t.length() - 1.0).abs() < 1e-12 && t.y < 0.0);
+        }
+    }
+
+    #[test]
+    fn total_internal_reflection_past_the_critical_angle() {
+        let critical = (1.0f64 / 1.5).asin();
+        let n = Vec3::Y;
+        let dir = |th: f64| Vec3::new(th.sin(), -th.cos(), 0.0);
+        assert!(refract(dir(critical + 1e-6), n, 1.5).is_none());
+        let grazing = refract(dir(critical - 1e-6), n, 1.5).unwrap();
+        assert!(grazing.y.abs() < 0.01, "refracted ray leaves almost along the surface");
+    }
+
+    #[test]
+    fn reflection_keeps_the_angle() {
+        let d = Vec3::new(1.0, -1.0, 0.0).normalize();
+        assert!((reflect(d, Vec3::Y) - Vec3::new(1.0, 1.0, 0.0).normalize()).length() < 1e-15);
+    }
+}

@@ -1,0 +1,230 @@
+//! Materials of the lecture's model: the rough (Phong-Blinn) terms, emission,
+//! and smooth reflection and refraction with Fresnel or with artist-set weights.
+//!
+//! One [`Material`] holds every property, as in the lecture; a surface is rough,
+//! reflective and refractive in any mix. At a hit the Whitted integrator computes
+//!
+//! `L = Ke + ka*C*La + sum_l Lin_l * (kd*C (L.N)+ + ks ((H.N)+)^shine) + R * L(refl) + T * L(refr)`
+//!
+//! where `C` is the texture colour, the light sum skips lights with `L.N <= 0` and
+//! lights in shadow, and `R`, `T` are the weights of [`Reflection`] and
+//! [`Refraction`].
+
+mod fresnel;
+mod metals;
+mod texture;
+
+pub use fresnel::{fresnel_conductor, fresnel_conductor_channel, fresnel_dielectric};
+pub use metals::Metal;
+pub use texture::Texture;
+
+use crate::math::Rgb;
+
+/// How much of the mirror direction's radiance a surface reflects.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Reflection {
+    /// No mirror reflection.
+    None,
+    /// A constant weight per channel, set by the artist (the lecture's
+    /// alternative to Fresnel; Heckbert's `ks`).
+    Constant(Rgb),
+    /// Dielectric Fresnel reflectance `F` of index `ior` (relative to the outside),
+    /// rescaled to `min + (max - min) F` (POV-Ray's `reflection {min, max fresnel}`;
+    /// clear glass is `min 0, max 1`).
+    Dielectric {
+        /// Index of refraction inside the surface.
+        ior: f64,
+        /// Reflectance at `F = 0`.
+        min: f64,
+        /// Reflectance at `F = 1`.
+        max: f64,
+    },
+    /// Conductor Fresnel reflectance with complex index `eta + i k` per channel.
+    Conductor {
+        /// Real part of the index of refraction, per channel.
+        eta: Rgb,
+        /// Extinction coefficient, per channel.
+        k: Rgb,
+    },
+}
+
+/// How much of the refracted direction's radiance a surface transmits.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Refraction {
+    /// Opaque.
+    None,
+    /// Refraction with index `ior` and weight `1 - F` (dielectric Fresnel at the
+    /// same index); on total internal reflection nothing is transmitted and the
+    /// reflection's `F = 1` takes all.
+    Fresnel {
+        /// Index of refraction inside.
+        ior: f64,
+    },
+    /// Refraction with index `ior` and a constant weight (Heckbert's `kt`); on total
+    /// internal reflection nothing is transmitted.
+    Constant {
+        /// Index of refraction inside.
+        ior: f64,
+        /// Weight per channel.
+        weight: Rgb,
+    },
+}
+
+impl Refraction {
+    /// The index of refraction, if the surface refracts.
+    pub fn ior(&self) -> Option<f64> {
+        match self {
+            Refraction::None => None,
+            Refraction::Fresnel { ior } | Refraction::Constant { ior, .. } => Some(*ior),
+        }
+    }
+}
+
+/// Every property of a surface, the lecture's `Material`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Material {
+    /// Surface colour `C`, multiplied into the ambient and diffuse terms.
+    pub color: Texture,
+    /// Ambient reflectance factor: the ambient term is `ka * C * La`.
+    pub ka: Rgb,
+    /// Diffuse reflectance factor: `kd * C * (L.N)`.
+    pub kd: Rgb,
+    /// Specular (Blinn) factor, not multiplied by `C`: `ks * (H.N)^shininess`.
+    pub ks: Rgb,
+    /// Blinn exponent.
+    pub shininess: f64,
+    /// Emitted radiance `Ke`, added as seen (lights are separate objects).
+    pub emission: Rgb,
+    /// Smooth mirror reflection.
+    pub reflection: Reflection,
+    /// Smooth refraction.
+    pub refraction: Refraction,
+    /// Fraction of light a shadow ray keeps when it crosses this surface:
+    /// 0 for opaque objects; POV-Ray lets clear glass pass shadow rays (1).
+    pub shadow_transmittance: Rgb,
+}
+
+impl Default for Material {
+    /// Mid-grey diffuse: `C = 0.5`, `ka = 0.1`, `kd = 0.9`, nothing else.
+    fn default() -> Material {
+        Material {
+            color: Texture::Constant(Rgb::splat(0.5)),
+            ka: Rgb::splat(0.1),
+            kd: Rgb::splat(0.9),
+            ks: Rgb::ZERO,
+            shininess: 1.0,
+            emission: Rgb::ZERO,
+            reflection: Reflection::None,
+            refraction: Refraction::None,
+            shadow_transmittance: Rgb::ZERO,
+        }
+    }
+}
+
+impl Material {
+    /// A diffuse-specular ("plastic") material: colour `c`, scalar factors, white highlight.
+    pub fn plastic(c: Rgb, ka: f64, kd: f64, ks: f64, shininess: f64) -> Material {
+        Material {
+            color: Texture::Constant(c),
+            ka: Rgb::splat(ka),
+            kd: Rgb::splat(kd),
+            ks: Rgb::splat(ks),
+            shininess,
+            ..Material::default()
+        }
+    }
+
+    /// Clear glass of index `ior`: Fresnel reflection and refraction, a white highlight
+    /// of `ks`/`shininess`, and no shadow (POV-Ray's convention).
+    pub fn glass(ior: f64, ks: f64, shininess: f64) -> Material {
+        Material {
+            color: Texture::Constant(Rgb::ONE),
+            ka: Rgb::ZERO,
+            kd: Rgb::ZERO,
+            ks: Rgb::splat(ks),
+            shininess,
+            reflection: Reflection::Dielectric { ior, min: 0.0, max: 1.0 },
+            refraction: Refraction::Fresnel { ior },
+            shadow_transmittance: Rgb::ONE,
+            ..Material::default()
+        }
+    }
+
+    /// A polished metal: conductor Fresnel reflection of a preset, plus a highlight.
+    pub fn metal(metal: Metal, ks: f64, shininess: f64) -> Material {
+        let (eta, k) = metal.eta_k();
+        Material {
+            color: Texture::Constant(Rgb::ONE),
+            ka: Rgb::ZERO,
+            kd: Rgb::ZERO,
+            ks: Rgb::splat(ks),
+            shininess,
+            reflection: Reflection::Conductor { eta, k },
+            ..Material::default()
+        }
+    }
+
+    /// True when the material needs the light loop (some diffuse or specular term).
+    pub fn is_lit(&self) -> bool {
+        self.kd != Rgb::ZERO || self.ks != Rgb::ZERO
+    }
+
+    /// Checks every number: finite, and non-negative where physics asks it.
+    pub fn validate(&self) -> Result<(), crate::Error> {
+        let rgb_ok = |name: &str, c: Rgb| {
+            if c.is_finite() && c.min_element() >= 0.0 {
+                Ok(())
+            } else {
+                Err(crate::Error::invalid(name, format!("must be finite and non-negative, got {c}")))
+            }
+        };
+        rgb_ok("ka", self.ka)?;
+        rgb_ok("kd", self.kd)?;
+        rgb_ok("ks", self.ks)?;
+        rgb_ok("emission", self.emission)?;
+        rgb_ok("shadow_transmittance", self.shadow_transmittance)?;
+        if !(self.shininess.is_finite() && self.shininess >= 0.0) {
+            return Err(crate::Error::invalid("shininess", "must be a non-negative number"));
+        }
+        match &self.color {
+            Texture::Constant(c) => rgb_ok("color", *c)?,
+            Texture::Checker { size, even, odd, offset } => {
+                rgb_ok("color", *even)?;
+                rgb_ok("color", *odd)?;
+                if !(size.is_finite() && *size > 0.0 && offset.is_finite()) {
+                    return Err(crate::Error::invalid("checker size", "must be a positive number"));
+                }
+            }
+        }
+        let ior_ok = |ior: f64| {
+            if ior.is_finite() && ior > 0.0 {
+                Ok(())
+            } else {
+                Err(crate::Error::invalid("ior", format!("must be a positive number, got {ior}")))
+            }
+        };
+        match &self.reflection {
+            Reflection::None => {}
+            Reflection::Constant(c) => rgb_ok("reflection", *c)?,
+            Reflection::Dielectric { ior, min, max } => {
+                ior_ok(*ior)?;
+                if !(min.is_finite() && max.is_finite()) {
+                    return Err(crate::Error::invalid("reflection", "min and max must be finite"));
+                }
+            }
+            Reflection::Conductor { eta, k } => {
+                rgb_ok("eta", *eta)?;
+                rgb_ok("k", *k)?;
+            }
+        }
+        match &self.refraction {
+            Refraction::None => {}
+            Refraction::Fresnel { ior } => ior_ok(*ior)?,
+            Refraction::Constant { ior, weight } => {
+                ior_ok(*ior)?;
+                rgb_ok("transmission", *weight)?;
+            }
+        }
+        Ok(())
+    }
+}

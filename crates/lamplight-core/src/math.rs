@@ -1,0 +1,87 @@
+//! Vector and colour types, and the small numeric helpers the renderer shares.
+//!
+//! lamplight computes geometry in `f64` (glam's `DVec3`): the lecture's scenes mix
+//! sizes from a 0.025 lamp arm to a 10^6 test floor, and double precision keeps the
+//! quadric and implicit-surface root finding exact enough that one relative ray
+//! offset works at every scale. Colours are RGB triples of radiance, also `f64`
+//! while shading, stored as `f32` in the film.
+
+/// A point or direction in world space.
+pub type Vec3 = glam::DVec3;
+
+/// A 4x4 matrix (quadrics, transforms).
+pub type Mat4 = glam::DMat4;
+
+/// Linear RGB radiance or reflectance. Components multiply channel by channel (`*`).
+pub type Rgb = glam::DVec3;
+
+/// The largest absolute coordinate of `v`, the magnitude used to scale ray offsets.
+#[inline]
+pub fn max_abs(v: Vec3) -> f64 {
+    v.abs().max_element()
+}
+
+/// Builds an orthonormal basis `(t, b)` such that `(t, b, n)` is right-handed,
+/// for a unit `n` (Duff et al. 2017, "Building an Orthonormal Basis, Revisited").
+pub fn orthonormal_basis(n: Vec3) -> (Vec3, Vec3) {
+    let sign = 1.0_f64.copysign(n.z);
+    let a = -1.0 / (sign + n.z);
+    let b = n.x * n.y * a;
+    (
+        Vec3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x),
+        Vec3::new(b, sign + n.y * n.y * a, -n.y),
+    )
+}
+
+/// True when every component is finite (no NaN, no infinity).
+#[inline]
+pub fn is_finite(v: Vec3) -> bool {
+    v.is_finite()
+}
+
+/// Solves `a t^2 + 2 b_half t + c = 0` and returns the real roots in increasing
+/// order, using the cancellation-free form `q = -(b_half + sign(b_half) sqrt(D))`,
+/// `t0 = q / a`, `t1 = c / q` (Press et al., Numerical Recipes 5.6).
+/// `None` when there is no real root; a degenerate `a == 0` gives the linear root twice.
+pub fn solve_quadratic(a: f64, b_half: f64, c: f64) -> Option<(f64, f64)> {
+    if a == 0.0 {
+        if b_half == 0.0 {
+            return None;
+        }
+        let t = -c / (2.0 * b_half);
+        return Some((t, t));
+    }
+    let discriminant = b_half * b_half - a * c;
+    if discriminant < 0.0 {
+        return None;
+    }
+    let root = discriminant.sqrt();
+    let q = -(b_half + root.copysign(b_half));
+    let (t0, t1) = if q == 0.0 { (0.0, 0.0) } else { (q / a, c / q) };
+    Some(if t0 <= t1 { (t0, t1) } else { (t1, t0) })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn quadratic_roots_are_accurate_without_cancellation() {
+        // (t - 1e-8)(t - 1e8) = t^2 - (1e8 + 1e-8) t + 1
+        let (t0, t1) = solve_quadratic(1.0, -(1e8 + 1e-8) / 2.0, 1.0).unwrap();
+        assert!((t0 - 1e-8).abs() / 1e-8 < 1e-12, "t0 = {t0}");
+        assert!((t1 - 1e8).abs() / 1e8 < 1e-12, "t1 = {t1}");
+        assert!(solve_quadratic(1.0, 0.0, 1.0).is_none());
+        assert_eq!(solve_quadratic(0.0, 1.0, -4.0), Some((2.0, 2.0)));
+    }
+
+    #[test]
+    fn basis_is_orthonormal() {
+        for n in [Vec3::X, Vec3::Y, Vec3::Z, -Vec3::Z, Vec3::new(1.0, 2.0, -3.0).normalize()] {
+            let (t, b) = orthonormal_basis(n);
+            assert!(t.dot(n).abs() < 1e-12 && b.dot(n).abs() < 1e-12 && t.dot(b).abs() < 1e-12);
+            assert!((t.length() - 1.0).abs() < 1e-12 && (b.length() - 1.0).abs() < 1e-12);
+            assert!((t.cross(b) - n).length() < 1e-12);
+        }
+    }
+}

@@ -1,0 +1,172 @@
+//! `render()`: the one entry point that turns a scene into an image.
+//!
+//! The image is cut into 16x16 tiles rendered in parallel (rayon). Each pixel's
+//! samples use their own generators seeded by (seed, pixel, sample), and each
+//! pixel is averaged in a fixed order, so the bytes of the image do not depend on
+//! the number of threads or the order tiles finish in.
+
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::time::{Duration, Instant};
+
+use rayon::prelude::*;
+
+use crate::film::Image;
+use crate::integrators::{Integrator, IntegratorKind, RayCounts, Whitted};
+use crate::sampling::{stratified_2d, Rng};
+use crate::scene::Scene;
+use crate::Error;
+
+const TILE: u32 = 16;
+
+/// What to render and how.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RenderOptions {
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+    /// Samples per pixel, stratified and jittered when more than one.
+    pub spp: u32,
+    /// Depth limit; `None` uses the scene's.
+    pub max_depth: Option<u32>,
+    /// Worker threads; 0 uses all cores.
+    pub threads: usize,
+    /// Seed of the per-sample generators.
+    pub seed: u64,
+    /// The integrator.
+    pub integrator: IntegratorKind,
+}
+
+impl Default for RenderOptions {
+    fn default() -> RenderOptions {
+        RenderOptions { width: 640, height: 360, spp: 1, max_depth: None, threads: 0, seed: 0, integrator: IntegratorKind::Whitted }
+    }
+}
+
+/// Figures about a finished render.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RenderStats {
+    /// Rays traced, by kind.
+    pub rays: RayCounts,
+    /// Samples whose radiance was NaN or infinite and was replaced by black.
+    pub nonfinite_samples: u64,
+    /// Wall-clock time of the render (not of scene building or file writing).
+    pub elapsed: Duration,
+    /// Threads used.
+    pub threads: usize,
+}
+
+/// Progress reports and cancellation for a running render.
+pub struct RenderControl<'a> {
+    /// Called after each tile with (tiles done, tiles in all); from worker threads.
+    pub progress: &'a (dyn Fn(u64, u64) + Sync),
+    /// When set, remaining tiles are skipped and `render` returns [`Error::Render`].
+    pub cancel: Option<&'a AtomicBool>,
+}
+
+impl Default for RenderControl<'_> {
+    fn default() -> Self {
+        RenderControl { progress: &|_, _| {}, cancel: None }
+    }
+}
+
+/// Renders `scene` with `options`. Errors on zero sizes, on a thread pool that cannot
+/// start, and on cancellation.
+pub fn render(scene: &Scene, options: &RenderOptions, control: &RenderControl) -> Result<(Image, RenderStats), Error> {
+    let RenderOptions { width, height, spp, .. } = *options;
+    if width == 0 || height == 0 || spp == 0 {
+        return Err(Error::invalid("image", "width, height and samples per pixel must be at least 1"));
+    }
+    if width as u64 * height as u64 > 1 << 28 {
+        return Err(Error::invalid("image", format!("{width}x{height} is too large (at most 2^28 pixels)")));
+    }
+    let max_depth = options.max_depth.unwrap_or(scene.max_depth);
+    if max_depth == 0 {
+        return Err(Error::invalid("max_depth", "must be at least 1"));
+    }
+    let integrator: Box<dyn Integrator> = match options.integrator {
+        IntegratorKind::Whitted => Box::new(Whitted { max_depth, min_weight: scene.min_weight }),
+    };
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(options.threads)
+        .build()
+        .map_err(|e| Error::Render(format!("cannot start worker threads: {e}")))?;
+    let threads = pool.current_num_threads();
+
+    let tiles_x = width.div_ceil(TILE);
+    let tiles_y = height.div_ceil(TILE);
+    let tile_count = tiles_x as u64 * tiles_y as u64;
+    let done = AtomicU64::new(0);
+    let start = Instant::now();
+    let results: Vec<Option<(Vec<[f32; 3]>, RayCounts, u64)>> = pool.install(|| {
+        (0..tile_count)
+            .into_par_iter()
+            .map(|tile| {
+                if control.cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
+                    return None;
+                }
+                let x0 = (tile % tiles_x as u64) as u32 * TILE;
+                let y0 = (tile / tiles_x as u64) as u32 * TILE;
+                let out = render_tile(scene, integrator.as_ref(), options, x0, y0);
+                let finished = done.fetch_add(1, Ordering::Relaxed) + 1;
+                (control.progress)(finished, tile_count);
+                Some(out)
+            })
+            .collect()
+    });
+    let elapsed = start.elapsed();
+    let mut image = Image::new(width, height);
+    let mut stats = RenderStats { elapsed, threads, ..RenderStats::default() };
+    for (tile, result) in results.into_iter().enumerate() {
+        let Some((pixels, counts, nonfinite)) = result else {
+            return Err(Error::Render("cancelled".into()));
+        };
+        stats.rays.add(&counts);
+        stats.nonfinite_samples += nonfinite;
+        let x0 = (tile as u64 % tiles_x as u64) as u32 * TILE;
+        let y0 = (tile as u64 / tiles_x as u64) as u32 * TILE;
+        let tile_w = TILE.min(width - x0);
+        for (i, p) in pixels.into_iter().enumerate() {
+            let (x, y) = (x0 + i as u32 % tile_w, y0 + i as u32 / tile_w);
+            image.pixels[(y * width + x) as usize] = p;
+        }
+    }
+    Ok((image, stats))
+}
+
+fn render_tile(scene: &Scene, integrator: &dyn Integrator, options: &RenderOptions, x0: u32, y0: u32) -> (Vec<[f32; 3]>, RayCounts, u64) {
+    let (width, height, spp) = (options.width, options.height, options.spp);
+    let x1 = (x0 + TILE).min(width);
+    let y1 = (y0 + TILE).min(height);
+    let mut pixels = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
+    let mut counts = RayCounts::default();
+    let mut nonfinite = 0;
+    let camera = &scene.camera;
+    let shift = camera.pixel_offset - 0.5;
+    for y in y0..y1 {
+        for x in x0..x1 {
+            let pixel = y as u64 * width as u64 + x as u64;
+            let mut sum = crate::math::Rgb::ZERO;
+            for s in 0..spp {
+                let mut rng = Rng::for_sample(options.seed, pixel, s as u64);
+                let (dx, dy) = if spp == 1 {
+                    (camera.pixel_offset, camera.pixel_offset)
+                } else {
+                    let jitter = (rng.uniform(), rng.uniform());
+                    let (sx, sy) = stratified_2d(s, spp, jitter);
+                    (sx + shift, sy + shift)
+                };
+                let ray = camera.ray(x as f64 + dx, y as f64 + dy, width, height);
+                let radiance = integrator.radiance(scene, &ray, &mut rng, &mut counts);
+                if radiance.is_finite() {
+                    sum += radiance;
+                } else {
+                    nonfinite += 1;
+                }
+            }
+            let mean = sum / spp as f64;
+            pixels.push([mean.x as f32, mean.y as f32, mean.z as f32]);
+        }
+    }
+    (pixels, counts, nonfinite)
+}

@@ -1,0 +1,275 @@
+//! The built scene: objects with materials, lights, ambient light, camera, BVH.
+//!
+//! [`Scene::first_intersect`] is the lecture's `firstIntersect`: the nearest hit
+//! over all objects, with its normal turned to face the incoming ray.
+
+use std::sync::Arc;
+
+use crate::accel::{Aabb, Bvh};
+use crate::camera::Camera;
+use crate::lights::Light;
+use crate::materials::Material;
+use crate::math::{max_abs, Rgb, Vec3};
+use crate::ray::{Ray, OFFSET_SCALE};
+use crate::shapes::Shape;
+use crate::Error;
+
+/// A shape placed in the scene with its material.
+#[derive(Clone, Debug)]
+pub struct Object {
+    /// Geometry (shared: a mesh placed twice is stored once).
+    pub shape: Arc<dyn Shape>,
+    /// Index into [`Scene::materials`].
+    pub material: usize,
+}
+
+/// A ray's nearest hit in the scene.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hit {
+    /// Ray parameter (distance along the unit direction).
+    pub t: f64,
+    /// Hit point.
+    pub point: Vec3,
+    /// Unit shading normal, facing the incoming ray.
+    pub normal: Vec3,
+    /// Unit geometric normal, facing the incoming ray.
+    pub geometric_normal: Vec3,
+    /// True when the ray arrived on the shape's outward side: it is outside and
+    /// entering (the lecture's `ray.out`, decided per hit from the outward normal).
+    pub front_face: bool,
+    /// Index of the object hit.
+    pub object: usize,
+    /// Index of its material.
+    pub material: usize,
+    /// The shape's absolute error bound for the point (see [`crate::shapes::SurfaceHit::error`]).
+    pub error: f64,
+}
+
+/// Everything the integrators need; immutable and shared across threads.
+#[derive(Debug)]
+pub struct Scene {
+    /// Placed shapes.
+    pub objects: Vec<Object>,
+    /// Materials referenced by objects.
+    pub materials: Vec<Material>,
+    /// Light sources (point, directional).
+    pub lights: Vec<Arc<dyn Light>>,
+    /// Ambient radiance `La`, reflected by every surface through `ka`.
+    pub ambient: Rgb,
+    /// Radiance of rays that hit nothing.
+    pub background: Rgb,
+    /// The camera.
+    pub camera: Camera,
+    /// Default recursion depth limit (camera ray = depth 1).
+    pub max_depth: u32,
+    /// Secondary rays whose weight falls to or below this (every channel) are not
+    /// traced (POV-Ray's `adc_bailout`; 0 traces every ray up to the depth limit).
+    pub min_weight: f64,
+    bvh: Bvh,
+    /// Objects in the BVH, in BVH primitive order.
+    bounded: Vec<u32>,
+    /// Objects with infinite bounds (infinite planes, unclipped quadrics), tested one by one.
+    unbounded: Vec<u32>,
+    any_transparent_shadow: bool,
+}
+
+/// Collects objects, materials and lights, then builds a [`Scene`].
+#[derive(Debug)]
+pub struct SceneBuilder {
+    objects: Vec<Object>,
+    materials: Vec<Material>,
+    lights: Vec<Arc<dyn Light>>,
+    /// Ambient radiance.
+    pub ambient: Rgb,
+    /// Background radiance.
+    pub background: Rgb,
+    /// Camera.
+    pub camera: Camera,
+    /// Default depth limit, 5.
+    pub max_depth: u32,
+    /// Weight cut-off, 0.
+    pub min_weight: f64,
+}
+
+impl SceneBuilder {
+    /// An empty scene seen by `camera`.
+    pub fn new(camera: Camera) -> SceneBuilder {
+        SceneBuilder {
+            objects: Vec::new(),
+            materials: Vec::new(),
+            lights: Vec::new(),
+            ambient: Rgb::ZERO,
+            background: Rgb::ZERO,
+            camera,
+            max_depth: 5,
+            min_weight: 0.0,
+        }
+    }
+
+    /// Adds a material after checking its numbers; returns its index.
+    pub fn material(&mut self, material: Material) -> Result<usize, Error> {
+        material.validate()?;
+        self.materials.push(material);
+        Ok(self.materials.len() - 1)
+    }
+
+    /// Places `shape` with material `material`; returns the object's index.
+    pub fn object(&mut self, shape: impl Shape + 'static, material: usize) -> Result<usize, Error> {
+        self.shared_object(Arc::new(shape), material)
+    }
+
+    /// Places an already shared shape (instancing: the geometry is not copied).
+    pub fn shared_object(&mut self, shape: Arc<dyn Shape>, material: usize) -> Result<usize, Error> {
+        if material >= self.materials.len() {
+            return Err(Error::invalid("material", format!("index {material} does not exist")));
+        }
+        self.objects.push(Object { shape, material });
+        Ok(self.objects.len() - 1)
+    }
+
+    /// Adds a light.
+    pub fn light(&mut self, light: impl Light + 'static) {
+        self.lights.push(Arc::new(light));
+    }
+
+    /// Number of objects placed so far (the index the next object gets).
+    pub fn object_count(&self) -> usize {
+        self.objects.len()
+    }
+
+    /// Builds the BVH and returns the finished scene.
+    pub fn build(self) -> Result<Scene, Error> {
+        if self.max_depth == 0 {
+            return Err(Error::invalid("max_depth", "must be at least 1"));
+        }
+        for (name, c) in [("ambient", self.ambient), ("background", self.background)] {
+            if !(c.is_finite() && c.min_element() >= 0.0) {
+                return Err(Error::invalid(name, "must be finite and non-negative"));
+            }
+        }
+        let mut bounded = Vec::new();
+        let mut unbounded = Vec::new();
+        let mut boxes = Vec::new();
+        for (i, object) in self.objects.iter().enumerate() {
+            let b = object.shape.bounds();
+            if b.is_finite() {
+                bounded.push(i as u32);
+                boxes.push(b);
+            } else if b.is_empty() {
+                continue; // nothing to hit
+            } else {
+                unbounded.push(i as u32);
+            }
+        }
+        let any_transparent_shadow = self.materials.iter().any(|m| m.shadow_transmittance != Rgb::ZERO);
+        Ok(Scene {
+            bvh: Bvh::build(&boxes),
+            bounded,
+            unbounded,
+            any_transparent_shadow,
+            objects: self.objects,
+            materials: self.materials,
+            lights: self.lights,
+            ambient: self.ambient,
+            background: self.background,
+            camera: self.camera,
+            max_depth: self.max_depth,
+            min_weight: self.min_weight,
+        })
+    }
+}
+
+impl Scene {
+    /// The nearest hit with `0 < t < t_max`, normal turned against the ray.
+    pub fn first_intersect(&self, ray: &Ray, t_max: f64) -> Option<Hit> {
+        let mut best: Option<(usize, crate::shapes::SurfaceHit)> = None;
+        let mut closest = t_max;
+        for &i in &self.unbounded {
+            if let Some(h) = self.objects[i as usize].shape.intersect(ray, 0.0, closest) {
+                closest = h.t;
+                best = Some((i as usize, h));
+            }
+        }
+        self.bvh.traverse(ray.origin, ray.dir, 0.0, closest, |prim, t_max| {
+            let i = self.bounded[prim as usize] as usize;
+            let h = self.objects[i].shape.intersect(ray, 0.0, t_max)?;
+            best = Some((i, h));
+            Some(h.t)
+        });
+        let (object, h) = best?;
+        let front_face = ray.dir.dot(h.normal) < 0.0;
+        let (geometric_normal, mut normal) = if front_face { (h.normal, h.shading_normal) } else { (-h.normal, -h.shading_normal) };
+        // A shading normal must face the ray too, or the lighting would see the back side.
+        if normal.dot(ray.dir) >= 0.0 {
+            normal = geometric_normal;
+        }
+        Some(Hit {
+            t: h.t,
+            point: ray.at(h.t),
+            normal,
+            geometric_normal,
+            front_face,
+            object,
+            material: self.objects[object].material,
+            error: h.error,
+        })
+    }
+
+    /// Fraction of light that travels from `origin` a distance `distance` along the
+    /// unit `dir` (a shadow ray): 0 if an opaque object lies in between, the product
+    /// of the crossed surfaces' `shadow_transmittance` otherwise. Object `ignore`
+    /// (a light's own bulb) is invisible to the ray.
+    pub fn transmittance(&self, origin: Vec3, dir: Vec3, distance: f64, ignore: Option<usize>) -> Rgb {
+        let ray = Ray { origin, dir };
+        let blocks = |i: usize| -> bool {
+            Some(i) != ignore
+                && self.materials[self.objects[i].material].shadow_transmittance == Rgb::ZERO
+                && self.objects[i].shape.intersect_p(&ray, 0.0, distance)
+        };
+        if self.unbounded.iter().any(|&i| blocks(i as usize)) {
+            return Rgb::ZERO;
+        }
+        if self.bvh.any(origin, dir, 0.0, distance, |prim| blocks(self.bounded[prim as usize] as usize)) {
+            return Rgb::ZERO;
+        }
+        if !self.any_transparent_shadow {
+            return Rgb::ONE;
+        }
+        // Only partly transparent surfaces lie on the segment: multiply their
+        // transmittance once per crossing.
+        let mut result = Rgb::ONE;
+        let mut crossing = |i: usize| {
+            let filter = self.materials[self.objects[i].material].shadow_transmittance;
+            if Some(i) == ignore || filter == Rgb::ZERO || filter == Rgb::ONE {
+                return;
+            }
+            let mut t_min = 0.0;
+            // Each crossing moves t_min forward by at least the relative offset, so the loop ends.
+            while let Some(h) = self.objects[i].shape.intersect(&ray, t_min, distance) {
+                result *= filter;
+                t_min = h.t + OFFSET_SCALE * (max_abs(ray.at(h.t)) + h.t) + 4.0 * h.error;
+                if result == Rgb::ZERO {
+                    return;
+                }
+            }
+        };
+        for &i in &self.unbounded {
+            crossing(i as usize);
+        }
+        self.bvh.traverse(origin, dir, 0.0, distance, |prim, _| {
+            crossing(self.bounded[prim as usize] as usize);
+            None
+        });
+        result
+    }
+
+    /// Bounds of all bounded objects.
+    pub fn bounds(&self) -> Aabb {
+        self.bvh.bounds()
+    }
+
+    /// Total primitives (triangles count one each).
+    pub fn primitive_count(&self) -> usize {
+        self.objects.iter().map(|o| o.shape.primitive_count()).sum()
+    }
+}

@@ -1,0 +1,64 @@
+//! Geometric shapes: one file per shape, each implementing [`Shape`].
+//!
+//! A shape answers one question, the lecture's `intersect`: where does a ray first
+//! meet me within a parameter interval, and what is my outward normal there? The
+//! scene ([`crate::scene::Scene::first_intersect`]) keeps the nearest answer over
+//! all shapes through the BVH and turns the normal to face the ray.
+//!
+//! To add a shape: a new file here with the struct, its constructor (which
+//! validates its parameters and returns [`crate::Error`]), `impl Shape`, and its
+//! tests; then one `mod` + `pub use` line below.
+
+use crate::accel::Aabb;
+use crate::math::Vec3;
+use crate::ray::Ray;
+
+mod sphere;
+pub use sphere::Sphere;
+
+/// What a shape reports about a ray hit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfaceHit {
+    /// Ray parameter of the hit, inside the interval asked for.
+    pub t: f64,
+    /// Unit geometric normal on the shape's outward side (for an open surface, the
+    /// side its definition calls outward). Not yet turned towards the ray.
+    pub normal: Vec3,
+    /// Unit shading normal (interpolated vertex normals of a mesh), outward like
+    /// `normal`; equal to `normal` for analytic shapes.
+    pub shading_normal: Vec3,
+    /// Absolute error bound of the hit point, for shapes whose root finding is
+    /// iterative (0 for closed-form shapes, whose error is covered by the relative
+    /// offset in [`crate::ray::offset_origin`]).
+    pub error: f64,
+}
+
+impl SurfaceHit {
+    /// A hit with one normal used for both geometry and shading.
+    #[inline]
+    pub fn new(t: f64, normal: Vec3) -> SurfaceHit {
+        SurfaceHit { t, normal, shading_normal: normal, error: 0.0 }
+    }
+}
+
+/// A surface that rays can hit.
+pub trait Shape: Send + Sync + std::fmt::Debug {
+    /// A box that contains the whole surface; [`Aabb::INFINITE`] for an unbounded one.
+    fn bounds(&self) -> Aabb;
+
+    /// The hit with the smallest ray parameter `t` in the open interval
+    /// `(t_min, t_max)`, or `None`. `ray.dir` is a unit vector.
+    fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit>;
+
+    /// True when any hit exists in `(t_min, t_max)` (shadow rays). The default
+    /// asks `intersect`; shapes with many parts can stop at the first part hit.
+    fn intersect_p(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
+        self.intersect(ray, t_min, t_max).is_some()
+    }
+
+    /// Number of primitives inside (1 for analytic shapes, triangles for a mesh);
+    /// reported in statistics.
+    fn primitive_count(&self) -> usize {
+        1
+    }
+}

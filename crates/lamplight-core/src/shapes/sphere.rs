@@ -1,0 +1,122 @@
+//! Sphere: `|r - c|^2 = R^2`.
+
+use super::{Shape, SurfaceHit};
+use crate::accel::Aabb;
+use crate::math::Vec3;
+use crate::ray::Ray;
+use crate::Error;
+
+/// A sphere with centre `center` and radius `radius > 0`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sphere {
+    /// Centre.
+    pub center: Vec3,
+    /// Radius, positive.
+    pub radius: f64,
+}
+
+impl Sphere {
+    /// A sphere; the radius must be positive and finite and the centre finite.
+    pub fn new(center: Vec3, radius: f64) -> Result<Sphere, Error> {
+        if !(radius > 0.0 && radius.is_finite()) {
+            return Err(Error::invalid("radius", format!("must be a positive number, got {radius}")));
+        }
+        if !center.is_finite() {
+            return Err(Error::invalid("center", "must be finite"));
+        }
+        Ok(Sphere { center, radius })
+    }
+}
+
+impl Shape for Sphere {
+    fn bounds(&self) -> Aabb {
+        Aabb::new(self.center - Vec3::splat(self.radius), self.center + Vec3::splat(self.radius))
+    }
+
+    /// Substituting the ray into the sphere equation gives
+    /// `(d.d) t^2 + 2 ((s - c).d) t + |s - c|^2 - R^2 = 0`; the smaller root in the
+    /// interval wins, the normal is `(p - c) / R`.
+    ///
+    /// The constant term is computed as `|s - c - (d.(s-c)) d|^2`-based
+    /// discriminant (Haines et al., Ray Tracing Gems ch. 7) so that a small sphere
+    /// far from the ray origin keeps its precision.
+    fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
+        let f = ray.origin - self.center;
+        let a = ray.dir.length_squared();
+        let b_half = f.dot(ray.dir);
+        // discriminant/a = R^2 - |f - (b_half/a) d|^2, free of the cancellation in b^2 - ac.
+        let perpendicular = f - ray.dir * (b_half / a);
+        let discriminant = a * (self.radius * self.radius - perpendicular.length_squared());
+        if discriminant < 0.0 {
+            return None;
+        }
+        let c = f.length_squared() - self.radius * self.radius;
+        let root = discriminant.sqrt();
+        let q = -(b_half + root.copysign(b_half));
+        let (mut t0, mut t1) = if q == 0.0 { (0.0, 0.0) } else { (q / a, c / q) };
+        if t0 > t1 {
+            std::mem::swap(&mut t0, &mut t1);
+        }
+        let t = if t0 > t_min && t0 < t_max {
+            t0
+        } else if t1 > t_min && t1 < t_max {
+            t1
+        } else {
+            return None;
+        };
+        let normal = (ray.at(t) - self.center) / self.radius;
+        Some(SurfaceHit::new(t, normal.normalize()))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn unit() -> Sphere {
+        Sphere::new(Vec3::ZERO, 1.0).unwrap()
+    }
+
+    #[test]
+    fn hit_from_outside_returns_near_root_and_outward_normal() {
+        let hit = unit().intersect(&Ray::new(Vec3::new(0.0, 0.0, -3.0), Vec3::Z), 0.0, f64::INFINITY).unwrap();
+        assert!((hit.t - 2.0).abs() < 1e-14);
+        assert!((hit.normal - Vec3::new(0.0, 0.0, -1.0)).length() < 1e-14);
+    }
+
+    #[test]
+    fn miss_and_tangent() {
+        let s = unit();
+        assert!(s.intersect(&Ray::new(Vec3::new(0.0, 1.0001, -3.0), Vec3::Z), 0.0, f64::INFINITY).is_none());
+        let tangent = s.intersect(&Ray::new(Vec3::new(0.0, 1.0, -3.0), Vec3::Z), 0.0, f64::INFINITY).unwrap();
+        assert!((tangent.t - 3.0).abs() < 1e-6);
+        assert!((tangent.normal - Vec3::Y).length() < 1e-6);
+    }
+
+    #[test]
+    fn ray_starting_inside_hits_far_side() {
+        let hit = unit().intersect(&Ray::new(Vec3::ZERO, Vec3::X), 0.0, f64::INFINITY).unwrap();
+        assert!((hit.t - 1.0).abs() < 1e-14);
+        assert!((hit.normal - Vec3::X).length() < 1e-14, "outward normal, not yet flipped");
+    }
+
+    #[test]
+    fn sphere_behind_ray_and_interval_limits() {
+        let s = unit();
+        assert!(s.intersect(&Ray::new(Vec3::new(0.0, 0.0, 3.0), Vec3::Z), 0.0, f64::INFINITY).is_none());
+        assert!(s.intersect(&Ray::new(Vec3::new(0.0, 0.0, -3.0), Vec3::Z), 0.0, 1.5).is_none());
+    }
+
+    #[test]
+    fn tiny_sphere_far_away_keeps_precision() {
+        let s = Sphere::new(Vec3::new(0.0, 0.0, 1e6), 1e-3).unwrap();
+        let hit = s.intersect(&Ray::new(Vec3::ZERO, Vec3::Z), 0.0, f64::INFINITY).unwrap();
+        assert!((hit.t - (1e6 - 1e-3)).abs() < 1e-8, "t = {}", hit.t);
+    }
+
+    #[test]
+    fn rejects_bad_radius() {
+        assert!(Sphere::new(Vec3::ZERO, 0.0).is_err());
+        assert!(Sphere::new(Vec3::ZERO, f64::NAN).is_err());
+    }
+}
