@@ -13,7 +13,10 @@ use crate::accel::Aabb;
 use crate::math::Vec3;
 use crate::ray::Ray;
 
+mod plane;
 mod sphere;
+
+pub use plane::{Disk, Plane, Rectangle};
 pub use sphere::Sphere;
 
 /// What a shape reports about a ray hit.

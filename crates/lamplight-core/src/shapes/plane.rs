@@ -1,0 +1,213 @@
+//! Planar shapes: the infinite plane, a bounded rectangle (parallelogram) and a disk.
+//!
+//! All three solve the lecture's plane equation `(ray(t) - p0).n = 0`, i.e.
+//! `t = (p0 - s).n / (d.n)`, then test whether the point lies inside the bounds.
+//! They are infinitely thin, with the same material on both sides; `normal` is the
+//! side called outward.
+
+use super::{Shape, SurfaceHit};
+use crate::accel::Aabb;
+use crate::math::Vec3;
+use crate::ray::Ray;
+use crate::Error;
+
+/// Ray parameter of the hit with the plane through `point` with unit `normal`,
+/// `None` when the ray is parallel to it or the hit is outside `(t_min, t_max)`.
+#[inline]
+fn plane_t(ray: &Ray, point: Vec3, normal: Vec3, t_min: f64, t_max: f64) -> Option<f64> {
+    let denom = ray.dir.dot(normal);
+    if denom == 0.0 {
+        return None;
+    }
+    let t = (point - ray.origin).dot(normal) / denom;
+    (t > t_min && t < t_max).then_some(t)
+}
+
+fn unit_normal(normal: Vec3) -> Result<Vec3, Error> {
+    normal.try_normalize().ok_or_else(|| Error::invalid("normal", "must be a non-zero finite vector"))
+}
+
+/// The infinite plane through `point` with normal `normal`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Plane {
+    /// A point of the plane.
+    pub point: Vec3,
+    /// Unit normal (outward side).
+    pub normal: Vec3,
+}
+
+impl Plane {
+    /// A plane; `normal` need not be unit.
+    pub fn new(point: Vec3, normal: Vec3) -> Result<Plane, Error> {
+        if !point.is_finite() {
+            return Err(Error::invalid("point", "must be finite"));
+        }
+        Ok(Plane { point, normal: unit_normal(normal)? })
+    }
+}
+
+impl Shape for Plane {
+    fn bounds(&self) -> Aabb {
+        Aabb::INFINITE
+    }
+
+    fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
+        plane_t(ray, self.point, self.normal, t_min, t_max).map(|t| SurfaceHit::new(t, self.normal))
+    }
+}
+
+/// The parallelogram `corner + u * edge_u + v * edge_v`, `u, v` in `[0, 1]`; a
+/// rectangle when the edges are perpendicular. The outward normal is
+/// `edge_u x edge_v`, normalized.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Rectangle {
+    /// One corner.
+    pub corner: Vec3,
+    /// First edge from the corner.
+    pub edge_u: Vec3,
+    /// Second edge from the corner.
+    pub edge_v: Vec3,
+    normal: Vec3,
+    /// Rows of the inverse of the 2x2 Gram matrix, to get (u, v) of a point.
+    dual_u: Vec3,
+    dual_v: Vec3,
+}
+
+impl Rectangle {
+    /// A parallelogram from a corner and two edges, which must not be parallel.
+    pub fn new(corner: Vec3, edge_u: Vec3, edge_v: Vec3) -> Result<Rectangle, Error> {
+        if !(corner.is_finite() && edge_u.is_finite() && edge_v.is_finite()) {
+            return Err(Error::invalid("rectangle", "corner and edges must be finite"));
+        }
+        let cross = edge_u.cross(edge_v);
+        let area2 = cross.length_squared();
+        if !(area2 > 0.0) {
+            return Err(Error::DegenerateGeometry("rectangle edges are parallel or zero".into()));
+        }
+        // Dual basis: dual_u.edge_u = 1, dual_u.edge_v = 0 (and symmetric).
+        let dual_u = edge_v.cross(cross) / area2;
+        let dual_v = cross.cross(edge_u) / area2;
+        Ok(Rectangle { corner, edge_u, edge_v, normal: cross / area2.sqrt(), dual_u, dual_v })
+    }
+
+    /// The axis-aligned rectangle `y = height`, `x0 <= x <= x1`, `z0 <= z <= z1`,
+    /// facing +y (a table top or a floor).
+    pub fn horizontal(height: f64, x0: f64, x1: f64, z0: f64, z1: f64) -> Result<Rectangle, Error> {
+        // edge_u = +z, edge_v = +x gives the normal +z x +x = +y.
+        Rectangle::new(Vec3::new(x0, height, z0), Vec3::new(0.0, 0.0, z1 - z0), Vec3::new(x1 - x0, 0.0, 0.0))
+    }
+
+    /// Unit outward normal.
+    pub fn normal(&self) -> Vec3 {
+        self.normal
+    }
+}
+
+impl Shape for Rectangle {
+    fn bounds(&self) -> Aabb {
+        let c = self.corner;
+        Aabb::from_points([c, c + self.edge_u, c + self.edge_v, c + self.edge_u + self.edge_v])
+    }
+
+    fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
+        let t = plane_t(ray, self.corner, self.normal, t_min, t_max)?;
+        let local = ray.at(t) - self.corner;
+        let u = local.dot(self.dual_u);
+        let v = local.dot(self.dual_v);
+        ((0.0..=1.0).contains(&u) && (0.0..=1.0).contains(&v)).then(|| SurfaceHit::new(t, self.normal))
+    }
+}
+
+/// The disk of radius `radius` around `center` in the plane with normal `normal`
+/// (a cylinder's cap, a lamp's base).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Disk {
+    /// Centre.
+    pub center: Vec3,
+    /// Unit normal (outward side).
+    pub normal: Vec3,
+    /// Radius.
+    pub radius: f64,
+}
+
+impl Disk {
+    /// A disk; `normal` need not be unit, `radius` must be positive.
+    pub fn new(center: Vec3, normal: Vec3, radius: f64) -> Result<Disk, Error> {
+        if !center.is_finite() {
+            return Err(Error::invalid("center", "must be finite"));
+        }
+        if !(radius > 0.0 && radius.is_finite()) {
+            return Err(Error::invalid("radius", format!("must be a positive number, got {radius}")));
+        }
+        Ok(Disk { center, normal: unit_normal(normal)?, radius })
+    }
+}
+
+impl Shape for Disk {
+    fn bounds(&self) -> Aabb {
+        // Extent along each axis: radius * sqrt(1 - n_axis^2).
+        let n = self.normal;
+        let half = Vec3::new((1.0 - n.x * n.x).max(0.0).sqrt(), (1.0 - n.y * n.y).max(0.0).sqrt(), (1.0 - n.z * n.z).max(0.0).sqrt()) * self.radius;
+        Aabb::new(self.center - half, self.center + half)
+    }
+
+    fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
+        let t = plane_t(ray, self.center, self.normal, t_min, t_max)?;
+        ((ray.at(t) - self.center).length_squared() <= self.radius * self.radius).then(|| SurfaceHit::new(t, self.normal))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const INF: f64 = f64::INFINITY;
+
+    #[test]
+    fn plane_hit_from_either_side_and_parallel_miss() {
+        let p = Plane::new(Vec3::ZERO, Vec3::Y).unwrap();
+        let down = p.intersect(&Ray::new(Vec3::new(1.0, 2.0, 3.0), -Vec3::Y), 0.0, INF).unwrap();
+        assert_eq!(down.t, 2.0);
+        assert_eq!(down.normal, Vec3::Y);
+        let up = p.intersect(&Ray::new(Vec3::new(0.0, -1.0, 0.0), Vec3::new(1.0, 1.0, 0.0)), 0.0, INF).unwrap();
+        assert!((up.t - 2f64.sqrt()).abs() < 1e-14);
+        assert!(p.intersect(&Ray::new(Vec3::new(0.0, 1.0, 0.0), Vec3::X), 0.0, INF).is_none());
+        assert!(p.intersect(&Ray::new(Vec3::new(0.0, 1.0, 0.0), Vec3::Y), 0.0, INF).is_none(), "plane behind the ray");
+        assert!(Plane::new(Vec3::ZERO, Vec3::ZERO).is_err());
+    }
+
+    #[test]
+    fn rectangle_inside_edges_and_outside() {
+        let r = Rectangle::horizontal(0.0, -2.5, 2.5, -2.0, 2.0).unwrap();
+        assert_eq!(r.normal(), Vec3::Y);
+        let at = |x: f64, z: f64| r.intersect(&Ray::new(Vec3::new(x, 1.0, z), -Vec3::Y), 0.0, INF);
+        assert_eq!(at(0.0, 0.0).unwrap().t, 1.0);
+        assert!(at(2.5, 2.0).is_some(), "corner counts");
+        assert!(at(2.5001, 0.0).is_none());
+        assert!(at(0.0, -2.0001).is_none());
+        let b = r.bounds();
+        assert_eq!((b.min, b.max), (Vec3::new(-2.5, 0.0, -2.0), Vec3::new(2.5, 0.0, 2.0)));
+        assert!(Rectangle::new(Vec3::ZERO, Vec3::X, Vec3::X * 2.0).is_err());
+    }
+
+    #[test]
+    fn slanted_parallelogram_uses_its_own_coordinates() {
+        let r = Rectangle::new(Vec3::ZERO, Vec3::new(2.0, 0.0, 0.0), Vec3::new(1.0, 1.0, 0.0)).unwrap();
+        let hit = |x: f64, y: f64| r.intersect(&Ray::new(Vec3::new(x, y, 1.0), -Vec3::Z), 0.0, INF).is_some();
+        assert!(hit(2.9, 0.95));
+        assert!(!hit(0.2, 0.5), "left of the slanted edge");
+        assert!(hit(1.0, 0.5));
+    }
+
+    #[test]
+    fn disk_radius_and_bounds() {
+        let d = Disk::new(Vec3::new(0.0, 1.0, 0.0), Vec3::Y, 0.5).unwrap();
+        assert!(d.intersect(&Ray::new(Vec3::new(0.49, 2.0, 0.0), -Vec3::Y), 0.0, INF).is_some());
+        assert!(d.intersect(&Ray::new(Vec3::new(0.36, 2.0, 0.36), -Vec3::Y), 0.0, INF).is_none());
+        let b = d.bounds();
+        assert!((b.max - Vec3::new(0.5, 1.0, 0.5)).length() < 1e-15);
+        let tilted = Disk::new(Vec3::ZERO, Vec3::new(1.0, 1.0, 0.0), 1.0).unwrap();
+        let b = tilted.bounds();
+        assert!((b.max.x - 0.5f64.sqrt()).abs() < 1e-12 && (b.max.z - 1.0).abs() < 1e-12);
+    }
+}

@@ -1,0 +1,56 @@
+//! Scenes built into the program, by name: `lamplight render luxo`.
+//!
+//! Each scene is one file with a `build(aspect)` function that builds the core
+//! scene for an image of aspect `width / height`; the registry below lists them.
+//! To add one: a new file and one line in [`BUILTINS`].
+
+use lamplight_core::{Error, Scene};
+
+mod business_card;
+mod luxo;
+mod spheres;
+
+/// A scene that ships with the program.
+#[derive(Debug)]
+pub struct Builtin {
+    /// Name on the command line.
+    pub name: &'static str,
+    /// One line for `--help` and listings.
+    pub summary: &'static str,
+    /// Image size used when none is given.
+    pub default_size: (u32, u32),
+    /// Builds the scene for an image of aspect `width / height`.
+    pub build: fn(aspect: f64) -> Result<Scene, Error>,
+}
+
+/// Every built-in scene; the first is the default.
+pub const BUILTINS: &[Builtin] = &[
+    Builtin {
+        name: "luxo",
+        summary: "the lecture's Homework 2: a paraboloid desk lamp with a light in its focus over a table",
+        default_size: (1280, 720),
+        build: luxo::build,
+    },
+    Builtin {
+        name: "business-card",
+        summary: "Paul Heckbert's business-card ray tracer: five spheres, constant weights",
+        default_size: (32, 32),
+        build: business_card::build,
+    },
+    Builtin {
+        name: "spheres",
+        summary: "100 spheres of three materials on a checkered floor (POV-Ray comparison scene)",
+        default_size: (1280, 720),
+        build: spheres::build,
+    },
+];
+
+/// The built-in scene called `name`.
+pub fn find(name: &str) -> Option<&'static Builtin> {
+    BUILTINS.iter().find(|b| b.name == name)
+}
+
+/// The names of all built-in scenes, comma separated (for error messages).
+pub fn names() -> String {
+    BUILTINS.iter().map(|b| b.name).collect::<Vec<_>>().join(", ")
+}

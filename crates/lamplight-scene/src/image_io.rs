@@ -1,0 +1,1 @@
+//! Image writers: placeholder (replaced in this session).
