@@ -80,11 +80,8 @@ impl Bvh {
         if bounds.is_empty() {
             return Bvh::default();
         }
-        let prims: Vec<BuildPrim> = bounds
-            .iter()
-            .enumerate()
-            .map(|(i, b)| BuildPrim { bounds: *b, centroid: b.centroid(), index: i as u32 })
-            .collect();
+        let prims: Vec<BuildPrim> =
+            bounds.iter().enumerate().map(|(i, b)| BuildPrim { bounds: *b, centroid: b.centroid(), index: i as u32 }).collect();
         let tree = build_tree(prims);
         let mut bvh = Bvh { nodes: Vec::with_capacity(2 * bounds.len() / MIN_LEAF + 1), indices: Vec::with_capacity(bounds.len()) };
         bvh.flatten(tree);
@@ -129,12 +126,7 @@ impl Bvh {
                 stack.push((node.offset as usize, d + 1));
             }
         }
-        BvhStats {
-            nodes: self.nodes.len(),
-            leaves,
-            depth,
-            bytes: self.nodes.len() * std::mem::size_of::<Node>() + self.indices.len() * 4,
-        }
+        BvhStats { nodes: self.nodes.len(), leaves, depth, bytes: self.nodes.len() * std::mem::size_of::<Node>() + self.indices.len() * 4 }
     }
 
     /// Visits, nearest first, every primitive whose leaf box the ray enters within
@@ -263,8 +255,8 @@ fn build_tree(mut prims: Vec<BuildPrim>) -> Tree {
             if acc_n == 0 || right_count[split] == 0 {
                 continue;
             }
-            let cost = TRAVERSAL_COST
-                + (acc_box.surface_area() * acc_n as f64 + right_area[split] * right_count[split] as f64) / parent_area;
+            let cost =
+                TRAVERSAL_COST + (acc_box.surface_area() * acc_n as f64 + right_area[split] * right_count[split] as f64) / parent_area;
             if best.is_none_or(|(c, _, _)| cost < c) {
                 best = Some((cost, axis, split));
             }
@@ -283,16 +275,19 @@ fn build_tree(mut prims: Vec<BuildPrim>) -> Tree {
         None if n <= MAX_LEAF => return leaf(prims, bounds),
         None => {
             // All centroids coincide: split by count so the tree stays balanced.
-            let axis = if extent.x >= extent.y && extent.x >= extent.z { 0 } else if extent.y >= extent.z { 1 } else { 2 };
+            let axis = if extent.x >= extent.y && extent.x >= extent.z {
+                0
+            } else if extent.y >= extent.z {
+                1
+            } else {
+                2
+            };
             let right = prims.split_off(n / 2);
             (prims, right, axis)
         }
     };
-    let (left_tree, right_tree) = if n > PARALLEL_THRESHOLD {
-        rayon::join(|| build_tree(left), || build_tree(right))
-    } else {
-        (build_tree(left), build_tree(right))
-    };
+    let (left_tree, right_tree) =
+        if n > PARALLEL_THRESHOLD { rayon::join(|| build_tree(left), || build_tree(right)) } else { (build_tree(left), build_tree(right)) };
     Tree::Interior { bounds, axis: axis as u8, children: Box::new((left_tree, right_tree)) }
 }
 
@@ -326,7 +321,8 @@ mod tests {
         for _ in 0..500 {
             let o = Vec3::new(rand(&mut s), rand(&mut s), rand(&mut s)) * 120.0 - 10.0;
             let d = (Vec3::new(rand(&mut s), rand(&mut s), rand(&mut s)) - 0.5).normalize();
-            let test = |i: u32, t_max: f64| boxes[i as usize].hit(&crate::ray::Ray::new(o, d), 0.0, t_max).map(|(t, _)| t).filter(|&t| t < t_max);
+            let test =
+                |i: u32, t_max: f64| boxes[i as usize].hit(&crate::ray::Ray::new(o, d), 0.0, t_max).map(|(t, _)| t).filter(|&t| t < t_max);
             let brute = (0..boxes.len() as u32).filter_map(|i| test(i, f64::INFINITY)).fold(f64::INFINITY, f64::min);
             let found = bvh.traverse(o, d, 0.0, f64::INFINITY, test);
             assert_eq!(found, brute);

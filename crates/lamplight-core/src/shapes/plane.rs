@@ -147,7 +147,8 @@ impl Shape for Disk {
     fn bounds(&self) -> Aabb {
         // Extent along each axis: radius * sqrt(1 - n_axis^2).
         let n = self.normal;
-        let half = Vec3::new((1.0 - n.x * n.x).max(0.0).sqrt(), (1.0 - n.y * n.y).max(0.0).sqrt(), (1.0 - n.z * n.z).max(0.0).sqrt()) * self.radius;
+        let half = Vec3::new((1.0 - n.x * n.x).max(0.0).sqrt(), (1.0 - n.y * n.y).max(0.0).sqrt(), (1.0 - n.z * n.z).max(0.0).sqrt())
+            * self.radius;
         Aabb::new(self.center - half, self.center + half)
     }
 
