@@ -67,10 +67,20 @@ pub struct Scene {
     pub min_weight: f64,
     bvh: Bvh,
     /// Objects in the BVH, in BVH primitive order.
-    bounded: Vec<u32>,
+    bounded: Vec<PrimRef>,
     /// Objects with infinite bounds (infinite planes, unclipped quadrics), tested one by one.
-    unbounded: Vec<u32>,
-    any_transparent_shadow: bool,
+    unbounded: Vec<PrimRef>,
+    /// Some material dims shadow rays without blocking them (transmittance strictly
+    /// between 0 and 1), so shadow rays must collect every crossing.
+    any_partial_shadow: bool,
+}
+
+/// An object as the BVH sees it: its index and whether it stops shadow rays, kept
+/// side by side so that shadow queries touch no material.
+#[derive(Clone, Copy, Debug)]
+struct PrimRef {
+    object: u32,
+    opaque: bool,
 }
 
 /// Collects objects, materials and lights, then builds a [`Scene`].
@@ -152,21 +162,22 @@ impl SceneBuilder {
         let mut boxes = Vec::new();
         for (i, object) in self.objects.iter().enumerate() {
             let b = object.shape.bounds();
+            let prim = PrimRef { object: i as u32, opaque: self.materials[object.material].shadow_transmittance == Rgb::ZERO };
             if b.is_finite() {
-                bounded.push(i as u32);
+                bounded.push(prim);
                 boxes.push(b);
             } else if b.is_empty() {
                 continue; // nothing to hit
             } else {
-                unbounded.push(i as u32);
+                unbounded.push(prim);
             }
         }
-        let any_transparent_shadow = self.materials.iter().any(|m| m.shadow_transmittance != Rgb::ZERO);
+        let any_partial_shadow = self.materials.iter().any(|m| m.shadow_transmittance != Rgb::ZERO && m.shadow_transmittance != Rgb::ONE);
         Ok(Scene {
             bvh: Bvh::build(&boxes),
             bounded,
             unbounded,
-            any_transparent_shadow,
+            any_partial_shadow,
             objects: self.objects,
             materials: self.materials,
             lights: self.lights,
@@ -184,14 +195,15 @@ impl Scene {
     pub fn first_intersect(&self, ray: &Ray, t_max: f64) -> Option<Hit> {
         let mut best: Option<(usize, crate::shapes::SurfaceHit)> = None;
         let mut closest = t_max;
-        for &i in &self.unbounded {
-            if let Some(h) = self.objects[i as usize].shape.intersect(ray, 0.0, closest) {
+        for prim in &self.unbounded {
+            let i = prim.object as usize;
+            if let Some(h) = self.objects[i].shape.intersect(ray, 0.0, closest) {
                 closest = h.t;
-                best = Some((i as usize, h));
+                best = Some((i, h));
             }
         }
         self.bvh.traverse(ray.origin, ray.dir, 0.0, closest, |prim, t_max| {
-            let i = self.bounded[prim as usize] as usize;
+            let i = self.bounded[prim as usize].object as usize;
             let h = self.objects[i].shape.intersect(ray, 0.0, t_max)?;
             best = Some((i, h));
             Some(h.t)
@@ -221,26 +233,26 @@ impl Scene {
     /// (a light's own bulb) is invisible to the ray.
     pub fn transmittance(&self, origin: Vec3, dir: Vec3, distance: f64, ignore: Option<usize>) -> Rgb {
         let ray = Ray { origin, dir };
-        let blocks = |i: usize| -> bool {
-            Some(i) != ignore
-                && self.materials[self.objects[i].material].shadow_transmittance == Rgb::ZERO
-                && self.objects[i].shape.intersect_p(&ray, 0.0, distance)
+        let ignore = ignore.map_or(u32::MAX, |i| i as u32);
+        let blocks = |prim: &PrimRef| -> bool {
+            prim.opaque && prim.object != ignore && self.objects[prim.object as usize].shape.intersect_p(&ray, 0.0, distance)
         };
-        if self.unbounded.iter().any(|&i| blocks(i as usize)) {
+        if self.unbounded.iter().any(blocks) {
             return Rgb::ZERO;
         }
-        if self.bvh.any(origin, dir, 0.0, distance, |prim| blocks(self.bounded[prim as usize] as usize)) {
+        if self.bvh.any(origin, dir, 0.0, distance, |prim| blocks(&self.bounded[prim as usize])) {
             return Rgb::ZERO;
         }
-        if !self.any_transparent_shadow {
+        if !self.any_partial_shadow {
             return Rgb::ONE;
         }
         // Only partly transparent surfaces lie on the segment: multiply their
         // transmittance once per crossing.
         let mut result = Rgb::ONE;
-        let mut crossing = |i: usize| {
+        let mut crossing = |prim: &PrimRef| {
+            let i = prim.object as usize;
             let filter = self.materials[self.objects[i].material].shadow_transmittance;
-            if Some(i) == ignore || filter == Rgb::ZERO || filter == Rgb::ONE {
+            if prim.object == ignore || filter == Rgb::ZERO || filter == Rgb::ONE {
                 return;
             }
             let mut t_min = 0.0;
@@ -253,11 +265,11 @@ impl Scene {
                 }
             }
         };
-        for &i in &self.unbounded {
-            crossing(i as usize);
+        for prim in &self.unbounded {
+            crossing(prim);
         }
         self.bvh.traverse(origin, dir, 0.0, distance, |prim, _| {
-            crossing(self.bounded[prim as usize] as usize);
+            crossing(&self.bounded[prim as usize]);
             None
         });
         result

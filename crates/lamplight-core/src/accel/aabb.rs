@@ -87,17 +87,42 @@ impl Aabb {
     /// the box, clipped to `[t_min, t_max]`, or `None`. `inv_dir` is `1 / ray.dir`
     /// (infinite components are fine: IEEE arithmetic gives the right slabs, and the
     /// `max`/`min` order below drops the NaN of `0 * inf`).
-    #[inline]
+    #[inline(always)]
     pub fn hit_interval(&self, origin: Vec3, inv_dir: Vec3, t_min: f64, t_max: f64) -> Option<(f64, f64)> {
-        let t0 = (self.min - origin) * inv_dir;
-        let t1 = (self.max - origin) * inv_dir;
-        let near = t0.min(t1);
-        let far = t0.max(t1);
-        let enter = t_min.max(near.x).max(near.y).max(near.z);
-        // Robust far bound (Ize 2013): one ulp-scale widening so that a ray grazing a
-        // face or an edge still enters the box.
-        let exit = t_max.min(far.x).min(far.y).min(far.z) * (1.0 + 4.0 * f64::EPSILON);
-        (enter <= exit).then_some((enter, exit))
+        // Plain comparisons instead of f64::min/max: they compile to minsd/maxsd.
+        // A NaN slab (0 * inf, origin exactly on a slab plane of a parallel ray)
+        // compares false and leaves the interval as it was.
+        #[inline(always)]
+        fn lo(a: f64, b: f64) -> f64 {
+            if a < b {
+                a
+            } else {
+                b
+            }
+        }
+        #[inline(always)]
+        fn hi(a: f64, b: f64) -> f64 {
+            if a > b {
+                a
+            } else {
+                b
+            }
+        }
+        let tx0 = (self.min.x - origin.x) * inv_dir.x;
+        let tx1 = (self.max.x - origin.x) * inv_dir.x;
+        let ty0 = (self.min.y - origin.y) * inv_dir.y;
+        let ty1 = (self.max.y - origin.y) * inv_dir.y;
+        let tz0 = (self.min.z - origin.z) * inv_dir.z;
+        let tz1 = (self.max.z - origin.z) * inv_dir.z;
+        let enter = hi(hi(hi(t_min, lo(tx0, tx1)), lo(ty0, ty1)), lo(tz0, tz1));
+        // Robust far bound (Ize 2013): a relative widening of a few ulps so that a
+        // ray grazing a face or an edge still enters the box.
+        let exit = lo(lo(lo(t_max, hi(tx0, tx1)), hi(ty0, ty1)), hi(tz0, tz1)) * (1.0 + 4.0 * f64::EPSILON);
+        if enter <= exit {
+            Some((enter, exit))
+        } else {
+            None
+        }
     }
 
     /// Convenience form of [`Aabb::hit_interval`] for one ray.

@@ -67,6 +67,21 @@ impl Shape for Sphere {
         let normal = (ray.at(t) - self.center) / self.radius;
         Some(SurfaceHit::new(t, normal.normalize()))
     }
+
+    fn intersect_p(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
+        let f = ray.origin - self.center;
+        let b_half = f.dot(ray.dir);
+        let perpendicular = f - ray.dir * b_half;
+        let discriminant = self.radius * self.radius - perpendicular.length_squared();
+        if discriminant < 0.0 {
+            return false;
+        }
+        // Unit direction: the roots are -b_half -+ sqrt(discriminant), to the
+        // precision a shadow test needs.
+        let root = discriminant.sqrt();
+        let (t0, t1) = (-b_half - root, -b_half + root);
+        (t0 > t_min && t0 < t_max) || (t1 > t_min && t1 < t_max)
+    }
 }
 
 #[cfg(test)]
