@@ -84,14 +84,24 @@ impl Aabb {
     }
 
     /// Slab test (Kay and Kajiya 1986): the parameter interval where `ray` is inside
-    /// the box, clipped to `[t_min, t_max]`, or `None`. `inv_dir` is `1 / ray.dir`
-    /// (infinite components are fine: IEEE arithmetic gives the right slabs, and the
-    /// `max`/`min` order below drops the NaN of `0 * inf`).
+    /// the box, clipped to `[t_min, t_max]`, or `None`. `inv_dir` is `1 / ray.dir`;
+    /// infinite components are fine. A ray parallel to a slab and lying exactly in
+    /// one of its planes gives `0 * inf = NaN`: it is inside the closed slab, so that
+    /// axis puts no bound on the interval.
     #[inline(always)]
     pub fn hit_interval(&self, origin: Vec3, inv_dir: Vec3, t_min: f64, t_max: f64) -> Option<(f64, f64)> {
-        // Plain comparisons instead of f64::min/max: they compile to minsd/maxsd.
-        // A NaN slab (0 * inf, origin exactly on a slab plane of a parallel ray)
-        // compares false and leaves the interval as it was.
+        // Plain comparisons instead of f64::min/max, which compile to branches
+        // around NaN; these become minsd/maxsd and predictable jumps.
+        #[inline(always)]
+        fn slab(a: f64, b: f64) -> (f64, f64) {
+            if a <= b {
+                (a, b)
+            } else if b < a {
+                (b, a)
+            } else {
+                (f64::NEG_INFINITY, f64::INFINITY)
+            }
+        }
         #[inline(always)]
         fn lo(a: f64, b: f64) -> f64 {
             if a < b {
@@ -108,16 +118,13 @@ impl Aabb {
                 b
             }
         }
-        let tx0 = (self.min.x - origin.x) * inv_dir.x;
-        let tx1 = (self.max.x - origin.x) * inv_dir.x;
-        let ty0 = (self.min.y - origin.y) * inv_dir.y;
-        let ty1 = (self.max.y - origin.y) * inv_dir.y;
-        let tz0 = (self.min.z - origin.z) * inv_dir.z;
-        let tz1 = (self.max.z - origin.z) * inv_dir.z;
-        let enter = hi(hi(hi(t_min, lo(tx0, tx1)), lo(ty0, ty1)), lo(tz0, tz1));
+        let (nx, fx) = slab((self.min.x - origin.x) * inv_dir.x, (self.max.x - origin.x) * inv_dir.x);
+        let (ny, fy) = slab((self.min.y - origin.y) * inv_dir.y, (self.max.y - origin.y) * inv_dir.y);
+        let (nz, fz) = slab((self.min.z - origin.z) * inv_dir.z, (self.max.z - origin.z) * inv_dir.z);
+        let enter = hi(hi(hi(t_min, nx), ny), nz);
         // Robust far bound (Ize 2013): a relative widening of a few ulps so that a
         // ray grazing a face or an edge still enters the box.
-        let exit = lo(lo(lo(t_max, hi(tx0, tx1)), hi(ty0, ty1)), hi(tz0, tz1)) * (1.0 + 4.0 * f64::EPSILON);
+        let exit = lo(lo(lo(t_max, fx), fy), fz) * (1.0 + 4.0 * f64::EPSILON);
         if enter <= exit {
             Some((enter, exit))
         } else {
@@ -146,6 +153,15 @@ mod tests {
         assert!(b.hit(&Ray::new(Vec3::new(1.0 - 1e-12, 0.0, -5.0), Vec3::Z), 0.0, f64::INFINITY).is_some());
         assert!(b.hit(&Ray::new(Vec3::new(1.0 + 1e-12, 0.0, -5.0), Vec3::Z), 0.0, f64::INFINITY).is_none());
         assert!(b.hit(&r, 0.0, 3.0).is_none());
+        // Lying exactly in a face plane or along an edge, either direction sign.
+        for dir in [Vec3::Z, -Vec3::Z, Vec3::new(0.0, -0.0, 1.0)] {
+            let on_face = Ray::new(Vec3::new(1.0, 0.0, -5.0 * dir.z), dir);
+            assert!(b.hit(&on_face, 0.0, f64::INFINITY).is_some(), "{dir}");
+            let on_edge = Ray::new(Vec3::new(-1.0, 1.0, -5.0 * dir.z), dir);
+            assert!(b.hit(&on_edge, 0.0, f64::INFINITY).is_some(), "{dir}");
+        }
+        let flat = Aabb::new(Vec3::new(0.0, -1.0, -1.0), Vec3::new(0.0, 1.0, 1.0));
+        assert!(flat.hit(&Ray::new(Vec3::new(0.0, 0.0, -5.0), Vec3::Z), 0.0, f64::INFINITY).is_some());
         assert_eq!(Aabb::EMPTY.surface_area(), 0.0);
         assert!((b.surface_area() - 24.0).abs() < 1e-12);
     }
