@@ -1,43 +1,56 @@
-//! A bounding volume hierarchy built with the binned surface area heuristic.
+//! A 4-wide bounding volume hierarchy with SIMD box tests.
 //!
 //! The BVH knows nothing of shapes: it is built from one [`Aabb`] per primitive and
 //! traversed with a closure that intersects primitive `i` (the obvhs design). The
 //! scene uses one over its objects, and every triangle mesh one over its triangles
 //! (a two-level structure, so a mesh placed twice is stored once).
 //!
-//! Written by hand because it is the heart of the renderer's speed and must work on
-//! `f64` boxes of any shape type; see `BENCHMARKS.md` for what it costs.
+//! Written by hand because it is the heart of the renderer's speed; see
+//! `BENCHMARKS.md` for what each step gained.
 //!
-//! Build: top-down, binned SAH (Wald 2007) with [`BINS`] bins per axis on the
-//! centroid bounds, cost `C_trav + sum(A_child / A_parent * n_child)`; subtrees
-//! with many primitives are built in parallel (rayon). Nodes are stored depth
-//! first: the left child directly follows its parent, the right child's index is
-//! stored. Traversal is ordered (near child first, by the ray's sign on the split
-//! axis) with an explicit stack, and shrinks `t_max` as hits are found.
+//! Build: a binary tree by binned SAH ([`super::sah`]), collapsed into nodes of
+//! up to four children by repeatedly opening the child with the largest surface
+//! area. A node stores its children's boxes as `f32` structure-of-arrays, so one
+//! ray is tested against four boxes with a few SSE instructions (glam's `Vec4`).
+//!
+//! Exactness: geometry is `f64`, the boxes `f32`. The test stays conservative (it
+//! may report a box the ray misses, never miss one it enters): boxes are rounded
+//! outwards; the ray origin is replaced by two `f32` points bracketing it on every
+//! axis, the near slab plane measured from one and the far plane from the other;
+//! and the entry/exit interval is widened by a few `f32` ulps for the rounding of
+//! the subtraction, the product and the inverse direction.
+//!
+//! Traversal is ordered (nearest child first, by entry distance), with an explicit
+//! stack; entries farther than the closest hit so far are skipped when popped.
 
+use std::mem::MaybeUninit;
+
+use glam::Vec4;
+
+use super::sah::{self, Tree};
 use super::Aabb;
-use crate::math::Vec3;
+use crate::math::{max_abs, Vec3};
 
-/// Number of SAH bins per axis.
-pub const BINS: usize = 16;
-/// Primitives at or below which a node always becomes a leaf.
-const MIN_LEAF: usize = 2;
-/// Largest leaf made when the SAH cannot separate primitives (coincident centroids).
-const MAX_LEAF: usize = 8;
-/// Cost of one box test relative to one primitive test.
-const TRAVERSAL_COST: f64 = 1.0;
-/// Subtrees larger than this are built on another thread.
-const PARALLEL_THRESHOLD: usize = 4096;
+/// Marks a child reference as a leaf: low bits are the first index in `indices`.
+const LEAF: u32 = 1 << 31;
+/// Relative widening of the entry/exit interval (a few f32 ulps).
+const WIDEN: f32 = 4.0 * f32::EPSILON;
+/// Traversal stack size: three pending siblings per level of a tree whose depth
+/// the SAH build bounds by `SAH_DEPTH + 32`.
+const STACK: usize = 3 * (sah::SAH_DEPTH + 32) + 4;
 
-/// One node: a leaf holds `count > 0` primitives starting at `offset` in the index
-/// array; an interior node (`count == 0`) has its left child next and its right
-/// child at `offset`.
+/// Up to four children: their boxes (structure of arrays) and references.
 #[derive(Clone, Copy, Debug)]
+#[repr(C, align(32))]
 struct Node {
-    bounds: Aabb,
-    offset: u32,
-    count: u16,
-    axis: u8,
+    /// `[min_x, min_y, min_z, max_x, max_y, max_z]`, each for the four children.
+    planes: [[f32; 4]; 6],
+    /// Child node index, or `LEAF | first index` for a leaf.
+    child: [u32; 4],
+    /// Primitive count of leaf children (0 for interior children).
+    count: [u8; 4],
+    /// Bit `i` set when child `i` exists.
+    valid: u8,
 }
 
 /// A built hierarchy over primitives `0..n`.
@@ -45,85 +58,192 @@ struct Node {
 pub struct Bvh {
     nodes: Vec<Node>,
     indices: Vec<u32>,
+    bounds: Option<Aabb>,
 }
 
 /// Size figures of a built BVH.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct BvhStats {
-    /// Number of nodes.
+    /// Number of 4-wide nodes.
     pub nodes: usize,
     /// Number of leaves.
     pub leaves: usize,
-    /// Deepest leaf (root = 1).
+    /// Deepest leaf (root node = 1).
     pub depth: usize,
     /// Bytes of nodes plus the primitive index array.
     pub bytes: usize,
 }
 
-enum Tree {
-    Leaf { bounds: Aabb, prims: Vec<u32> },
-    Interior { bounds: Aabb, axis: u8, children: Box<(Tree, Tree)> },
+/// `f32` below or equal to `x` (outward rounding of a box's minimum).
+fn round_down(x: f64) -> f32 {
+    let f = x as f32;
+    if f as f64 > x {
+        f.next_down()
+    } else {
+        f
+    }
 }
 
-struct BuildPrim {
-    bounds: Aabb,
-    centroid: Vec3,
-    index: u32,
+/// `f32` above or equal to `x` (outward rounding of a box's maximum).
+fn round_up(x: f64) -> f32 {
+    let f = x as f32;
+    if (f as f64) < x {
+        f.next_up()
+    } else {
+        f
+    }
+}
+
+/// A ray prepared for the `f32` box test.
+struct RayBoxes {
+    /// Per axis: the origin bound the near plane is measured from, splatted.
+    near_origin: [Vec4; 3],
+    /// Per axis: the origin bound the far plane is measured from, splatted.
+    far_origin: [Vec4; 3],
+    /// Per axis: inverse direction, splatted (finite: +-1e30 for zero components).
+    inv_dir: [Vec4; 3],
+    /// Per axis: plane row of the near plane (min for positive directions).
+    near_row: [usize; 3],
+    /// Per axis: plane row of the far plane.
+    far_row: [usize; 3],
+    t_min: Vec4,
+}
+
+impl RayBoxes {
+    fn new(origin: Vec3, dir: Vec3, t_min: f64) -> RayBoxes {
+        // Bracket the f64 origin: with pad = 2^-21 |o|_inf (+ a tiny absolute part
+        // for o = 0), rounding o -+ pad to f32 moves it by at most half an f32 ulp,
+        // 2^-24 |o|, less than pad, so lo < o < hi on every axis.
+        let pad = max_abs(origin) * (1.0 / 2_097_152.0) + 1e-30;
+        let mut near_origin = [Vec4::ZERO; 3];
+        let mut far_origin = [Vec4::ZERO; 3];
+        let mut inv_dir = [Vec4::ZERO; 3];
+        let mut near_row = [0; 3];
+        let mut far_row = [0; 3];
+        for axis in 0..3 {
+            let lo = (origin[axis] - pad) as f32;
+            let hi = (origin[axis] + pad) as f32;
+            let d = dir[axis];
+            let inv = if d == 0.0 { 1e30f32.copysign(d as f32) } else { ((1.0 / d) as f32).clamp(-1e30, 1e30) };
+            inv_dir[axis] = Vec4::splat(inv);
+            if inv >= 0.0 {
+                // Near = (min - hi) * inv is at most the true entry; far = (max - lo) * inv at least the exit.
+                (near_row[axis], far_row[axis]) = (axis, axis + 3);
+                (near_origin[axis], far_origin[axis]) = (Vec4::splat(hi), Vec4::splat(lo));
+            } else {
+                (near_row[axis], far_row[axis]) = (axis + 3, axis);
+                (near_origin[axis], far_origin[axis]) = (Vec4::splat(lo), Vec4::splat(hi));
+            }
+        }
+        RayBoxes { near_origin, far_origin, inv_dir, near_row, far_row, t_min: Vec4::splat(t_min.max(0.0) as f32) }
+    }
+
+    /// Entry distances of the four children and the mask of those the ray enters
+    /// before `t_max`.
+    #[inline(always)]
+    fn test(&self, node: &Node, t_max: f32) -> (Vec4, u32) {
+        let p = &node.planes;
+        let near = |a: usize| (Vec4::from_array(p[self.near_row[a]]) - self.near_origin[a]) * self.inv_dir[a];
+        let far = |a: usize| (Vec4::from_array(p[self.far_row[a]]) - self.far_origin[a]) * self.inv_dir[a];
+        let enter = near(0).max(near(1)).max(near(2)).max(self.t_min);
+        let exit = far(0).min(far(1)).min(far(2)).min(Vec4::splat(t_max));
+        let hit = (enter * (1.0 - WIDEN)).cmple(exit * (1.0 + WIDEN));
+        (enter, hit.bitmask() & node.valid as u32)
+    }
 }
 
 impl Bvh {
     /// Builds the hierarchy over `bounds[i]` for primitive `i`. Every box must be
-    /// finite (unbounded shapes are kept outside the BVH by the scene). Panics never:
-    /// empty input gives an empty BVH whose traversal finds nothing.
+    /// finite (unbounded shapes are kept outside the BVH by the scene). Empty input
+    /// gives an empty BVH whose traversal finds nothing.
     pub fn build(bounds: &[Aabb]) -> Bvh {
-        assert!(bounds.len() < u32::MAX as usize, "too many primitives for one BVH");
+        assert!(bounds.len() < LEAF as usize, "too many primitives for one BVH");
         if bounds.is_empty() {
             return Bvh::default();
         }
-        let prims: Vec<BuildPrim> =
-            bounds.iter().enumerate().map(|(i, b)| BuildPrim { bounds: *b, centroid: b.centroid(), index: i as u32 }).collect();
-        let tree = build_tree(prims);
-        let mut bvh = Bvh { nodes: Vec::with_capacity(2 * bounds.len() / MIN_LEAF + 1), indices: Vec::with_capacity(bounds.len()) };
-        bvh.flatten(tree);
+        let tree = sah::build(bounds);
+        let mut bvh =
+            Bvh { nodes: Vec::with_capacity(bounds.len() / 4 + 1), indices: Vec::with_capacity(bounds.len()), bounds: Some(tree.bounds()) };
+        match &tree {
+            Tree::Leaf { .. } => {
+                // A single leaf still gets a root node, so traversal has one shape.
+                bvh.nodes.push(Node { planes: [[0.0; 4]; 6], child: [0; 4], count: [0; 4], valid: 0 });
+                bvh.set_child(0, 0, &tree);
+            }
+            Tree::Interior { .. } => {
+                bvh.collapse(&tree);
+            }
+        }
         bvh
     }
 
-    fn flatten(&mut self, tree: Tree) -> usize {
-        let at = self.nodes.len();
+    /// Stores `tree` as child `slot` of node `node`, recursing into interior trees.
+    fn set_child(&mut self, node: usize, slot: usize, tree: &Tree) {
+        let b = tree.bounds();
+        let planes =
+            [round_down(b.min.x), round_down(b.min.y), round_down(b.min.z), round_up(b.max.x), round_up(b.max.y), round_up(b.max.z)];
+        for (row, value) in planes.into_iter().enumerate() {
+            self.nodes[node].planes[row][slot] = value;
+        }
+        self.nodes[node].valid |= 1 << slot;
         match tree {
-            Tree::Leaf { bounds, prims } => {
-                self.nodes.push(Node { bounds, offset: self.indices.len() as u32, count: prims.len() as u16, axis: 0 });
-                self.indices.extend_from_slice(&prims);
+            Tree::Leaf { prims, .. } => {
+                self.nodes[node].child[slot] = LEAF | self.indices.len() as u32;
+                self.nodes[node].count[slot] = prims.len() as u8;
+                self.indices.extend_from_slice(prims);
             }
-            Tree::Interior { bounds, axis, children } => {
-                self.nodes.push(Node { bounds, offset: 0, count: 0, axis });
-                let (left, right) = *children;
-                self.flatten(left);
-                let right_at = self.flatten(right);
-                self.nodes[at].offset = right_at as u32;
+            Tree::Interior { .. } => {
+                let index = self.collapse(tree);
+                self.nodes[node].child[slot] = index as u32;
             }
         }
-        at
+    }
+
+    /// Makes a node for interior `tree` from up to four of its descendants: the
+    /// child with the largest surface area is opened until there are four.
+    fn collapse(&mut self, tree: &Tree) -> usize {
+        let Tree::Interior { children, .. } = tree else { unreachable!("collapse is called on interior trees") };
+        let mut kids: Vec<&Tree> = vec![&children.0, &children.1];
+        while kids.len() < 4 {
+            let widest = kids
+                .iter()
+                .enumerate()
+                .filter(|(_, t)| matches!(t, Tree::Interior { .. }))
+                .max_by(|a, b| a.1.bounds().surface_area().total_cmp(&b.1.bounds().surface_area()));
+            let Some((i, _)) = widest else { break };
+            let Tree::Interior { children, .. } = kids.swap_remove(i) else { unreachable!() };
+            kids.push(&children.0);
+            kids.push(&children.1);
+        }
+        let index = self.nodes.len();
+        self.nodes.push(Node { planes: [[0.0; 4]; 6], child: [0; 4], count: [0; 4], valid: 0 });
+        for (slot, kid) in kids.into_iter().enumerate() {
+            self.set_child(index, slot, kid);
+        }
+        index
     }
 
     /// Bounds of everything in the hierarchy ([`Aabb::EMPTY`] if nothing).
     pub fn bounds(&self) -> Aabb {
-        self.nodes.first().map_or(Aabb::EMPTY, |n| n.bounds)
+        self.bounds.unwrap_or(Aabb::EMPTY)
     }
 
     /// Node count, leaves, depth and memory.
     pub fn stats(&self) -> BvhStats {
-        let mut leaves = 0;
-        let mut depth = 0;
+        let (mut leaves, mut depth) = (0, 0);
         let mut stack = vec![(0usize, 1usize)];
         while let Some((i, d)) = stack.pop() {
             let Some(node) = self.nodes.get(i) else { break };
-            if node.count > 0 {
-                leaves += 1;
-                depth = depth.max(d);
-            } else {
-                stack.push((i + 1, d + 1));
-                stack.push((node.offset as usize, d + 1));
+            for slot in 0..4 {
+                if node.valid & (1 << slot) == 0 {
+                    continue;
+                }
+                if node.child[slot] & LEAF != 0 {
+                    leaves += 1;
+                    depth = depth.max(d);
+                } else {
+                    stack.push((node.child[slot] as usize, d + 1));
+                }
             }
         }
         BvhStats { nodes: self.nodes.len(), leaves, depth, bytes: self.nodes.len() * std::mem::size_of::<Node>() + self.indices.len() * 4 }
@@ -138,38 +258,63 @@ impl Bvh {
         if self.nodes.is_empty() {
             return t_max;
         }
-        let inv_dir = dir.recip();
-        let negative = [dir.x < 0.0, dir.y < 0.0, dir.z < 0.0];
-        let mut stack = [0u32; 64];
+        let ray = RayBoxes::new(origin, dir, t_min);
+        // Uninitialized: zero-filling the stack cost more than a short traversal.
+        let mut stack = [const { MaybeUninit::<(u32, f32, u8)>::uninit() }; STACK];
         let mut top = 0usize;
-        let mut current = 0usize;
+        let mut current = 0u32; // a node index, or LEAF | first with `leaf_count`
+        let mut leaf_count = 0u8;
         loop {
-            let node = &self.nodes[current];
-            if node.bounds.hit_interval(origin, inv_dir, t_min, t_max).is_some() {
-                if node.count > 0 {
-                    let start = node.offset as usize;
-                    for &prim in &self.indices[start..start + node.count as usize] {
-                        if let Some(t) = intersect(prim, t_max) {
-                            t_max = t_max.min(t);
-                        }
+            if current & LEAF != 0 {
+                let first = (current & !LEAF) as usize;
+                for &prim in &self.indices[first..first + leaf_count as usize] {
+                    if let Some(t) = intersect(prim, t_max) {
+                        t_max = t_max.min(t);
                     }
-                } else {
-                    let (near, far) = if negative[node.axis as usize] {
-                        (node.offset as usize, current + 1)
-                    } else {
-                        (current + 1, node.offset as usize)
-                    };
-                    stack[top] = far as u32;
-                    top += 1;
-                    current = near;
+                }
+            } else {
+                let node = &self.nodes[current as usize];
+                let (enter, mut mask) = ray.test(node, t_max as f32);
+                if mask != 0 {
+                    let enter = enter.to_array();
+                    // Push the hit children farthest first, then continue with the nearest.
+                    let mut order = [(0f32, 0usize); 4];
+                    let mut n = 0;
+                    while mask != 0 {
+                        let slot = mask.trailing_zeros() as usize;
+                        mask &= mask - 1;
+                        let mut j = n;
+                        while j > 0 && order[j - 1].0 < enter[slot] {
+                            order[j] = order[j - 1];
+                            j -= 1;
+                        }
+                        order[j] = (enter[slot], slot);
+                        n += 1;
+                    }
+                    for &(t, slot) in &order[..n - 1] {
+                        stack[top].write((node.child[slot], t, node.count[slot]));
+                        top += 1;
+                    }
+                    let nearest = order[n - 1].1;
+                    current = node.child[nearest];
+                    leaf_count = node.count[nearest];
                     continue;
                 }
             }
-            if top == 0 {
-                return t_max;
+            // Pop the next entry that may still hold something nearer than t_max.
+            loop {
+                if top == 0 {
+                    return t_max;
+                }
+                top -= 1;
+                // SAFETY: entries below `top` were written by the pushes above.
+                let (child, enter, count) = unsafe { stack[top].assume_init() };
+                if f64::from(enter) * (1.0 - f64::from(WIDEN)) <= t_max {
+                    current = child;
+                    leaf_count = count;
+                    break;
+                }
             }
-            top -= 1;
-            current = stack[top] as usize;
         }
     }
 
@@ -180,115 +325,33 @@ impl Bvh {
         if self.nodes.is_empty() {
             return false;
         }
-        let inv_dir = dir.recip();
-        let mut stack = [0u32; 64];
-        let mut top = 0usize;
-        let mut current = 0usize;
-        loop {
-            let node = &self.nodes[current];
-            if node.bounds.hit_interval(origin, inv_dir, t_min, t_max).is_some() {
-                if node.count > 0 {
-                    let start = node.offset as usize;
-                    if self.indices[start..start + node.count as usize].iter().any(|&p| occluded(p)) {
+        let ray = RayBoxes::new(origin, dir, t_min);
+        let t_max32 = t_max as f32;
+        let mut stack = [const { MaybeUninit::<u32>::uninit() }; STACK];
+        stack[0].write(0); // the root node
+        let mut top = 1usize;
+        while top > 0 {
+            top -= 1;
+            // SAFETY: entries below `top` were written before.
+            let node = &self.nodes[unsafe { stack[top].assume_init() } as usize];
+            let (_, mut mask) = ray.test(node, t_max32);
+            while mask != 0 {
+                let slot = mask.trailing_zeros() as usize;
+                mask &= mask - 1;
+                let child = node.child[slot];
+                if child & LEAF != 0 {
+                    let first = (child & !LEAF) as usize;
+                    if self.indices[first..first + node.count[slot] as usize].iter().any(|&p| occluded(p)) {
                         return true;
                     }
                 } else {
-                    stack[top] = node.offset;
+                    stack[top].write(child);
                     top += 1;
-                    current += 1;
-                    continue;
                 }
             }
-            if top == 0 {
-                return false;
-            }
-            top -= 1;
-            current = stack[top] as usize;
         }
+        false
     }
-}
-
-fn leaf(prims: Vec<BuildPrim>, bounds: Aabb) -> Tree {
-    Tree::Leaf { bounds, prims: prims.into_iter().map(|p| p.index).collect() }
-}
-
-/// Recursive binned-SAH build. Depth stays below the traversal stack size because
-/// a split that the SAH cannot make falls back to a median split by count.
-fn build_tree(mut prims: Vec<BuildPrim>) -> Tree {
-    let bounds = prims.iter().fold(Aabb::EMPTY, |b, p| b.union(p.bounds));
-    let n = prims.len();
-    if n <= MIN_LEAF {
-        return leaf(prims, bounds);
-    }
-    let centroid_bounds = prims.iter().fold(Aabb::EMPTY, |b, p| b.grow(p.centroid));
-    let extent = centroid_bounds.extent();
-    let leaf_cost = n as f64;
-    let parent_area = bounds.surface_area().max(f64::MIN_POSITIVE);
-
-    // Best SAH split over all three axes.
-    let mut best: Option<(f64, usize, usize)> = None; // (cost, axis, bins left of split)
-    for axis in 0..3 {
-        if !(extent[axis] > 0.0) {
-            continue;
-        }
-        let scale = BINS as f64 / extent[axis];
-        let mut bin_bounds = [Aabb::EMPTY; BINS];
-        let mut bin_counts = [0usize; BINS];
-        for p in &prims {
-            let b = (((p.centroid[axis] - centroid_bounds.min[axis]) * scale) as usize).min(BINS - 1);
-            bin_bounds[b] = bin_bounds[b].union(p.bounds);
-            bin_counts[b] += 1;
-        }
-        let mut right_area = [0.0; BINS];
-        let mut right_count = [0usize; BINS];
-        let (mut acc_box, mut acc_n) = (Aabb::EMPTY, 0);
-        for b in (1..BINS).rev() {
-            acc_box = acc_box.union(bin_bounds[b]);
-            acc_n += bin_counts[b];
-            right_area[b] = acc_box.surface_area();
-            right_count[b] = acc_n;
-        }
-        let (mut acc_box, mut acc_n) = (Aabb::EMPTY, 0);
-        for split in 1..BINS {
-            acc_box = acc_box.union(bin_bounds[split - 1]);
-            acc_n += bin_counts[split - 1];
-            if acc_n == 0 || right_count[split] == 0 {
-                continue;
-            }
-            let cost =
-                TRAVERSAL_COST + (acc_box.surface_area() * acc_n as f64 + right_area[split] * right_count[split] as f64) / parent_area;
-            if best.is_none_or(|(c, _, _)| cost < c) {
-                best = Some((cost, axis, split));
-            }
-        }
-    }
-
-    let (left, right, axis) = match best {
-        Some((cost, axis, split)) if cost < leaf_cost || n > MAX_LEAF => {
-            let scale = BINS as f64 / extent[axis];
-            let min = centroid_bounds.min[axis];
-            let (left, right): (Vec<_>, Vec<_>) =
-                prims.into_iter().partition(|p| ((((p.centroid[axis] - min) * scale) as usize).min(BINS - 1)) < split);
-            (left, right, axis)
-        }
-        Some(_) => return leaf(prims, bounds),
-        None if n <= MAX_LEAF => return leaf(prims, bounds),
-        None => {
-            // All centroids coincide: split by count so the tree stays balanced.
-            let axis = if extent.x >= extent.y && extent.x >= extent.z {
-                0
-            } else if extent.y >= extent.z {
-                1
-            } else {
-                2
-            };
-            let right = prims.split_off(n / 2);
-            (prims, right, axis)
-        }
-    };
-    let (left_tree, right_tree) =
-        if n > PARALLEL_THRESHOLD { rayon::join(|| build_tree(left), || build_tree(right)) } else { (build_tree(left), build_tree(right)) };
-    Tree::Interior { bounds, axis: axis as u8, children: Box::new((left_tree, right_tree)) }
 }
 
 #[cfg(test)]

@@ -2,6 +2,7 @@
 
 mod aabb;
 mod bvh;
+mod sah;
 
 pub use aabb::Aabb;
 pub use bvh::{Bvh, BvhStats};

@@ -1,0 +1,151 @@
+//! Top-down binned SAH construction of a binary tree (Wald 2007), the first stage
+//! of the BVH build; [`super::bvh`] then collapses it into 4-wide nodes.
+//!
+//! Each split tries [`BINS`] bins per axis over the centroid bounds and keeps the
+//! cheapest by the surface area heuristic, cost
+//! `C_trav + (A_left n_left + A_right n_right) / A_parent`, against the leaf cost
+//! `n`. Subtrees with many primitives are built in parallel (rayon).
+
+use super::Aabb;
+use crate::math::Vec3;
+
+/// Number of SAH bins per axis.
+pub const BINS: usize = 16;
+/// Primitives at or below which a node always becomes a leaf.
+const MIN_LEAF: usize = 2;
+/// Largest leaf: above this a node is always split.
+pub const MAX_LEAF: usize = 8;
+/// Cost of one box test relative to one primitive test.
+const TRAVERSAL_COST: f64 = 1.0;
+/// Subtrees larger than this are built on another thread.
+const PARALLEL_THRESHOLD: usize = 4096;
+/// Below this depth splits follow the SAH; deeper ones split at the median by
+/// count, so the tree depth stays below `SAH_DEPTH + log2(n)` whatever the input
+/// (the traversal stacks are sized for it).
+pub const SAH_DEPTH: usize = 32;
+
+/// A binary tree over primitive indices.
+pub enum Tree {
+    /// Up to [`MAX_LEAF`] primitives.
+    Leaf {
+        /// Bounds of the primitives.
+        bounds: Aabb,
+        /// Their indices.
+        prims: Vec<u32>,
+    },
+    /// Two subtrees.
+    Interior {
+        /// Bounds of both.
+        bounds: Aabb,
+        /// The subtrees.
+        children: Box<(Tree, Tree)>,
+    },
+}
+
+impl Tree {
+    /// Bounds of the subtree.
+    pub fn bounds(&self) -> Aabb {
+        match self {
+            Tree::Leaf { bounds, .. } | Tree::Interior { bounds, .. } => *bounds,
+        }
+    }
+}
+
+struct BuildPrim {
+    bounds: Aabb,
+    centroid: Vec3,
+    index: u32,
+}
+
+/// Builds the tree over `bounds[i]` for primitive `i`; `bounds` must not be empty.
+pub fn build(bounds: &[Aabb]) -> Tree {
+    let prims = bounds.iter().enumerate().map(|(i, b)| BuildPrim { bounds: *b, centroid: b.centroid(), index: i as u32 }).collect();
+    build_node(prims, 0)
+}
+
+fn leaf(prims: Vec<BuildPrim>, bounds: Aabb) -> Tree {
+    Tree::Leaf { bounds, prims: prims.into_iter().map(|p| p.index).collect() }
+}
+
+fn bin_of(value: f64, min: f64, scale: f64) -> usize {
+    (((value - min) * scale) as usize).min(BINS - 1)
+}
+
+fn build_node(mut prims: Vec<BuildPrim>, depth: usize) -> Tree {
+    let bounds = prims.iter().fold(Aabb::EMPTY, |b, p| b.union(p.bounds));
+    let n = prims.len();
+    if n <= MIN_LEAF {
+        return leaf(prims, bounds);
+    }
+    let centroid_bounds = prims.iter().fold(Aabb::EMPTY, |b, p| b.grow(p.centroid));
+    let extent = centroid_bounds.extent();
+    let parent_area = bounds.surface_area().max(f64::MIN_POSITIVE);
+
+    let mut best: Option<(f64, usize, usize)> = None; // (cost, axis, bins left of the split)
+    if depth < SAH_DEPTH {
+        for axis in 0..3 {
+            if extent[axis] <= 0.0 {
+                continue;
+            }
+            let scale = BINS as f64 / extent[axis];
+            let mut bin_bounds = [Aabb::EMPTY; BINS];
+            let mut bin_counts = [0usize; BINS];
+            for p in &prims {
+                let b = bin_of(p.centroid[axis], centroid_bounds.min[axis], scale);
+                bin_bounds[b] = bin_bounds[b].union(p.bounds);
+                bin_counts[b] += 1;
+            }
+            let mut right_area = [0.0; BINS];
+            let mut right_count = [0usize; BINS];
+            let (mut acc_box, mut acc_n) = (Aabb::EMPTY, 0);
+            for b in (1..BINS).rev() {
+                acc_box = acc_box.union(bin_bounds[b]);
+                acc_n += bin_counts[b];
+                right_area[b] = acc_box.surface_area();
+                right_count[b] = acc_n;
+            }
+            let (mut acc_box, mut acc_n) = (Aabb::EMPTY, 0);
+            for split in 1..BINS {
+                acc_box = acc_box.union(bin_bounds[split - 1]);
+                acc_n += bin_counts[split - 1];
+                if acc_n == 0 || right_count[split] == 0 {
+                    continue;
+                }
+                let cost =
+                    TRAVERSAL_COST + (acc_box.surface_area() * acc_n as f64 + right_area[split] * right_count[split] as f64) / parent_area;
+                if best.is_none_or(|(c, _, _)| cost < c) {
+                    best = Some((cost, axis, split));
+                }
+            }
+        }
+    }
+
+    let (left, right) = match best {
+        Some((cost, axis, split)) if cost < n as f64 || n > MAX_LEAF => {
+            let (scale, min) = (BINS as f64 / extent[axis], centroid_bounds.min[axis]);
+            prims.into_iter().partition(|p| bin_of(p.centroid[axis], min, scale) < split)
+        }
+        Some(_) => return leaf(prims, bounds),
+        None if n <= MAX_LEAF => return leaf(prims, bounds),
+        None => {
+            // Coincident centroids, or too deep for the SAH: split at the median by
+            // count along the widest centroid axis, so the tree stays balanced.
+            let axis = if extent.x >= extent.y && extent.x >= extent.z {
+                0
+            } else if extent.y >= extent.z {
+                1
+            } else {
+                2
+            };
+            prims.sort_unstable_by(|a, b| a.centroid[axis].total_cmp(&b.centroid[axis]));
+            let right = prims.split_off(n / 2);
+            (prims, right)
+        }
+    };
+    let (left_tree, right_tree) = if n > PARALLEL_THRESHOLD {
+        rayon::join(|| build_node(left, depth + 1), || build_node(right, depth + 1))
+    } else {
+        (build_node(left, depth + 1), build_node(right, depth + 1))
+    };
+    Tree::Interior { bounds, children: Box::new((left_tree, right_tree)) }
+}
