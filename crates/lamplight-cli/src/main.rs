@@ -1,1 +1,204 @@
-fn main() {}
+//! `lamplight`: render a built-in scene to an image file.
+//!
+//! ```text
+//! lamplight render [SCENE] [-o FILE] [--width W] [--height H] [--spp N]
+//!                  [--max-depth D] [--threads T] [--seed S] [--quiet]
+//! lamplight list
+//! ```
+//!
+//! The binary is thin: it turns arguments into options ([`args`]), builds the
+//! scene, calls [`lamplight_core::render`] and writes the image with
+//! [`lamplight_scene::image_io`]. Errors print as one line,
+//! `lamplight: error: ...`; the exit code is 2 for bad input, 1 for failures
+//! while running (such as an unwritable output file).
+
+mod args;
+
+use std::io::{self, IsTerminal, Write};
+use std::process::ExitCode;
+use std::time::{Duration, Instant};
+
+use anyhow::Context;
+use clap::Parser;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use lamplight_core::{render, RenderControl, RenderStats};
+use lamplight_scene::{builtin, image_io};
+
+use crate::args::{Cli, Command, RenderJob, UsageError};
+
+fn main() -> ExitCode {
+    match run() {
+        Ok(()) => ExitCode::SUCCESS,
+        // `lamplight list | head -1`: the reader leaving is not our failure.
+        Err(err) if is_broken_pipe(&err) => ExitCode::SUCCESS,
+        Err(err) => {
+            eprintln!("lamplight: error: {err:#}");
+            if err.downcast_ref::<UsageError>().is_some() {
+                ExitCode::from(2)
+            } else {
+                ExitCode::FAILURE
+            }
+        }
+    }
+}
+
+fn run() -> anyhow::Result<()> {
+    // clap prints its own usage errors and exits with code 2.
+    match Cli::parse().command {
+        Command::Render(render_args) => render_command(render_args.validate()?),
+        Command::List => list_command(),
+    }
+}
+
+fn list_command() -> anyhow::Result<()> {
+    let width = builtin::BUILTINS.iter().map(|b| b.name.len()).max().unwrap_or(0);
+    let mut out = io::stdout().lock();
+    for b in builtin::BUILTINS {
+        let (w, h) = b.default_size;
+        writeln!(out, "{:width$}  {:>9}  {}", b.name, format!("{w}x{h}"), b.summary)?;
+    }
+    out.flush()?;
+    Ok(())
+}
+
+fn render_command(job: RenderJob) -> anyhow::Result<()> {
+    let RenderJob { builtin, output, options, quiet } = job;
+    // Fail before a long render, not after it, when the file cannot be written.
+    image_io::check_writable(&output)?;
+
+    let build_start = Instant::now();
+    let scene =
+        (builtin.build)(options.width as f64 / options.height as f64).with_context(|| format!("cannot build scene '{}'", builtin.name))?;
+    let build_time = build_start.elapsed();
+
+    let bar = progress_bar(quiet);
+    let progress = |done: u64, total: u64| {
+        if let Some(bar) = &bar {
+            bar.set_length(total);
+            bar.set_position(done);
+        }
+    };
+    let rendered = render(&scene, &options, &RenderControl { progress: &progress, cancel: None });
+    if let Some(bar) = &bar {
+        bar.finish_and_clear();
+    }
+    let (image, stats) = rendered.with_context(|| format!("cannot render scene '{}'", builtin.name))?;
+    image_io::write_image(&output, &image)?;
+
+    let summary = Summary { scene: builtin.name, width: options.width, height: options.height, spp: options.spp, build_time, stats };
+    if !quiet {
+        eprintln!("{} -> {}", summary, output.display());
+    } else if stats.nonfinite_samples > 0 {
+        eprintln!("lamplight: warning: {} samples were NaN or infinite and were replaced by black", stats.nonfinite_samples);
+    }
+    Ok(())
+}
+
+/// A tile progress bar on stderr, only for a person watching a terminal.
+fn progress_bar(quiet: bool) -> Option<ProgressBar> {
+    if quiet || !io::stderr().is_terminal() {
+        return None;
+    }
+    let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr());
+    let style = ProgressStyle::with_template("{spinner} [{elapsed_precise}] [{wide_bar}] {percent:>3}% tiles, eta {eta}")
+        .expect("the template is valid")
+        .progress_chars("=> ");
+    bar.set_style(style);
+    Some(bar)
+}
+
+/// The one-line report printed after a render.
+struct Summary {
+    scene: &'static str,
+    width: u32,
+    height: u32,
+    spp: u32,
+    build_time: Duration,
+    stats: RenderStats,
+}
+
+impl std::fmt::Display for Summary {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let Summary { scene, width, height, spp, build_time, stats } = self;
+        let rays = &stats.rays;
+        let seconds = stats.elapsed.as_secs_f64();
+        write!(
+            f,
+            "rendered {scene} {width}x{height}, {spp} spp in {} (scene built in {}): \
+             {} rays ({} camera, {} secondary, {} shadow), {} rays/s, {} thread{}",
+            duration(stats.elapsed),
+            duration(*build_time),
+            si(rays.total() as f64),
+            si(rays.camera as f64),
+            si(rays.secondary as f64),
+            si(rays.shadow as f64),
+            si(rays.total() as f64 / seconds.max(1e-9)),
+            stats.threads,
+            if stats.threads == 1 { "" } else { "s" },
+        )?;
+        if stats.nonfinite_samples > 0 {
+            write!(f, ", {} nonfinite samples set to black", stats.nonfinite_samples)?;
+        }
+        Ok(())
+    }
+}
+
+/// A duration in milliseconds below one second, else in seconds: `3.3 ms`, `420.0 ms`, `12.35 s`.
+fn duration(d: Duration) -> String {
+    let seconds = d.as_secs_f64();
+    if seconds < 1.0 {
+        format!("{:.1} ms", seconds * 1e3)
+    } else {
+        format!("{seconds:.2} s")
+    }
+}
+
+/// `x` with an SI prefix and one decimal: `412`, `4.1 k`, `3.1 M`, `1.2 G`.
+fn si(x: f64) -> String {
+    match x {
+        x if x < 1e3 => format!("{x:.0}"),
+        x if x < 1e6 => format!("{:.1} k", x / 1e3),
+        x if x < 1e9 => format!("{:.1} M", x / 1e6),
+        x => format!("{:.1} G", x / 1e9),
+    }
+}
+
+fn is_broken_pipe(err: &anyhow::Error) -> bool {
+    err.chain().any(|e| e.downcast_ref::<io::Error>().is_some_and(|e| e.kind() == io::ErrorKind::BrokenPipe))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use lamplight_core::integrators::RayCounts;
+
+    #[test]
+    fn si_prefixes() {
+        assert_eq!(si(0.0), "0");
+        assert_eq!(si(412.4), "412");
+        assert_eq!(si(4_140.0), "4.1 k");
+        assert_eq!(si(3_100_000.0), "3.1 M");
+        assert_eq!(si(1.25e10), "12.5 G");
+        assert_eq!(duration(Duration::from_micros(3_260)), "3.3 ms");
+        assert_eq!(duration(Duration::from_millis(12_345)), "12.35 s");
+    }
+
+    #[test]
+    fn summary_line() {
+        let stats = RenderStats {
+            rays: RayCounts { camera: 900_000, secondary: 400_000, shadow: 1_800_000 },
+            nonfinite_samples: 0,
+            elapsed: Duration::from_millis(420),
+            threads: 2,
+        };
+        let mut summary = Summary { scene: "luxo", width: 1280, height: 720, spp: 1, build_time: Duration::from_millis(10), stats };
+        assert_eq!(
+            summary.to_string(),
+            "rendered luxo 1280x720, 1 spp in 420.0 ms (scene built in 10.0 ms): 3.1 M rays (900.0 k camera, 400.0 k secondary, \
+             1.8 M shadow), 7.4 M rays/s, 2 threads"
+        );
+        summary.stats.threads = 1;
+        summary.stats.nonfinite_samples = 3;
+        assert!(summary.to_string().ends_with(", 1 thread, 3 nonfinite samples set to black"), "{summary}");
+    }
+}

@@ -1,1 +1,379 @@
-//! Image writers: placeholder (replaced in this session).
+//! Image writers (and readers for checking them): PNG, binary PPM and OpenEXR.
+//!
+//! The format follows the file's extension, in any case:
+//!
+//! | extension | contents |
+//! |-----------|----------|
+//! | `.png`    | 8-bit RGB, sRGB-encoded and clamped ([`Image::to_srgb8`]) |
+//! | `.ppm`    | binary PPM (`P6`, maxval 255), the same bytes as the PNG's pixels |
+//! | `.exr`    | OpenEXR, linear 32-bit float R, G, B, ZIP-compressed (lossless) |
+//!
+//! Writes are atomic: the file is encoded in memory, written to a temporary file
+//! `.<name>.tmp-<pid>-<n>` beside the target, flushed to disk, and renamed over
+//! the target. A failed write removes the temporary file and leaves an existing
+//! target as it was; a crash can leave at most a stray temporary file, never a
+//! truncated image.
+
+use std::fs::{self, File, OpenOptions};
+use std::io::{self, BufReader, Cursor, Write};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use image::ImageEncoder;
+use lamplight_core::film::Image;
+
+/// The extensions [`write_image`] understands, for messages.
+pub const SUPPORTED_EXTENSIONS: &str = ".png, .ppm, .exr";
+
+/// Why an image could not be written or read. Every message names the file.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum ImageError {
+    /// The extension names no supported format.
+    #[error("cannot write {}: unknown image format {ext:?} (supported: {SUPPORTED_EXTENSIONS})", path.display())]
+    UnknownFormat {
+        /// The file.
+        path: PathBuf,
+        /// Its extension (empty when it has none).
+        ext: String,
+    },
+    /// The file system refused (no such directory, permission denied, disk full...).
+    #[error("cannot write {}: {}", path.display(), describe(io))]
+    Write {
+        /// The file.
+        path: PathBuf,
+        /// What the system said. Deliberately not a `source()`: the message already
+        /// includes it, and error chains would print it twice.
+        io: io::Error,
+    },
+    /// The image could not be encoded (zero size, pixel count not matching the size).
+    #[error("cannot write {}: {reason}", path.display())]
+    Encode {
+        /// The file.
+        path: PathBuf,
+        /// What was wrong.
+        reason: String,
+    },
+    /// The file could not be read or decoded.
+    #[error("cannot read {}: {reason}", path.display())]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// What was wrong.
+        reason: String,
+    },
+}
+
+/// An image file format.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    /// PNG, 8-bit sRGB.
+    Png,
+    /// Binary PPM (`P6`), 8-bit sRGB.
+    Ppm,
+    /// OpenEXR, linear float32.
+    Exr,
+}
+
+impl Format {
+    /// The format named by `path`'s extension (case-insensitive).
+    pub fn from_path(path: &Path) -> Result<Format, ImageError> {
+        let ext = path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
+        match ext.as_str() {
+            "png" => Ok(Format::Png),
+            "ppm" => Ok(Format::Ppm),
+            "exr" => Ok(Format::Exr),
+            _ => Err(ImageError::UnknownFormat { path: path.to_path_buf(), ext }),
+        }
+    }
+}
+
+/// Writes `image` to `path` in the format of its extension, atomically (see the
+/// module docs).
+pub fn write_image(path: &Path, image: &Image) -> Result<(), ImageError> {
+    let format = Format::from_path(path)?;
+    let bytes = encode(format, image).map_err(|reason| ImageError::Encode { path: path.to_path_buf(), reason })?;
+    write_atomically(path, &bytes)
+}
+
+/// Checks, before a long render, that `path` has a known extension and that its
+/// directory accepts new files, by creating and removing a temporary file there.
+/// The target itself is not touched.
+pub fn check_writable(path: &Path) -> Result<(), ImageError> {
+    Format::from_path(path)?;
+    let (file, temp) = create_temp(path)?;
+    drop(file);
+    // Removal failing would only leave an empty stray file; the check itself passed.
+    let _ = fs::remove_file(temp);
+    Ok(())
+}
+
+/// The file's bytes for `image` in `format`.
+fn encode(format: Format, image: &Image) -> Result<Vec<u8>, String> {
+    let (width, height) = (image.width, image.height);
+    if width == 0 || height == 0 {
+        return Err(format!("the image is empty ({width}x{height})"));
+    }
+    if image.pixels.len() as u64 != width as u64 * height as u64 {
+        return Err(format!("{} pixels do not make a {width}x{height} image", image.pixels.len()));
+    }
+    match format {
+        Format::Png => {
+            let mut bytes = Vec::new();
+            image::codecs::png::PngEncoder::new(&mut bytes)
+                .write_image(&image.to_srgb8(), width, height, image::ExtendedColorType::Rgb8)
+                .map_err(|e| e.to_string())?;
+            Ok(bytes)
+        }
+        Format::Ppm => {
+            let mut bytes = format!("P6\n{width} {height}\n255\n").into_bytes();
+            bytes.extend_from_slice(&image.to_srgb8());
+            Ok(bytes)
+        }
+        Format::Exr => {
+            use exr::prelude::{Encoding, Image as ExrImage, SpecificChannels, Vec2, WritableImage};
+            let channels = SpecificChannels::rgb(|Vec2(x, y): Vec2<usize>| {
+                let [r, g, b] = image.pixels[y * width as usize + x];
+                (r, g, b)
+            });
+            let mut bytes = Cursor::new(Vec::new());
+            ExrImage::from_encoded_channels((width as usize, height as usize), Encoding::SMALL_LOSSLESS, channels)
+                .write()
+                .to_buffered(&mut bytes)
+                .map_err(|e| e.to_string())?;
+            Ok(bytes.into_inner())
+        }
+    }
+}
+
+/// Writes `bytes` to a temporary file beside `path`, syncs it and renames it over
+/// `path`; on failure the temporary file is removed.
+fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), ImageError> {
+    let (mut file, temp) = create_temp(path)?;
+    let written = file.write_all(bytes).and_then(|()| file.sync_all());
+    drop(file);
+    if let Err(io) = written.and_then(|()| fs::rename(&temp, path)) {
+        let _ = fs::remove_file(&temp);
+        return Err(ImageError::Write { path: path.to_path_buf(), io });
+    }
+    // Make the rename itself durable; a failure here cannot un-write the file.
+    #[cfg(unix)]
+    if let Ok(dir) = File::open(parent_dir(path)) {
+        let _ = dir.sync_all();
+    }
+    Ok(())
+}
+
+/// Creates a new, empty temporary file in `path`'s directory: `.<name>.tmp-<pid>-<n>`,
+/// with `n` counting within the process so that concurrent writers never share one.
+fn create_temp(path: &Path) -> Result<(File, PathBuf), ImageError> {
+    static COUNTER: AtomicU64 = AtomicU64::new(0);
+    let write_error = |io| ImageError::Write { path: path.to_path_buf(), io };
+    let name = path.file_name().ok_or_else(|| write_error(io::Error::new(io::ErrorKind::InvalidInput, "not a file name")))?;
+    let dir = parent_dir(path);
+    loop {
+        let n = COUNTER.fetch_add(1, Ordering::Relaxed);
+        let temp = dir.join(format!(".{}.tmp-{}-{n}", name.to_string_lossy(), std::process::id()));
+        // `create_new` never follows or reuses an existing file, so a leftover from a
+        // crashed process with the same id is skipped rather than clobbered.
+        match OpenOptions::new().write(true).create_new(true).open(&temp) {
+            Ok(file) => return Ok((file, temp)),
+            Err(e) if e.kind() == io::ErrorKind::AlreadyExists && n < 1000 => continue,
+            Err(e) => return Err(write_error(e)),
+        }
+    }
+}
+
+/// The directory that holds `path` (`.` for a bare file name).
+fn parent_dir(path: &Path) -> &Path {
+    match path.parent() {
+        Some(dir) if !dir.as_os_str().is_empty() => dir,
+        _ => Path::new("."),
+    }
+}
+
+/// An I/O error as a short lower-case phrase: "permission denied" rather than
+/// "Permission denied (os error 13)".
+fn describe(error: &io::Error) -> String {
+    let text = error.to_string();
+    let text = match error.raw_os_error() {
+        Some(code) => text.strip_suffix(&format!(" (os error {code})")).unwrap_or(&text).to_string(),
+        None => text,
+    };
+    let mut chars = text.chars();
+    match chars.next() {
+        Some(first) => first.to_lowercase().chain(chars).collect(),
+        None => text,
+    }
+}
+
+/// Reads an 8-bit RGB PNG: `(width, height, bytes)` with three bytes per pixel.
+pub fn read_png_srgb8(path: &Path) -> Result<(u32, u32, Vec<u8>), ImageError> {
+    let read_error = |reason: String| ImageError::Read { path: path.to_path_buf(), reason };
+    let file = File::open(path).map_err(|e| read_error(describe(&e)))?;
+    let decoded =
+        image::ImageReader::with_format(BufReader::new(file), image::ImageFormat::Png).decode().map_err(|e| read_error(e.to_string()))?;
+    if decoded.color() != image::ColorType::Rgb8 {
+        return Err(read_error(format!("expected 8-bit RGB, found {:?}", decoded.color())));
+    }
+    let rgb = decoded.into_rgb8();
+    Ok((rgb.width(), rgb.height(), rgb.into_raw()))
+}
+
+/// Reads the first RGB(A) layer of an OpenEXR file as linear float RGB (alpha is dropped).
+pub fn read_exr(path: &Path) -> Result<Image, ImageError> {
+    let read_error = |reason: String| ImageError::Read { path: path.to_path_buf(), reason };
+    let exr = exr::prelude::read_first_rgba_layer_from_file(
+        path,
+        |size, _| Image::new(size.width() as u32, size.height() as u32),
+        |image: &mut Image, at, (r, g, b, _a): (f32, f32, f32, f32)| {
+            let width = image.width as usize;
+            image.pixels[at.y() * width + at.x()] = [r, g, b];
+        },
+    )
+    .map_err(|e| read_error(e.to_string()))?;
+    Ok(exr.layer_data.channel_data.pixels)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A scratch directory, removed on drop.
+    struct Scratch(PathBuf, #[allow(dead_code)] tempfile::TempDir);
+
+    impl Scratch {
+        fn new(tag: &str) -> Scratch {
+            let dir = tempfile::Builder::new().prefix(&format!("lamplight-image-io-{tag}-")).tempdir().unwrap();
+            Scratch(dir.path().to_path_buf(), dir)
+        }
+
+        fn entries(&self) -> Vec<String> {
+            let mut names: Vec<String> = fs::read_dir(&self.0).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into()).collect();
+            names.sort();
+            names
+        }
+    }
+
+    /// A 5x3 image with values below 0, inside [0, 1], above 1, and not exactly
+    /// representable in 8 bits, so clamping and float precision both show.
+    fn test_image() -> Image {
+        let mut image = Image::new(5, 3);
+        for (i, p) in image.pixels.iter_mut().enumerate() {
+            let v = i as f32 / 7.0;
+            *p = [v - 0.3, v * v, 1.0 / (1.0 + v) + if i == 4 { 10.0 } else { 0.0 }];
+        }
+        image
+    }
+
+    #[test]
+    fn png_round_trip_is_byte_exact() {
+        let dir = Scratch::new("png");
+        let image = test_image();
+        let path = dir.0.join("out.PNG");
+        write_image(&path, &image).unwrap();
+        let (w, h, bytes) = read_png_srgb8(&path).unwrap();
+        assert_eq!((w, h), (5, 3));
+        assert_eq!(bytes, image.to_srgb8());
+        assert_eq!(bytes[0], 0, "negative values clamp to 0");
+        assert_eq!(bytes[4 * 3 + 2], 255, "values above 1 clamp to 255");
+        assert_eq!(dir.entries(), ["out.PNG"], "no temporary file is left");
+    }
+
+    #[test]
+    fn ppm_has_header_and_the_png_bytes() {
+        let dir = Scratch::new("ppm");
+        let image = test_image();
+        let path = dir.0.join("out.ppm");
+        write_image(&path, &image).unwrap();
+        let data = fs::read(&path).unwrap();
+        let header = b"P6\n5 3\n255\n";
+        assert_eq!(&data[..header.len()], header);
+        assert_eq!(&data[header.len()..], &image.to_srgb8()[..]);
+    }
+
+    #[test]
+    fn exr_round_trip_is_float_exact() {
+        let dir = Scratch::new("exr");
+        let mut image = test_image();
+        image.pixels[1] = [1e-30, 65504.0 * 4.0, f32::MIN_POSITIVE];
+        let path = dir.0.join("out.exr");
+        write_image(&path, &image).unwrap();
+        let back = read_exr(&path).unwrap();
+        assert_eq!(back, image, "linear float32 values come back bit for bit");
+        assert_eq!(&fs::read(&path).unwrap()[..4], &[0x76, 0x2f, 0x31, 0x01], "OpenEXR magic number");
+    }
+
+    #[test]
+    fn unknown_extension_lists_the_supported_ones() {
+        let dir = Scratch::new("ext");
+        for name in ["out.jpg", "out", "out.png.bak"] {
+            let err = write_image(&dir.0.join(name), &test_image()).unwrap_err();
+            assert!(matches!(err, ImageError::UnknownFormat { .. }), "{name}: {err:?}");
+            let message = err.to_string();
+            assert!(message.contains(name) && message.contains(".png, .ppm, .exr"), "{message}");
+        }
+        assert!(dir.entries().is_empty());
+    }
+
+    #[test]
+    fn empty_or_inconsistent_images_are_errors() {
+        let dir = Scratch::new("empty");
+        let err = write_image(&dir.0.join("a.png"), &Image::new(0, 4)).unwrap_err();
+        assert!(err.to_string().contains("empty"), "{err}");
+        let bad = Image { width: 2, height: 2, pixels: vec![[0.0; 3]; 3] };
+        let err = write_image(&dir.0.join("b.exr"), &bad).unwrap_err();
+        assert!(err.to_string().contains("3 pixels do not make a 2x2 image"), "{err}");
+        assert!(dir.entries().is_empty());
+    }
+
+    #[test]
+    fn directory_that_is_a_file_fails_and_leaves_nothing() {
+        // A parent that is a regular file blocks the write even for root.
+        let dir = Scratch::new("notdir");
+        let blocker = dir.0.join("blocker");
+        fs::write(&blocker, b"keep").unwrap();
+        let target = blocker.join("out.png");
+        let err = write_image(&target, &test_image()).unwrap_err();
+        assert!(matches!(err, ImageError::Write { .. }));
+        let message = err.to_string();
+        assert!(message.starts_with(&format!("cannot write {}: ", target.display())), "{message}");
+        assert!(!message.contains("os error"), "{message}");
+        assert!(check_writable(&target).is_err());
+        assert_eq!(dir.entries(), ["blocker"]);
+        assert_eq!(fs::read(&blocker).unwrap(), b"keep");
+    }
+
+    #[test]
+    fn failed_replace_keeps_the_existing_file_and_removes_the_temporary() {
+        // The target is a non-empty directory: the temporary file is written, but
+        // renaming it over the target fails (for root too).
+        let dir = Scratch::new("replace");
+        let target = dir.0.join("out.png");
+        fs::create_dir(&target).unwrap();
+        fs::write(target.join("inside"), b"old").unwrap();
+        let err = write_image(&target, &test_image()).unwrap_err();
+        assert!(matches!(err, ImageError::Write { .. }), "{err:?}");
+        assert_eq!(dir.entries(), ["out.png"], "the temporary file is gone");
+        assert_eq!(fs::read(target.join("inside")).unwrap(), b"old");
+    }
+
+    #[test]
+    fn replaces_an_existing_file_whole() {
+        let dir = Scratch::new("overwrite");
+        let path = dir.0.join("out.ppm");
+        fs::write(&path, vec![b'x'; 10_000]).unwrap();
+        let image = test_image();
+        write_image(&path, &image).unwrap();
+        assert_eq!(fs::read(&path).unwrap().len(), 11 + 5 * 3 * 3);
+        assert!(check_writable(&path).is_ok());
+        assert_eq!(fs::read(&path).unwrap().len(), 11 + 5 * 3 * 3, "the check leaves the target alone");
+        assert_eq!(dir.entries(), ["out.ppm"]);
+    }
+
+    #[test]
+    fn io_errors_read_as_short_phrases() {
+        assert_eq!(describe(&io::Error::from_raw_os_error(2)), "no such file or directory");
+        assert_eq!(describe(&io::Error::other("Disk on fire")), "disk on fire");
+    }
+}

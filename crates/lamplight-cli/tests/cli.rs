@@ -1,0 +1,172 @@
+//! The `lamplight` binary end to end: each test runs it in a fresh temporary
+//! directory with stdout and stderr piped, and checks exit codes, messages and
+//! the files it leaves.
+
+use std::fs;
+use std::path::Path;
+use std::process::{Command, Output, Stdio};
+
+use lamplight_scene::image_io::{read_exr, read_png_srgb8};
+
+/// Runs `lamplight args...` in `dir`.
+fn lamplight(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_lamplight")).args(args).current_dir(dir).stdin(Stdio::null()).output().expect("the binary runs")
+}
+
+fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+/// Runs and expects success, returning stderr.
+fn ok(dir: &Path, args: &[&str]) -> String {
+    let out = lamplight(dir, args);
+    assert!(out.status.success(), "lamplight {args:?} failed: {}", stderr(&out));
+    stderr(&out)
+}
+
+/// Runs and expects exit code `code` with one error line containing `needle`.
+fn fails(dir: &Path, args: &[&str], code: i32, needle: &str) -> String {
+    let out = lamplight(dir, args);
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(code), "lamplight {args:?}: {err}");
+    assert!(err.starts_with("lamplight: error: ") && err.contains(needle), "lamplight {args:?}: {err}");
+    assert_eq!(err.lines().count(), 1, "one line: {err}");
+    assert!(out.stdout.is_empty());
+    err
+}
+
+/// The names in `dir`, sorted.
+fn entries(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = fs::read_dir(dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into()).collect();
+    names.sort();
+    names
+}
+
+const SMALL: &[&str] = &["spheres", "--width", "64", "--height", "36"];
+
+fn args<'a>(extra: &[&'a str]) -> Vec<&'a str> {
+    let mut all = vec!["render"];
+    all.extend_from_slice(SMALL);
+    all.extend_from_slice(extra);
+    all
+}
+
+#[test]
+fn renders_png_ppm_and_exr() {
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    ok(dir, &args(&["-o", "a.png"]));
+    ok(dir, &args(&["-o", "a.ppm"]));
+    ok(dir, &args(&["-o", "a.exr"]));
+    assert_eq!(entries(dir), ["a.exr", "a.png", "a.ppm"], "no temporary files are left");
+
+    let png = fs::read(dir.join("a.png")).unwrap();
+    assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
+    assert_eq!(&png[12..24], b"IHDR\x00\x00\x00\x40\x00\x00\x00\x24", "IHDR says 64x36");
+    let (w, h, pixels) = read_png_srgb8(&dir.join("a.png")).unwrap();
+    assert_eq!((w, h, pixels.len()), (64, 36, 64 * 36 * 3));
+    assert!(pixels.iter().any(|&b| b != pixels[0]), "the image is not blank");
+
+    let ppm = fs::read(dir.join("a.ppm")).unwrap();
+    let header = b"P6\n64 36\n255\n";
+    assert_eq!(&ppm[..header.len()], header);
+    assert_eq!(&ppm[header.len()..], &pixels[..], "PPM and PNG hold the same bytes");
+
+    let exr = read_exr(&dir.join("a.exr")).unwrap();
+    assert_eq!((exr.width, exr.height), (64, 36));
+    assert_eq!(exr.to_srgb8(), pixels, "the EXR's linear values encode to the PNG's bytes");
+}
+
+#[test]
+fn thread_count_does_not_change_the_image() {
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    for spp in ["1", "4"] {
+        ok(dir, &args(&["--spp", spp, "--threads", "1", "-o", "t1.png"]));
+        ok(dir, &args(&["--spp", spp, "--threads", "2", "-o", "t2.png"]));
+        let (one, two) = (fs::read(dir.join("t1.png")).unwrap(), fs::read(dir.join("t2.png")).unwrap());
+        assert_eq!(one, two, "spp {spp}: 1 and 2 threads differ");
+    }
+    // ...but the seed and the sample count do change it (so the test above can fail).
+    ok(dir, &args(&["--spp", "4", "--seed", "1", "-o", "s1.png"]));
+    assert_ne!(fs::read(dir.join("s1.png")).unwrap(), fs::read(dir.join("t1.png")).unwrap());
+}
+
+#[test]
+fn defaults_render_the_first_scene_to_its_name() {
+    let dir = tempfile::tempdir().unwrap();
+    let err = ok(dir.path(), &["render", "--width", "32"]);
+    assert_eq!(entries(dir.path()), ["luxo.png"]);
+    let (w, h, _) = read_png_srgb8(&dir.path().join("luxo.png")).unwrap();
+    assert_eq!((w, h), (32, 18), "height follows the scene's 16:9 default");
+    assert!(err.contains("rendered luxo 32x18, 1 spp") && err.trim_end().ends_with("-> luxo.png"), "{err}");
+}
+
+#[test]
+fn piped_stderr_gets_the_summary_and_no_progress_bar() {
+    let dir = tempfile::tempdir().unwrap();
+    let err = ok(dir.path(), &args(&["--threads", "2"]));
+    assert!(!err.contains('\x1b') && !err.contains('\r'), "no terminal control codes: {err:?}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.starts_with("rendered spheres 64x36, 1 spp in "), "{err}");
+    assert!(err.contains(" camera, ") && err.contains(" shadow), ") && err.contains("2 threads -> spheres.png"), "{err}");
+
+    let out = lamplight(dir.path(), &args(&["--quiet"]));
+    assert!(out.status.success() && out.stderr.is_empty() && out.stdout.is_empty());
+}
+
+#[test]
+fn bad_input_exits_with_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    fails(dir, &["render", "foo"], 2, "unknown scene 'foo' (built-in scenes: luxo, business-card, spheres)");
+    fails(dir, &["render", "--width", "0"], 2, "--width must be at least 1");
+    fails(dir, &["render", "--spp", "0"], 2, "--spp must be at least 1");
+    fails(dir, &["render", "--max-depth", "65"], 2, "--max-depth must be between 1 and 64");
+    fails(dir, &["render", "--threads", "100000"], 2, "--threads must be at most 1024");
+    fails(dir, &["render", "-o", "x.jpg"], 2, "unknown image format \"jpg\" (supported: .png, .ppm, .exr)");
+    // clap's own errors: several lines, but exit code 2 too.
+    assert_eq!(lamplight(dir, &["render", "--bogus"]).status.code(), Some(2));
+    assert_eq!(lamplight(dir, &["render", "--width", "-3"]).status.code(), Some(2));
+    assert_eq!(lamplight(dir, &["paint"]).status.code(), Some(2));
+    assert!(entries(dir).is_empty());
+}
+
+#[test]
+fn unwritable_output_fails_and_leaves_files_alone() {
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    fs::write(dir.join("file"), b"a file").unwrap();
+    fs::write(dir.join("keep.png"), b"old image").unwrap();
+
+    // The parent is a regular file: refused before rendering, for root too.
+    fails(dir, &args(&["-o", "file/out.png"]), 1, "cannot write file/out.png: not a directory");
+    fails(dir, &args(&["-o", "missing/out.exr"]), 1, "cannot write missing/out.exr: no such file or directory");
+    assert!(!dir.join("missing").exists());
+
+    // The target is a non-empty directory: the render runs and the final rename fails.
+    fs::create_dir(dir.join("busy.png")).unwrap();
+    fs::write(dir.join("busy.png/inside"), b"x").unwrap();
+    fails(dir, &args(&["-o", "busy.png"]), 1, "cannot write busy.png: ");
+    assert_eq!(fs::read(dir.join("busy.png/inside")).unwrap(), b"x");
+
+    // A rejected run leaves an existing output as it was.
+    fails(dir, &args(&["--spp", "0", "-o", "keep.png"]), 2, "--spp");
+    assert_eq!(fs::read(dir.join("keep.png")).unwrap(), b"old image");
+    assert_eq!(entries(dir), ["busy.png", "file", "keep.png"], "no temporary files are left");
+
+    // And a good run replaces it whole.
+    ok(dir, &args(&["-o", "keep.png"]));
+    assert_eq!(read_png_srgb8(&dir.join("keep.png")).unwrap().0, 64);
+}
+
+#[test]
+fn list_names_every_builtin() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = lamplight(dir.path(), &["list"]);
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    let names: Vec<&str> = text.lines().map(|l| l.split_whitespace().next().unwrap()).collect();
+    assert_eq!(names, ["luxo", "business-card", "spheres"]);
+    assert!(text.contains("1280x720") && text.contains("32x32"), "{text}");
+}
