@@ -14,9 +14,11 @@ use crate::math::Vec3;
 use crate::ray::Ray;
 
 mod plane;
+mod quadric;
 mod sphere;
 
 pub use plane::{Disk, Plane, Rectangle};
+pub use quadric::{Clip, Quadric, Sheets};
 pub use sphere::Sphere;
 
 /// What a shape reports about a ray hit.

@@ -1,0 +1,199 @@
+//! General quadric surface `f(r) = [r, 1] Q [r, 1]^T = 0`, optionally clipped.
+//!
+//! `Q` is a symmetric 4x4 matrix. `f < 0` is the inside; the outward normal is
+//! the gradient `grad f = 2 (Q [r, 1]^T)_xyz`, normalized.
+//!
+//! Substituting the ray `s + t d` gives `a t^2 + 2 b t + c = 0` with
+//! `a = [d, 0] Q [d, 0]^T`, `b = [s, 1] Q [d, 0]^T` (half the lecture's linear
+//! coefficient) and `c = [s, 1] Q [s, 1]^T`, solved with the cancellation-free
+//! [`solve_quadratic`]. `a = 0` (the ray runs along an asymptotic direction: a
+//! paraboloid's axis, a cylinder's axis) leaves the linear root `-c / 2b`. Each
+//! root is then polished by solving the same quadratic again around the root
+//! itself, where the constant term is tiny and exact.
+//!
+//! Clipping: a quadric shows only the part of its surface inside every one of its
+//! [`Clip`] regions. Both roots are tried in increasing `t`; the first that lies
+//! in `(t_min, t_max)` and survives every clip is the hit. Where the near root is
+//! clipped away the far one shows: an open cup is seen from inside, and a
+//! clipped cylinder is a tube with open ends (add [`super::Disk`]s for caps).
+//!
+//! Named constructors (ellipsoid, cylinder, cone, paraboloid, hyperboloid and
+//! their clipped segments) are in `quadric/named.rs`; any of them can be moved
+//! with [`Quadric::transformed`].
+
+mod clip;
+mod form;
+mod named;
+
+pub use clip::Clip;
+pub use named::Sheets;
+
+use super::{Shape, SurfaceHit};
+use crate::accel::Aabb;
+use crate::math::{solve_quadratic, Mat4, Vec3};
+use crate::ray::Ray;
+use crate::Error;
+use form::{Affine, Form};
+use glam::DMat3;
+
+/// A quadric surface with optional clip regions; see the module documentation.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Quadric {
+    form: Form,
+    clips: Vec<Clip>,
+    /// Conservative box of the visible surface; may be infinite on some sides.
+    bounds: Aabb,
+}
+
+impl Quadric {
+    /// The quadric `[r, 1] Q [r, 1]^T = 0` with no clipping.
+    ///
+    /// `q` is symmetrized, `(Q + Q^T) / 2`, rather than rejected when it is not
+    /// symmetric: `f` depends only on the symmetric part, so the surface is the
+    /// same. Fails when `q` is not finite, when its quadratic and linear parts are
+    /// zero (`f` constant) and when the surface visibly has no real point (a
+    /// definite form such as `x^2 + y^2 + z^2 + 1`).
+    pub fn new(q: Mat4) -> Result<Quadric, Error> {
+        Quadric::from_form(Form::new(Vec3::ZERO, q, "quadric matrix")?)
+    }
+
+    fn from_form(form: Form) -> Result<Quadric, Error> {
+        let bounds = form.surface_box();
+        if bounds.is_empty() {
+            return Err(Error::DegenerateGeometry("quadric has no real points".into()));
+        }
+        Ok(Quadric { form, clips: Vec::new(), bounds })
+    }
+
+    /// This quadric with one more clip region: the visible surface shrinks to the
+    /// part inside `clip` too.
+    pub fn with_clip(mut self, clip: Clip) -> Quadric {
+        self.bounds = self.bounds.intersection(clip.region_box());
+        self.clips.push(clip);
+        self
+    }
+
+    /// Narrows the stored box to `b` (a named constructor's known extent).
+    fn within(mut self, b: Aabb) -> Quadric {
+        self.bounds = self.bounds.intersection(form::padded(b));
+        self
+    }
+
+    /// The quadric and its clip regions moved by the affine map `m` (points map
+    /// as `p' = m p`): `Q' = M^-T Q M^-1`. Fails when `m` is not finite, not
+    /// affine (last row other than `(0, 0, 0, 1)`) or singular.
+    pub fn transformed(&self, m: Mat4) -> Result<Quadric, Error> {
+        let affine = Affine::new(m)?;
+        let mut moved = Quadric::from_form(self.form.transformed(&affine)?)?;
+        moved.bounds = moved.bounds.intersection(affine.map_box(self.bounds));
+        for clip in &self.clips {
+            moved = moved.with_clip(clip.transformed(&affine)?);
+        }
+        Ok(moved)
+    }
+
+    /// The symmetric matrix `Q` in world coordinates, up to a positive factor
+    /// (the stored form is scaled so that its largest entry is about 1).
+    pub fn matrix(&self) -> Mat4 {
+        self.form.world_matrix()
+    }
+
+    /// `f(p)` in the scale of [`Quadric::matrix`]: negative inside, zero on the surface.
+    pub fn value(&self, p: Vec3) -> f64 {
+        self.form.value(p)
+    }
+
+    /// `grad f(p) = 2 (Q [p, 1]^T)_xyz`, pointing outward on the surface.
+    pub fn gradient(&self, p: Vec3) -> Vec3 {
+        2.0 * self.form.eval(p).1.truncate()
+    }
+
+    /// The clip regions, in the order added.
+    pub fn clips(&self) -> &[Clip] {
+        &self.clips
+    }
+
+    /// True when `p` lies in every clip region (the surface is visible there).
+    pub fn is_visible(&self, p: Vec3) -> bool {
+        self.clips.iter().all(|c| c.keeps(p))
+    }
+
+    /// The two roots of the ray equation in increasing order (equal for the
+    /// linear case), or `None`.
+    fn roots(&self, ray: &Ray) -> Option<(f64, f64)> {
+        let d = ray.dir;
+        let (c, qs) = self.form.eval(ray.origin);
+        let quad = DMat3::from_mat4(self.form.q);
+        let mut a = d.dot(quad * d);
+        let b_half = d.dot(qs.truncate());
+        // Error bounds of a and b, dominated by the rounding already in Q's entries
+        // (each off by an ulp of the largest, which the stored scaling keeps below
+        // 2, as in 1 - a_x^2): below them the coefficient is indistinguishable from
+        // 0. Treating a as exactly 0 there avoids a spurious root at
+        // t ~ sqrt(c / a) ~ 10^8 for a ray inside a tilted cylinder along its axis.
+        let d1 = d.abs().element_sum();
+        if a.abs() <= 16.0 * f64::EPSILON * d1 * d1 {
+            a = 0.0;
+            let x1 = (ray.origin - self.form.origin).abs().element_sum();
+            if b_half.abs() <= 16.0 * f64::EPSILON * d1 * (x1 + 1.0) {
+                return None; // parallel to the surface: inside, outside or on it, never crossing
+            }
+        }
+        let (t0, t1) = solve_quadratic(a, b_half, c)?;
+        let (t0, t1) = (self.polish(ray, a, t0), self.polish(ray, a, t1));
+        Some((t0.min(t1), t0.max(t1)))
+    }
+
+    /// One refinement of root `t`: the quadratic re-expanded around `ray.at(t)`,
+    /// `a dt^2 + 2 b' dt + f(ray.at(t)) = 0`, whose root nearest 0 is the
+    /// correction. Its constant term is small and free of the cancellation that
+    /// `c` suffers when the ray starts far from a small quadric.
+    fn polish(&self, ray: &Ray, a: f64, t: f64) -> f64 {
+        if !t.is_finite() {
+            return t;
+        }
+        let (c, qp) = self.form.eval(ray.at(t));
+        match solve_quadratic(a, ray.dir.dot(qp.truncate()), c) {
+            Some((d0, d1)) => {
+                let dt = if d0.abs() <= d1.abs() { d0 } else { d1 };
+                if dt.is_finite() {
+                    t + dt
+                } else {
+                    t
+                }
+            }
+            None => t, // grazing: rounding removed the local crossing; keep the first estimate
+        }
+    }
+}
+
+impl Shape for Quadric {
+    fn bounds(&self) -> Aabb {
+        if self.bounds.is_finite() {
+            self.bounds
+        } else {
+            Aabb::INFINITE
+        }
+    }
+
+    fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
+        let (t0, t1) = self.roots(ray)?;
+        for t in [t0, t1] {
+            if !(t > t_min && t < t_max) {
+                continue;
+            }
+            let p = ray.at(t);
+            if !self.is_visible(p) {
+                continue; // clipped away: the farther root may still show (the inside of a cup)
+            }
+            // At a singular point (a cone's apex) the gradient vanishes and no normal
+            // exists; facing the ray keeps the hit usable and free of NaN.
+            let normal = self.form.eval(p).1.truncate().try_normalize().unwrap_or(-ray.dir);
+            return Some(SurfaceHit::new(t, normal));
+        }
+        None
+    }
+}
+
+#[cfg(test)]
+mod tests;
