@@ -229,10 +229,18 @@ impl Scene {
 
     /// Fraction of light that travels from `origin` a distance `distance` along the
     /// unit `dir` (a shadow ray): 0 if an opaque object lies in between, the product
-    /// of the crossed surfaces' `shadow_transmittance` otherwise. Object `ignore`
-    /// (a light's own bulb) is invisible to the ray.
+    /// of the crossed surfaces' `shadow_transmittance` otherwise.
+    ///
+    /// Object `ignore` is a light's own body (a bulb, or Heckbert's emitting
+    /// spheres): the light is seen where the ray first meets that object, so the
+    /// ray ends there. Neither the object nor anything inside it or behind its
+    /// near surface shadows the light, as in Heckbert's test "the first sphere hit
+    /// towards the light is the light".
     pub fn transmittance(&self, origin: Vec3, dir: Vec3, distance: f64, ignore: Option<usize>) -> Rgb {
         let ray = Ray { origin, dir };
+        // The light is seen where the ray first meets its own object: the ray ends there.
+        let own = ignore.and_then(|i| self.objects.get(i));
+        let distance = own.and_then(|o| o.shape.intersect(&ray, 0.0, distance)).map_or(distance, |h| h.t);
         let ignore = ignore.map_or(u32::MAX, |i| i as u32);
         let blocks = |prim: &PrimRef| -> bool {
             prim.opaque && prim.object != ignore && self.objects[prim.object as usize].shape.intersect_p(&ray, 0.0, distance)
@@ -283,5 +291,41 @@ impl Scene {
     /// Total primitives (triangles count one each).
     pub fn primitive_count(&self) -> usize {
         self.objects.iter().map(|o| o.shape.primitive_count()).sum()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::camera::Fov;
+    use crate::shapes::Sphere;
+
+    /// A bulb of radius 2 around the origin with a small opaque ball inside it,
+    /// off centre towards +x, and an opaque ball outside it on the -x side.
+    fn bulb_scene() -> Scene {
+        let camera = Camera::look_at(Vec3::new(0.0, 0.0, 10.0), Vec3::ZERO, Vec3::Y, Fov::VerticalDeg(40.0), 1.0).unwrap();
+        let mut builder = SceneBuilder::new(camera);
+        let opaque = builder.material(Material::default()).unwrap();
+        builder.object(Sphere::new(Vec3::ZERO, 2.0).unwrap(), opaque).unwrap();
+        builder.object(Sphere::new(Vec3::new(1.0, 0.0, 0.0), 0.5).unwrap(), opaque).unwrap();
+        builder.object(Sphere::new(Vec3::new(-4.0, 0.0, 0.0), 0.5).unwrap(), opaque).unwrap();
+        builder.build().unwrap()
+    }
+
+    #[test]
+    fn shadow_rays_end_at_the_lights_own_object() {
+        let scene = bulb_scene();
+        // From (5, 0, 0) towards the centre: the bulb's surface at distance 3 comes
+        // before the inner ball (distance 3.5 to 4.5): the light is seen.
+        let from_right = Vec3::new(5.0, 0.0, 0.0);
+        assert_eq!(scene.transmittance(from_right, -Vec3::X, 5.0, Some(0)), Rgb::ONE);
+        // Without an own object, the bulb itself blocks.
+        assert_eq!(scene.transmittance(from_right, -Vec3::X, 5.0, None), Rgb::ZERO);
+        // Outside the bulb, occluders still count: the ball at x = -4 blocks from x = -6.
+        assert_eq!(scene.transmittance(Vec3::new(-6.0, 0.0, 0.0), Vec3::X, 6.0, Some(0)), Rgb::ZERO);
+        // A ray that starts inside the bulb meets it only beyond the light: it is not
+        // cut short, so the inner ball still shadows a point behind it.
+        assert_eq!(scene.transmittance(Vec3::new(1.8, 0.0, 0.0), -Vec3::X, 1.8, Some(0)), Rgb::ZERO);
+        assert_eq!(scene.transmittance(Vec3::new(0.0, 1.5, 0.0), -Vec3::Y, 1.5, Some(0)), Rgb::ONE);
     }
 }
