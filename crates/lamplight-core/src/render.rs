@@ -18,6 +18,9 @@ use crate::Error;
 
 const TILE: u32 = 16;
 
+/// One finished tile: its pixels (row-major), ray counts and non-finite samples.
+type TileResult = (Vec<[f32; 3]>, RayCounts, u64);
+
 /// What to render and how.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RenderOptions {
@@ -98,7 +101,7 @@ pub fn render(scene: &Scene, options: &RenderOptions, control: &RenderControl) -
     let tile_count = tiles_x as u64 * tiles_y as u64;
     let done = AtomicU64::new(0);
     let start = Instant::now();
-    let results: Vec<Option<(Vec<[f32; 3]>, RayCounts, u64)>> = pool.install(|| {
+    let results: Vec<Option<TileResult>> = pool.install(|| {
         (0..tile_count)
             .into_par_iter()
             .map(|tile| {
@@ -134,7 +137,7 @@ pub fn render(scene: &Scene, options: &RenderOptions, control: &RenderControl) -
     Ok((image, stats))
 }
 
-fn render_tile(scene: &Scene, integrator: &dyn Integrator, options: &RenderOptions, x0: u32, y0: u32) -> (Vec<[f32; 3]>, RayCounts, u64) {
+fn render_tile(scene: &Scene, integrator: &dyn Integrator, options: &RenderOptions, x0: u32, y0: u32) -> TileResult {
     let (width, height, spp) = (options.width, options.height, options.spp);
     let x1 = (x0 + TILE).min(width);
     let y1 = (y0 + TILE).min(height);

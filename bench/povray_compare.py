@@ -1,0 +1,115 @@
+#!/usr/bin/env python3
+"""Times `lamplight render SCENE` against POV-Ray 3.7 on the same machine, in one run.
+
+lamplight is timed as a whole process (start to image file written); POV-Ray by
+its own "Trace Time" (its process also idles ~0.7 s at start and stop, see
+shared/anchors/README.md). Runs alternate between the two, and medians are
+reported. Both write 8-bit sRGB PPM images, which are then compared.
+
+    python3 bench/povray_compare.py [--scene spheres] [--runs 7] [--width 1280 --height 720]
+
+Needs `povray` (apt-get install povray) and a release build of lamplight
+(cargo build --release). Prints a Markdown table for BENCHMARKS.md.
+"""
+import argparse
+import os
+import platform
+import re
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def read_ppm(path):
+    with open(path, "rb") as f:
+        data = f.read()
+    # P6 header: magic, width, height, maxval, each separated by whitespace (no comments here).
+    parts = data.split(maxsplit=4)
+    if parts[0] != b"P6":
+        raise ValueError(f"{path}: not a binary PPM")
+    width, height, maxval = int(parts[1]), int(parts[2]), int(parts[3])
+    pixels = parts[4]
+    bytes_per = 2 if maxval > 255 else 1
+    if bytes_per == 2:
+        pixels = bytes(pixels[i] for i in range(0, len(pixels), 2))  # keep the high byte
+    return width, height, pixels[: width * height * 3]
+
+
+def cpu_model():
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor() or "unknown"
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--scene", default="spheres", choices=["spheres", "luxo"])
+    ap.add_argument("--runs", type=int, default=7)
+    ap.add_argument("--width", type=int, default=1280)
+    ap.add_argument("--height", type=int, default=720)
+    ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--lamplight", default=os.path.join(ROOT, "target", "release", "lamplight"))
+    ap.add_argument("--pov-dir", default=os.path.join(ROOT, "..", "shared", "anchors", "povray"))
+    args = ap.parse_args()
+
+    if not shutil.which("povray"):
+        sys.exit("povray not found: apt-get install povray")
+    if not os.path.exists(args.lamplight):
+        sys.exit(f"{args.lamplight} not found: cargo build --release")
+    pov_src = os.path.join(args.pov_dir, f"{args.scene}.pov")
+    work = tempfile.mkdtemp(prefix="lamplight-bench-")
+    shutil.copy(pov_src, work)
+    ll_out = os.path.join(work, "lamplight.ppm")
+    pov_out = os.path.join(work, "povray.ppm")
+    ll_cmd = [args.lamplight, "render", args.scene, "--width", str(args.width), "--height", str(args.height),
+              "--spp", "1", "--threads", str(args.threads), "--quiet", "-o", ll_out]
+    pov_cmd = ["povray", "-D", "-A", f"+W{args.width}", f"+H{args.height}", f"+WT{args.threads}", "+FP",
+               f"+O{pov_out}", f"{args.scene}.pov"]
+
+    ll_times, pov_times, pov_wall = [], [], []
+    for _ in range(args.runs):
+        start = time.perf_counter()
+        subprocess.run(ll_cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        ll_times.append(time.perf_counter() - start)
+        start = time.perf_counter()
+        res = subprocess.run(pov_cmd, cwd=work, check=True, capture_output=True, text=True)
+        pov_wall.append(time.perf_counter() - start)
+        m = re.search(r"Trace Time:.*\(([\d.]+) seconds\)", res.stderr + res.stdout)
+        if not m:
+            sys.exit("could not find POV-Ray's Trace Time in its output")
+        pov_times.append(float(m.group(1)))
+
+    w1, h1, a = read_ppm(ll_out)
+    w2, h2, b = read_ppm(pov_out)
+    assert (w1, h1) == (w2, h2), "image sizes differ"
+    diffs = [abs(x - y) for x, y in zip(a, b)]
+    mad = sum(diffs) / len(diffs)
+    big = sum(1 for i in range(0, len(diffs), 3) if max(diffs[i:i + 3]) > 2)
+
+    ll_med, pov_med = statistics.median(ll_times), statistics.median(pov_times)
+    print(f"machine: {os.cpu_count()} CPUs, {cpu_model()}; load before: {open('/proc/loadavg').read().split()[0]}")
+    print(f"scene {args.scene} {args.width}x{args.height}, 1 spp, {args.threads} threads, {args.runs} runs each (alternating)")
+    print()
+    print("| measure | median (s) | min | max |")
+    print("|---|---:|---:|---:|")
+    print(f"| lamplight whole process | {ll_med:.3f} | {min(ll_times):.3f} | {max(ll_times):.3f} |")
+    print(f"| POV-Ray trace time | {pov_med:.3f} | {min(pov_times):.3f} | {max(pov_times):.3f} |")
+    print(f"| POV-Ray whole process | {statistics.median(pov_wall):.3f} | {min(pov_wall):.3f} | {max(pov_wall):.3f} |")
+    print()
+    print(f"ratio POV-Ray trace time / lamplight whole process: {pov_med / ll_med:.2f}x")
+    print(f"image: mean absolute difference {mad:.5f} (8-bit levels), pixels differing by more than 2 levels: {big} of {w1 * h1}")
+    shutil.rmtree(work)
+
+
+if __name__ == "__main__":
+    main()
