@@ -85,14 +85,16 @@ impl Aabb {
 
     /// Slab test (Kay and Kajiya 1986): the parameter interval where `ray` is inside
     /// the box, clipped to `[t_min, t_max]`, or `None`. `inv_dir` is `1 / ray.dir`
-    /// (infinite components are fine: IEEE arithmetic gives the right slabs, and the
-    /// `max`/`min` order below drops the NaN of `0 * inf`).
+    /// (infinite components are fine: IEEE arithmetic gives the right slabs). A ray
+    /// parallel to a slab and lying exactly in one of its planes gives `0 * inf = NaN`;
+    /// it is inside the closed slab, so that axis then puts no bound on the interval.
     #[inline]
     pub fn hit_interval(&self, origin: Vec3, inv_dir: Vec3, t_min: f64, t_max: f64) -> Option<(f64, f64)> {
         let t0 = (self.min - origin) * inv_dir;
         let t1 = (self.max - origin) * inv_dir;
-        let near = t0.min(t1);
-        let far = t0.max(t1);
+        let in_plane = t0.cmpne(t0) | t1.cmpne(t1);
+        let near = Vec3::select(in_plane, Vec3::NEG_INFINITY, t0.min(t1));
+        let far = Vec3::select(in_plane, Vec3::INFINITY, t0.max(t1));
         let enter = t_min.max(near.x).max(near.y).max(near.z);
         // Robust far bound (Ize 2013): one ulp-scale widening so that a ray grazing a
         // face or an edge still enters the box.
@@ -121,6 +123,15 @@ mod tests {
         assert!(b.hit(&Ray::new(Vec3::new(1.0 - 1e-12, 0.0, -5.0), Vec3::Z), 0.0, f64::INFINITY).is_some());
         assert!(b.hit(&Ray::new(Vec3::new(1.0 + 1e-12, 0.0, -5.0), Vec3::Z), 0.0, f64::INFINITY).is_none());
         assert!(b.hit(&r, 0.0, 3.0).is_none());
+        // Lying exactly in a face plane (0 * inf = NaN), either direction sign.
+        for dir in [Vec3::Z, -Vec3::Z, Vec3::new(0.0, -0.0, 1.0)] {
+            let on_face = Ray::new(Vec3::new(1.0, 0.0, -5.0 * dir.z), dir);
+            assert!(b.hit(&on_face, 0.0, f64::INFINITY).is_some(), "{dir}");
+            let on_edge = Ray::new(Vec3::new(-1.0, 1.0, -5.0 * dir.z), dir);
+            assert!(b.hit(&on_edge, 0.0, f64::INFINITY).is_some(), "{dir}");
+        }
+        let flat = Aabb::new(Vec3::new(0.0, -1.0, -1.0), Vec3::new(0.0, 1.0, 1.0));
+        assert!(flat.hit(&Ray::new(Vec3::new(0.0, 0.0, -5.0), Vec3::Z), 0.0, f64::INFINITY).is_some());
         assert_eq!(Aabb::EMPTY.surface_area(), 0.0);
         assert!((b.surface_area() - 24.0).abs() < 1e-12);
     }

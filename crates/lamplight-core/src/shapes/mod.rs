@@ -13,11 +13,15 @@ use crate::accel::Aabb;
 use crate::math::Vec3;
 use crate::ray::Ray;
 
+mod mesh;
 mod plane;
 mod sphere;
+mod triangle;
 
+pub use mesh::TriangleMesh;
 pub use plane::{Disk, Plane, Rectangle};
 pub use sphere::Sphere;
+pub use triangle::{intersect_triangle, Triangle, TriangleHit, WatertightRay};
 
 /// What a shape reports about a ray hit.
 #[derive(Clone, Copy, Debug, PartialEq)]
