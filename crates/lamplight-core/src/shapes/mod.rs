@@ -16,11 +16,13 @@ use crate::ray::Ray;
 mod mesh;
 mod plane;
 mod sphere;
+mod torus;
 mod triangle;
 
 pub use mesh::TriangleMesh;
 pub use plane::{Disk, Plane, Rectangle};
 pub use sphere::Sphere;
+pub use torus::Torus;
 pub use triangle::{intersect_triangle, Triangle, TriangleHit, WatertightRay};
 
 /// What a shape reports about a ray hit.
