@@ -13,13 +13,19 @@ use crate::accel::Aabb;
 use crate::math::Vec3;
 use crate::ray::Ray;
 
+mod mesh;
 mod plane;
 mod quadric;
 mod sphere;
+mod torus;
+mod triangle;
 
+pub use mesh::TriangleMesh;
 pub use plane::{Disk, Plane, Rectangle};
 pub use quadric::{Clip, Quadric, Sheets};
 pub use sphere::Sphere;
+pub use torus::Torus;
+pub use triangle::{intersect_triangle, Triangle, TriangleHit, WatertightRay};
 
 /// What a shape reports about a ray hit.
 #[derive(Clone, Copy, Debug, PartialEq)]
