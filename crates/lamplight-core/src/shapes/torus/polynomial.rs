@@ -73,7 +73,7 @@ impl Poly {
 /// roots within rounding included). The leading coefficient must be non-zero.
 pub(super) fn roots_in(p: &Poly, lo: f64, hi: f64) -> Vec<f64> {
     let mut out = Vec::with_capacity(4);
-    if !(lo <= hi) {
+    if lo.is_nan() || hi.is_nan() || lo > hi {
         return out;
     }
     if p.n == 0 {
