@@ -29,12 +29,12 @@
 //! So: every root that the ray crosses is found, except where two crossings are
 //! closer than `tol` (a sliver thinner than the tolerance), and a place where the
 //! ray approaches within about `tol` of the surface (by both `|f| / L` and
-//! `|f| / |grad f|`) counts as a hit. The
-//! march stops after `max_steps` samples (default 4096) and then reports no hit:
-//! the only other way to miss, for a ray that creeps along the surface for
-//! thousands of steps or an `L` far above the true bound. A NaN or infinite value
-//! of `f` also ends the march without a hit. `SurfaceHit::error` is the root
-//! tolerance achieved: the bisection bracket, or `tol` for a touching hit.
+//! `|f| / |grad f|`) counts as a hit. The march stops after `max_steps` samples
+//! (default 4096) and then reports no hit: the only other way to miss, reached by a
+//! ray that creeps along the surface for thousands of steps or by an `L` far above
+//! the true bound. A NaN or infinite value of `f` also ends the march without a
+//! hit. `SurfaceHit::error` is the root tolerance achieved: the bisection
+//! bracket, or `tol` for a touching hit.
 
 use std::sync::Arc;
 

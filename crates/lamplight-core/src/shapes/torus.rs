@@ -161,7 +161,8 @@ impl Shape for Torus {
         // Solve from the box entry: coefficients of the torus's own size.
         let start = o + d * enter;
         let poly = self.quartic(start, d);
-        let (u, t) = roots_in(&poly, 0.0, exit - enter).into_iter().map(|u| (u, enter + u)).find(|&(_, t)| t > t_min && t < t_max)?;
+        let (u, t) =
+            roots_in(&poly, 0.0, exit - enter).as_slice().iter().map(|&u| (u, enter + u)).find(|&(_, t)| t > t_min && t < t_max)?;
         let p = start + d * u;
         let normal = self.world_from_local(self.normal_local(p)).normalize();
         Some(SurfaceHit { t, normal, shading_normal: normal, error: self.distance_local(p).abs() })
