@@ -13,6 +13,7 @@ use crate::accel::Aabb;
 use crate::math::Vec3;
 use crate::ray::Ray;
 
+mod implicit;
 mod mesh;
 mod plane;
 mod quadric;
@@ -20,6 +21,7 @@ mod sphere;
 mod torus;
 mod triangle;
 
+pub use implicit::{GradientFn, Implicit, ImplicitFn};
 pub use mesh::TriangleMesh;
 pub use plane::{Disk, Plane, Rectangle};
 pub use quadric::{Clip, Quadric, Sheets};

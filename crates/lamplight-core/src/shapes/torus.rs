@@ -87,12 +87,12 @@ impl Torus {
     }
 
     #[inline]
-    fn to_local(&self, v: Vec3) -> Vec3 {
+    fn local_from_world(&self, v: Vec3) -> Vec3 {
         Vec3::new(v.dot(self.frame_x), v.dot(self.frame_y), v.dot(self.axis))
     }
 
     #[inline]
-    fn to_world(&self, v: Vec3) -> Vec3 {
+    fn world_from_local(&self, v: Vec3) -> Vec3 {
         self.frame_x * v.x + self.frame_y * v.y + self.axis * v.z
     }
 
@@ -151,8 +151,8 @@ impl Shape for Torus {
     }
 
     fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
-        let o = self.to_local(ray.origin - self.center);
-        let d = self.to_local(ray.dir);
+        let o = self.local_from_world(ray.origin - self.center);
+        let d = self.local_from_world(ray.dir);
         let (big, small) = (self.major_radius, self.minor_radius);
         // The local box, a hair larger so that rounding cannot cut off a tangent hit.
         let pad = 16.0 * f64::EPSILON * (big + small);
@@ -161,9 +161,10 @@ impl Shape for Torus {
         // Solve from the box entry: coefficients of the torus's own size.
         let start = o + d * enter;
         let poly = self.quartic(start, d);
-        let (u, t) = roots_in(&poly, 0.0, exit - enter).into_iter().map(|u| (u, enter + u)).find(|&(_, t)| t > t_min && t < t_max)?;
+        let (u, t) =
+            roots_in(&poly, 0.0, exit - enter).as_slice().iter().map(|&u| (u, enter + u)).find(|&(_, t)| t > t_min && t < t_max)?;
         let p = start + d * u;
-        let normal = self.to_world(self.normal_local(p)).normalize();
+        let normal = self.world_from_local(self.normal_local(p)).normalize();
         Some(SurfaceHit { t, normal, shading_normal: normal, error: self.distance_local(p).abs() })
     }
 }

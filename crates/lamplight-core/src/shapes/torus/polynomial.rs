@@ -69,14 +69,34 @@ impl Poly {
     }
 }
 
-/// Every real root of `p` in `[lo, hi]`, in increasing order (at most 4; tangent
-/// roots within rounding included). The leading coefficient must be non-zero.
-pub(super) fn roots_in(p: &Poly, lo: f64, hi: f64) -> Vec<f64> {
-    let mut out = Vec::with_capacity(4);
-    if !(lo <= hi) {
-        return out;
+/// Up to five sorted roots, on the stack: the root finder runs once per ray and
+/// should not allocate.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct Roots {
+    values: [f64; 5],
+    len: usize,
+}
+
+impl Roots {
+    /// Appends `u` unless it repeats the last root.
+    fn push(&mut self, u: f64) {
+        if self.len < self.values.len() && (self.len == 0 || self.values[self.len - 1] != u) {
+            self.values[self.len] = u;
+            self.len += 1;
+        }
     }
-    if p.n == 0 {
+
+    /// The roots in increasing order.
+    pub(super) fn as_slice(&self) -> &[f64] {
+        &self.values[..self.len]
+    }
+}
+
+/// Every real root of `p` in `[lo, hi]`, in increasing order (tangent roots within
+/// rounding included). The leading coefficient must be non-zero.
+pub(super) fn roots_in(p: &Poly, lo: f64, hi: f64) -> Roots {
+    let mut out = Roots::default();
+    if lo.is_nan() || hi.is_nan() || lo > hi || p.n == 0 {
         return out;
     }
     if p.n == 1 {
@@ -86,8 +106,9 @@ pub(super) fn roots_in(p: &Poly, lo: f64, hi: f64) -> Vec<f64> {
         }
         return out;
     }
-    // Monotone pieces between the critical points.
+    // Monotone pieces between the critical points: at most one root each.
     let critical = roots_in(&p.derivative(), lo, hi);
+    let critical = critical.as_slice();
     let mut x0 = lo;
     let mut v0 = p.eval(lo);
     if v0 == 0.0 {
@@ -106,7 +127,6 @@ pub(super) fn roots_in(p: &Poly, lo: f64, hi: f64) -> Vec<f64> {
         x0 = x1;
         v0 = v1;
     }
-    out.dedup();
     out
 }
 
@@ -159,27 +179,27 @@ mod tests {
     #[test]
     fn finds_all_simple_roots_in_order() {
         let p = from_roots(&[-1.5, 0.25, 0.5, 3.0]);
-        let r = roots_in(&p, -10.0, 10.0);
+        let r = roots_in(&p, -10.0, 10.0).as_slice().to_vec();
         assert_eq!(r.len(), 4, "{r:?}");
         for (got, want) in r.iter().zip([-1.5, 0.25, 0.5, 3.0]) {
             assert!((got - want).abs() < 1e-14, "{got} vs {want}");
         }
-        assert_eq!(roots_in(&p, 0.3, 2.0).len(), 1);
-        assert!(roots_in(&p, 4.0, 10.0).is_empty());
+        assert_eq!(roots_in(&p, 0.3, 2.0).as_slice().len(), 1);
+        assert!(roots_in(&p, 4.0, 10.0).as_slice().is_empty());
     }
 
     #[test]
     fn close_and_double_roots_are_found() {
-        let r = roots_in(&from_roots(&[1.0, 1.0 + 1e-7, 2.0, 5.0]), 0.0, 10.0);
+        let r = roots_in(&from_roots(&[1.0, 1.0 + 1e-7, 2.0, 5.0]), 0.0, 10.0).as_slice().to_vec();
         assert_eq!(r.len(), 4, "{r:?}");
         // Rounding the coefficients (~1e-16 of 30) moves roots where |p'| ~ 4e-7 by ~1e-8.
         assert!((r[0] - 1.0).abs() < 2e-8 && (r[1] - 1.0 - 1e-7).abs() < 2e-8, "{r:?}");
         // A double root: no sign change, found as a critical point touching zero.
-        let r = roots_in(&from_roots(&[0.7, 0.7, -3.0, 4.0]), 0.0, 10.0);
+        let r = roots_in(&from_roots(&[0.7, 0.7, -3.0, 4.0]), 0.0, 10.0).as_slice().to_vec();
         assert!(!r.is_empty() && (r[0] - 0.7).abs() < 1e-7, "{r:?}");
         // An extremum clearly off zero is not a root.
         let mut lifted = from_roots(&[0.7, 0.7, -3.0, 4.0]);
         lifted.a[0] -= 1e-6; // the double root is a maximum: push it below zero
-        assert!(roots_in(&lifted, 0.0, 3.0).is_empty());
+        assert!(roots_in(&lifted, 0.0, 3.0).as_slice().is_empty());
     }
 }

@@ -29,8 +29,8 @@ fn analytic_normal(torus: &Torus, p: Vec3) -> Vec3 {
 fn surface_point(torus: &Torus, theta: f64, phi: f64) -> (Vec3, Vec3) {
     let (big, small) = (torus.major_radius(), torus.minor_radius());
     let local = Vec3::new((big + small * phi.cos()) * theta.cos(), (big + small * phi.cos()) * theta.sin(), small * phi.sin());
-    let normal = torus.to_world(Vec3::new(phi.cos() * theta.cos(), phi.cos() * theta.sin(), phi.sin()));
-    (torus.center() + torus.to_world(local), normal)
+    let normal = torus.world_from_local(Vec3::new(phi.cos() * theta.cos(), phi.cos() * theta.sin(), phi.sin()));
+    (torus.center() + torus.world_from_local(local), normal)
 }
 
 #[test]
@@ -180,7 +180,7 @@ proptest! {
         let h = h.unwrap();
         prop_assert!(h.t <= to_target * (1.0 + 1e-9), "t = {} beyond the target at {to_target}", h.t);
         let p = ray.at(h.t);
-        let local = torus.to_local(p - torus.center());
+        let local = torus.local_from_world(p - torus.center());
         let distance = torus.distance_local(local);
         prop_assert!(distance.abs() <= 1e-9 * scale, "off the surface by {distance}");
         // f itself is ~0 on the scale of its gradient (|grad f| ~ 8 R^2 r near the surface).
