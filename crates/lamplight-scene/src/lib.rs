@@ -6,4 +6,8 @@
 #![deny(missing_docs)]
 
 pub mod builtin;
+mod error;
 pub mod image_io;
+pub mod import;
+
+pub use error::{LoadError, Location};
