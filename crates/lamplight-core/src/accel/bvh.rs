@@ -110,32 +110,46 @@ struct RayBoxes {
 }
 
 impl RayBoxes {
+    #[inline(always)]
     fn new(origin: Vec3, dir: Vec3, t_min: f64) -> RayBoxes {
         // Bracket the f64 origin: with pad = 2^-21 |o|_inf (+ a tiny absolute part
         // for o = 0), rounding o -+ pad to f32 moves it by at most half an f32 ulp,
         // 2^-24 |o|, less than pad, so lo < o < hi on every axis.
         let pad = max_abs(origin) * (1.0 / 2_097_152.0) + 1e-30;
-        let mut near_origin = [Vec4::ZERO; 3];
-        let mut far_origin = [Vec4::ZERO; 3];
-        let mut inv_dir = [Vec4::ZERO; 3];
-        let mut near_row = [0; 3];
-        let mut far_row = [0; 3];
-        for axis in 0..3 {
-            let lo = (origin[axis] - pad) as f32;
-            let hi = (origin[axis] + pad) as f32;
-            let d = dir[axis];
-            let inv = if d == 0.0 { 1e30f32.copysign(d as f32) } else { ((1.0 / d) as f32).clamp(-1e30, 1e30) };
-            inv_dir[axis] = Vec4::splat(inv);
-            if inv >= 0.0 {
-                // Near = (min - hi) * inv is at most the true entry; far = (max - lo) * inv at least the exit.
-                (near_row[axis], far_row[axis]) = (axis, axis + 3);
-                (near_origin[axis], far_origin[axis]) = (Vec4::splat(hi), Vec4::splat(lo));
+        let lo = [(origin.x - pad) as f32, (origin.y - pad) as f32, (origin.z - pad) as f32];
+        let hi = [(origin.x + pad) as f32, (origin.y + pad) as f32, (origin.z + pad) as f32];
+        // 1/0 is an infinity of the zero's sign; keep it finite so that no 0 * inf
+        // NaN can arise in the box test.
+        let inverse = |d: f64| {
+            let inv = (1.0 / d) as f32;
+            if inv.abs() > 1e30 {
+                1e30f32.copysign(inv)
             } else {
-                (near_row[axis], far_row[axis]) = (axis + 3, axis);
-                (near_origin[axis], far_origin[axis]) = (Vec4::splat(lo), Vec4::splat(hi));
+                inv
+            }
+        };
+        let inv = [inverse(dir.x), inverse(dir.y), inverse(dir.z)];
+        let mut ray = RayBoxes {
+            near_origin: [Vec4::ZERO; 3],
+            far_origin: [Vec4::ZERO; 3],
+            inv_dir: [Vec4::splat(inv[0]), Vec4::splat(inv[1]), Vec4::splat(inv[2])],
+            near_row: [0, 1, 2],
+            far_row: [3, 4, 5],
+            t_min: Vec4::splat(t_min.max(0.0) as f32),
+        };
+        for axis in 0..3 {
+            if inv[axis] >= 0.0 {
+                // Near = (min - hi) * inv is at most the true entry; far = (max - lo) * inv at least the exit.
+                ray.near_origin[axis] = Vec4::splat(hi[axis]);
+                ray.far_origin[axis] = Vec4::splat(lo[axis]);
+            } else {
+                ray.near_row[axis] = axis + 3;
+                ray.far_row[axis] = axis;
+                ray.near_origin[axis] = Vec4::splat(lo[axis]);
+                ray.far_origin[axis] = Vec4::splat(hi[axis]);
             }
         }
-        RayBoxes { near_origin, far_origin, inv_dir, near_row, far_row, t_min: Vec4::splat(t_min.max(0.0) as f32) }
+        ray
     }
 
     /// Entry distances of the four children and the mask of those the ray enters
