@@ -26,17 +26,26 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
 def read_ppm(path):
+    """Reads a binary (P6) PPM: header tokens separated by whitespace, `#` comments allowed."""
     with open(path, "rb") as f:
         data = f.read()
-    # P6 header: magic, width, height, maxval, each separated by whitespace (no comments here).
-    parts = data.split(maxsplit=4)
-    if parts[0] != b"P6":
+    tokens, pos = [], 0
+    while len(tokens) < 4:
+        while data[pos:pos + 1].isspace():
+            pos += 1
+        if data[pos:pos + 1] == b"#":
+            pos = data.index(b"\n", pos) + 1
+            continue
+        start = pos
+        while not data[pos:pos + 1].isspace():
+            pos += 1
+        tokens.append(data[start:pos])
+    if tokens[0] != b"P6":
         raise ValueError(f"{path}: not a binary PPM")
-    width, height, maxval = int(parts[1]), int(parts[2]), int(parts[3])
-    pixels = parts[4]
-    bytes_per = 2 if maxval > 255 else 1
-    if bytes_per == 2:
-        pixels = bytes(pixels[i] for i in range(0, len(pixels), 2))  # keep the high byte
+    width, height, maxval = int(tokens[1]), int(tokens[2]), int(tokens[3])
+    pixels = data[pos + 1:]
+    if maxval > 255:  # 16-bit big-endian samples: keep the 8-bit value they round to
+        pixels = bytes(min(255, round(int.from_bytes(pixels[i:i + 2], "big") * 255 / maxval)) for i in range(0, 2 * width * height * 3, 2))
     return width, height, pixels[: width * height * 3]
 
 
