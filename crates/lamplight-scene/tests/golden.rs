@@ -48,7 +48,11 @@ fn check(name: &str, width: u32, height: u32, spp: u32) {
         image::save_buffer(&img_path, &actual, width, height, image::ExtendedColorType::Rgb8).unwrap();
         let mask: Vec<u8> = diffs.chunks(3).map(|c| if c.iter().any(|&d| d > 1) { 255 } else { 0 }).collect();
         image::save_buffer(out.join(format!("{name}-diff.png")), &mask, width, height, image::ExtendedColorType::L8).unwrap();
-        panic!("{name}: differs from {}: mean {mean:.4} levels, {over_one} values off by more than 1, worst {worst}; actual image in {}", reference_path.display(), img_path.display());
+        panic!(
+            "{name}: differs from {}: mean {mean:.4} levels, {over_one} values off by more than 1, worst {worst}; actual image in {}",
+            reference_path.display(),
+            img_path.display()
+        );
     }
 }
 

@@ -105,7 +105,8 @@ pub fn direct_light(scene: &Scene, ray: &Ray, hit: &Hit, material: &Material, co
         // costs no shadow ray.
         let diffuse = material.kd * color * cos_light;
         let cos_half = n.dot((view + sample.wi).normalize());
-        let specular = if cos_half > 0.0 && material.ks != Rgb::ZERO { material.ks * blinn_power(cos_half, material.shininess) } else { Rgb::ZERO };
+        let specular =
+            if cos_half > 0.0 && material.ks != Rgb::ZERO { material.ks * blinn_power(cos_half, material.shininess) } else { Rgb::ZERO };
         let reflected = diffuse + specular;
         if reflected.max_element() < NEGLIGIBLE {
             continue;
