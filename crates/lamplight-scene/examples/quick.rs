@@ -6,6 +6,11 @@ fn main() {
     let b = lamplight_scene::builtin::find(name).unwrap();
     let t = std::time::Instant::now();
     let scene = (b.build)(w as f64 / h as f64).unwrap();
+    if std::env::var_os("BOUNDS").is_some() {
+        for (i, o) in scene.objects.iter().enumerate() {
+            eprintln!("{i} {:?} {:?}", o.shape.bounds(), std::any::type_name_of_val(&*o.shape));
+        }
+    }
     let opts = lamplight_core::RenderOptions {
         width: w,
         height: h,
@@ -20,3 +25,5 @@ fn main() {
         std::fs::write(p, f.iter().flat_map(|v| v.to_le_bytes()).collect::<Vec<u8>>()).unwrap();
     }
 }
+#[allow(dead_code)]
+fn _x() {}
