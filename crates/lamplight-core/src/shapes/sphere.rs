@@ -13,6 +13,8 @@ pub struct Sphere {
     pub center: Vec3,
     /// Radius, positive.
     pub radius: f64,
+    /// `1 / radius`, so that the normal costs a multiplication.
+    inv_radius: f64,
 }
 
 impl Sphere {
@@ -24,7 +26,7 @@ impl Sphere {
         if !center.is_finite() {
             return Err(Error::invalid("center", "must be finite"));
         }
-        Ok(Sphere { center, radius })
+        Ok(Sphere { center, radius, inv_radius: 1.0 / radius })
     }
 }
 
@@ -34,26 +36,25 @@ impl Shape for Sphere {
     }
 
     /// Substituting the ray into the sphere equation gives
-    /// `(d.d) t^2 + 2 ((s - c).d) t + |s - c|^2 - R^2 = 0`; the smaller root in the
-    /// interval wins, the normal is `(p - c) / R`.
+    /// `t^2 + 2 ((s - c).d) t + |s - c|^2 - R^2 = 0` for a unit direction `d`; the
+    /// smaller root in the interval wins, the normal is `(p - c) / R`.
     ///
-    /// The constant term is computed as `|s - c - (d.(s-c)) d|^2`-based
-    /// discriminant (Haines et al., Ray Tracing Gems ch. 7) so that a small sphere
-    /// far from the ray origin keeps its precision.
+    /// The discriminant is computed as `R^2 - |f - (f.d) d|^2` with `f = s - c`
+    /// (Haines et al., Ray Tracing Gems ch. 7), free of the cancellation in `b^2 - c`,
+    /// so a small sphere far from the ray origin keeps its precision; the roots use
+    /// the stable pair `q = -(b + sign(b) sqrt(D))`, `t = q` and `t = c / q`.
     fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
         let f = ray.origin - self.center;
-        let a = ray.dir.length_squared();
         let b_half = f.dot(ray.dir);
-        // discriminant/a = R^2 - |f - (b_half/a) d|^2, free of the cancellation in b^2 - ac.
-        let perpendicular = f - ray.dir * (b_half / a);
-        let discriminant = a * (self.radius * self.radius - perpendicular.length_squared());
+        let perpendicular = f - ray.dir * b_half;
+        let r2 = self.radius * self.radius;
+        let discriminant = r2 - perpendicular.length_squared();
         if discriminant < 0.0 {
             return None;
         }
-        let c = f.length_squared() - self.radius * self.radius;
-        let root = discriminant.sqrt();
-        let q = -(b_half + root.copysign(b_half));
-        let (mut t0, mut t1) = if q == 0.0 { (0.0, 0.0) } else { (q / a, c / q) };
+        let c = f.length_squared() - r2;
+        let q = -(b_half + discriminant.sqrt().copysign(b_half));
+        let (mut t0, mut t1) = if q == 0.0 { (0.0, 0.0) } else { (q, c / q) };
         if t0 > t1 {
             std::mem::swap(&mut t0, &mut t1);
         }
@@ -64,7 +65,7 @@ impl Shape for Sphere {
         } else {
             return None;
         };
-        let normal = (ray.at(t) - self.center) / self.radius;
+        let normal = (ray.at(t) - self.center) * self.inv_radius;
         Some(SurfaceHit::new(t, normal.normalize()))
     }
 
