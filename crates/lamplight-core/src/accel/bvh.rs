@@ -129,27 +129,23 @@ impl RayBoxes {
             }
         };
         let inv = [inverse(dir.x), inverse(dir.y), inverse(dir.z)];
-        let mut ray = RayBoxes {
-            near_origin: [Vec4::ZERO; 3],
-            far_origin: [Vec4::ZERO; 3],
-            inv_dir: [Vec4::splat(inv[0]), Vec4::splat(inv[1]), Vec4::splat(inv[2])],
-            near_row: [0, 1, 2],
-            far_row: [3, 4, 5],
-            t_min: Vec4::splat(t_min.max(0.0) as f32),
+        let positive = [inv[0] >= 0.0, inv[1] >= 0.0, inv[2] >= 0.0];
+        // For a positive direction the near plane is the minimum, measured from the
+        // upper origin bound: (min - hi) * inv is at most the true entry, and
+        // (max - lo) * inv at least the true exit; mirrored for a negative one.
+        let pick = |axis: usize, near: bool| {
+            let upper = positive[axis] == near;
+            Vec4::splat(if upper { hi[axis] } else { lo[axis] })
         };
-        for axis in 0..3 {
-            if inv[axis] >= 0.0 {
-                // Near = (min - hi) * inv is at most the true entry; far = (max - lo) * inv at least the exit.
-                ray.near_origin[axis] = Vec4::splat(hi[axis]);
-                ray.far_origin[axis] = Vec4::splat(lo[axis]);
-            } else {
-                ray.near_row[axis] = axis + 3;
-                ray.far_row[axis] = axis;
-                ray.near_origin[axis] = Vec4::splat(lo[axis]);
-                ray.far_origin[axis] = Vec4::splat(hi[axis]);
-            }
+        let row = |axis: usize, near: bool| if positive[axis] == near { axis } else { axis + 3 };
+        RayBoxes {
+            near_origin: [pick(0, true), pick(1, true), pick(2, true)],
+            far_origin: [pick(0, false), pick(1, false), pick(2, false)],
+            inv_dir: [Vec4::splat(inv[0]), Vec4::splat(inv[1]), Vec4::splat(inv[2])],
+            near_row: [row(0, true), row(1, true), row(2, true)],
+            far_row: [row(0, false), row(1, false), row(2, false)],
+            t_min: Vec4::splat(t_min.max(0.0) as f32),
         }
-        ray
     }
 
     /// Entry distances of the four children and the mask of those the ray enters
