@@ -16,6 +16,8 @@ use lamplight_core::math::{Mat4, Vec3};
 
 use crate::error::LoadError;
 
+mod mtl;
+mod obj;
 mod ply;
 
 /// Triangle mesh data as read from a file (indices in the file's face order,
@@ -102,6 +104,7 @@ pub fn load_bytes(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
     }
     match ext.as_str() {
         "ply" => ply::parse(path, bytes),
+        "obj" => obj::parse(path, bytes),
         _ => Err(LoadError::file(path, format!("cannot read .{ext} files yet"))),
     }
 }
@@ -152,5 +155,76 @@ fn io_error(path: &Path, e: &std::io::Error) -> LoadError {
     match e.kind() {
         std::io::ErrorKind::NotFound => LoadError::file(path, "file not found"),
         _ => LoadError::file(path, format!("cannot read the file: {e}")),
+    }
+}
+
+/// Whitespace-separated words of a line with their 1-based character columns.
+pub(crate) fn words(line: &str) -> Vec<(usize, &str)> {
+    let mut out = Vec::new();
+    let mut start = None;
+    for (col, (i, c)) in line.char_indices().enumerate() {
+        match (c.is_whitespace(), start) {
+            (false, None) => start = Some((col + 1, i)),
+            (true, Some((c0, i0))) => {
+                out.push((c0, &line[i0..i]));
+                start = None;
+            }
+            _ => {}
+        }
+    }
+    if let Some((c0, i0)) = start {
+        out.push((c0, &line[i0..]));
+    }
+    out
+}
+
+/// Word `i` of a text line as a finite number, or an error at its column saying what was expected.
+pub(crate) fn number(path: &Path, line_no: usize, line: &str, words: &[(usize, &str)], i: usize, what: &str) -> Result<f64, LoadError> {
+    let Some(&(column, word)) = words.get(i) else {
+        let end = line.trim_end().chars().count() + 1;
+        return Err(LoadError::at(path, line_no, end, format!("expected a number ({what}), found the end of the line")));
+    };
+    match word.parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        Ok(v) => Err(LoadError::at(path, line_no, column, format!("expected a finite number ({what}), found {v}"))),
+        Err(_) => Err(LoadError::at(path, line_no, column, format!("expected a number ({what}), found `{word}`"))),
+    }
+}
+
+/// Warnings in order, each text kept once.
+#[derive(Default)]
+pub(crate) struct Warnings(Vec<String>);
+
+impl Warnings {
+    /// Adds `text` unless it was added before.
+    pub(crate) fn once(&mut self, text: String) {
+        if !self.0.contains(&text) {
+            self.0.push(text);
+        }
+    }
+
+    /// The warnings in the order they were first added.
+    pub(crate) fn into_vec(self) -> Vec<String> {
+        self.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn words_carry_their_columns() {
+        assert_eq!(words("  element  vértex 8"), vec![(3, "element"), (12, "vértex"), (19, "8")]);
+    }
+
+    #[test]
+    fn numbers_must_be_finite() {
+        let p = Path::new("a.obj");
+        let line = "v 1 nan";
+        let w = words(line);
+        assert_eq!(number(p, 2, line, &w, 1, "x"), Ok(1.0));
+        assert_eq!(number(p, 2, line, &w, 2, "y").unwrap_err().to_string(), "a.obj:2:5: expected a finite number (y), found NaN");
+        assert_eq!(number(p, 2, line, &w, 3, "z").unwrap_err().to_string(), "a.obj:2:8: expected a number (z), found the end of the line");
     }
 }

@@ -24,7 +24,7 @@ use std::path::Path;
 
 use lamplight_core::math::Vec3;
 
-use super::{Imported, ImportedMesh, MeshData};
+use super::{words, Imported, ImportedMesh, MeshData};
 use crate::error::LoadError;
 use lamplight_core::math::Mat4;
 
@@ -269,26 +269,6 @@ fn parse_header(path: &Path, bytes: &[u8]) -> Result<(Format, Vec<Element>, usiz
         return Err(LoadError::at(path, 2, 1, "the PLY header has no `format` line"));
     };
     Ok((format, elements, pos))
-}
-
-/// Whitespace-separated words of a line with their 1-based character columns.
-fn words(line: &str) -> Vec<(usize, &str)> {
-    let mut out = Vec::new();
-    let mut start = None;
-    for (col, (i, c)) in line.char_indices().enumerate() {
-        match (c.is_whitespace(), start) {
-            (false, None) => start = Some((col + 1, i)),
-            (true, Some((c0, i0))) => {
-                out.push((c0, &line[i0..i]));
-                start = None;
-            }
-            _ => {}
-        }
-    }
-    if let Some((c0, i0)) = start {
-        out.push((c0, &line[i0..]));
-    }
-    out
 }
 
 fn header_lines(bytes: &[u8], body_start: usize) -> usize {
@@ -602,10 +582,5 @@ mod tests {
         let mut out = Vec::new();
         unroll_strip(&[0, 1, 2, 3, 4], &mut out);
         assert_eq!(out, vec![[0, 1, 2], [2, 1, 3], [2, 3, 4]]);
-    }
-
-    #[test]
-    fn words_carry_their_columns() {
-        assert_eq!(words("  element  vertex 8"), vec![(3, "element"), (12, "vertex"), (19, "8")]);
     }
 }
