@@ -16,6 +16,8 @@ use lamplight_core::math::{Mat4, Vec3};
 
 use crate::error::LoadError;
 
+mod gltf;
+mod gltf_material;
 mod mtl;
 mod obj;
 mod ply;
@@ -105,6 +107,7 @@ pub fn load_bytes(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
     match ext.as_str() {
         "ply" => ply::parse(path, bytes),
         "obj" => obj::parse(path, bytes),
+        "gltf" | "glb" => gltf::parse(path, bytes),
         _ => Err(LoadError::file(path, format!("cannot read .{ext} files yet"))),
     }
 }
