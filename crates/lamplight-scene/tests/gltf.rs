@@ -75,13 +75,9 @@ fn data_uri(buffer: &[u8]) -> String {
 
 fn glb(json: &str, bin: &[u8]) -> Vec<u8> {
     let mut json = json.as_bytes().to_vec();
-    while json.len() % 4 != 0 {
-        json.push(b' ');
-    }
+    json.resize(json.len().div_ceil(4) * 4, b' ');
     let mut bin = bin.to_vec();
-    while bin.len() % 4 != 0 {
-        bin.push(0);
-    }
+    bin.resize(bin.len().div_ceil(4) * 4, 0);
     let total = 12 + 8 + json.len() + 8 + bin.len();
     let mut out = b"glTF".to_vec();
     out.extend(2u32.to_le_bytes());
@@ -230,5 +226,28 @@ fn shared_gltf_models_load_with_the_readme_counts() {
         let imported = import::load(&data.join(file)).unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(triangles(&imported), count, "{file}");
         println!("{file}: {count} triangles, warnings {:?}", imported.warnings);
+    }
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig { cases: 128, rng_seed: proptest::test_runner::RngSeed::Fixed(0x1a3f), ..Default::default() })]
+
+    /// Random bytes, as `.gltf` and as `.glb`, give a scene or a `LoadError`, never a panic.
+    #[test]
+    fn random_bytes_never_panic(bytes in proptest::collection::vec(proptest::prelude::any::<u8>(), 0..512)) {
+        let _ = import::load_bytes(&common::fake_path("x.gltf"), &bytes);
+        let mut with_magic = b"glTF\x02\0\0\0".to_vec();
+        with_magic.extend(&bytes);
+        let _ = import::load_bytes(&common::fake_path("x.glb"), &with_magic);
+    }
+
+    /// Mutations of a valid `.gltf` and `.glb` give a scene or a `LoadError`, never a panic.
+    #[test]
+    fn mutated_files_never_panic(edits in common::edits(), cut in proptest::prelude::any::<usize>()) {
+        let buffer = triangle_buffer([0, 1, 2], 0.0);
+        let text = scene_json(Some(&data_uri(&buffer)), 3, "").into_bytes();
+        let _ = import::load_bytes(&common::fake_path("x.gltf"), &common::mutate(&text, &edits, cut));
+        let binary = glb(&scene_json(None, 3, ""), &buffer);
+        let _ = import::load_bytes(&common::fake_path("x.glb"), &common::mutate(&binary, &edits, cut));
     }
 }

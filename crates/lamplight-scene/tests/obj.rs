@@ -90,3 +90,20 @@ fn shared_obj_meshes_load_with_the_readme_counts() {
     let light = cornell.instances.iter().filter_map(|i| i.material.as_ref()).find(|m| m.emission != Rgb::ZERO);
     assert!(light.is_some(), "the Cornell box's light has Ke > 0");
 }
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig { cases: 256, rng_seed: proptest::test_runner::RngSeed::Fixed(0x1a3f), ..Default::default() })]
+
+    /// Random bytes give meshes or a `LoadError`, never a panic.
+    #[test]
+    fn random_bytes_never_panic(bytes in proptest::collection::vec(proptest::prelude::any::<u8>(), 0..512)) {
+        let _ = import::load_bytes(&common::fake_path("x.obj"), &bytes);
+    }
+
+    /// Mutations of a valid OBJ (without its `mtllib` line, which would fail at once) never panic.
+    #[test]
+    fn mutated_files_never_panic(edits in common::edits(), cut in proptest::prelude::any::<usize>()) {
+        let base = OBJ.replace("mtllib scene.mtl\n", "").replace("usemtl", "g");
+        let _ = import::load_bytes(&common::fake_path("x.obj"), &common::mutate(base.as_bytes(), &edits, cut));
+    }
+}

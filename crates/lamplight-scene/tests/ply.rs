@@ -192,3 +192,23 @@ fn shared_igea_meshes_load_with_the_readme_counts() {
     let big = import::load_mesh(&data.join("meshes/igea-1m.ply")).unwrap();
     assert_eq!((big.positions.len(), big.indices.len()), (537_374, 1_074_744));
 }
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig { cases: 256, rng_seed: proptest::test_runner::RngSeed::Fixed(0x1a3f), ..Default::default() })]
+
+    /// Random bytes after a PLY header give a mesh or a `LoadError`, never a panic.
+    #[test]
+    fn random_bytes_never_panic(bytes in proptest::collection::vec(proptest::prelude::any::<u8>(), 0..512), header in 0usize..3) {
+        let mut file = [b"".as_slice(), b"ply\nformat ascii 1.0\n", b"ply\nformat binary_little_endian 1.0\n"][header].to_vec();
+        file.extend(&bytes);
+        let _ = import::load_bytes(&common::fake_path("x.ply"), &file);
+    }
+
+    /// Mutations of valid ASCII and binary files give a mesh or a `LoadError`, never a panic.
+    #[test]
+    fn mutated_files_never_panic(edits in common::edits(), cut in proptest::prelude::any::<usize>()) {
+        for base in [SQUARE_ASCII.as_bytes().to_vec(), binary(false, true), binary(true, false)] {
+            let _ = import::load_bytes(&common::fake_path("x.ply"), &common::mutate(&base, &edits, cut));
+        }
+    }
+}

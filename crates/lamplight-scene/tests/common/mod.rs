@@ -36,3 +36,26 @@ pub fn error_of(dir: &Path, name: &str, bytes: &[u8]) -> String {
 pub fn triangles(imported: &Imported) -> usize {
     imported.instances.iter().map(|i| imported.meshes[i.mesh].indices.len()).sum()
 }
+
+/// A path in a folder that does not exist, so that referenced files are never found.
+pub fn fake_path(name: &str) -> PathBuf {
+    Path::new("/nonexistent-lamplight-fuzz").join(name)
+}
+
+/// Random byte edits: (position, new byte), positions taken modulo the file length.
+pub fn edits() -> impl proptest::strategy::Strategy<Value = Vec<(usize, u8)>> {
+    proptest::collection::vec((proptest::prelude::any::<usize>(), proptest::prelude::any::<u8>()), 1..8)
+}
+
+/// `base` with `edits` applied, and cut short when `cut` says so (one time in four).
+pub fn mutate(base: &[u8], edits: &[(usize, u8)], cut: usize) -> Vec<u8> {
+    let mut out = base.to_vec();
+    for &(at, byte) in edits {
+        let i = at % out.len();
+        out[i] = byte;
+    }
+    if cut % 4 == 0 {
+        out.truncate(cut / 4 % (base.len() + 1));
+    }
+    out
+}
