@@ -54,7 +54,7 @@ pub fn mutate(base: &[u8], edits: &[(usize, u8)], cut: usize) -> Vec<u8> {
         let i = at % out.len();
         out[i] = byte;
     }
-    if cut % 4 == 0 {
+    if cut & 3 == 0 {
         out.truncate(cut / 4 % (base.len() + 1));
     }
     out
