@@ -88,6 +88,15 @@ fn tristrips_restart_at_minus_one_and_keep_the_winding() {
 }
 
 #[test]
+fn elements_without_properties_cost_nothing_whatever_their_count() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement empty 1000000000000\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    let imported = write_and_load(dir.path(), "empty.ply", text.as_bytes()).unwrap();
+    assert_eq!(imported.meshes[0].indices, vec![[0, 1, 2]]);
+    assert_eq!(imported.warnings, vec!["PLY element `empty` (1000000000000 items) ignored".to_string()]);
+}
+
+#[test]
 fn malformed_files_give_one_exact_error() {
     let dir = tempfile::tempdir().unwrap();
     let head = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
@@ -182,6 +191,13 @@ fn missing_files_and_directories_are_named() {
     let sub = dir.path().join("folder.ply");
     std::fs::create_dir(&sub).unwrap();
     assert_eq!(import::load(&sub).unwrap_err().to_string(), format!("{}: is a directory, expected a file", sub.display()));
+    if cfg!(unix) {
+        // Devices would never end: the guard is checked through a link to /dev/zero named like a mesh.
+        let link = dir.path().join("zero.ply");
+        if std::os::unix::fs::symlink("/dev/zero", &link).is_ok() {
+            assert_eq!(import::load(&link).unwrap_err().to_string(), format!("{}: is not a regular file", link.display()));
+        }
+    }
 }
 
 #[test]

@@ -42,6 +42,7 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
         reader.warnings.once("glTF animations ignored".to_string());
     }
     let scene_count = document.scenes().len();
+    let whole_file = scene_count == 0;
     let roots: Vec<gltf::Node> = match document.default_scene().or_else(|| document.scenes().next()) {
         Some(scene) => {
             if scene_count > 1 {
@@ -82,6 +83,14 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
         for (j, child) in children.into_iter().enumerate().rev() {
             stack.push((child, world, format!("nodes[{i}].children[{j}]")));
         }
+    }
+    // Without a scene every node is a root or below one, unless it sits on a cycle.
+    if let Some(i) = seen.iter().position(|s| !s).filter(|_| whole_file) {
+        return Err(LoadError::json(
+            path,
+            format!("nodes[{i}]"),
+            format!("node {i} lies on a cycle of children: glTF nodes must form trees"),
+        ));
     }
     out.warnings = reader.warnings.into_vec();
     Ok(out)

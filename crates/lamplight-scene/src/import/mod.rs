@@ -151,6 +151,10 @@ pub(crate) fn read_file(path: &Path) -> Result<Vec<u8>, LoadError> {
     if meta.is_dir() {
         return Err(LoadError::file(path, "is a directory, expected a file"));
     }
+    // Devices and pipes (`/dev/zero`, `/dev/stdin`) could never end or block forever.
+    if !meta.is_file() {
+        return Err(LoadError::file(path, "is not a regular file"));
+    }
     std::fs::read(path).map_err(|e| io_error(path, &e))
 }
 

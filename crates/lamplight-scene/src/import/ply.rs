@@ -158,7 +158,9 @@ fn parse_mesh(path: &Path, bytes: &[u8], warnings: &mut Vec<String>) -> Result<M
             }
             _ => {
                 warnings.push(format!("PLY element `{}` ({} items) ignored", element.name, element.count));
-                for i in 0..element.count {
+                // An element without properties takes no bytes, whatever its count: nothing to skip.
+                let count = if element.props.is_empty() { 0 } else { element.count };
+                for i in 0..count {
                     for p in &element.props {
                         skip_property(&mut reader, path, p, (&element.name, i))?;
                     }
