@@ -25,7 +25,7 @@ pub const MAX_LEN: usize = 4096;
 /// Deepest evaluation stack.
 const STACK: usize = 64;
 
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug)]
 enum Op {
     Const(f64),
     Var(usize),
