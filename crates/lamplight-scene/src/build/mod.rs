@@ -15,6 +15,7 @@ use crate::description::{CameraDesc, Located, MaterialDesc, ReflectionDesc, Refr
 use crate::error::LoadError;
 use crate::formats::native::{self, Source};
 
+pub mod imported;
 mod nodes;
 mod shapes;
 mod transform;
