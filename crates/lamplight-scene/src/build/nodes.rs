@@ -69,6 +69,16 @@ pub(super) fn add_all(
         lights: Vec::new(),
         stack: Vec::new(),
     };
+    // Count first, so that exponential instancing fails at once instead of
+    // after allocating millions of objects.
+    let mut counts = HashMap::new();
+    for node in &desc.objects {
+        let planned = count(desc, &node.value, &mut counts, 0);
+        if planned > MAX_OBJECTS as u64 {
+            let message = format!("{}: expands to more than {MAX_OBJECTS} objects (is a definition instanced exponentially?)", node.value.kind);
+            return Err(source.error(node.span.as_ref(), message));
+        }
+    }
     for node in &desc.objects {
         ctx.node(node, Mat4::IDENTITY, None, 0)?;
     }
@@ -283,6 +293,35 @@ impl Ctx<'_> {
         let asset: Asset = Arc::new(parts);
         self.files.insert(key, asset.clone());
         Ok(asset)
+    }
+}
+
+/// An upper bound of the objects `node` adds (saturating; definitions memoized;
+/// cycles and over-deep nesting count 0 here and are reported by the traversal).
+fn count(desc: &SceneDescription, node: &Node, memo: &mut HashMap<String, u64>, depth: usize) -> u64 {
+    if depth > MAX_NESTING {
+        return 0;
+    }
+    match node.kind.as_str() {
+        "group" => node.children.iter().flatten().fold(0u64, |sum, c| sum.saturating_add(count(desc, &c.value, memo, depth + 1))),
+        "instance" => {
+            let Some(name) = &node.of else { return 0 };
+            if let Some(n) = memo.get(name) {
+                return *n;
+            }
+            let n = match desc.definitions.get(name) {
+                Some(def) => {
+                    memo.insert(name.clone(), 0); // a cycle back here counts 0
+                    count(desc, &def.value, memo, depth + 1)
+                }
+                None => 0,
+            };
+            memo.insert(name.clone(), n);
+            n
+        }
+        "box" => 6,
+        "cylinder" => 3,
+        _ => 1,
     }
 }
 
