@@ -265,6 +265,10 @@ impl Ctx<'_> {
         if meta.is_dir() {
             return Err(Ok(format!("file \"{file}\" is a directory, expected a mesh file")));
         }
+        if !meta.is_file() {
+            // A device or a pipe (/dev/zero) could be read forever.
+            return Err(Ok(format!("file \"{file}\" is not a regular file")));
+        }
         let key = path.canonicalize().unwrap_or(path.clone());
         if let Some(asset) = self.files.get(&key) {
             return Ok(asset.clone());
