@@ -22,7 +22,8 @@ fn with_camera(rest: &str) -> String {
 
 #[test]
 fn malformed_inputs_give_their_exact_errors() {
-    let huge = format!("{CAMERA}[meshes.m]\npositions = [[0,0,0]]\nindices = [[0, 1, 4000000000]]\n[[objects]]\ntype = \"mesh\"\nmesh = \"m\"\n");
+    let huge =
+        format!("{CAMERA}[meshes.m]\npositions = [[0,0,0]]\nindices = [[0, 1, 4000000000]]\n[[objects]]\ntype = \"mesh\"\nmesh = \"m\"\n");
     let cases: Vec<(String, &str)> = vec![
         ("".into(), "s.toml: is empty, expected a scene (at least a [camera] table)"),
         (" \n\t\n".into(), "s.toml: is empty, expected a scene (at least a [camera] table)"),
@@ -71,7 +72,10 @@ fn file_level_problems_name_the_file() {
     let dir = tempfile::tempdir().unwrap();
     let missing = dir.path().join("none.toml");
     assert_eq!(SceneFile::read(&missing).unwrap_err().to_string(), format!("{}: no such file", missing.display()));
-    assert_eq!(SceneFile::read(dir.path()).unwrap_err().to_string(), format!("{}: is a directory, expected a scene file", dir.path().display()));
+    assert_eq!(
+        SceneFile::read(dir.path()).unwrap_err().to_string(),
+        format!("{}: is a directory, expected a scene file", dir.path().display())
+    );
     let binary = dir.path().join("bin.toml");
     std::fs::write(&binary, b"[camera]\n\xff\xfe").unwrap();
     assert_eq!(SceneFile::read(&binary).unwrap_err().to_string(), format!("{}:2:1: invalid UTF-8, expected a text file", binary.display()));

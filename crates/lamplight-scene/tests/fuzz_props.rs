@@ -10,16 +10,49 @@ use lamplight_scene::build::SceneFile;
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed};
 
-const EXAMPLES: [&str; 3] =
-    [include_str!("../../../examples/luxo.toml"), include_str!("../../../examples/business-card.toml"), include_str!("../../../examples/spheres.toml")];
+const EXAMPLES: [&str; 3] = [
+    include_str!("../../../examples/luxo.toml"),
+    include_str!("../../../examples/business-card.toml"),
+    include_str!("../../../examples/spheres.toml"),
+];
 
 /// Fragments a mutation may insert: TOML syntax, keys and values that matter.
 const FRAGMENTS: &[&str] = &[
-    "[", "]", "{", "}", "=", ",", "\"", "\n", "#", "nan", "inf", "-inf", "-1", "0", "1e308", "4294967296", "[[objects]]\n",
-    "type = \"instance\"\n", "of = \"d\"\n", "[definitions.d]\ntype = \"instance\"\nof = \"d\"\n", "type = \"implicit\"\n",
-    "expression = \"((((x\"\n", "scale = 0\n", "matrix = [[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]\n", "rotate = { axis = [0,0,0], degrees = 90 }\n",
-    "file = \".\"\n", "file = \"missing.obj\"\n", "children = [", "radius = -1\n", "material = \"none\"\n", "[render]\nwidth = 0\n",
-    "type = \"torus\"\n", "type = \"box\"\n", "\u{feff}", "é",
+    "[",
+    "]",
+    "{",
+    "}",
+    "=",
+    ",",
+    "\"",
+    "\n",
+    "#",
+    "nan",
+    "inf",
+    "-inf",
+    "-1",
+    "0",
+    "1e308",
+    "4294967296",
+    "[[objects]]\n",
+    "type = \"instance\"\n",
+    "of = \"d\"\n",
+    "[definitions.d]\ntype = \"instance\"\nof = \"d\"\n",
+    "type = \"implicit\"\n",
+    "expression = \"((((x\"\n",
+    "scale = 0\n",
+    "matrix = [[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]\n",
+    "rotate = { axis = [0,0,0], degrees = 90 }\n",
+    "file = \".\"\n",
+    "file = \"missing.obj\"\n",
+    "children = [",
+    "radius = -1\n",
+    "material = \"none\"\n",
+    "[render]\nwidth = 0\n",
+    "type = \"torus\"\n",
+    "type = \"box\"\n",
+    "\u{feff}",
+    "é",
 ];
 
 /// Parses and builds `text`; a panic fails the property.

@@ -61,7 +61,14 @@ impl Instance {
                 m.transform_point3(corner)
             }))
         };
-        Ok(Instance { shape, world_from_object: m, object_from_world: inverse, normal_matrix: inverse.transpose(), max_scale: scale, bounds })
+        Ok(Instance {
+            shape,
+            world_from_object: m,
+            object_from_world: inverse,
+            normal_matrix: inverse.transpose(),
+            max_scale: scale,
+            bounds,
+        })
     }
 
     /// The world-from-object matrix.

@@ -37,7 +37,8 @@ pub fn build(path: &Path, imported: &Imported, aspect: f64) -> Result<Scene, Loa
         meshes.push(Arc::new(mesh));
     }
     for placed in &imported.instances {
-        let data = imported.meshes.get(placed.mesh).ok_or_else(|| LoadError::file(path, format!("instance of missing mesh {}", placed.mesh)))?;
+        let data =
+            imported.meshes.get(placed.mesh).ok_or_else(|| LoadError::file(path, format!("instance of missing mesh {}", placed.mesh)))?;
         bounds = data.positions.iter().fold(bounds, |b, p| b.grow(placed.transform.transform_point3(*p)));
     }
     if imported.instances.is_empty() || !bounds.is_finite() {
@@ -88,12 +89,7 @@ mod tests {
 
     #[test]
     fn default_camera_frames_the_model_and_a_light_is_added() {
-        let mesh = MeshData {
-            name: None,
-            positions: vec![Vec3::ZERO, Vec3::X, Vec3::Y],
-            indices: vec![[0, 1, 2]],
-            normals: None,
-        };
+        let mesh = MeshData { name: None, positions: vec![Vec3::ZERO, Vec3::X, Vec3::Y], indices: vec![[0, 1, 2]], normals: None };
         let imported = Imported {
             meshes: vec![mesh],
             instances: vec![ImportedMesh { mesh: 0, transform: Mat4::from_translation(Vec3::Z), material: None }],

@@ -75,7 +75,8 @@ pub(super) fn add_all(
     for node in &desc.objects {
         let planned = count(desc, &node.value, &mut counts, 0);
         if planned > MAX_OBJECTS as u64 {
-            let message = format!("{}: expands to more than {MAX_OBJECTS} objects (is a definition instanced exponentially?)", node.value.kind);
+            let message =
+                format!("{}: expands to more than {MAX_OBJECTS} objects (is a definition instanced exponentially?)", node.value.kind);
             return Err(source.error(node.span.as_ref(), message));
         }
     }
@@ -87,7 +88,10 @@ pub(super) fn add_all(
         match objects {
             [one] => light.own_object = Some(*one),
             [] => return Err(source.error(span.as_ref(), format!("point_light: own_object \"{name}\" names no shape"))),
-            _ => return Err(source.error(span.as_ref(), format!("point_light: own_object \"{name}\" names {} objects, expected one", objects.len()))),
+            _ => {
+                return Err(source
+                    .error(span.as_ref(), format!("point_light: own_object \"{name}\" names {} objects, expected one", objects.len())))
+            }
         }
         ctx.builder.light(light);
     }
@@ -247,10 +251,12 @@ impl Ctx<'_> {
         };
         let at = |m: String| self.source.error(desc.span.as_ref(), format!("mesh \"{name}\": {m}"));
         let asset = match (&desc.value.file, &desc.value.positions) {
-            (Some(file), None) if desc.value.indices.is_none() && desc.value.normals.is_none() => self.file_asset(file).map_err(|e| match e {
-                Ok(m) => Err(at(m)),
-                Err(load) => Err(load),
-            })?,
+            (Some(file), None) if desc.value.indices.is_none() && desc.value.normals.is_none() => {
+                self.file_asset(file).map_err(|e| match e {
+                    Ok(m) => Err(at(m)),
+                    Err(load) => Err(load),
+                })?
+            }
             (None, Some(_)) => inline(&desc.value).map_err(|m| Err(at(m)))?,
             _ => return Err(Err(at("needs either `file` or `positions` and `indices`".into()))),
         };
@@ -278,7 +284,11 @@ impl Ctx<'_> {
         let mut meshes: HashMap<usize, Arc<TriangleMesh>> = HashMap::new();
         for placed in &imported.instances {
             let Some(data) = imported.meshes.get(placed.mesh) else {
-                return Err(Err(LoadError { path: path.clone(), location: Location::File, message: format!("instance of missing mesh {}", placed.mesh) }));
+                return Err(Err(LoadError {
+                    path: path.clone(),
+                    location: Location::File,
+                    message: format!("instance of missing mesh {}", placed.mesh),
+                }));
             };
             let mesh = match meshes.get(&placed.mesh) {
                 Some(mesh) => mesh.clone(),

@@ -119,7 +119,8 @@ pub fn make(n: &Node, m: &Mat4) -> Result<Vec<Arc<dyn Shape>>, String> {
         }
         "torus" => {
             let (c, axis) = (point(n.center, "center")?, point(n.axis, "axis")?);
-            let torus = Torus::new(c, axis, number(n.major_radius, "major_radius")?, number(n.minor_radius, "minor_radius")?).map_err(core)?;
+            let torus =
+                Torus::new(c, axis, number(n.major_radius, "major_radius")?, number(n.minor_radius, "minor_radius")?).map_err(core)?;
             out.push(instance(Arc::new(torus), m)?);
         }
         "implicit" => out.push(instance(Arc::new(implicit(n)?), m)?),
@@ -129,7 +130,7 @@ pub fn make(n: &Node, m: &Mat4) -> Result<Vec<Arc<dyn Shape>>, String> {
 }
 
 fn quadric(n: &Node) -> Result<Quadric, String> {
-    Ok(match n.kind.as_str() {
+    match n.kind.as_str() {
         "ellipsoid" => Quadric::ellipsoid(point(n.center, "center")?, point(n.radii, "radii")?),
         "infinite_cylinder" => Quadric::cylinder(point(n.point, "point")?, point(n.axis, "axis")?, number(n.radius, "radius")?),
         "infinite_cone" => Quadric::cone(point(n.apex, "apex")?, point(n.axis, "axis")?, number(n.half_angle, "half_angle")?.to_radians()),
@@ -150,7 +151,7 @@ fn quadric(n: &Node) -> Result<Quadric, String> {
         }
         _ => Quadric::new(matrix(req(n.coefficients, "coefficients")?, "coefficients")?),
     }
-    .map_err(core)?)
+    .map_err(core)
 }
 
 fn matrix(rows: [[f64; 4]; 4], key: &str) -> Result<Mat4, String> {

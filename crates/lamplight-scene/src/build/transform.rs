@@ -22,7 +22,7 @@ pub fn local(node: &Node) -> Result<Mat4, String> {
     }
     if let Some(s) = node.scale {
         finite("scale", &s.0)?;
-        if s.0.iter().any(|v| *v == 0.0) {
+        if s.0.contains(&0.0) {
             return Err("scale must not be 0 (it would flatten the geometry)".into());
         }
         m *= Mat4::from_scale(Vec3::from_array(s.0));
@@ -95,7 +95,8 @@ pub fn similarity_scale(m: &Mat4) -> Option<f64> {
     let s = cols[0].length();
     let tol = 1e-12 * s;
     let same_length = cols.iter().all(|c| (c.length() - s).abs() <= tol);
-    let orthogonal = cols[0].dot(cols[1]).abs() <= tol * s && cols[1].dot(cols[2]).abs() <= tol * s && cols[0].dot(cols[2]).abs() <= tol * s;
+    let orthogonal =
+        cols[0].dot(cols[1]).abs() <= tol * s && cols[1].dot(cols[2]).abs() <= tol * s && cols[0].dot(cols[2]).abs() <= tol * s;
     (same_length && orthogonal && s > 0.0).then_some(s)
 }
 
@@ -116,7 +117,8 @@ mod tests {
         // (1,0,0) -> scaled (2,0,0) -> rotated (0,2,0) -> translated (1,2,0).
         assert!((m.transform_point3(Vec3::X) - Vec3::new(1.0, 2.0, 0.0)).length() < 1e-15);
         assert_eq!(similarity_scale(&m), Some(2.0));
-        let y25 = Node { rotate: Some(Rotate { axis: Some([0.0, 1.0, 0.0]), degrees: Some(25.0), ..Rotate::default() }), ..Node::default() };
+        let y25 =
+            Node { rotate: Some(Rotate { axis: Some([0.0, 1.0, 0.0]), degrees: Some(25.0), ..Rotate::default() }), ..Node::default() };
         assert_eq!(local(&y25).unwrap(), Mat4::from_rotation_y(25f64.to_radians()));
         let squash = Node { scale: Some(Triple([1.0, 2.0, 1.0])), ..Node::default() };
         assert_eq!(similarity_scale(&local(&squash).unwrap()), None);

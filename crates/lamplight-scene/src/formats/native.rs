@@ -66,7 +66,10 @@ pub fn read(path: &Path) -> Result<(SceneDescription, Source), LoadError> {
         return Err(LoadError::file(path, "is a directory, expected a scene file"));
     }
     if meta.len() > MAX_FILE_BYTES {
-        return Err(LoadError::file(path, format!("is {} bytes, larger than the {MAX_FILE_BYTES} bytes a scene file may have", meta.len())));
+        return Err(LoadError::file(
+            path,
+            format!("is {} bytes, larger than the {MAX_FILE_BYTES} bytes a scene file may have", meta.len()),
+        ));
     }
     let bytes = std::fs::read(path).map_err(|e| LoadError::file(path, io_message(&e)))?;
     let text = String::from_utf8(bytes).map_err(|e| {
