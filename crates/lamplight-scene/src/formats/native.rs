@@ -95,12 +95,24 @@ pub fn parse(path: &Path, text: String) -> Result<(SceneDescription, Source), Lo
 
 /// serde's messages, made one line and in the file's terms.
 fn tidy(message: &str) -> String {
-    let one_line = message.trim().replace('\n', "; ");
+    let mut one_line = message.trim().replace('\n', "; ");
+    // A node's key list (every key of every node type) is too long to help;
+    // the builder lists the keys of the node's own type when `type` is known.
+    if one_line.starts_with("unknown field") && one_line.contains("`own_object`") {
+        if let Some(cut) = one_line.find(", expected one of") {
+            one_line.truncate(cut);
+            one_line.push_str(", expected a key of this node type (see docs/scene-format.md)");
+        }
+    }
     one_line
         .replace("a spanned value", "a table")
         .replace("$__serde_spanned_private_Spanned", "table")
         .replace("invalid type: floating point", "invalid type: number")
         .replace("invalid type: integer", "invalid type: number")
+        .replace("expected f64", "expected a number")
+        .replace("expected u32", "expected a whole number from 0 to 4294967295")
+        .replace("expected u64", "expected a non-negative whole number")
+        .replace("expected u8", "expected a whole number from 0 to 255")
 }
 
 fn io_message(e: &std::io::Error) -> String {
