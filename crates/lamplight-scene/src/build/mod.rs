@@ -1,5 +1,5 @@
 //! A [`SceneDescription`] to a core [`Scene`]: defaults, the camera, materials,
-//! and the node tree ([`nodes`]), with every error a [`LoadError`] at the place
+//! and the node tree (the private `nodes` and `shapes` modules), with every error a [`LoadError`] at the place
 //! of the entry it concerns.
 
 use std::collections::BTreeMap;
