@@ -4,12 +4,14 @@
 //! Every rejection is a [`UsageError`] with a one-line message (exit code 2).
 
 use std::fmt;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use clap::{Args, Parser, Subcommand};
 use lamplight_core::RenderOptions;
+use lamplight_scene::build::SceneFile;
 use lamplight_scene::builtin::{self, Builtin};
 use lamplight_scene::image_io::Format;
+use lamplight_scene::import;
 
 /// Deepest allowed `--max-depth`. Whitted tracing may spawn a reflected and a
 /// refracted ray at every hit, so a camera ray's work grows as `2^depth`: 64 levels
@@ -36,7 +38,7 @@ pub struct Cli {
 /// The subcommands.
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// Render a built-in scene to an image file (.png, .ppm or .exr).
+    /// Render a built-in scene or a scene file to an image file (.png, .ppm or .exr).
     Render(RenderArgs),
     /// List the built-in scenes.
     List,
@@ -45,7 +47,7 @@ pub enum Command {
 /// `lamplight render` flags, as typed.
 #[derive(Debug, Args)]
 pub struct RenderArgs {
-    /// Built-in scene to render (see `lamplight list`).
+    /// Built-in scene (see `lamplight list`), scene file (.toml) or mesh file (.obj, .ply, .gltf, .glb).
     #[arg(value_name = "SCENE", default_value = builtin::BUILTINS[0].name)]
     pub scene: String,
     /// Output file; the extension picks the format (.png, .ppm, .exr) [default: SCENE.png].
@@ -57,28 +59,41 @@ pub struct RenderArgs {
     /// Image height in pixels [default: the scene's; with only --width, keeps the scene's aspect].
     #[arg(long, value_name = "H")]
     pub height: Option<u32>,
-    /// Samples per pixel (stratified and jittered when more than one).
-    #[arg(long, value_name = "N", default_value_t = 1)]
-    pub spp: u32,
+    /// Samples per pixel, stratified and jittered when more than one [default: the file's, else 1].
+    #[arg(long, value_name = "N")]
+    pub spp: Option<u32>,
     /// Ray depth limit, 1 to 64, camera ray = 1 [default: the scene's].
     #[arg(long, value_name = "D")]
     pub max_depth: Option<u32>,
     /// Worker threads; 0 uses all cores. The image does not depend on it.
     #[arg(long, value_name = "T", default_value_t = 0)]
     pub threads: usize,
-    /// Seed of the per-sample random numbers.
-    #[arg(long, value_name = "S", default_value_t = 0)]
-    pub seed: u64,
+    /// Seed of the per-sample random numbers [default: the file's, else 0].
+    #[arg(long, value_name = "S")]
+    pub seed: Option<u64>,
     /// No progress bar and no summary line.
     #[arg(short, long)]
     pub quiet: bool,
+}
+
+/// Where the scene comes from.
+#[derive(Debug)]
+pub enum SceneSource {
+    /// A built-in scene.
+    Builtin(&'static Builtin),
+    /// A native scene file, parsed.
+    File(Box<SceneFile>),
+    /// A mesh file for an importer.
+    Mesh(PathBuf),
 }
 
 /// A render request, checked and with every default resolved.
 #[derive(Debug)]
 pub struct RenderJob {
     /// The scene.
-    pub builtin: &'static Builtin,
+    pub scene: SceneSource,
+    /// Its name in messages.
+    pub name: String,
     /// Where the image goes.
     pub output: PathBuf,
     /// Size, samples, depth, threads and seed.
@@ -104,12 +119,13 @@ fn usage(message: impl Into<String>) -> UsageError {
 }
 
 impl RenderArgs {
-    /// Checks the flags and resolves the defaults.
+    /// Checks the flags, reads a scene file, and resolves the defaults: flags
+    /// override the file's settings, which override the program's defaults.
     pub fn validate(self) -> Result<RenderJob, UsageError> {
-        let builtin = builtin::find(&self.scene)
-            .ok_or_else(|| usage(format!("unknown scene '{}' (built-in scenes: {})", self.scene, builtin::names())))?;
-        let (width, height) = image_size(self.width, self.height, builtin.default_size)?;
-        if self.spp == 0 {
+        let (scene, name, defaults) = resolve_scene(&self.scene)?;
+        let (width, height) = image_size(self.width, self.height, defaults.size)?;
+        let spp = self.spp.unwrap_or(defaults.spp);
+        if spp == 0 {
             return Err(usage("--spp must be at least 1"));
         }
         if let Some(depth) = self.max_depth {
@@ -120,18 +136,53 @@ impl RenderArgs {
         if self.threads > MAX_THREADS {
             return Err(usage(format!("--threads must be at most {MAX_THREADS} (0 uses all cores), got {}", self.threads)));
         }
-        let output = self.output.unwrap_or_else(|| PathBuf::from(format!("{}.png", builtin.name)));
+        let output = self.output.unwrap_or_else(|| PathBuf::from(format!("{name}.png")));
         Format::from_path(&output).map_err(|e| usage(e.to_string()))?;
         let options = RenderOptions {
             width,
             height,
-            spp: self.spp,
+            spp,
             max_depth: self.max_depth,
             threads: self.threads,
-            seed: self.seed,
+            seed: self.seed.unwrap_or(defaults.seed),
             ..RenderOptions::default()
         };
-        Ok(RenderJob { builtin, output, options, quiet: self.quiet })
+        Ok(RenderJob { scene, name, output, options, quiet: self.quiet })
+    }
+}
+
+/// Size, samples and seed a scene asks for when no flag is given.
+struct Defaults {
+    size: (u32, u32),
+    spp: u32,
+    seed: u64,
+}
+
+/// The scene `arg` names: a built-in name (no path separator, no extension), a
+/// `.toml` scene file (read and parsed here, so that a bad file stops before any
+/// work), or a mesh file.
+fn resolve_scene(arg: &str) -> Result<(SceneSource, String, Defaults), UsageError> {
+    let path = Path::new(arg);
+    let has_separator = arg.contains('/') || arg.contains(std::path::MAIN_SEPARATOR);
+    let extension = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+    if !has_separator && extension.is_none() {
+        let b = builtin::find(arg).ok_or_else(|| usage(format!("unknown scene '{arg}' (built-in scenes: {})", builtin::names())))?;
+        return Ok((SceneSource::Builtin(b), b.name.to_string(), Defaults { size: b.default_size, spp: 1, seed: 0 }));
+    }
+    let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "scene".into());
+    match extension.as_deref() {
+        Some("toml") => {
+            let file = SceneFile::read(path).map_err(|e| usage(e.to_string()))?;
+            let s = file.settings().map_err(|e| usage(e.to_string()))?;
+            Ok((SceneSource::File(Box::new(file)), stem, Defaults { size: (s.width, s.height), spp: s.spp, seed: s.seed }))
+        }
+        Some(ext) if import::EXTENSIONS.contains(&ext) => {
+            Ok((SceneSource::Mesh(path.to_path_buf()), stem, Defaults { size: (640, 360), spp: 1, seed: 0 }))
+        }
+        _ => Err(usage(format!(
+            "{arg}: unknown scene file type, expected .toml or a mesh file ({})",
+            import::EXTENSIONS.iter().map(|e| format!(".{e}")).collect::<Vec<_>>().join(", ")
+        ))),
     }
 }
 
@@ -173,7 +224,7 @@ mod tests {
     fn defaults_come_from_the_first_builtin() {
         let job = parse(&[]).unwrap();
         let first = &builtin::BUILTINS[0];
-        assert_eq!(job.builtin.name, first.name);
+        assert!(matches!(job.scene, SceneSource::Builtin(b) if b.name == first.name));
         assert_eq!(job.output, PathBuf::from(format!("{}.png", first.name)));
         assert_eq!((job.options.width, job.options.height), first.default_size);
         assert_eq!((job.options.spp, job.options.max_depth, job.options.threads, job.options.seed), (1, None, 0, 0));
@@ -194,7 +245,7 @@ mod tests {
         let job =
             parse(&["spheres", "-o", "x.EXR", "--width", "64", "--spp", "4", "--max-depth", "64", "--threads", "3", "--seed", "9", "-q"])
                 .unwrap();
-        assert_eq!(job.builtin.name, "spheres");
+        assert_eq!(job.name, "spheres");
         assert_eq!(job.output, PathBuf::from("x.EXR"));
         let o = &job.options;
         assert_eq!((o.width, o.height, o.spp, o.max_depth, o.threads, o.seed), (64, 36, 4, Some(64), 3, 9));
@@ -213,6 +264,8 @@ mod tests {
             (&["--threads", "1025"], "--threads must be at most 1024 (0 uses all cores), got 1025"),
             (&["--width", "100000"], "image 100000x56250 is too large (at most 268435456 pixels)"),
             (&["-o", "out.jpg"], "cannot write out.jpg: unknown image format \"jpg\" (supported: .png, .ppm, .exr)"),
+            (&["scene.txt"], "scene.txt: unknown scene file type, expected .toml or a mesh file (.obj, .ply, .gltf, .glb)"),
+            (&["missing.toml"], "missing.toml: no such file"),
         ];
         for (args, expected) in cases {
             let err = parse(args).unwrap_err();

@@ -1,7 +1,7 @@
-//! `lamplight`: render a built-in scene to an image file.
+//! `lamplight`: render a built-in scene or a scene file to an image file.
 //!
 //! ```text
-//! lamplight render [SCENE] [-o FILE] [--width W] [--height H] [--spp N]
+//! lamplight render [SCENE|FILE] [-o FILE] [--width W] [--height H] [--spp N]
 //!                  [--max-depth D] [--threads T] [--seed S] [--quiet]
 //! lamplight list
 //! ```
@@ -22,9 +22,10 @@ use anyhow::Context;
 use clap::Parser;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use lamplight_core::{render, RenderControl, RenderStats};
+use lamplight_scene::build::imported;
 use lamplight_scene::{builtin, image_io};
 
-use crate::args::{Cli, Command, RenderJob, UsageError};
+use crate::args::{Cli, Command, RenderJob, SceneSource, UsageError};
 
 fn main() -> ExitCode {
     match run() {
@@ -62,13 +63,18 @@ fn list_command() -> anyhow::Result<()> {
 }
 
 fn render_command(job: RenderJob) -> anyhow::Result<()> {
-    let RenderJob { builtin, output, options, quiet } = job;
+    let RenderJob { scene, name, output, options, quiet } = job;
     // Fail before a long render, not after it, when the file cannot be written.
     image_io::check_writable(&output)?;
 
     let build_start = Instant::now();
-    let scene =
-        (builtin.build)(options.width as f64 / options.height as f64).with_context(|| format!("cannot build scene '{}'", builtin.name))?;
+    let aspect = options.width as f64 / options.height as f64;
+    // File errors are the user's input: exit code 2, one line naming file and place.
+    let scene = match scene {
+        SceneSource::Builtin(b) => (b.build)(aspect).with_context(|| format!("cannot build scene '{}'", b.name))?,
+        SceneSource::File(file) => file.build(options.width, options.height).map_err(|e| UsageError(e.to_string()))?,
+        SceneSource::Mesh(path) => imported::load(&path, aspect).map_err(|e| UsageError(e.to_string()))?,
+    };
     let build_time = build_start.elapsed();
 
     let bar = progress_bar(quiet);
@@ -82,10 +88,10 @@ fn render_command(job: RenderJob) -> anyhow::Result<()> {
     if let Some(bar) = &bar {
         bar.finish_and_clear();
     }
-    let (image, stats) = rendered.with_context(|| format!("cannot render scene '{}'", builtin.name))?;
+    let (image, stats) = rendered.with_context(|| format!("cannot render scene '{name}'"))?;
     image_io::write_image(&output, &image)?;
 
-    let summary = Summary { scene: builtin.name, width: options.width, height: options.height, spp: options.spp, build_time, stats };
+    let summary = Summary { scene: &name, width: options.width, height: options.height, spp: options.spp, build_time, stats };
     if !quiet {
         eprintln!("{} -> {}", summary, output.display());
     } else if stats.nonfinite_samples > 0 {
@@ -108,8 +114,8 @@ fn progress_bar(quiet: bool) -> Option<ProgressBar> {
 }
 
 /// The one-line report printed after a render.
-struct Summary {
-    scene: &'static str,
+struct Summary<'a> {
+    scene: &'a str,
     width: u32,
     height: u32,
     spp: u32,
@@ -117,7 +123,7 @@ struct Summary {
     stats: RenderStats,
 }
 
-impl std::fmt::Display for Summary {
+impl std::fmt::Display for Summary<'_> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let Summary { scene, width, height, spp, build_time, stats } = self;
         let rays = &stats.rays;

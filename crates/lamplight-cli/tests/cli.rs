@@ -170,3 +170,49 @@ fn list_names_every_builtin() {
     assert_eq!(names, ["luxo", "business-card", "spheres"]);
     assert!(text.contains("1280x720") && text.contains("32x32"), "{text}");
 }
+
+#[test]
+fn renders_a_scene_file_and_flags_override_its_settings() {
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    let examples = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples");
+    fs::copy(examples.join("business-card.toml"), dir.join("card.toml")).unwrap();
+    // The file asks for 32x32; the flag makes it 16 wide (square aspect kept).
+    let err = ok(dir, &["render", "card.toml", "--width", "16", "-q"]);
+    assert!(err.is_empty(), "{err}");
+    let (w, h, _) = read_png_srgb8(&dir.join("card.png")).unwrap();
+    assert_eq!((w, h), (16, 16));
+    // A name with an extension is a file even when it matches nothing built in.
+    fails(dir, &["render", "luxo.toml"], 2, "luxo.toml: no such file");
+}
+
+#[test]
+fn a_malformed_scene_file_is_one_line_and_exit_code_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    fs::write(dir.join("bad.toml"), "[camera]\neye = [0, 0, 0\n").unwrap();
+    let err = fails(dir, &["render", "bad.toml"], 2, "bad.toml:2:");
+    assert!(err.contains("expected"), "{err}");
+    fs::write(dir.join("cycle.toml"), CYCLE).unwrap();
+    fails(dir, &["render", "cycle.toml"], 2, "cycle.toml:8:1: instance: cyclic instance: a -> b -> a");
+    fs::create_dir(dir.join("dir.toml")).unwrap();
+    fails(dir, &["render", "dir.toml"], 2, "dir.toml: is a directory, expected a scene file");
+    fs::write(dir.join("empty.toml"), "").unwrap();
+    fails(dir, &["render", "empty.toml"], 2, "empty.toml: is empty");
+    assert_eq!(entries(dir), ["bad.toml", "cycle.toml", "dir.toml", "empty.toml"], "no image written");
+}
+
+const CYCLE: &str = "[camera]
+eye = [0, 0, 5]
+look_at = [0, 0, 0]
+vfov = 40
+[definitions.a]
+type = \"instance\"
+of = \"b\"
+[definitions.b]
+type = \"instance\"
+of = \"a\"
+[[objects]]
+type = \"instance\"
+of = \"a\"
+";

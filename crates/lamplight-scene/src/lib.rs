@@ -1,12 +1,17 @@
 //! # lamplight-scene
 //!
 //! Everything between the outside world and `lamplight-core`: the built-in scenes
-//! by name ([`builtin`]), and the image writers ([`image_io`]). Scene files and
-//! mesh formats join here as modules of their own.
+//! by name ([`builtin`]), the image writers ([`image_io`]), the scene file format
+//! ([`description`] types, [`formats::native`] TOML parser, [`build`] to a core
+//! scene) and the mesh importers ([`import`]).
 #![deny(missing_docs)]
 
+pub mod build;
 pub mod builtin;
+pub mod description;
 mod error;
+pub mod expr;
+pub mod formats;
 pub mod image_io;
 pub mod import;
 

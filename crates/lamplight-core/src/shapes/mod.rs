@@ -14,6 +14,7 @@ use crate::math::Vec3;
 use crate::ray::Ray;
 
 mod implicit;
+mod instance;
 mod mesh;
 mod plane;
 mod quadric;
@@ -22,6 +23,7 @@ mod torus;
 mod triangle;
 
 pub use implicit::{GradientFn, Implicit, ImplicitFn};
+pub use instance::Instance;
 pub use mesh::TriangleMesh;
 pub use plane::{Disk, Plane, Rectangle};
 pub use quadric::{Clip, Quadric, Sheets};

@@ -1,0 +1,107 @@
+//! A scene from an imported mesh file (OBJ, PLY, glTF): its meshes, placed as
+//! the file places them, seen by the file's first camera or else by a default
+//! camera framing everything, and lit by the file's lights or else by a default
+//! point light at the camera.
+
+use std::path::Path;
+use std::sync::Arc;
+
+use lamplight_core::accel::Aabb;
+use lamplight_core::camera::{Camera, Fov};
+use lamplight_core::materials::Material;
+use lamplight_core::math::{Rgb, Vec3};
+use lamplight_core::shapes::TriangleMesh;
+use lamplight_core::{Scene, SceneBuilder};
+
+use crate::error::LoadError;
+use crate::import::{self, Imported, ImportedLight};
+
+/// Vertical field of view of the default camera, degrees.
+const DEFAULT_VFOV: f64 = 40.0;
+/// Ambient radiance of an imported scene (its files carry none).
+const AMBIENT: f64 = 0.1;
+
+/// Reads the mesh file at `path` and builds a scene for an image of aspect `aspect`.
+pub fn load(path: &Path, aspect: f64) -> Result<Scene, LoadError> {
+    let imported = import::load(path)?;
+    build(path, &imported, aspect)
+}
+
+/// Builds a scene from what an importer read from `path`.
+pub fn build(path: &Path, imported: &Imported, aspect: f64) -> Result<Scene, LoadError> {
+    let fail = |e: lamplight_core::Error| LoadError::file(path, e.to_string());
+    let mut bounds = Aabb::EMPTY;
+    let mut meshes = Vec::with_capacity(imported.meshes.len());
+    for data in &imported.meshes {
+        let mesh = TriangleMesh::new(data.positions.clone(), data.indices.clone(), data.normals.clone()).map_err(fail)?;
+        meshes.push(Arc::new(mesh));
+    }
+    for placed in &imported.instances {
+        let data =
+            imported.meshes.get(placed.mesh).ok_or_else(|| LoadError::file(path, format!("instance of missing mesh {}", placed.mesh)))?;
+        bounds = data.positions.iter().fold(bounds, |b, p| b.grow(placed.transform.transform_point3(*p)));
+    }
+    if imported.instances.is_empty() || !bounds.is_finite() {
+        return Err(LoadError::file(path, "has no geometry to render"));
+    }
+    let center = bounds.centroid();
+    let radius = (bounds.extent().length() / 2.0).max(1e-9);
+    let camera = match imported.cameras.first() {
+        Some(c) => Camera::look_at(c.eye, c.target, c.up, Fov::VerticalDeg(c.vfov_deg), aspect).map_err(fail)?,
+        None => {
+            // Far enough back that the bounding sphere fits the vertical field of view.
+            let distance = radius / (DEFAULT_VFOV.to_radians() / 2.0).sin();
+            let eye = center + Vec3::new(0.5, 0.4, 1.0).normalize() * distance;
+            Camera::look_at(eye, center, Vec3::Y, Fov::VerticalDeg(DEFAULT_VFOV), aspect).map_err(fail)?
+        }
+    };
+    let mut builder = SceneBuilder::new(camera.clone());
+    builder.ambient = Rgb::splat(AMBIENT);
+    let default_material = builder.material(Material::default()).map_err(fail)?;
+    for placed in &imported.instances {
+        let material = match &placed.material {
+            Some(m) => builder.material(m.clone()).map_err(fail)?,
+            None => default_material,
+        };
+        let shape = super::shapes::instance(meshes[placed.mesh].clone(), &placed.transform).map_err(|m| LoadError::file(path, m))?;
+        builder.shared_object(shape, material).map_err(fail)?;
+    }
+    if imported.lights.is_empty() {
+        // A light at the eye, of intensity d^2 so that it gives about unit irradiance at the model.
+        let distance = (camera.eye - center).length();
+        let light = lamplight_core::lights::PointLight::new(camera.eye, Rgb::splat(distance * distance)).map_err(fail)?;
+        builder.light(light);
+    }
+    for light in &imported.lights {
+        match light {
+            ImportedLight::Point(l) => builder.light(l.clone()),
+            ImportedLight::Directional(l) => builder.light(l.clone()),
+        }
+    }
+    builder.build().map_err(fail)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::import::{ImportedMesh, MeshData};
+    use lamplight_core::math::Mat4;
+
+    #[test]
+    fn default_camera_frames_the_model_and_a_light_is_added() {
+        let mesh = MeshData { name: None, positions: vec![Vec3::ZERO, Vec3::X, Vec3::Y], indices: vec![[0, 1, 2]], normals: None };
+        let imported = Imported {
+            meshes: vec![mesh],
+            instances: vec![ImportedMesh { mesh: 0, transform: Mat4::from_translation(Vec3::Z), material: None }],
+            ..Imported::default()
+        };
+        let scene = build(Path::new("t.obj"), &imported, 1.0).unwrap();
+        assert_eq!(scene.objects.len(), 1);
+        assert_eq!(scene.lights.len(), 1);
+        let ray = scene.camera.ray(0.5, 0.5, 1, 1);
+        let centre = Vec3::new(0.5, 0.5, 1.0);
+        assert!((ray.dir - (centre - scene.camera.eye).normalize()).length() < 1e-12, "looks at the centre");
+        let empty = Imported::default();
+        assert_eq!(build(Path::new("e.obj"), &empty, 1.0).unwrap_err().to_string(), "e.obj: has no geometry to render");
+    }
+}

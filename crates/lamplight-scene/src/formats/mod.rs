@@ -1,0 +1,3 @@
+//! Scene file formats: the native TOML format ([`native`]).
+
+pub mod native;
