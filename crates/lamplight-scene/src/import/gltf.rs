@@ -34,7 +34,10 @@ use crate::error::LoadError;
 
 /// Reads a `.gltf` or `.glb` file's bytes; external buffers are read relative to `path`.
 pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
-    let gltf::Gltf { document, blob } = gltf::Gltf::from_slice(bytes).map_err(|e| gltf_error(path, bytes, e))?;
+    let gltf::Gltf { document, blob } = gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| gltf_error(path, bytes, e))?;
+    let root = document.into_json();
+    check_position_accessors(path, &root)?;
+    let document = gltf::Document::from_json(root).map_err(|e| gltf_error(path, bytes, e))?;
     let buffers = load_buffers(path, &document, blob)?;
     let mut reader = Reader { path, buffers, warnings: Warnings::default(), primitives: HashMap::new(), materials: HashMap::new() };
     let mut out = Imported::default();
@@ -94,6 +97,27 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
     }
     out.warnings = reader.warnings.into_vec();
     Ok(out)
+}
+
+/// gltf-json 1.4.1's validation indexes `accessors[POSITION]` without a bounds
+/// check (found by the `gltf` fuzz target: a file whose POSITION names a missing
+/// accessor panicked), so that one reference is checked before validating.
+fn check_position_accessors(path: &Path, root: &gltf::json::Root) -> Result<(), LoadError> {
+    let positions = gltf::json::validation::Checked::Valid(gltf::json::mesh::Semantic::Positions);
+    for (m, mesh) in root.meshes.iter().enumerate() {
+        for (p, primitive) in mesh.primitives.iter().enumerate() {
+            let Some(index) = primitive.attributes.get(&positions) else { continue };
+            if index.value() >= root.accessors.len() {
+                let at = format!("meshes[{m}].primitives[{p}].attributes.POSITION");
+                return Err(LoadError::json(
+                    path,
+                    at,
+                    format!("accessor {} does not exist ({} accessors)", index.value(), root.accessors.len()),
+                ));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// State while walking the nodes: buffers, caches, warnings.
