@@ -10,7 +10,7 @@
 //! | highlight | `ks = (1 - m) 0.04 + m B` (the glTF specular colour at normal incidence) |
 //! | `r` | `shininess = clamp(2 / max(r^4, 1e-4) - 2, 1, 10000)`: the Blinn exponent whose lobe matches a GGX lobe of `alpha = r^2` (`n = 2 / alpha^2 - 2`) |
 //! | `m > 0` | mirror `Reflection::Constant(m B (1 - r))`: a conductor tinted by its base colour, fading as it roughens since a sharp mirror of a rough metal would look wrong |
-//! | `emissiveFactor` | `emission` |
+//! | `emissiveFactor` | `emission`; 0 when an `emissiveTexture` modulates it (textures are unsupported, and the factor alone would make the whole surface glow: glTF assets set it to 1 and paint the glowing parts in the texture) |
 //! | `KHR_materials_transmission` `t > 0` | `Material::glass(ior, ..)` (index from `KHR_materials_ior`, default 1.5) with `kd`, `ka` scaled by `1 - t` and shadow rays passing `t B` |
 //!
 //! `KHR_materials_ior` without transmission changes only the dielectric F0,
@@ -69,7 +69,15 @@ pub(super) fn map(m: &gltf::Material, warnings: &mut Warnings) -> Material {
     let kd = (1.0 - metal) * base;
     let ks = Rgb::splat(0.04 * (1.0 - metal)) + metal * base;
     let shine = shininess(rough);
-    let emission = rgb(m.emissive_factor());
+    let emission = if m.emissive_texture().is_some() {
+        warnings.once(
+            "glTF emissiveFactor ignored where an emissiveTexture modulates it: without the texture the whole surface would glow"
+                .to_string(),
+        );
+        Rgb::ZERO
+    } else {
+        rgb(m.emissive_factor())
+    };
     let transmission = m.transmission().map_or(0.0, |t| clean(t.transmission_factor()).min(1.0));
     if transmission > 0.0 {
         let ior = m.ior().map(f64::from).filter(|i| i.is_finite() && *i > 0.0).unwrap_or(1.5);
