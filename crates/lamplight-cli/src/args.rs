@@ -7,6 +7,9 @@ use std::fmt;
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
+use lamplight_core::film::tonemap::ToneMap;
+use lamplight_core::film::Filter;
+use lamplight_core::integrators::IntegratorKind;
 use lamplight_core::RenderOptions;
 use lamplight_scene::builtin::{self, Builtin};
 use lamplight_scene::image_io::Format;
@@ -72,6 +75,21 @@ pub struct RenderArgs {
     /// No progress bar and no summary line.
     #[arg(short, long)]
     pub quiet: bool,
+    /// How light is computed: `whitted` (the lecture's ray tracer) or `path` (path tracing with NEE and MIS).
+    #[arg(long, value_name = "NAME", default_value = "whitted")]
+    pub integrator: IntegratorKind,
+    /// Path tracer: stop after the last complete pass before this many seconds.
+    #[arg(long, value_name = "SECONDS")]
+    pub time_limit: Option<f64>,
+    /// Path tracer: pixel reconstruction filter, `box` or `gaussian` (sigma 0.5 pixel).
+    #[arg(long, value_name = "NAME", default_value = "box")]
+    pub filter: Filter,
+    /// Exposure in stops for .png/.ppm output (the image is scaled by 2^EV).
+    #[arg(long, value_name = "EV", default_value_t = 0.0, allow_negative_numbers = true)]
+    pub exposure: f64,
+    /// Tone map for .png/.ppm output: `clamp` or `filmic` (ACES fit).
+    #[arg(long, value_name = "NAME", default_value = "clamp")]
+    pub tonemap: ToneMap,
 }
 
 /// A render request, checked and with every default resolved.
@@ -85,6 +103,10 @@ pub struct RenderJob {
     pub options: RenderOptions,
     /// Whether to stay silent.
     pub quiet: bool,
+    /// Exposure in stops for display formats.
+    pub exposure: f64,
+    /// Tone map for display formats.
+    pub tonemap: ToneMap,
 }
 
 /// Bad input from the user: the program exits with code 2.
@@ -120,6 +142,14 @@ impl RenderArgs {
         if self.threads > MAX_THREADS {
             return Err(usage(format!("--threads must be at most {MAX_THREADS} (0 uses all cores), got {}", self.threads)));
         }
+        let time_limit = match self.time_limit {
+            None => None,
+            Some(t) if t.is_finite() && t > 0.0 && t < 1e9 => Some(std::time::Duration::from_secs_f64(t)),
+            Some(t) => return Err(usage(format!("--time-limit must be a positive number of seconds, got {t}"))),
+        };
+        if !self.exposure.is_finite() {
+            return Err(usage("--exposure must be a finite number"));
+        }
         let output = self.output.unwrap_or_else(|| PathBuf::from(format!("{}.png", builtin.name)));
         Format::from_path(&output).map_err(|e| usage(e.to_string()))?;
         let options = RenderOptions {
@@ -129,9 +159,11 @@ impl RenderArgs {
             max_depth: self.max_depth,
             threads: self.threads,
             seed: self.seed,
-            ..RenderOptions::default()
+            integrator: self.integrator,
+            time_limit,
+            filter: self.filter,
         };
-        Ok(RenderJob { builtin, output, options, quiet: self.quiet })
+        Ok(RenderJob { builtin, output, options, quiet: self.quiet, exposure: self.exposure, tonemap: self.tonemap })
     }
 }
 

@@ -21,6 +21,7 @@ use std::time::{Duration, Instant};
 use anyhow::Context;
 use clap::Parser;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use lamplight_core::film::tonemap::ToneMap;
 use lamplight_core::{render, RenderControl, RenderStats};
 use lamplight_scene::{builtin, image_io};
 
@@ -62,7 +63,7 @@ fn list_command() -> anyhow::Result<()> {
 }
 
 fn render_command(job: RenderJob) -> anyhow::Result<()> {
-    let RenderJob { builtin, output, options, quiet } = job;
+    let RenderJob { builtin, output, options, quiet, exposure, tonemap } = job;
     // Fail before a long render, not after it, when the file cannot be written.
     image_io::check_writable(&output)?;
 
@@ -83,9 +84,16 @@ fn render_command(job: RenderJob) -> anyhow::Result<()> {
         bar.finish_and_clear();
     }
     let (image, stats) = rendered.with_context(|| format!("cannot render scene '{}'", builtin.name))?;
+    // EXR keeps linear radiance; display formats get the exposure and tone map.
+    let image = match image_io::Format::from_path(&output) {
+        Ok(image_io::Format::Exr) => image,
+        _ if exposure == 0.0 && tonemap == ToneMap::Clamp => image,
+        _ => lamplight_core::film::tonemap::apply(&image, exposure, tonemap),
+    };
     image_io::write_image(&output, &image)?;
 
-    let summary = Summary { scene: builtin.name, width: options.width, height: options.height, spp: options.spp, build_time, stats };
+    let summary =
+        Summary { scene: builtin.name, width: options.width, height: options.height, spp: stats.samples_per_pixel, build_time, stats };
     if !quiet {
         eprintln!("{} -> {}", summary, output.display());
     } else if stats.nonfinite_samples > 0 {
