@@ -65,8 +65,9 @@ mod tests {
         assert!((wi.length() - 1.0).abs() < 1e-12 && wi.z < 0.0);
         // sin(theta_t) = sin(theta_i) / eta, on the opposite side of the normal.
         assert!((wi.x + 0.6 / 1.5).abs() < 1e-12);
-        assert!(refract_local(wo, 1.0 / 1.5).is_none(), "sin 0.6 > 1/1.5: total internal reflection");
-        let s = sample(wo, 1.0 / 1.5, 0.999);
+        let steep = Vec3::new(0.8, 0.0, 0.6);
+        assert!(refract_local(steep, 1.0 / 1.5).is_none(), "sin 0.8 > 1/1.5: total internal reflection");
+        let s = sample(steep, 1.0 / 1.5, 0.999);
         assert!(!s.transmitted && s.weight == 1.0);
     }
 

@@ -134,6 +134,9 @@ pub struct BsdfSample {
     pub pdf: f64,
     /// True when a delta lobe produced it (no light sample could have).
     pub delta: bool,
+    /// Relative index `n_t / n_i` of a refraction (1 for reflection): the weight
+    /// carries the radiance factor `1 / eta^2`, the power is `weight * eta^2`.
+    pub eta: f64,
 }
 
 /// A weighted sum of lobes with their sampling probabilities.
@@ -224,26 +227,26 @@ impl Bsdf {
         }
         let p = self.probs[chosen];
         let u_rest = ((u_lobe - start) / p).clamp(0.0, 1.0 - f64::EPSILON);
-        let delta = |wi: Vec3, weight: Rgb| Some(BsdfSample { wi, weight: weight / p, pdf: 0.0, delta: true });
+        let delta = |wi: Vec3, weight: Rgb, eta: f64| Some(BsdfSample { wi, weight: weight / p, pdf: 0.0, delta: true, eta });
         let wi = match self.lobes[chosen] {
             Lobe::Diffuse(_) => lambertian::sample(u),
             Lobe::Glossy { alpha, .. } => microfacet::sample(alpha, wo, u)?,
-            Lobe::Mirror(m) => return delta(dielectric::reflect_local(wo), m.reflectance(wo.z)),
+            Lobe::Mirror(m) => return delta(dielectric::reflect_local(wo), m.reflectance(wo.z), 1.0),
             Lobe::Glass { eta, tint } => {
                 let s = dielectric::sample(wo, eta, u_rest);
-                return delta(s.wi, tint * s.weight);
+                return delta(s.wi, tint * s.weight, if s.transmitted { eta } else { 1.0 });
             }
             Lobe::Refract { eta, weight } => {
                 let wi = dielectric::refract_local(wo, eta)?;
                 let w = weight.unwrap_or_else(|| Rgb::splat(1.0 - crate::materials::fresnel_dielectric(wo.z, eta)));
-                return delta(wi, w / (eta * eta));
+                return delta(wi, w / (eta * eta), eta);
             }
         };
         let pdf = self.pdf(wo, wi);
         if !(pdf > 0.0) {
             return None;
         }
-        Some(BsdfSample { wi, weight: self.f(wo, wi) * wi.z.abs() / pdf, pdf, delta: false })
+        Some(BsdfSample { wi, weight: self.f(wo, wi) * wi.z.abs() / pdf, pdf, delta: false, eta: 1.0 })
     }
 }
 

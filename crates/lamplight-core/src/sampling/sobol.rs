@@ -7,10 +7,17 @@
 //! (render seed, pixel, dimension) (Burley 2020, "Practical Hash-based Owen
 //! Scrambling"). Scrambling keeps the stratification of the first `2^m` points
 //! of every 1D and 2D projection and makes each point uniformly distributed, so
-//! the estimate stays unbiased; independent seeds per dimension decorrelate the
-//! dimensions ("padding", as in pbrt-v4's padded Sobol sampler, but without a
-//! permutation of the sample index so that sample `i` of a pixel is the same
-//! whatever the sample count: an image of `2N` samples continues the one of `N`).
+//! the estimate stays unbiased.
+//!
+//! The dimensions must not share the order of their points, or a pixel's samples
+//! would pair dimension `a`'s point `i` with dimension `b`'s point `i` the same
+//! way every time (measured: 4 % errors per pixel in the white furnace, against
+//! 0.2 % for independent numbers). So each dimension also shuffles the sample
+//! index with its own Owen scramble of the index bits (Burley's "shuffled"
+//! sequence): that maps the first `2^m` indices onto one aligned block of `2^m`
+//! Sobol indices, which is again a net, and the map does not depend on the
+//! sample count. Sample `i` of a pixel is therefore the same whatever the count:
+//! an image of `2N` samples continues the one of `N`.
 
 /// Sample `i` of the van der Corput sequence as 32 bits of binary fraction.
 #[inline]
@@ -80,25 +87,27 @@ impl PixelSampler {
         PixelSampler { pixel_seed: mix(mix(seed ^ 0x5851_F42D_4C95_7F2D) ^ pixel.wrapping_mul(0x9E37_79B9_7F4A_7C15)), index, dimension: 0 }
     }
 
+    /// The next dimension's shuffled index and its two value scramble seeds.
     #[inline]
-    fn seeds(&mut self) -> (u32, u32) {
+    fn next_dimension(&mut self) -> (u32, u32, u32) {
         let h = mix(self.pixel_seed ^ (self.dimension as u64).wrapping_mul(0xD1B5_4A32_D192_ED03));
+        let h2 = mix(h ^ 0x2545_F491_4F6C_DD1D);
         self.dimension += 1;
-        (h as u32, (h >> 32) as u32)
+        (owen_scramble(self.index, h2 as u32), h as u32, (h >> 32) as u32)
     }
 
     /// The next dimension as one value in `[0, 1)`.
     #[inline]
     pub fn get_1d(&mut self) -> f64 {
-        let (s, _) = self.seeds();
-        to_unit(owen_scramble(sobol0(self.index), s))
+        let (i, s, _) = self.next_dimension();
+        to_unit(owen_scramble(sobol0(i), s))
     }
 
     /// The next dimension as a point in `[0, 1)^2`.
     #[inline]
     pub fn get_2d(&mut self) -> (f64, f64) {
-        let (s0, s1) = self.seeds();
-        (to_unit(owen_scramble(sobol0(self.index), s0)), to_unit(owen_scramble(sobol1(self.index), s1)))
+        let (i, s0, s1) = self.next_dimension();
+        (to_unit(owen_scramble(sobol0(i), s0)), to_unit(owen_scramble(sobol1(i), s1)))
     }
 }
 
@@ -124,6 +133,21 @@ mod tests {
                     cells[(x * nx as f64) as usize * ny + (y * ny as f64) as usize] += 1;
                 }
                 assert!(cells.iter().all(|&c| c == 1), "pixel {pixel}, boxes {nx}x{ny}");
+            }
+        }
+    }
+
+    #[test]
+    fn index_shuffle_keeps_power_of_two_prefixes_in_one_aligned_block() {
+        for seed in [1u32, 0xdead_beef, 12345] {
+            for m in [1u32, 4, 8] {
+                let block: Vec<u32> = (0..1u32 << m).map(|i| owen_scramble(i, seed)).collect();
+                let base = block[0] >> m;
+                assert!(block.iter().all(|&j| j >> m == base), "seed {seed}, 2^{m}");
+                let mut sorted = block.clone();
+                sorted.sort_unstable();
+                sorted.dedup();
+                assert_eq!(sorted.len(), 1 << m);
             }
         }
     }
