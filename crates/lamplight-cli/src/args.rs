@@ -90,6 +90,9 @@ pub struct RenderArgs {
     /// Tone map for .png/.ppm output: `clamp` or `filmic` (ACES fit).
     #[arg(long, value_name = "NAME", default_value = "clamp")]
     pub tonemap: ToneMap,
+    /// Path tracer: light the scene with this equirectangular HDR map (.exr), importance-sampled.
+    #[arg(long, value_name = "FILE")]
+    pub environment: Option<PathBuf>,
 }
 
 /// A render request, checked and with every default resolved.
@@ -107,6 +110,8 @@ pub struct RenderJob {
     pub exposure: f64,
     /// Tone map for display formats.
     pub tonemap: ToneMap,
+    /// An environment map replacing the scene's sky.
+    pub environment: Option<PathBuf>,
 }
 
 /// Bad input from the user: the program exits with code 2.
@@ -163,7 +168,15 @@ impl RenderArgs {
             time_limit,
             filter: self.filter,
         };
-        Ok(RenderJob { builtin, output, options, quiet: self.quiet, exposure: self.exposure, tonemap: self.tonemap })
+        Ok(RenderJob {
+            builtin,
+            output,
+            options,
+            quiet: self.quiet,
+            exposure: self.exposure,
+            tonemap: self.tonemap,
+            environment: self.environment,
+        })
     }
 }
 

@@ -63,13 +63,20 @@ fn list_command() -> anyhow::Result<()> {
 }
 
 fn render_command(job: RenderJob) -> anyhow::Result<()> {
-    let RenderJob { builtin, output, options, quiet, exposure, tonemap } = job;
+    let RenderJob { builtin, output, options, quiet, exposure, tonemap, environment } = job;
     // Fail before a long render, not after it, when the file cannot be written.
     image_io::check_writable(&output)?;
 
     let build_start = Instant::now();
-    let scene =
+    let mut scene =
         (builtin.build)(options.width as f64 / options.height as f64).with_context(|| format!("cannot build scene '{}'", builtin.name))?;
+    if let Some(path) = &environment {
+        let map = image_io::read_exr(path)?;
+        let pixels = map.pixels.iter().map(|p| lamplight_core::math::Rgb::new(p[0] as f64, p[1] as f64, p[2] as f64)).collect();
+        let env = lamplight_core::lights::EnvMap::new(map.width as usize, map.height as usize, pixels)
+            .with_context(|| format!("cannot use '{}' as an environment map", path.display()))?;
+        scene.environment = Some(std::sync::Arc::new(lamplight_core::lights::Environment::Map(env)));
+    }
     let build_time = build_start.elapsed();
 
     let bar = progress_bar(quiet);

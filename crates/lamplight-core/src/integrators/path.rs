@@ -18,6 +18,7 @@
 use super::{Integrator, RayCounts};
 use crate::bsdfs::{bsdf_for, Bsdf, Frame};
 use crate::lights::{LightSet, Picked};
+use crate::materials::{Reflection, Refraction};
 use crate::math::{Rgb, Vec3};
 use crate::ray::{offset_origin, Ray};
 use crate::sampling::{PixelSampler, Rng};
@@ -46,11 +47,31 @@ pub fn power_heuristic(a: f64, b: f64) -> f64 {
 
 /// True when nothing lies on the segment from `origin` along `dir` before
 /// `distance`, except object `own` (the light's own body), where the ray may end.
+/// Surfaces that scatter nothing and let shadows through (a bulb's glow around its
+/// point light) are passed; every other surface blocks, glass included.
 pub fn unoccluded(scene: &Scene, origin: Vec3, dir: Vec3, distance: f64, own: Option<usize>) -> bool {
-    match scene.first_intersect(&Ray { origin, dir }, distance) {
-        None => true,
-        Some(h) => Some(h.object) == own,
+    let mut origin = origin;
+    let mut remaining = distance;
+    // Each pass moves past one surface; a bound keeps pathological stacks finite.
+    for _ in 0..64 {
+        let Some(h) = scene.first_intersect(&Ray { origin, dir }, remaining) else { return true };
+        if Some(h.object) == own {
+            return true;
+        }
+        let m = &scene.materials[h.material];
+        let clear =
+            m.shadow_transmittance == Rgb::ONE && !m.is_lit() && m.reflection == Reflection::None && m.refraction == Refraction::None;
+        if !clear {
+            return false;
+        }
+        let next = offset_origin(h.point, h.geometric_normal, dir, h.t, h.error);
+        remaining -= (next - origin).length();
+        origin = next;
+        if remaining <= 0.0 {
+            return true;
+        }
     }
+    false
 }
 
 impl PathTracer {

@@ -2,9 +2,15 @@
 //! (delta lights), emitting objects (area lights) and the environment.
 //!
 //! One light is picked uniformly per light sample, with probability `1 / count`.
-//! When the scene has no environment of its own, the ambient light `La` becomes a
+//! When the scene has no environment of its own, the ambient light becomes a
 //! uniform sky lighting every surface, and rays leaving the camera straight into
 //! the sky see the scene's background colour (so lecture scenes keep their look).
+//!
+//! The sky's radiance is not `La` itself: the lecture's ambient term `ka C La` is
+//! what a diffuse surface of albedo `kd C` reflects under an open sky of radiance
+//! `(ka / kd) La`. The sky takes `La` times the mean of `ka / kd` over the scene's
+//! diffuse materials (0.125 for luxo's table), so a scene keeps the fill light
+//! balance its author set against its lamps.
 
 use std::sync::Arc;
 
@@ -53,7 +59,18 @@ impl LightSet {
         }
         let (environment, camera_background) = match &scene.environment {
             Some(env) => (Some(env.clone()), None),
-            None if scene.ambient.max_element() > 0.0 => (Some(Arc::new(Environment::Constant(scene.ambient))), Some(scene.background)),
+            None if scene.ambient.max_element() > 0.0 => {
+                let ratios: Vec<f64> = scene
+                    .materials
+                    .iter()
+                    .filter(|m| m.kd.max_element() > 0.0)
+                    .map(|m| (m.ka.max_element() / m.kd.max_element()).min(1.0))
+                    .collect();
+                let scale = if ratios.is_empty() { 1.0 } else { ratios.iter().sum::<f64>() / ratios.len() as f64 };
+                let sky = scene.ambient * scale;
+                let env = (sky.max_element() > 0.0).then(|| Arc::new(Environment::Constant(sky)));
+                (env, Some(scene.background))
+            }
             None => (None, Some(scene.background)),
         };
         LightSet { delta: scene.lights.clone(), area, environment, camera_background, by_object }
