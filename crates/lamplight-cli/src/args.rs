@@ -247,9 +247,34 @@ mod tests {
     }
 
     #[test]
+    fn path_tracer_flags_reach_the_options() {
+        let job = parse(&[
+            "cornell-box",
+            "--integrator",
+            "path",
+            "--time-limit",
+            "2.5",
+            "--filter",
+            "gaussian",
+            "--tonemap",
+            "filmic",
+            "--exposure",
+            "-1.5",
+        ])
+        .unwrap();
+        assert_eq!(job.options.integrator, IntegratorKind::Path);
+        assert_eq!(job.options.time_limit, Some(std::time::Duration::from_millis(2500)));
+        assert_eq!(job.options.filter, Filter::Gaussian { sigma: 0.5 });
+        assert_eq!((job.exposure, job.tonemap), (-1.5, ToneMap::Filmic));
+        assert_eq!(parse(&[]).unwrap().options.integrator, IntegratorKind::Whitted, "whitted stays the default");
+        assert!(Cli::try_parse_from(["lamplight", "render", "--integrator", "photon"]).is_err());
+    }
+
+    #[test]
     fn bad_input_is_a_one_line_usage_error() {
         let cases: &[(&[&str], &str)] = &[
-            (&["foo"], "unknown scene 'foo' (built-in scenes: luxo, business-card, spheres)"),
+            (&["foo"], "unknown scene 'foo' (built-in scenes: luxo, business-card, cornell-box, spheres)"),
+            (&["--time-limit", "0"], "--time-limit must be a positive number of seconds, got 0"),
             (&["--width", "0"], "--width must be at least 1"),
             (&["--height", "0"], "--height must be at least 1"),
             (&["--spp", "0"], "--spp must be at least 1"),

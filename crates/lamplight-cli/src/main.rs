@@ -205,6 +205,7 @@ mod tests {
             nonfinite_samples: 0,
             elapsed: Duration::from_millis(420),
             threads: 2,
+            samples_per_pixel: 1,
         };
         let mut summary = Summary { scene: "luxo", width: 1280, height: 720, spp: 1, build_time: Duration::from_millis(10), stats };
         assert_eq!(

@@ -23,6 +23,9 @@ use crate::{Error, RenderControl, RenderOptions, RenderStats};
 
 const TILE: u32 = 16;
 
+/// One tile of one pass: per pixel (sum, sum of squares), ray counts, non-finite samples.
+type TilePass = (Vec<(Rgb, Rgb)>, RayCounts, u64);
+
 /// Per-pixel sums of a progressive render.
 #[derive(Clone, Debug)]
 pub struct Accumulator {
@@ -91,7 +94,7 @@ pub(crate) fn render_path(
         let count = pass_size.min(options.spp - first);
         let pass_start = Instant::now();
         let expired = AtomicBool::new(false);
-        let results: Vec<Option<(Vec<(Rgb, Rgb)>, RayCounts, u64)>> = pool.install(|| {
+        let results: Vec<Option<TilePass>> = pool.install(|| {
             (0..tile_count)
                 .into_par_iter()
                 .map(|tile| {
@@ -167,15 +170,7 @@ fn pass_count(spp: u32) -> u32 {
 
 /// Samples `first..first + count` of every pixel of a tile: per pixel the sum of
 /// the values and of their squares, added in sample order.
-fn render_tile(
-    scene: &Scene,
-    tracer: &PathTracer,
-    options: &RenderOptions,
-    x0: u32,
-    y0: u32,
-    first: u32,
-    count: u32,
-) -> (Vec<(Rgb, Rgb)>, RayCounts, u64) {
+fn render_tile(scene: &Scene, tracer: &PathTracer, options: &RenderOptions, x0: u32, y0: u32, first: u32, count: u32) -> TilePass {
     let (width, height) = (options.width, options.height);
     let x1 = (x0 + TILE).min(width);
     let y1 = (y0 + TILE).min(height);

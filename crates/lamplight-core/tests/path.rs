@@ -153,7 +153,7 @@ fn time_limit_stops_after_a_complete_pass() {
     let options = RenderOptions { time_limit: Some(std::time::Duration::from_millis(150)), ..path_options(32, 1 << 20) };
     let (image, stats) = render(&scene, &options, &RenderControl::default()).unwrap();
     let spp = stats.samples_per_pixel;
-    assert!(spp >= 1 && spp < 1 << 20 && spp.is_power_of_two(), "{spp} samples");
+    assert!((1..1 << 20).contains(&spp) && spp.is_power_of_two(), "{spp} samples");
     assert!(stats.elapsed < std::time::Duration::from_secs(2));
     assert!(image.pixels.iter().all(|p| p.iter().all(|c| c.is_finite())));
 }

@@ -32,6 +32,8 @@ pub struct PathTracer {
     /// Segments before Russian roulette starts.
     pub rr_depth: u32,
     lights: LightSet,
+    /// Every material stops shadow rays: visibility can use the BVH's any-hit query.
+    all_opaque: bool,
 }
 
 /// The power heuristic with exponent 2 for one sample of each strategy.
@@ -77,7 +79,8 @@ pub fn unoccluded(scene: &Scene, origin: Vec3, dir: Vec3, distance: f64, own: Op
 impl PathTracer {
     /// A path tracer for `scene` (its lights are collected here).
     pub fn new(scene: &Scene, max_depth: u32) -> PathTracer {
-        PathTracer { max_depth, rr_depth: 4, lights: LightSet::new(scene) }
+        let all_opaque = scene.materials.iter().all(|m| m.shadow_transmittance == Rgb::ZERO);
+        PathTracer { max_depth, rr_depth: 4, lights: LightSet::new(scene), all_opaque }
     }
 
     /// The lights it samples.
@@ -205,7 +208,13 @@ impl PathTracer {
         counts.shadow += 1;
         let origin = offset_origin(hit.point, hit.geometric_normal, wi, hit.t, hit.error);
         let remaining = distance - (origin - hit.point).length();
-        if !unoccluded(scene, origin, wi, remaining, own) {
+        let visible = if self.all_opaque {
+            // Any hit blocks; the scene's query ends the ray at the light's own object.
+            scene.transmittance(origin, wi, remaining, own) != Rgb::ZERO
+        } else {
+            unoccluded(scene, origin, wi, remaining, own)
+        };
+        if !visible {
             return Rgb::ZERO;
         }
         let cos = wi_local.z.abs();
