@@ -93,6 +93,9 @@ pub struct RenderArgs {
     /// Path tracer: light the scene with this equirectangular HDR map (.exr), importance-sampled.
     #[arg(long, value_name = "FILE")]
     pub environment: Option<PathBuf>,
+    /// Path tracer: also write the per-pixel variance of the image's mean to this .exr file.
+    #[arg(long, value_name = "FILE")]
+    pub variance_output: Option<PathBuf>,
 }
 
 /// A render request, checked and with every default resolved.
@@ -112,6 +115,8 @@ pub struct RenderJob {
     pub tonemap: ToneMap,
     /// An environment map replacing the scene's sky.
     pub environment: Option<PathBuf>,
+    /// Where the path tracer's variance image goes.
+    pub variance_output: Option<PathBuf>,
 }
 
 /// Bad input from the user: the program exits with code 2.
@@ -155,6 +160,15 @@ impl RenderArgs {
         if !self.exposure.is_finite() {
             return Err(usage("--exposure must be a finite number"));
         }
+        let variance_output = self.variance_output;
+        if let Some(path) = &variance_output {
+            if self.integrator != IntegratorKind::Path {
+                return Err(usage("--variance-output needs --integrator path"));
+            }
+            if Format::from_path(path).map_err(|e| usage(e.to_string()))? != Format::Exr {
+                return Err(usage("--variance-output must be an .exr file"));
+            }
+        }
         let output = self.output.unwrap_or_else(|| PathBuf::from(format!("{}.png", builtin.name)));
         Format::from_path(&output).map_err(|e| usage(e.to_string()))?;
         let options = RenderOptions {
@@ -176,6 +190,7 @@ impl RenderArgs {
             exposure: self.exposure,
             tonemap: self.tonemap,
             environment: self.environment,
+            variance_output,
         })
     }
 }

@@ -63,7 +63,7 @@ fn list_command() -> anyhow::Result<()> {
 }
 
 fn render_command(job: RenderJob) -> anyhow::Result<()> {
-    let RenderJob { builtin, output, options, quiet, exposure, tonemap, environment } = job;
+    let RenderJob { builtin, output, options, quiet, exposure, tonemap, environment, variance_output } = job;
     // Fail before a long render, not after it, when the file cannot be written.
     image_io::check_writable(&output)?;
 
@@ -86,7 +86,15 @@ fn render_command(job: RenderJob) -> anyhow::Result<()> {
             bar.set_position(done);
         }
     };
-    let rendered = render(&scene, &options, &RenderControl { progress: &progress, cancel: None });
+    let control = RenderControl { progress: &progress, cancel: None };
+    let mut variance = None;
+    let rendered = match &variance_output {
+        Some(_) => lamplight_core::render_path(&scene, &options, &control).map(|(acc, stats)| {
+            variance = Some(acc.variance(options.width, options.height));
+            (acc.mean(options.width, options.height), stats)
+        }),
+        None => render(&scene, &options, &control),
+    };
     if let Some(bar) = &bar {
         bar.finish_and_clear();
     }
@@ -98,6 +106,9 @@ fn render_command(job: RenderJob) -> anyhow::Result<()> {
         _ => lamplight_core::film::tonemap::apply(&image, exposure, tonemap),
     };
     image_io::write_image(&output, &image)?;
+    if let (Some(path), Some(variance)) = (&variance_output, &variance) {
+        image_io::write_image(path, variance)?;
+    }
 
     let summary =
         Summary { scene: builtin.name, width: options.width, height: options.height, spp: stats.samples_per_pixel, build_time, stats };

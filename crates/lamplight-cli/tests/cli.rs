@@ -175,8 +175,12 @@ fn list_names_every_builtin() {
 fn path_traces_the_cornell_box_with_an_environment_map() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    ok(d, &["render", "cornell-box", "--integrator", "path", "--width", "16", "--height", "16", "--spp", "4", "-o", "cb.exr"]);
+    let cb = ["render", "cornell-box", "--integrator", "path", "--width", "16", "--height", "16", "--spp", "4", "-o", "cb.exr"];
+    ok(d, &[&cb[..], &["--variance-output", "var.exr"]].concat());
     let image = read_exr(&d.join("cb.exr")).unwrap();
+    let variance = read_exr(&d.join("var.exr")).unwrap();
+    assert!(variance.pixels.iter().all(|p| p.iter().all(|c| c.is_finite() && *c >= 0.0)));
+    assert!(variance.pixels.iter().any(|p| p[0] > 0.0), "4 samples of a noisy image have some variance");
     // The light in the ceiling is seen near the top centre; its radiance is (18.387, 13.9873, 6.75357).
     let top = image.get(8, 3);
     assert!(image.pixels.iter().all(|p| p.iter().all(|c| c.is_finite() && *c >= 0.0)));
