@@ -7,6 +7,9 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 
 use clap::{Args, Parser, Subcommand};
+use lamplight_core::film::tonemap::ToneMap;
+use lamplight_core::film::Filter;
+use lamplight_core::integrators::IntegratorKind;
 use lamplight_core::RenderOptions;
 use lamplight_scene::build::SceneFile;
 use lamplight_scene::builtin::{self, Builtin};
@@ -74,6 +77,28 @@ pub struct RenderArgs {
     /// No progress bar and no summary line.
     #[arg(short, long)]
     pub quiet: bool,
+    /// How light is computed: `whitted` (the lecture's ray tracer) or `path` (path tracing with NEE and MIS)
+    /// [default: the file's, else whitted].
+    #[arg(long, value_name = "NAME")]
+    pub integrator: Option<IntegratorKind>,
+    /// Path tracer: stop after the last complete pass before this many seconds.
+    #[arg(long, value_name = "SECONDS")]
+    pub time_limit: Option<f64>,
+    /// Path tracer: pixel reconstruction filter, `box` or `gaussian` (sigma 0.5 pixel).
+    #[arg(long, value_name = "NAME", default_value = "box")]
+    pub filter: Filter,
+    /// Exposure in stops for .png/.ppm output (the image is scaled by 2^EV).
+    #[arg(long, value_name = "EV", default_value_t = 0.0, allow_negative_numbers = true)]
+    pub exposure: f64,
+    /// Tone map for .png/.ppm output: `clamp` or `filmic` (ACES fit).
+    #[arg(long, value_name = "NAME", default_value = "clamp")]
+    pub tonemap: ToneMap,
+    /// Path tracer: light the scene with this equirectangular HDR map (.exr), importance-sampled.
+    #[arg(long, value_name = "FILE")]
+    pub environment: Option<PathBuf>,
+    /// Path tracer: also write the per-pixel variance of the image's mean to this .exr file.
+    #[arg(long, value_name = "FILE")]
+    pub variance_output: Option<PathBuf>,
 }
 
 /// Where the scene comes from.
@@ -100,6 +125,14 @@ pub struct RenderJob {
     pub options: RenderOptions,
     /// Whether to stay silent.
     pub quiet: bool,
+    /// Exposure in stops for display formats.
+    pub exposure: f64,
+    /// Tone map for display formats.
+    pub tonemap: ToneMap,
+    /// An environment map replacing the scene's sky.
+    pub environment: Option<PathBuf>,
+    /// Where the path tracer's variance image goes.
+    pub variance_output: Option<PathBuf>,
 }
 
 /// Bad input from the user: the program exits with code 2.
@@ -136,6 +169,24 @@ impl RenderArgs {
         if self.threads > MAX_THREADS {
             return Err(usage(format!("--threads must be at most {MAX_THREADS} (0 uses all cores), got {}", self.threads)));
         }
+        let time_limit = match self.time_limit {
+            None => None,
+            Some(t) if t.is_finite() && t > 0.0 && t < 1e9 => Some(std::time::Duration::from_secs_f64(t)),
+            Some(t) => return Err(usage(format!("--time-limit must be a positive number of seconds, got {t}"))),
+        };
+        if !self.exposure.is_finite() {
+            return Err(usage("--exposure must be a finite number"));
+        }
+        let integrator = self.integrator.unwrap_or(defaults.integrator);
+        let variance_output = self.variance_output;
+        if let Some(path) = &variance_output {
+            if integrator != IntegratorKind::Path {
+                return Err(usage("--variance-output needs --integrator path"));
+            }
+            if Format::from_path(path).map_err(|e| usage(e.to_string()))? != Format::Exr {
+                return Err(usage("--variance-output must be an .exr file"));
+            }
+        }
         let output = self.output.unwrap_or_else(|| PathBuf::from(format!("{name}.png")));
         Format::from_path(&output).map_err(|e| usage(e.to_string()))?;
         let options = RenderOptions {
@@ -145,17 +196,30 @@ impl RenderArgs {
             max_depth: self.max_depth,
             threads: self.threads,
             seed: self.seed.unwrap_or(defaults.seed),
-            ..RenderOptions::default()
+            integrator,
+            time_limit,
+            filter: self.filter,
         };
-        Ok(RenderJob { scene, name, output, options, quiet: self.quiet })
+        Ok(RenderJob {
+            scene,
+            name,
+            output,
+            options,
+            quiet: self.quiet,
+            exposure: self.exposure,
+            tonemap: self.tonemap,
+            environment: self.environment,
+            variance_output,
+        })
     }
 }
 
-/// Size, samples and seed a scene asks for when no flag is given.
+/// Size, samples, seed and integrator a scene asks for when no flag is given.
 struct Defaults {
     size: (u32, u32),
     spp: u32,
     seed: u64,
+    integrator: IntegratorKind,
 }
 
 /// The scene `arg` names: a built-in name (no path separator, no extension), a
@@ -167,18 +231,28 @@ fn resolve_scene(arg: &str) -> Result<(SceneSource, String, Defaults), UsageErro
     let extension = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
     if !has_separator && extension.is_none() {
         let b = builtin::find(arg).ok_or_else(|| usage(format!("unknown scene '{arg}' (built-in scenes: {})", builtin::names())))?;
-        return Ok((SceneSource::Builtin(b), b.name.to_string(), Defaults { size: b.default_size, spp: 1, seed: 0 }));
+        return Ok((
+            SceneSource::Builtin(b),
+            b.name.to_string(),
+            Defaults { size: b.default_size, spp: 1, seed: 0, integrator: IntegratorKind::Whitted },
+        ));
     }
     let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "scene".into());
     match extension.as_deref() {
         Some("toml") => {
             let file = SceneFile::read(path).map_err(|e| usage(e.to_string()))?;
             let s = file.settings().map_err(|e| usage(e.to_string()))?;
-            Ok((SceneSource::File(Box::new(file)), stem, Defaults { size: (s.width, s.height), spp: s.spp, seed: s.seed }))
+            Ok((
+                SceneSource::File(Box::new(file)),
+                stem,
+                Defaults { size: (s.width, s.height), spp: s.spp, seed: s.seed, integrator: s.integrator },
+            ))
         }
-        Some(ext) if import::EXTENSIONS.contains(&ext) => {
-            Ok((SceneSource::Mesh(path.to_path_buf()), stem, Defaults { size: (640, 360), spp: 1, seed: 0 }))
-        }
+        Some(ext) if import::EXTENSIONS.contains(&ext) => Ok((
+            SceneSource::Mesh(path.to_path_buf()),
+            stem,
+            Defaults { size: (640, 360), spp: 1, seed: 0, integrator: IntegratorKind::Whitted },
+        )),
         _ => Err(usage(format!(
             "{arg}: unknown scene file type, expected .toml or a mesh file ({})",
             import::EXTENSIONS.iter().map(|e| format!(".{e}")).collect::<Vec<_>>().join(", ")
@@ -253,9 +327,34 @@ mod tests {
     }
 
     #[test]
+    fn path_tracer_flags_reach_the_options() {
+        let job = parse(&[
+            "cornell-box",
+            "--integrator",
+            "path",
+            "--time-limit",
+            "2.5",
+            "--filter",
+            "gaussian",
+            "--tonemap",
+            "filmic",
+            "--exposure",
+            "-1.5",
+        ])
+        .unwrap();
+        assert_eq!(job.options.integrator, IntegratorKind::Path);
+        assert_eq!(job.options.time_limit, Some(std::time::Duration::from_millis(2500)));
+        assert_eq!(job.options.filter, Filter::Gaussian { sigma: 0.5 });
+        assert_eq!((job.exposure, job.tonemap), (-1.5, ToneMap::Filmic));
+        assert_eq!(parse(&[]).unwrap().options.integrator, IntegratorKind::Whitted, "whitted stays the default");
+        assert!(Cli::try_parse_from(["lamplight", "render", "--integrator", "photon"]).is_err());
+    }
+
+    #[test]
     fn bad_input_is_a_one_line_usage_error() {
         let cases: &[(&[&str], &str)] = &[
-            (&["foo"], "unknown scene 'foo' (built-in scenes: luxo, business-card, spheres)"),
+            (&["foo"], "unknown scene 'foo' (built-in scenes: luxo, business-card, cornell-box, spheres)"),
+            (&["--time-limit", "0"], "--time-limit must be a positive number of seconds, got 0"),
             (&["--width", "0"], "--width must be at least 1"),
             (&["--height", "0"], "--height must be at least 1"),
             (&["--spp", "0"], "--spp must be at least 1"),

@@ -21,6 +21,7 @@ use std::time::{Duration, Instant};
 use anyhow::Context;
 use clap::Parser;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use lamplight_core::film::tonemap::ToneMap;
 use lamplight_core::{render, RenderControl, RenderStats};
 use lamplight_scene::build::imported;
 use lamplight_scene::{builtin, image_io};
@@ -63,18 +64,25 @@ fn list_command() -> anyhow::Result<()> {
 }
 
 fn render_command(job: RenderJob) -> anyhow::Result<()> {
-    let RenderJob { scene, name, output, options, quiet } = job;
+    let RenderJob { scene, name, output, options, quiet, exposure, tonemap, environment, variance_output } = job;
     // Fail before a long render, not after it, when the file cannot be written.
     image_io::check_writable(&output)?;
 
     let build_start = Instant::now();
     let aspect = options.width as f64 / options.height as f64;
     // File errors are the user's input: exit code 2, one line naming file and place.
-    let scene = match scene {
+    let mut scene = match scene {
         SceneSource::Builtin(b) => (b.build)(aspect).with_context(|| format!("cannot build scene '{}'", b.name))?,
         SceneSource::File(file) => file.build(options.width, options.height).map_err(|e| UsageError(e.to_string()))?,
         SceneSource::Mesh(path) => imported::load(&path, aspect).map_err(|e| UsageError(e.to_string()))?,
     };
+    if let Some(path) = &environment {
+        let map = image_io::read_exr(path)?;
+        let pixels = map.pixels.iter().map(|p| lamplight_core::math::Rgb::new(p[0] as f64, p[1] as f64, p[2] as f64)).collect();
+        let env = lamplight_core::lights::EnvMap::new(map.width as usize, map.height as usize, pixels)
+            .with_context(|| format!("cannot use '{}' as an environment map", path.display()))?;
+        scene.environment = Some(std::sync::Arc::new(lamplight_core::lights::Environment::Map(env)));
+    }
     let build_time = build_start.elapsed();
 
     let bar = progress_bar(quiet);
@@ -84,14 +92,31 @@ fn render_command(job: RenderJob) -> anyhow::Result<()> {
             bar.set_position(done);
         }
     };
-    let rendered = render(&scene, &options, &RenderControl { progress: &progress, cancel: None });
+    let control = RenderControl { progress: &progress, cancel: None };
+    let mut variance = None;
+    let rendered = match &variance_output {
+        Some(_) => lamplight_core::render_path(&scene, &options, &control).map(|(acc, stats)| {
+            variance = Some(acc.variance(options.width, options.height));
+            (acc.mean(options.width, options.height), stats)
+        }),
+        None => render(&scene, &options, &control),
+    };
     if let Some(bar) = &bar {
         bar.finish_and_clear();
     }
     let (image, stats) = rendered.with_context(|| format!("cannot render scene '{name}'"))?;
+    // EXR keeps linear radiance; display formats get the exposure and tone map.
+    let image = match image_io::Format::from_path(&output) {
+        Ok(image_io::Format::Exr) => image,
+        _ if exposure == 0.0 && tonemap == ToneMap::Clamp => image,
+        _ => lamplight_core::film::tonemap::apply(&image, exposure, tonemap),
+    };
     image_io::write_image(&output, &image)?;
+    if let (Some(path), Some(variance)) = (&variance_output, &variance) {
+        image_io::write_image(path, variance)?;
+    }
 
-    let summary = Summary { scene: &name, width: options.width, height: options.height, spp: options.spp, build_time, stats };
+    let summary = Summary { scene: &name, width: options.width, height: options.height, spp: stats.samples_per_pixel, build_time, stats };
     if !quiet {
         eprintln!("{} -> {}", summary, output.display());
     } else if stats.nonfinite_samples > 0 {
@@ -196,6 +221,7 @@ mod tests {
             nonfinite_samples: 0,
             elapsed: Duration::from_millis(420),
             threads: 2,
+            samples_per_pixel: 1,
         };
         let mut summary = Summary { scene: "luxo", width: 1280, height: 720, spp: 1, build_time: Duration::from_millis(10), stats };
         assert_eq!(

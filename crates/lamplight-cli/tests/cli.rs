@@ -119,7 +119,7 @@ fn piped_stderr_gets_the_summary_and_no_progress_bar() {
 fn bad_input_exits_with_2() {
     let dir = tempfile::tempdir().unwrap();
     let dir = dir.path();
-    fails(dir, &["render", "foo"], 2, "unknown scene 'foo' (built-in scenes: luxo, business-card, spheres)");
+    fails(dir, &["render", "foo"], 2, "unknown scene 'foo' (built-in scenes: luxo, business-card, cornell-box, spheres)");
     fails(dir, &["render", "--width", "0"], 2, "--width must be at least 1");
     fails(dir, &["render", "--spp", "0"], 2, "--spp must be at least 1");
     fails(dir, &["render", "--max-depth", "65"], 2, "--max-depth must be between 1 and 64");
@@ -167,7 +167,7 @@ fn list_names_every_builtin() {
     assert!(out.status.success());
     let text = String::from_utf8(out.stdout).unwrap();
     let names: Vec<&str> = text.lines().map(|l| l.split_whitespace().next().unwrap()).collect();
-    assert_eq!(names, ["luxo", "business-card", "spheres"]);
+    assert_eq!(names, ["luxo", "business-card", "cornell-box", "spheres"]);
     assert!(text.contains("1280x720") && text.contains("32x32"), "{text}");
 }
 
@@ -216,3 +216,26 @@ of = \"a\"
 type = \"instance\"
 of = \"a\"
 ";
+
+#[test]
+fn path_traces_the_cornell_box_with_an_environment_map() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let cb = ["render", "cornell-box", "--integrator", "path", "--width", "16", "--height", "16", "--spp", "4", "-o", "cb.exr"];
+    ok(d, &[&cb[..], &["--variance-output", "var.exr"]].concat());
+    let image = read_exr(&d.join("cb.exr")).unwrap();
+    let variance = read_exr(&d.join("var.exr")).unwrap();
+    assert!(variance.pixels.iter().all(|p| p.iter().all(|c| c.is_finite() && *c >= 0.0)));
+    assert!(variance.pixels.iter().any(|p| p[0] > 0.0), "4 samples of a noisy image have some variance");
+    // The light in the ceiling is seen near the top centre; its radiance is (18.387, 13.9873, 6.75357).
+    let top = image.get(8, 3);
+    assert!(image.pixels.iter().all(|p| p.iter().all(|c| c.is_finite() && *c >= 0.0)));
+    assert!(top[0] > top[2], "{top:?}");
+    // A sky map through --environment: the spheres scene lit by a 4x2 EXR.
+    let sky = lamplight_core::film::Image { width: 4, height: 2, pixels: vec![[2.0, 2.0, 2.0]; 8] };
+    lamplight_scene::image_io::write_image(&d.join("sky.exr"), &sky).unwrap();
+    let args =
+        ["render", "spheres", "--integrator", "path", "--environment", "sky.exr", "--width", "16", "--height", "9", "--tonemap", "filmic"];
+    ok(d, &args);
+    assert!(d.join("spheres.png").exists());
+}

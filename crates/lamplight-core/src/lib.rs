@@ -27,6 +27,7 @@
 #![deny(missing_docs)]
 
 pub mod accel;
+pub mod bsdfs;
 pub mod camera;
 mod error;
 pub mod film;
@@ -34,6 +35,7 @@ pub mod integrators;
 pub mod lights;
 pub mod materials;
 pub mod math;
+pub mod progressive;
 pub mod ray;
 mod render;
 pub mod sampling;
@@ -41,7 +43,7 @@ pub mod scene;
 pub mod shapes;
 
 pub use error::Error;
-pub use render::{render, RenderControl, RenderOptions, RenderStats};
+pub use render::{render, render_path, RenderControl, RenderOptions, RenderStats};
 pub use scene::{Scene, SceneBuilder};
 
 /// The types most programs need.

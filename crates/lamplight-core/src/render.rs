@@ -10,8 +10,9 @@ use std::time::{Duration, Instant};
 
 use rayon::prelude::*;
 
-use crate::film::Image;
+use crate::film::{Filter, Image};
 use crate::integrators::{Integrator, IntegratorKind, RayCounts, Whitted};
+use crate::progressive::Accumulator;
 use crate::sampling::{stratified_2d, Rng};
 use crate::scene::Scene;
 use crate::Error;
@@ -38,11 +39,25 @@ pub struct RenderOptions {
     pub seed: u64,
     /// The integrator.
     pub integrator: IntegratorKind,
+    /// Path tracer only: stop after the last complete pass before this much time.
+    pub time_limit: Option<Duration>,
+    /// Path tracer only: the pixel reconstruction filter.
+    pub filter: Filter,
 }
 
 impl Default for RenderOptions {
     fn default() -> RenderOptions {
-        RenderOptions { width: 640, height: 360, spp: 1, max_depth: None, threads: 0, seed: 0, integrator: IntegratorKind::Whitted }
+        RenderOptions {
+            width: 640,
+            height: 360,
+            spp: 1,
+            max_depth: None,
+            threads: 0,
+            seed: 0,
+            integrator: IntegratorKind::Whitted,
+            time_limit: None,
+            filter: Filter::Box,
+        }
     }
 }
 
@@ -57,6 +72,8 @@ pub struct RenderStats {
     pub elapsed: Duration,
     /// Threads used.
     pub threads: usize,
+    /// Samples per pixel actually taken (fewer than asked when a time limit stopped the render).
+    pub samples_per_pixel: u32,
 }
 
 /// Progress reports and cancellation for a running render.
@@ -89,6 +106,10 @@ pub fn render(scene: &Scene, options: &RenderOptions, control: &RenderControl) -
     }
     let integrator: Box<dyn Integrator> = match options.integrator {
         IntegratorKind::Whitted => Box::new(Whitted { max_depth, min_weight: scene.min_weight }),
+        IntegratorKind::Path => {
+            let (acc, stats) = crate::progressive::render_path(scene, options, max_depth, control)?;
+            return Ok((acc.mean(width, height), stats));
+        }
     };
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(options.threads)
@@ -119,7 +140,7 @@ pub fn render(scene: &Scene, options: &RenderOptions, control: &RenderControl) -
     });
     let elapsed = start.elapsed();
     let mut image = Image::new(width, height);
-    let mut stats = RenderStats { elapsed, threads, ..RenderStats::default() };
+    let mut stats = RenderStats { elapsed, threads, samples_per_pixel: spp, ..RenderStats::default() };
     for (tile, result) in results.into_iter().enumerate() {
         let Some((pixels, counts, nonfinite)) = result else {
             return Err(Error::Render("cancelled".into()));
@@ -135,6 +156,23 @@ pub fn render(scene: &Scene, options: &RenderOptions, control: &RenderControl) -
         }
     }
     Ok((image, stats))
+}
+
+/// Renders `scene` with the path tracer (whatever `options.integrator` says) and
+/// returns the per-pixel sums, from which the mean and its variance follow.
+pub fn render_path(scene: &Scene, options: &RenderOptions, control: &RenderControl) -> Result<(Accumulator, RenderStats), Error> {
+    let RenderOptions { width, height, spp, .. } = *options;
+    if width == 0 || height == 0 || spp == 0 {
+        return Err(Error::invalid("image", "width, height and samples per pixel must be at least 1"));
+    }
+    if width as u64 * height as u64 > 1 << 28 {
+        return Err(Error::invalid("image", format!("{width}x{height} is too large (at most 2^28 pixels)")));
+    }
+    let max_depth = options.max_depth.unwrap_or(scene.max_depth);
+    if max_depth == 0 {
+        return Err(Error::invalid("max_depth", "must be at least 1"));
+    }
+    crate::progressive::render_path(scene, options, max_depth, control)
 }
 
 fn render_tile(scene: &Scene, integrator: &dyn Integrator, options: &RenderOptions, x0: u32, y0: u32) -> TileResult {

@@ -58,6 +58,9 @@ pub struct Scene {
     pub ambient: Rgb,
     /// Radiance of rays that hit nothing.
     pub background: Rgb,
+    /// Light from everywhere for the path tracer (`None`: the ambient light
+    /// becomes a uniform sky, see [`crate::lights::LightSet`]).
+    pub environment: Option<Arc<crate::lights::Environment>>,
     /// The camera.
     pub camera: Camera,
     /// Default recursion depth limit (camera ray = depth 1).
@@ -93,6 +96,8 @@ pub struct SceneBuilder {
     pub ambient: Rgb,
     /// Background radiance.
     pub background: Rgb,
+    /// Environment light for the path tracer.
+    pub environment: Option<Arc<crate::lights::Environment>>,
     /// Camera.
     pub camera: Camera,
     /// Default depth limit, 5.
@@ -110,6 +115,7 @@ impl SceneBuilder {
             lights: Vec::new(),
             ambient: Rgb::ZERO,
             background: Rgb::ZERO,
+            environment: None,
             camera,
             max_depth: 5,
             min_weight: 0.0,
@@ -183,6 +189,7 @@ impl SceneBuilder {
             lights: self.lights,
             ambient: self.ambient,
             background: self.background,
+            environment: self.environment,
             camera: self.camera,
             max_depth: self.max_depth,
             min_weight: self.min_weight,

@@ -36,6 +36,25 @@ fn spheres_file_renders_the_builtin_byte_for_byte() {
 }
 
 #[test]
+fn cornell_box_file_renders_the_builtin_byte_for_byte_under_both_integrators() {
+    let (file, built_in) = both("cornell-box", 32, 32);
+    assert!(file == built_in, "cornell-box.toml differs from the built-in (whitted)");
+    let read = SceneFile::read(&example("cornell-box")).unwrap();
+    assert_eq!(read.settings().unwrap().integrator, lamplight_core::integrators::IntegratorKind::Path);
+    let options = RenderOptions {
+        width: 24,
+        height: 24,
+        spp: 4,
+        integrator: lamplight_core::integrators::IntegratorKind::Path,
+        ..RenderOptions::default()
+    };
+    let path = |scene: &Scene| render(scene, &options, &RenderControl::default()).unwrap().0.to_srgb8();
+    let from_file = read.build(24, 24).unwrap();
+    let built_in = (builtin::find("cornell-box").unwrap().build)(1.0).unwrap();
+    assert!(path(&from_file) == path(&built_in), "cornell-box.toml differs from the built-in (path)");
+}
+
+#[test]
 fn business_card_file_renders_the_builtin_byte_for_byte() {
     for (w, h) in [(32, 32), (64, 36)] {
         let (file, built_in) = both("business-card", w, h);

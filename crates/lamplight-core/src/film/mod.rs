@@ -1,5 +1,10 @@
 //! The film: a linear-radiance RGB image, and the sRGB encoding used for display formats.
 
+mod filter;
+pub mod tonemap;
+
+pub use filter::Filter;
+
 /// A linear RGB image, row-major from the top-left pixel.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Image {

@@ -8,8 +8,12 @@ use crate::ray::Ray;
 use crate::sampling::Rng;
 use crate::scene::Scene;
 
+mod path;
+mod simple_path;
 mod whitted;
 
+pub use path::{power_heuristic, unoccluded, PathTracer};
+pub use simple_path::SimplePath;
 pub use whitted::Whitted;
 
 /// Counts of rays traced, by kind; summed over threads at the end of a render.
@@ -49,4 +53,18 @@ pub enum IntegratorKind {
     /// Recursive (Whitted) ray tracing: the lecture's `trace`.
     #[default]
     Whitted,
+    /// Unidirectional path tracing with next-event estimation and MIS.
+    Path,
+}
+
+impl std::str::FromStr for IntegratorKind {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<IntegratorKind, String> {
+        match s {
+            "whitted" => Ok(IntegratorKind::Whitted),
+            "path" => Ok(IntegratorKind::Path),
+            _ => Err(format!("unknown integrator '{s}' (whitted, path)")),
+        }
+    }
 }

@@ -6,11 +6,17 @@
 
 use crate::math::{Rgb, Vec3};
 
+pub mod area;
 mod directional;
+pub mod environment;
 mod point;
+mod set;
 
+pub use area::AreaLight;
 pub use directional::DirectionalLight;
+pub use environment::{EnvMap, Environment};
 pub use point::{Falloff, PointLight};
+pub use set::{LightSet, Picked};
 
 /// What a light delivers to one point.
 #[derive(Clone, Copy, Debug, PartialEq)]

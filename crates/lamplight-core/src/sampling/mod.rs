@@ -3,6 +3,12 @@
 //! Every pixel sample draws from its own generator seeded by (seed, pixel, sample
 //! index), so an image does not depend on which thread renders which pixel.
 
+mod distribution;
+mod sobol;
+
+pub use distribution::{Distribution1d, Distribution2d};
+pub use sobol::{owen_scramble, PixelSampler};
+
 /// SplitMix64 (Steele et al. 2014): a fast generator with good statistical quality
 /// for the short streams a pixel sample needs; seeded by hashing its inputs.
 #[derive(Clone, Debug)]

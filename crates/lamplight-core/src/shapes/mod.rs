@@ -76,4 +76,16 @@ pub trait Shape: Send + Sync + std::fmt::Debug {
     fn primitive_count(&self) -> usize {
         1
     }
+
+    /// Surface area, for shapes that can be sampled as area lights; `None` (the
+    /// default) when the shape cannot be sampled.
+    fn area(&self) -> Option<f64> {
+        None
+    }
+
+    /// A point distributed uniformly by area over the surface, from `u` in `[0, 1)^2`,
+    /// with the unit outward normal there; `None` when the shape cannot be sampled.
+    fn sample_area(&self, _u: (f64, f64)) -> Option<(Vec3, Vec3)> {
+        None
+    }
 }

@@ -104,6 +104,14 @@ impl Rectangle {
 }
 
 impl Shape for Rectangle {
+    fn area(&self) -> Option<f64> {
+        Some(self.edge_u.cross(self.edge_v).length())
+    }
+
+    fn sample_area(&self, u: (f64, f64)) -> Option<(Vec3, Vec3)> {
+        Some((self.corner + self.edge_u * u.0 + self.edge_v * u.1, self.normal))
+    }
+
     fn bounds(&self) -> Aabb {
         let c = self.corner;
         Aabb::from_points([c, c + self.edge_u, c + self.edge_v, c + self.edge_u + self.edge_v])
@@ -144,6 +152,18 @@ impl Disk {
 }
 
 impl Shape for Disk {
+    fn area(&self) -> Option<f64> {
+        Some(std::f64::consts::PI * self.radius * self.radius)
+    }
+
+    /// Uniform on the disk: radius `R sqrt(u0)`, angle `2 pi u1`.
+    fn sample_area(&self, u: (f64, f64)) -> Option<(Vec3, Vec3)> {
+        let (t, b) = crate::math::orthonormal_basis(self.normal);
+        let r = self.radius * u.0.sqrt();
+        let phi = 2.0 * std::f64::consts::PI * u.1;
+        Some((self.center + (t * phi.cos() + b * phi.sin()) * r, self.normal))
+    }
+
     fn bounds(&self) -> Aabb {
         // Extent along each axis: radius * sqrt(1 - n_axis^2).
         let n = self.normal;

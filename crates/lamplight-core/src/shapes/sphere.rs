@@ -31,6 +31,19 @@ impl Sphere {
 }
 
 impl Shape for Sphere {
+    fn area(&self) -> Option<f64> {
+        Some(4.0 * std::f64::consts::PI * self.radius * self.radius)
+    }
+
+    /// Uniform on the sphere: `z = 1 - 2 u0`, `phi = 2 pi u1` (Archimedes).
+    fn sample_area(&self, u: (f64, f64)) -> Option<(Vec3, Vec3)> {
+        let z = 1.0 - 2.0 * u.0;
+        let r = (1.0 - z * z).max(0.0).sqrt();
+        let phi = 2.0 * std::f64::consts::PI * u.1;
+        let n = Vec3::new(r * phi.cos(), r * phi.sin(), z);
+        Some((self.center + n * self.radius, n))
+    }
+
     fn bounds(&self) -> Aabb {
         Aabb::new(self.center - Vec3::splat(self.radius), self.center + Vec3::splat(self.radius))
     }

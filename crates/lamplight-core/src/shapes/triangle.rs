@@ -181,6 +181,17 @@ impl Triangle {
 }
 
 impl Shape for Triangle {
+    fn area(&self) -> Option<f64> {
+        Some(0.5 * (self.p1 - self.p0).cross(self.p2 - self.p0).length())
+    }
+
+    /// Uniform on the triangle: barycentrics `(1 - sqrt(u0), sqrt(u0) (1 - u1), sqrt(u0) u1)`.
+    fn sample_area(&self, u: (f64, f64)) -> Option<(Vec3, Vec3)> {
+        let s = u.0.sqrt();
+        let p = self.p0 * (1.0 - s) + self.p1 * (s * (1.0 - u.1)) + self.p2 * (s * u.1);
+        Some((p, self.normal))
+    }
+
     fn bounds(&self) -> Aabb {
         Aabb::from_points([self.p0, self.p1, self.p2])
     }

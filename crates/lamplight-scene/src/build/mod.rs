@@ -92,7 +92,8 @@ pub fn settings(desc: &SceneDescription, source: &Source) -> Result<Settings, Lo
         seed: r.seed.unwrap_or(0),
         integrator: match r.integrator.as_deref().unwrap_or("whitted") {
             "whitted" => IntegratorKind::Whitted,
-            other => return Err(err(format!("unknown integrator \"{other}\", expected \"whitted\""))),
+            "path" => IntegratorKind::Path,
+            other => return Err(err(format!("unknown integrator \"{other}\", expected \"whitted\" or \"path\""))),
         },
     };
     if s.width == 0 || s.height == 0 || s.width as u64 * s.height as u64 > MAX_PIXELS {

@@ -7,6 +7,7 @@
 use lamplight_core::{Error, Scene};
 
 mod business_card;
+mod cornell_box;
 mod luxo;
 mod spheres;
 
@@ -36,6 +37,12 @@ pub const BUILTINS: &[Builtin] = &[
         summary: "Paul Heckbert's business-card ray tracer: five spheres, constant weights",
         default_size: (32, 32),
         build: business_card::build,
+    },
+    Builtin {
+        name: "cornell-box",
+        summary: "the Cornell box with an area light in the ceiling (Mitsuba 3's cornell_box(); use --integrator path)",
+        default_size: (512, 512),
+        build: cornell_box::build,
     },
     Builtin {
         name: "spheres",

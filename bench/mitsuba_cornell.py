@@ -1,0 +1,154 @@
+#!/usr/bin/env python3
+"""Cross-check lamplight's path tracer against Mitsuba 3 on the Cornell box.
+
+Both render `mitsuba.cornell_box()` (lamplight's built-in `cornell-box` is the
+same scene) with a box pixel filter and paths of at most 8 segments. Reports:
+
+* accuracy: relative RMSE (RMSE over the mean of the reference) between the two
+  renderers at high spp, and per-channel ratio of image means;
+* speed: samples per second at 512x512 for lamplight and for Mitsuba's fastest
+  CPU variant (llvm_ad_rgb if LLVM loads, else scalar_rgb), in the same run;
+* time to quality: seconds each needs to reach a fixed RMSE against the
+  high-spp reference (interpolated in log-log between measured spp).
+
+Usage: python bench/mitsuba_cornell.py [--size 128] [--ref-spp 4096] [--speed-size 512]
+Needs `pip install mitsuba numpy`; for the LLVM variant set DRJIT_LIBLLVM_PATH
+(e.g. /usr/lib/x86_64-linux-gnu/libLLVM.so.19.1; LLVM 15 crashed in code generation). Run from the repository root
+after `cargo build --release`.
+"""
+import argparse
+import os
+import subprocess
+import tempfile
+import time
+
+import numpy as np
+import mitsuba as mi
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+LAMPLIGHT = os.path.join(ROOT, "target", "release", "lamplight")
+
+
+def set_variant():
+    for v in ("llvm_ad_rgb", "scalar_rgb"):
+        try:
+            mi.set_variant(v)
+            return v
+        except Exception:  # LLVM not found: fall back
+            continue
+    raise SystemExit("no usable Mitsuba variant")
+
+
+def mitsuba_scene(size, spp):
+    d = mi.cornell_box()
+    d["integrator"] = {"type": "path", "max_depth": 8}
+    d["sensor"]["film"]["width"] = size
+    d["sensor"]["film"]["height"] = size
+    d["sensor"]["film"]["rfilter"] = {"type": "box"}
+    d["sensor"]["sampler"]["sample_count"] = spp
+    return mi.load_dict(d)
+
+
+def render_mitsuba(size, spp, seed=0):
+    scene = mitsuba_scene(size, spp)
+    # Warm-up at 1 spp so that JIT compilation is not timed (llvm variant).
+    mi.render(mitsuba_scene(size, 1), spp=1)
+    t0 = time.perf_counter()
+    img = mi.render(scene, spp=spp, seed=seed)
+    arr = np.array(img, dtype=np.float64)  # forces evaluation
+    return arr, time.perf_counter() - t0
+
+
+def render_lamplight(size, spp, seed=0):
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "cb.exr")
+        cmd = [LAMPLIGHT, "render", "cornell-box", "--integrator", "path", "--max-depth", "8", "--filter", "box",
+               "--width", str(size), "--height", str(size), "--spp", str(spp), "--seed", str(seed), "--quiet", "-o", out]
+        t0 = time.perf_counter()
+        subprocess.run(cmd, check=True)
+        elapsed = time.perf_counter() - t0
+        arr = np.array(mi.Bitmap(out), dtype=np.float64)[:, :, :3]
+    return arr, elapsed
+
+
+def rmse(a, b):
+    return float(np.sqrt(np.mean((a - b) ** 2)))
+
+
+def time_to_rmse(points, target):
+    """Seconds to reach `target` RMSE, interpolating log(time) against log(rmse)."""
+    pts = sorted(points, key=lambda p: p[0])
+    for (t0, e0), (t1, e1) in zip(pts, pts[1:]):
+        if e0 >= target >= e1:
+            f = (np.log(target) - np.log(e0)) / (np.log(e1) - np.log(e0))
+            return float(np.exp(np.log(t0) + f * (np.log(t1) - np.log(t0))))
+    return float("nan")
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--size", type=int, default=128)
+    ap.add_argument("--ref-spp", type=int, default=4096)
+    ap.add_argument("--speed-size", type=int, default=512)
+    ap.add_argument("--speed-spp", type=int, default=16)
+    ap.add_argument("--ladder", default="4,16,64,256")
+    args = ap.parse_args()
+    variant = set_variant()
+    print(f"Mitsuba {mi.__version__}, variant {variant}, {os.cpu_count()} CPUs")
+
+    # Two independent renders per renderer: their difference measures each one's
+    # noise, which is subtracted from the squared difference between renderers to
+    # leave the systematic part (E|a - b|^2 = bias^2 + var_a + var_b).
+    m1, tm = render_mitsuba(args.size, args.ref_spp, seed=7)
+    m2, _ = render_mitsuba(args.size, args.ref_spp, seed=8)
+    l1, tl = render_lamplight(args.size, args.ref_spp, seed=7)
+    l2, _ = render_lamplight(args.size, args.ref_spp, seed=8)
+    ref_m, ref_l = 0.5 * (m1 + m2), 0.5 * (l1 + l2)
+    mean = ref_m.mean()
+    var_m = np.mean((m1 - m2) ** 2) / 4.0  # variance of the mean of two renders
+    var_l = np.mean((l1 - l2) ** 2) / 4.0
+    mse = np.mean((ref_l - ref_m) ** 2)
+    print(f"\n## Accuracy: {args.size}x{args.size}, 2 x {args.ref_spp} spp each")
+    print(f"relative RMSE (RMSE / mean of Mitsuba) = {np.sqrt(mse) / mean * 100:.3f} %")
+    print(f"  of which noise: Mitsuba {np.sqrt(var_m) / mean * 100:.3f} %, lamplight {np.sqrt(var_l) / mean * 100:.3f} %")
+    print(f"  noise removed: {np.sqrt(max(0.0, mse - var_m - var_l)) / mean * 100:.3f} %")
+    blocks = lambda a: a.reshape(a.shape[0] // 4, 4, a.shape[1] // 4, 4, 3).mean(axis=(1, 3))
+    print(f"  on 4x4 pixel blocks: {rmse(blocks(ref_l), blocks(ref_m)) / mean * 100:.3f} %")
+    # The few pixels that see the light (radiance ~18) dominate every squared error:
+    # with an independent sampler their partial coverage is binomial noise of the
+    # light's radiance. Without them:
+    off = (ref_m.max(axis=2) < 1.0) & (ref_l.max(axis=2) < 1.0)
+    mse_off = np.mean((ref_l - ref_m)[off] ** 2)
+    vm_off = np.mean((m1 - m2)[off] ** 2) / 4.0
+    vl_off = np.mean((l1 - l2)[off] ** 2) / 4.0
+    print(f"  without the {np.sum(~off)} pixels that see the light: {np.sqrt(mse_off) / mean * 100:.3f} %, "
+          f"noise removed {np.sqrt(max(0.0, mse_off - vm_off - vl_off)) / mean * 100:.3f} %")
+    print("mean per channel lamplight / Mitsuba = " + ", ".join(f"{r:.4f}" for r in ref_l.mean(axis=(0, 1)) / ref_m.mean(axis=(0, 1))))
+    print(f"(reference renders took {tl:.1f} s lamplight, {tm:.1f} s Mitsuba)")
+
+    n = args.speed_size * args.speed_size * args.speed_spp
+    _, t_l = render_lamplight(args.speed_size, args.speed_spp)
+    _, t_m = render_mitsuba(args.speed_size, args.speed_spp)
+    print(f"\n## Speed: {args.speed_size}x{args.speed_size}, {args.speed_spp} spp")
+    print(f"lamplight: {t_l:.2f} s, {n / t_l / 1e6:.3f} M samples/s")
+    print(f"Mitsuba {variant}: {t_m:.2f} s, {n / t_m / 1e6:.3f} M samples/s")
+
+    # Time to quality: each renderer against its own high-spp reference (other seeds),
+    # so that the residual difference between the renderers does not set a floor.
+    ladder = [int(s) for s in args.ladder.split(",")]
+    pts_l, pts_m = [], []
+    print(f"\n## Time to quality: {args.size}x{args.size}, RMSE against each renderer's own 2 x {args.ref_spp}-spp render")
+    print("spp | lamplight s | lamplight RMSE | Mitsuba s | Mitsuba RMSE")
+    for spp in ladder:
+        il, t_l = render_lamplight(args.size, spp, seed=1)
+        im, t_m = render_mitsuba(args.size, spp, seed=1)
+        pts_l.append((t_l, rmse(il, ref_l)))
+        pts_m.append((t_m, rmse(im, ref_m)))
+        print(f"{spp} | {t_l:.3f} | {pts_l[-1][1]:.5f} | {t_m:.3f} | {pts_m[-1][1]:.5f}")
+    target = 0.02 * mean
+    print(f"time to RMSE {target:.4f} (2 % of the mean): lamplight {time_to_rmse(pts_l, target):.3f} s, "
+          f"Mitsuba {time_to_rmse(pts_m, target):.3f} s")
+
+
+if __name__ == "__main__":
+    main()

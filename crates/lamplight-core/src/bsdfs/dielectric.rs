@@ -1,0 +1,82 @@
+//! Smooth dielectric boundary (glass): Fresnel reflection and refraction.
+//!
+//! With `eta = n_t / n_i` across the boundary and `F` the dielectric Fresnel
+//! reflectance ([`fresnel_dielectric`]), the boundary reflects the mirror
+//! direction with weight `F` and transmits the Snell direction with weight
+//! `(1 - F) / eta^2` (radiance is compressed into the narrower cone of the denser
+//! side). Sampling picks reflection with probability `F`, so each sample's weight
+//! is 1 for reflection and `1 / eta^2` for refraction: no light is made or lost
+//! at the boundary, which the white furnace test checks.
+
+use crate::materials::fresnel_dielectric;
+use crate::math::Vec3;
+
+/// One sampled direction of a smooth boundary.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DeltaSample {
+    /// Direction of the incident light, local frame.
+    pub wi: Vec3,
+    /// `f cos / pdf` for the branch taken, including the branch's probability.
+    pub weight: f64,
+    /// True for the refracted branch.
+    pub transmitted: bool,
+}
+
+/// The mirror direction of `wo` in the local frame.
+#[inline]
+pub fn reflect_local(wo: Vec3) -> Vec3 {
+    Vec3::new(-wo.x, -wo.y, wo.z)
+}
+
+/// The refracted direction of `wo` (local, `wo.z > 0`) into a medium of relative
+/// index `eta = n_t / n_i`, or `None` on total internal reflection.
+#[inline]
+pub fn refract_local(wo: Vec3, eta: f64) -> Option<Vec3> {
+    let cos_i = wo.z;
+    let sin2_t = (1.0 - cos_i * cos_i).max(0.0) / (eta * eta);
+    if sin2_t >= 1.0 {
+        return None;
+    }
+    let cos_t = (1.0 - sin2_t).sqrt();
+    Some((-wo / eta + Vec3::new(0.0, 0.0, cos_i / eta - cos_t)).normalize())
+}
+
+/// Samples the boundary with one uniform number `u`: reflection when `u < F`.
+pub fn sample(wo: Vec3, eta: f64, u: f64) -> DeltaSample {
+    let fr = fresnel_dielectric(wo.z, eta);
+    if u < fr {
+        return DeltaSample { wi: reflect_local(wo), weight: 1.0, transmitted: false };
+    }
+    match refract_local(wo, eta) {
+        Some(wi) => DeltaSample { wi, weight: 1.0 / (eta * eta), transmitted: true },
+        // F = 1 under total internal reflection, so u < F above; kept for rounding.
+        None => DeltaSample { wi: reflect_local(wo), weight: 1.0, transmitted: false },
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn refraction_obeys_snell_and_total_internal_reflection() {
+        let wo = Vec3::new(0.6, 0.0, 0.8);
+        let wi = refract_local(wo, 1.5).unwrap();
+        assert!((wi.length() - 1.0).abs() < 1e-12 && wi.z < 0.0);
+        // sin(theta_t) = sin(theta_i) / eta, on the opposite side of the normal.
+        assert!((wi.x + 0.6 / 1.5).abs() < 1e-12);
+        let steep = Vec3::new(0.8, 0.0, 0.6);
+        assert!(refract_local(steep, 1.0 / 1.5).is_none(), "sin 0.8 > 1/1.5: total internal reflection");
+        let s = sample(steep, 1.0 / 1.5, 0.999);
+        assert!(!s.transmitted && s.weight == 1.0);
+    }
+
+    #[test]
+    fn branch_frequencies_follow_fresnel() {
+        let wo = Vec3::new(0.8, 0.0, 0.6);
+        let fr = fresnel_dielectric(0.6, 1.5);
+        let n = 10_000;
+        let reflected = (0..n).filter(|i| !sample(wo, 1.5, (*i as f64 + 0.5) / n as f64).transmitted).count();
+        assert!((reflected as f64 / n as f64 - fr).abs() < 1e-3);
+    }
+}

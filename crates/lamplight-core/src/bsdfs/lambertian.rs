@@ -1,0 +1,71 @@
+//! Lambertian reflection: `f = albedo / pi`, sampled with the cosine-weighted
+//! hemisphere (`pdf = cos(theta_i) / pi`), so each sample's weight `f cos / pdf`
+//! is exactly the albedo.
+
+use std::f64::consts::{FRAC_1_PI, PI};
+
+use crate::math::{Rgb, Vec3};
+
+/// `albedo / pi` when both directions lie above the surface (local `z > 0`), else 0.
+#[inline]
+pub fn f(albedo: Rgb, wo: Vec3, wi: Vec3) -> Rgb {
+    if wo.z > 0.0 && wi.z > 0.0 {
+        albedo * FRAC_1_PI
+    } else {
+        Rgb::ZERO
+    }
+}
+
+/// Density of [`sample`] in solid angle: `cos(theta_i) / pi` above the surface.
+#[inline]
+pub fn pdf(wo: Vec3, wi: Vec3) -> f64 {
+    if wo.z > 0.0 && wi.z > 0.0 {
+        wi.z * FRAC_1_PI
+    } else {
+        0.0
+    }
+}
+
+/// A cosine-distributed direction above the surface: a point of the unit disk
+/// (Shirley and Chiu's concentric map of `u`) lifted onto the hemisphere.
+#[inline]
+pub fn sample(u: (f64, f64)) -> Vec3 {
+    let (x, y) = concentric_disk(u);
+    Vec3::new(x, y, (1.0 - x * x - y * y).max(0.0).sqrt())
+}
+
+/// Shirley and Chiu's area-preserving map of the unit square onto the unit disk.
+pub fn concentric_disk(u: (f64, f64)) -> (f64, f64) {
+    let (a, b) = (2.0 * u.0 - 1.0, 2.0 * u.1 - 1.0);
+    if a == 0.0 && b == 0.0 {
+        return (0.0, 0.0);
+    }
+    let (r, theta) = if a.abs() > b.abs() { (a, PI / 4.0 * (b / a)) } else { (b, PI / 2.0 - PI / 4.0 * (a / b)) };
+    (r * theta.cos(), r * theta.sin())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn samples_follow_the_cosine_density() {
+        // Moments of cos(theta) under pdf cos/pi: E[cos] = 2/3, E[cos^2] = 1/2.
+        let n = 256;
+        let (mut m1, mut m2) = (0.0, 0.0);
+        for i in 0..n {
+            for j in 0..n {
+                let w = sample(((i as f64 + 0.5) / n as f64, (j as f64 + 0.5) / n as f64));
+                assert!((w.length() - 1.0).abs() < 1e-12 && w.z >= 0.0);
+                m1 += w.z;
+                m2 += w.z * w.z;
+            }
+        }
+        let count = (n * n) as f64;
+        assert!((m1 / count - 2.0 / 3.0).abs() < 1e-3, "{}", m1 / count);
+        assert!((m2 / count - 0.5).abs() < 1e-3);
+        let wi = Vec3::new(0.6, 0.0, 0.8);
+        assert!((pdf(Vec3::Z, wi) - 0.8 / PI).abs() < 1e-15);
+        assert_eq!(f(Rgb::ONE, Vec3::Z, -wi), Rgb::ZERO);
+    }
+}

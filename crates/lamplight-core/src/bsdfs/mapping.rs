@@ -1,0 +1,67 @@
+//! From the lecture's all-in-one [`Material`] to a physically based [`Bsdf`], so
+//! that every scene renders under both integrators without edits.
+//!
+//! | lecture term | path tracer |
+//! |---|---|
+//! | `kd * C` | Lambertian albedo (`f = kd C / pi`) |
+//! | `ks`, `shininess` | GGX reflection of reflectance `ks`, roughness `sqrt(2 / (shine + 2))` |
+//! | `Reflection::Constant(w)` | mirror of weight `w` |
+//! | `Reflection::Dielectric` + `Refraction::Fresnel` of one index, `min 0 max 1` | smooth glass |
+//! | `Reflection::Dielectric {min, max}` otherwise | mirror of weight `min + (max - min) F` |
+//! | `Reflection::Conductor {eta, k}` | conductor mirror with complex Fresnel |
+//! | `Refraction::Fresnel` alone | refraction of weight `1 - F` |
+//! | `Refraction::Constant(w)` | refraction of weight `w` |
+//! | `emission` | area light radiance (see [`crate::lights::area`]) |
+//! | `ka` | nothing: the ambient light becomes a uniform sky the surface reflects through its BSDF |
+//!
+//! On a conductor or on Fresnel glass the Blinn highlight is dropped: it stands for
+//! the light source's own reflection, which the path tracer computes from the
+//! mirror (a point light's reflection in a perfect mirror is invisible in both).
+//! Then every lobe is scaled per channel so that the reflectance bounds sum to at
+//! most 1 ([`Bsdf::new`]): the lecture lets `kd + ks + kr` exceed 1, physics does not.
+
+use super::{microfacet, Bsdf, Lobe, MirrorFresnel};
+use crate::materials::{Material, Reflection, Refraction};
+use crate::math::{Rgb, Vec3};
+
+/// The BSDF of `material` at `point`, for a ray that arrived on the outward side when
+/// `front_face` (the relative index is `ior` entering, `1 / ior` leaving).
+pub fn bsdf_for(material: &Material, point: Vec3, front_face: bool) -> Bsdf {
+    let color = material.color.evaluate(point);
+    let relative = |ior: f64| if front_face { ior } else { 1.0 / ior };
+    let mut lobes: [Lobe; 4] = [Lobe::Diffuse(Rgb::ZERO); 4];
+    let mut n = 0;
+    let mut push = |lobe: Lobe| {
+        lobes[n] = lobe;
+        n += 1;
+    };
+    if material.kd != Rgb::ZERO {
+        push(Lobe::Diffuse(material.kd * color));
+    }
+    let glass = match (&material.reflection, &material.refraction) {
+        (Reflection::Dielectric { ior, min, max }, Refraction::Fresnel { ior: t }) => *ior == *t && *min == 0.0 && *max == 1.0,
+        _ => false,
+    };
+    let conductor = matches!(material.reflection, Reflection::Conductor { .. });
+    if material.ks != Rgb::ZERO && !glass && !conductor {
+        push(Lobe::Glossy { ks: material.ks, alpha: microfacet::alpha_from_shininess(material.shininess) });
+    }
+    if glass {
+        if let Refraction::Fresnel { ior } = material.refraction {
+            push(Lobe::Glass { eta: relative(ior), tint: Rgb::ONE });
+        }
+    } else {
+        match material.reflection {
+            Reflection::None => {}
+            Reflection::Constant(w) => push(Lobe::Mirror(MirrorFresnel::Constant(w))),
+            Reflection::Dielectric { ior, min, max } => push(Lobe::Mirror(MirrorFresnel::Dielectric { eta: relative(ior), min, max })),
+            Reflection::Conductor { eta, k } => push(Lobe::Mirror(MirrorFresnel::Conductor { eta, k })),
+        }
+        match material.refraction {
+            Refraction::None => {}
+            Refraction::Fresnel { ior } => push(Lobe::Refract { eta: relative(ior), weight: None }),
+            Refraction::Constant { ior, weight } => push(Lobe::Refract { eta: relative(ior), weight: Some(weight) }),
+        }
+    }
+    Bsdf::new(&lobes[..n])
+}

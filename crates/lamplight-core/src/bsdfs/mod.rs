@@ -1,0 +1,254 @@
+//! Physically based scattering for the path tracer: a [`Bsdf`] is a weighted sum
+//! of lobes (one file each), evaluated and sampled in a local shading frame whose
+//! `z` axis is the shading normal on the side the ray arrived from.
+//!
+//! Non-delta lobes (Lambertian, GGX) have a value `f(wo, wi)` and a density; delta
+//! lobes (mirrors, smooth glass) are only sampled. Sampling picks a lobe with
+//! probability proportional to its reflectance bound; for a non-delta lobe the
+//! returned weight uses the mixture value and density of all non-delta lobes
+//! (`f cos / sum_j p_j pdf_j`), which is what multiple importance sampling with
+//! light samples needs. [`mapping`] builds a `Bsdf` from the lecture's
+//! [`crate::materials::Material`] and scales the lobes so that their reflectance
+//! bounds sum to at most 1 per channel: no material reflects more than it receives.
+
+pub mod conductor;
+pub mod dielectric;
+pub mod lambertian;
+pub mod mapping;
+pub mod microfacet;
+
+pub use conductor::MirrorFresnel;
+pub use mapping::bsdf_for;
+
+use crate::math::{orthonormal_basis, Rgb, Vec3};
+
+/// An orthonormal frame around a unit normal.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Frame {
+    /// First tangent.
+    pub t: Vec3,
+    /// Second tangent.
+    pub b: Vec3,
+    /// The normal (local `z`).
+    pub n: Vec3,
+}
+
+impl Frame {
+    /// The frame of unit normal `n`.
+    pub fn new(n: Vec3) -> Frame {
+        let (t, b) = orthonormal_basis(n);
+        Frame { t, b, n }
+    }
+
+    /// World to local coordinates.
+    #[inline]
+    pub fn to_local(&self, v: Vec3) -> Vec3 {
+        Vec3::new(v.dot(self.t), v.dot(self.b), v.dot(self.n))
+    }
+
+    /// Local to world coordinates.
+    #[inline]
+    pub fn to_world(&self, v: Vec3) -> Vec3 {
+        self.t * v.x + self.b * v.y + self.n * v.z
+    }
+}
+
+/// One lobe of a [`Bsdf`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Lobe {
+    /// Lambertian reflection of this albedo.
+    Diffuse(Rgb),
+    /// GGX reflection with constant reflectance `ks` and roughness `alpha`.
+    Glossy {
+        /// Reflectance.
+        ks: Rgb,
+        /// GGX roughness.
+        alpha: f64,
+    },
+    /// Smooth mirror (delta).
+    Mirror(MirrorFresnel),
+    /// Smooth glass: Fresnel reflection and refraction, relative index `eta = n_t / n_i` (delta).
+    Glass {
+        /// Relative index across the boundary.
+        eta: f64,
+        /// Colour filter of both branches (1 for clear glass).
+        tint: Rgb,
+    },
+    /// Smooth refraction only, with weight `Constant` or `1 - F` (delta).
+    Refract {
+        /// Relative index across the boundary.
+        eta: f64,
+        /// Constant weight, or `None` for the Fresnel weight `1 - F`.
+        weight: Option<Rgb>,
+    },
+}
+
+impl Lobe {
+    /// True for lobes that scatter into single directions.
+    pub fn is_delta(&self) -> bool {
+        !matches!(self, Lobe::Diffuse(_) | Lobe::Glossy { .. })
+    }
+
+    /// Per-channel upper bound of the reflectance (albedo) over all angles.
+    pub fn bound(&self) -> Rgb {
+        match *self {
+            Lobe::Diffuse(a) => a,
+            Lobe::Glossy { ks, .. } => ks,
+            Lobe::Mirror(m) => m.bound(),
+            Lobe::Glass { tint, .. } => tint,
+            Lobe::Refract { weight, .. } => weight.unwrap_or(Rgb::ONE),
+        }
+    }
+
+    fn scaled(self, s: Rgb) -> Lobe {
+        match self {
+            Lobe::Diffuse(a) => Lobe::Diffuse(a * s),
+            Lobe::Glossy { ks, alpha } => Lobe::Glossy { ks: ks * s, alpha },
+            Lobe::Mirror(MirrorFresnel::Constant(w)) => Lobe::Mirror(MirrorFresnel::Constant(w * s)),
+            // Fresnel-driven lobes keep their physics; only a scale below 1 changes them,
+            // through a constant-weight tint.
+            Lobe::Mirror(m) => {
+                if s == Rgb::ONE {
+                    Lobe::Mirror(m)
+                } else {
+                    Lobe::Mirror(MirrorFresnel::Constant(m.bound() * s))
+                }
+            }
+            Lobe::Glass { eta, tint } => Lobe::Glass { eta, tint: tint * s },
+            Lobe::Refract { eta, weight } => Lobe::Refract { eta, weight: Some(weight.unwrap_or(Rgb::ONE) * s) },
+        }
+    }
+}
+
+/// Most lobes a material maps to.
+pub const MAX_LOBES: usize = 4;
+
+/// A sampled incident direction.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BsdfSample {
+    /// Incident direction, local frame.
+    pub wi: Vec3,
+    /// `f |cos| / pdf`: the factor the path throughput is multiplied by.
+    pub weight: Rgb,
+    /// Solid-angle density of the sample (the mixture over non-delta lobes); 0 for a delta lobe.
+    pub pdf: f64,
+    /// True when a delta lobe produced it (no light sample could have).
+    pub delta: bool,
+    /// Relative index `n_t / n_i` of a refraction (1 for reflection): the weight
+    /// carries the radiance factor `1 / eta^2`, the power is `weight * eta^2`.
+    pub eta: f64,
+}
+
+/// A weighted sum of lobes with their sampling probabilities.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Bsdf {
+    lobes: [Lobe; MAX_LOBES],
+    probs: [f64; MAX_LOBES],
+    count: usize,
+}
+
+impl Bsdf {
+    /// A BSDF from lobes, scaled per channel so that the reflectance bounds sum to at most 1.
+    pub fn new(lobes: &[Lobe]) -> Bsdf {
+        let lobes = &lobes[..lobes.len().min(MAX_LOBES)];
+        let total: Rgb = lobes.iter().map(|l| l.bound()).sum();
+        let scale = Rgb::ONE / total.max(Rgb::ONE);
+        let mut out = Bsdf { lobes: [Lobe::Diffuse(Rgb::ZERO); MAX_LOBES], probs: [0.0; MAX_LOBES], count: 0 };
+        let mut sum = 0.0;
+        for lobe in lobes {
+            let lobe = lobe.scaled(scale);
+            let p = lobe.bound().max_element();
+            if !(p > 0.0) {
+                continue;
+            }
+            out.lobes[out.count] = lobe;
+            out.probs[out.count] = p;
+            out.count += 1;
+            sum += p;
+        }
+        for p in &mut out.probs[..out.count] {
+            *p /= sum;
+        }
+        out
+    }
+
+    /// The lobes, after scaling.
+    pub fn lobes(&self) -> &[Lobe] {
+        &self.lobes[..self.count]
+    }
+
+    /// True when nothing scatters (a black or purely emitting surface).
+    pub fn is_black(&self) -> bool {
+        self.count == 0
+    }
+
+    /// True when some lobe has a value that a light sample can meet.
+    pub fn has_smooth_part(&self) -> bool {
+        self.lobes().iter().any(|l| !l.is_delta())
+    }
+
+    /// Sum of the non-delta lobes' values.
+    pub fn f(&self, wo: Vec3, wi: Vec3) -> Rgb {
+        let mut sum = Rgb::ZERO;
+        for lobe in self.lobes() {
+            match *lobe {
+                Lobe::Diffuse(a) => sum += lambertian::f(a, wo, wi),
+                Lobe::Glossy { ks, alpha } => sum += microfacet::f(ks, alpha, wo, wi),
+                _ => {}
+            }
+        }
+        sum
+    }
+
+    /// Solid-angle density with which [`Bsdf::sample`] returns `wi` from a non-delta lobe.
+    pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f64 {
+        let mut pdf = 0.0;
+        for (lobe, p) in self.lobes().iter().zip(self.probs) {
+            match *lobe {
+                Lobe::Diffuse(_) => pdf += p * lambertian::pdf(wo, wi),
+                Lobe::Glossy { alpha, .. } => pdf += p * microfacet::pdf(alpha, wo, wi),
+                _ => {}
+            }
+        }
+        pdf
+    }
+
+    /// Samples an incident direction for outgoing `wo` (local, `wo.z > 0`): `u_lobe`
+    /// picks the lobe (and, rescaled, the glass branch), `u` the direction.
+    pub fn sample(&self, wo: Vec3, u_lobe: f64, u: (f64, f64)) -> Option<BsdfSample> {
+        let mut start = 0.0;
+        let mut chosen = self.count.checked_sub(1)?;
+        for i in 0..self.count {
+            if u_lobe < start + self.probs[i] {
+                chosen = i;
+                break;
+            }
+            start += self.probs[i];
+        }
+        let p = self.probs[chosen];
+        let u_rest = ((u_lobe - start) / p).clamp(0.0, 1.0 - f64::EPSILON);
+        let delta = |wi: Vec3, weight: Rgb, eta: f64| Some(BsdfSample { wi, weight: weight / p, pdf: 0.0, delta: true, eta });
+        let wi = match self.lobes[chosen] {
+            Lobe::Diffuse(_) => lambertian::sample(u),
+            Lobe::Glossy { alpha, .. } => microfacet::sample(alpha, wo, u)?,
+            Lobe::Mirror(m) => return delta(dielectric::reflect_local(wo), m.reflectance(wo.z), 1.0),
+            Lobe::Glass { eta, tint } => {
+                let s = dielectric::sample(wo, eta, u_rest);
+                return delta(s.wi, tint * s.weight, if s.transmitted { eta } else { 1.0 });
+            }
+            Lobe::Refract { eta, weight } => {
+                let wi = dielectric::refract_local(wo, eta)?;
+                let w = weight.unwrap_or_else(|| Rgb::splat(1.0 - crate::materials::fresnel_dielectric(wo.z, eta)));
+                return delta(wi, w / (eta * eta), eta);
+            }
+        };
+        let pdf = self.pdf(wo, wi);
+        if !(pdf > 0.0) {
+            return None;
+        }
+        Some(BsdfSample { wi, weight: self.f(wo, wi) * wi.z.abs() / pdf, pdf, delta: false, eta: 1.0 })
+    }
+}
+
+#[cfg(test)]
+mod tests;

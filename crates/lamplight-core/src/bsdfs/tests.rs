@@ -1,0 +1,118 @@
+//! Energy and consistency checks over every lobe and the lecture's presets.
+
+use super::*;
+use crate::materials::{Material, Metal};
+
+/// Directional albedo (reflected and transmitted power over incident power,
+/// `E[weight * eta^2]`) of `bsdf` for `wo`, estimated with stratified samples.
+fn albedo(bsdf: &Bsdf, wo: Vec3) -> Rgb {
+    let n = 128;
+    let mut sum = Rgb::ZERO;
+    for i in 0..n {
+        for j in 0..n {
+            let u = ((i as f64 + 0.5) / n as f64, (j as f64 + 0.5) / n as f64);
+            let u_lobe = ((i * n + j) as f64 * 0.618_033_988_749_895).fract();
+            if let Some(s) = bsdf.sample(wo, u_lobe, u) {
+                sum += s.weight * (s.eta * s.eta);
+            }
+        }
+    }
+    sum / (n * n) as f64
+}
+
+fn presets() -> Vec<(&'static str, Material)> {
+    vec![
+        ("white diffuse", Material { color: crate::materials::Texture::Constant(Rgb::ONE), kd: Rgb::ONE, ..Material::default() }),
+        ("plastic", Material::plastic(Rgb::new(1.0, 0.2, 0.2), 0.1, 0.9, 0.8, 40.0)),
+        ("rough plastic", Material::plastic(Rgb::ONE, 0.1, 0.7, 0.5, 2.0)),
+        ("glass", Material::glass(1.5, 0.5, 50.0)),
+        ("gold", Material::metal(Metal::Gold, 0.5, 50.0)),
+        ("heckbert mirror", Material { reflection: Reflection::Constant(Rgb::splat(0.7)), kd: Rgb::splat(0.6), ..Material::default() }),
+        (
+            "constant glass",
+            Material {
+                refraction: Refraction::Constant { ior: 1.3, weight: Rgb::splat(0.9) },
+                reflection: Reflection::Dielectric { ior: 1.3, min: 0.1, max: 0.8 },
+                ..Material::default()
+            },
+        ),
+    ]
+}
+
+use crate::materials::{Reflection, Refraction};
+
+#[test]
+fn no_material_reflects_more_than_it_receives() {
+    // Sweep the incidence angle from normal to grazing, on both faces.
+    for (name, material) in presets() {
+        for front in [true, false] {
+            let bsdf = bsdf_for(&material, Vec3::ZERO, front);
+            for k in 0..=9 {
+                let theta = (k as f64 * 9.9).to_radians();
+                let wo = Vec3::new(theta.sin(), 0.0, theta.cos());
+                let a = albedo(&bsdf, wo);
+                assert!(a.max_element() <= 1.0 + 2e-3, "{name} (front {front}) at {theta:.2} rad reflects {a}");
+                assert!(a.min_element() >= 0.0);
+            }
+        }
+    }
+}
+
+#[test]
+fn lossless_lobes_conserve_energy_exactly() {
+    // A white Lambertian and clear glass entered from outside keep all energy
+    // (glass gives 1/eta^2 on refraction, which the radiance compression explains;
+    // its power, weight * eta^2, is 1).
+    let white = Bsdf::new(&[Lobe::Diffuse(Rgb::ONE)]);
+    for k in 0..8 {
+        let theta = (k as f64 * 11.0).to_radians();
+        let wo = Vec3::new(theta.sin(), 0.0, theta.cos());
+        assert!((albedo(&white, wo).x - 1.0).abs() < 1e-9);
+    }
+    let glass = Bsdf::new(&[Lobe::Glass { eta: 1.0, tint: Rgb::ONE }]);
+    assert!((albedo(&glass, Vec3::new(0.6, 0.0, 0.8)).x - 1.0).abs() < 1e-9);
+}
+
+#[test]
+fn mixture_weights_are_f_cos_over_pdf() {
+    let bsdf = bsdf_for(&Material::plastic(Rgb::new(0.8, 0.5, 0.2), 0.1, 0.6, 0.3, 20.0), Vec3::ZERO, true);
+    let wo = Vec3::new(0.3, 0.1, 0.9).normalize();
+    for i in 0..50 {
+        let u = ((i as f64 * 0.37).fract(), (i as f64 * 0.71).fract());
+        let Some(s) = bsdf.sample(wo, (i as f64 * 0.13).fract(), u) else { continue };
+        let expected = bsdf.f(wo, s.wi) * s.wi.z / bsdf.pdf(wo, s.wi);
+        assert!((s.weight - expected).length() < 1e-12);
+        assert!(!s.delta && s.pdf > 0.0);
+    }
+}
+
+#[test]
+fn glossy_pdf_integrates_to_one_over_the_sphere() {
+    // Quadrature of the mixture pdf over the hemisphere (the lobe cannot leave it):
+    // the sampled density is a density (integral <= 1, equal for the diffuse part).
+    let bsdf = Bsdf::new(&[Lobe::Diffuse(Rgb::splat(0.5)), Lobe::Glossy { ks: Rgb::splat(0.5), alpha: 0.3 }]);
+    let wo = Vec3::new(0.5, 0.0, 0.75f64.sqrt());
+    let (nt, np) = (400, 400);
+    let mut integral = 0.0;
+    for i in 0..nt {
+        let c = (i as f64 + 0.5) / nt as f64; // cos(theta), d(omega) = dc dphi
+        for j in 0..np {
+            let phi = (j as f64 + 0.5) / np as f64 * 2.0 * std::f64::consts::PI;
+            let s = (1.0 - c * c).sqrt();
+            let wi = Vec3::new(s * phi.cos(), s * phi.sin(), c);
+            integral += bsdf.pdf(wo, wi) / nt as f64 * 2.0 * std::f64::consts::PI / np as f64;
+        }
+    }
+    // The GGX visible-normal sampler loses the samples reflected below the horizon:
+    // the integral equals the fraction of samples that survive.
+    let n = 256;
+    let mut kept = 0;
+    for i in 0..n {
+        for j in 0..n {
+            let u = ((i as f64 + 0.5) / n as f64, (j as f64 + 0.5) / n as f64);
+            kept += usize::from(bsdf.sample(wo, ((i * n + j) as f64 * 0.618_033_988_749_895).fract(), u).is_some());
+        }
+    }
+    let survived = kept as f64 / (n * n) as f64;
+    assert!((integral - survived).abs() < 5e-3, "{integral} vs {survived}");
+}

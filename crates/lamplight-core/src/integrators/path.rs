@@ -1,0 +1,239 @@
+//! Unidirectional path tracing with next-event estimation and multiple
+//! importance sampling (Veach 1997, ch. 9; pbrt's `PathIntegrator`).
+//!
+//! At each vertex the path adds one light sample (a light picked uniformly, a
+//! point or direction on it) and continues along a BSDF sample. Light that both
+//! strategies can find (area lights, the sky, through non-delta lobes) is
+//! weighted by the power heuristic `w_a = p_a^2 / (p_a^2 + p_b^2)`; delta lights
+//! only by light sampling, delta lobes only by BSDF sampling (weight 1). After
+//! [`PathTracer::rr_depth`] segments a path survives with probability
+//! `min(1, max(throughput))` and is reweighted (Russian roulette), which keeps
+//! the estimate unbiased. Depth counts segments: 1 sees emitters only, 2 adds
+//! direct light, `max_depth` ends the path (the Whitted convention).
+//!
+//! Shadow rays must reach the light without meeting anything: unlike the
+//! lecture's shadows, glass blocks them (light through glass arrives along
+//! refracted BSDF paths), so nothing is counted twice.
+
+use super::{Integrator, RayCounts};
+use crate::bsdfs::{bsdf_for, Bsdf, Frame};
+use crate::lights::{LightSet, Picked};
+use crate::materials::{Reflection, Refraction};
+use crate::math::{Rgb, Vec3};
+use crate::ray::{offset_origin, Ray};
+use crate::sampling::{PixelSampler, Rng};
+use crate::scene::{Hit, Scene};
+
+/// Path tracing with NEE, MIS and Russian roulette.
+#[derive(Debug)]
+pub struct PathTracer {
+    /// Longest path in segments (camera ray = 1).
+    pub max_depth: u32,
+    /// Segments before Russian roulette starts.
+    pub rr_depth: u32,
+    lights: LightSet,
+    /// Every material stops shadow rays: visibility can use the BVH's any-hit query.
+    all_opaque: bool,
+}
+
+/// The power heuristic with exponent 2 for one sample of each strategy.
+#[inline]
+pub fn power_heuristic(a: f64, b: f64) -> f64 {
+    let (a2, b2) = (a * a, b * b);
+    if a2 + b2 > 0.0 {
+        a2 / (a2 + b2)
+    } else {
+        0.0
+    }
+}
+
+/// True when nothing lies on the segment from `origin` along `dir` before
+/// `distance`, except object `own` (the light's own body), where the ray may end.
+/// Surfaces that scatter nothing and let shadows through (a bulb's glow around its
+/// point light) are passed; every other surface blocks, glass included.
+pub fn unoccluded(scene: &Scene, origin: Vec3, dir: Vec3, distance: f64, own: Option<usize>) -> bool {
+    let mut origin = origin;
+    let mut remaining = distance;
+    // Each pass moves past one surface; a bound keeps pathological stacks finite.
+    for _ in 0..64 {
+        let Some(h) = scene.first_intersect(&Ray { origin, dir }, remaining) else { return true };
+        if Some(h.object) == own {
+            return true;
+        }
+        let m = &scene.materials[h.material];
+        let clear =
+            m.shadow_transmittance == Rgb::ONE && !m.is_lit() && m.reflection == Reflection::None && m.refraction == Refraction::None;
+        if !clear {
+            return false;
+        }
+        let next = offset_origin(h.point, h.geometric_normal, dir, h.t, h.error);
+        remaining -= (next - origin).length();
+        origin = next;
+        if remaining <= 0.0 {
+            return true;
+        }
+    }
+    false
+}
+
+impl PathTracer {
+    /// A path tracer for `scene` (its lights are collected here).
+    pub fn new(scene: &Scene, max_depth: u32) -> PathTracer {
+        let all_opaque = scene.materials.iter().all(|m| m.shadow_transmittance == Rgb::ZERO);
+        PathTracer { max_depth, rr_depth: 4, lights: LightSet::new(scene), all_opaque }
+    }
+
+    /// The lights it samples.
+    pub fn lights(&self) -> &LightSet {
+        &self.lights
+    }
+
+    /// Radiance along camera ray `ray`, drawing sample values from `sampler`.
+    pub fn li(&self, scene: &Scene, camera_ray: &Ray, sampler: &mut PixelSampler, counts: &mut RayCounts) -> Rgb {
+        counts.camera += 1;
+        let mut radiance = Rgb::ZERO;
+        let mut beta = Rgb::ONE;
+        let mut ray = *camera_ray;
+        // Density of the BSDF sample that made `ray`; a delta lobe or the camera count as delta.
+        let mut prev_pdf = 0.0;
+        let mut prev_delta = true;
+        let p_pick = self.lights.pick_probability();
+        for depth in 1..=self.max_depth {
+            let Some(hit) = scene.first_intersect(&ray, f64::INFINITY) else {
+                match (depth, self.lights.camera_background, &self.lights.environment) {
+                    (1, Some(bg), _) => radiance += beta * bg,
+                    (_, _, Some(env)) => {
+                        let w = if prev_delta { 1.0 } else { power_heuristic(prev_pdf, p_pick * env.pdf(ray.dir)) };
+                        radiance += beta * env.radiance(ray.dir) * w;
+                    }
+                    _ => {}
+                }
+                break;
+            };
+            let material = &scene.materials[hit.material];
+            if hit.front_face && material.emission != Rgb::ZERO {
+                let w = match self.lights.area_light_of(hit.object) {
+                    Some(light) if !prev_delta => {
+                        // Outward normal: the geometric normal faces the ray on the front face.
+                        power_heuristic(prev_pdf, p_pick * light.pdf(ray.dir, hit.t, hit.geometric_normal))
+                    }
+                    // Delta paths, and emitters that light sampling cannot reach.
+                    _ => 1.0,
+                };
+                radiance += beta * material.emission * w;
+            }
+            if depth >= self.max_depth {
+                break;
+            }
+            let bsdf = bsdf_for(material, hit.point, hit.front_face);
+            if bsdf.is_black() {
+                break;
+            }
+            let frame = Frame::new(hit.normal);
+            let wo = frame.to_local(-ray.dir);
+            // Always draw the light sample's dimensions so that every sample of a pixel
+            // uses dimension k for the same decision.
+            let u_pick = sampler.get_1d();
+            let u_light = sampler.get_2d();
+            if bsdf.has_smooth_part() {
+                radiance += beta * self.sample_light(scene, &hit, &bsdf, &frame, wo, u_pick, u_light, counts);
+            }
+            let u_lobe = sampler.get_1d();
+            let u_bsdf = sampler.get_2d();
+            let u_rr = sampler.get_1d();
+            let Some(s) = bsdf.sample(wo, u_lobe, u_bsdf) else { break };
+            let wi = frame.to_world(s.wi);
+            // The shading normal may disagree with the geometry: keep the side the
+            // geometric normal says, or light would leak through the surface.
+            if (wi.dot(hit.geometric_normal) > 0.0) != (s.wi.z > 0.0) || s.weight == Rgb::ZERO {
+                break;
+            }
+            beta *= s.weight;
+            prev_pdf = s.pdf;
+            prev_delta = s.delta;
+            if depth >= self.rr_depth {
+                let survive = beta.max_element().min(1.0);
+                if !(u_rr < survive) {
+                    break;
+                }
+                beta /= survive;
+            }
+            counts.secondary += 1;
+            ray = Ray { origin: offset_origin(hit.point, hit.geometric_normal, wi, hit.t, hit.error), dir: wi };
+        }
+        radiance
+    }
+
+    /// One light sample at `hit`, MIS-weighted against the BSDF.
+    #[allow(clippy::too_many_arguments)]
+    fn sample_light(
+        &self,
+        scene: &Scene,
+        hit: &Hit,
+        bsdf: &Bsdf,
+        frame: &Frame,
+        wo: Vec3,
+        u_pick: f64,
+        u: (f64, f64),
+        counts: &mut RayCounts,
+    ) -> Rgb {
+        let Some(picked) = self.lights.pick(u_pick) else { return Rgb::ZERO };
+        let p_pick = self.lights.pick_probability();
+        // (direction, distance, incident radiance, light pdf or None for delta, own object)
+        let (wi, distance, li, light_pdf, own) = match picked {
+            Picked::Delta(light) => {
+                let Some(s) = light.illuminate(hit.point) else { return Rgb::ZERO };
+                (s.wi, s.distance, s.radiance, None, light.own_object())
+            }
+            Picked::Area(light) => {
+                let Some(s) = light.sample(hit.point, u) else { return Rgb::ZERO };
+                (s.wi, s.distance, s.radiance, Some(s.pdf), Some(light.object))
+            }
+            Picked::Environment(env) => {
+                let Some((d, l, pdf)) = env.sample(u) else { return Rgb::ZERO };
+                (d, f64::INFINITY, l, Some(pdf), None)
+            }
+        };
+        if li == Rgb::ZERO {
+            return Rgb::ZERO;
+        }
+        let wi_local = frame.to_local(wi);
+        if (wi.dot(hit.geometric_normal) > 0.0) != (wi_local.z > 0.0) {
+            return Rgb::ZERO;
+        }
+        let f = bsdf.f(wo, wi_local);
+        if f == Rgb::ZERO {
+            return Rgb::ZERO;
+        }
+        counts.shadow += 1;
+        let origin = offset_origin(hit.point, hit.geometric_normal, wi, hit.t, hit.error);
+        let remaining = distance - (origin - hit.point).length();
+        let visible = if self.all_opaque {
+            // Any hit blocks; the scene's query ends the ray at the light's own object.
+            scene.transmittance(origin, wi, remaining, own) != Rgb::ZERO
+        } else {
+            unoccluded(scene, origin, wi, remaining, own)
+        };
+        if !visible {
+            return Rgb::ZERO;
+        }
+        let cos = wi_local.z.abs();
+        match light_pdf {
+            None => f * li * cos / p_pick,
+            Some(pdf) => {
+                let pl = p_pick * pdf;
+                let w = power_heuristic(pl, bsdf.pdf(wo, wi_local));
+                f * li * cos * w / pl
+            }
+        }
+    }
+}
+
+impl Integrator for PathTracer {
+    /// Through the generic interface the sample values are independent random
+    /// numbers; [`crate::render()`] uses [`PathTracer::li`] with Sobol points.
+    fn radiance(&self, scene: &Scene, ray: &Ray, rng: &mut Rng, counts: &mut RayCounts) -> Rgb {
+        let mut sampler = PixelSampler::new(rng.next_u64(), rng.next_u64(), 0);
+        self.li(scene, ray, &mut sampler, counts)
+    }
+}

@@ -1,0 +1,62 @@
+//! The plainest path tracer: BSDF sampling only, emitters and sky counted where
+//! paths happen to hit them. Slow to converge but with nothing to get wrong in
+//! light sampling or MIS weights, it is the oracle [`super::PathTracer`] is tested
+//! against. No Russian roulette: paths end at the depth limit.
+
+use crate::bsdfs::{bsdf_for, Frame};
+use crate::lights::LightSet;
+use crate::math::Rgb;
+use crate::ray::{offset_origin, Ray};
+use crate::sampling::PixelSampler;
+use crate::scene::Scene;
+
+/// BSDF-sampling-only path tracing to a depth limit (segments, camera ray = 1).
+#[derive(Debug)]
+pub struct SimplePath {
+    /// Longest path in segments.
+    pub max_depth: u32,
+    lights: LightSet,
+}
+
+impl SimplePath {
+    /// For `scene`.
+    pub fn new(scene: &Scene, max_depth: u32) -> SimplePath {
+        SimplePath { max_depth, lights: LightSet::new(scene) }
+    }
+
+    /// Radiance along `ray`.
+    pub fn li(&self, scene: &Scene, camera_ray: &Ray, sampler: &mut PixelSampler) -> Rgb {
+        let mut radiance = Rgb::ZERO;
+        let mut beta = Rgb::ONE;
+        let mut ray = *camera_ray;
+        for depth in 1..=self.max_depth {
+            let Some(hit) = scene.first_intersect(&ray, f64::INFINITY) else {
+                match (depth, self.lights.camera_background, &self.lights.environment) {
+                    (1, Some(bg), _) => radiance += beta * bg,
+                    (_, _, Some(env)) => radiance += beta * env.radiance(ray.dir),
+                    _ => {}
+                }
+                break;
+            };
+            let material = &scene.materials[hit.material];
+            if hit.front_face {
+                radiance += beta * material.emission;
+            }
+            if depth >= self.max_depth {
+                break;
+            }
+            let bsdf = bsdf_for(material, hit.point, hit.front_face);
+            let frame = Frame::new(hit.normal);
+            let wo = frame.to_local(-ray.dir);
+            let u_lobe = sampler.get_1d();
+            let Some(s) = bsdf.sample(wo, u_lobe, sampler.get_2d()) else { break };
+            let wi = frame.to_world(s.wi);
+            if (wi.dot(hit.geometric_normal) > 0.0) != (s.wi.z > 0.0) {
+                break;
+            }
+            beta *= s.weight;
+            ray = Ray { origin: offset_origin(hit.point, hit.geometric_normal, wi, hit.t, hit.error), dir: wi };
+        }
+        radiance
+    }
+}

@@ -1,0 +1,119 @@
+//! Area lights: scene objects whose material emits (`emission > 0`).
+//!
+//! An emitting surface sends radiance `Le` from its outward side only (as area
+//! lights in pbrt and Mitsuba do). Light sampling picks a point `y` uniformly on
+//! the shape's area `A`; seen from `x`, its density in solid angle is
+//! `pdf = |x - y|^2 / (|cos(theta_y)| A)`, where `theta_y` is between the light's
+//! normal and the direction back to `x`.
+
+use std::sync::Arc;
+
+use crate::math::{Rgb, Vec3};
+use crate::shapes::Shape;
+
+/// An emitting object that can be sampled.
+#[derive(Clone, Debug)]
+pub struct AreaLight {
+    /// Index of the scene object.
+    pub object: usize,
+    /// Its shape.
+    pub shape: Arc<dyn Shape>,
+    /// Emitted radiance on the outward side.
+    pub radiance: Rgb,
+    area: f64,
+}
+
+/// A point sampled on an area light, as seen from a receiving point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AreaSample {
+    /// Unit direction from the receiver to the light point.
+    pub wi: Vec3,
+    /// Distance to the light point.
+    pub distance: f64,
+    /// Radiance arriving along `-wi` (0 from the light's back side).
+    pub radiance: Rgb,
+    /// Density in solid angle at the receiver.
+    pub pdf: f64,
+}
+
+impl AreaLight {
+    /// The area light of object `object`, or `None` when the shape cannot be sampled
+    /// or has no area.
+    pub fn new(object: usize, shape: Arc<dyn Shape>, radiance: Rgb) -> Option<AreaLight> {
+        let area = shape.area()?;
+        (area > 0.0 && area.is_finite()).then_some(AreaLight { object, shape, radiance, area })
+    }
+
+    /// Surface area.
+    pub fn area(&self) -> f64 {
+        self.area
+    }
+
+    /// A light point for receiver `x` from `u`.
+    pub fn sample(&self, x: Vec3, u: (f64, f64)) -> Option<AreaSample> {
+        let (y, n) = self.shape.sample_area(u)?;
+        let to = y - x;
+        let d2 = to.length_squared();
+        if !(d2 > 0.0) {
+            return None;
+        }
+        let distance = d2.sqrt();
+        let wi = to / distance;
+        let cos_y = -wi.dot(n);
+        if cos_y <= 0.0 {
+            return None; // the back side does not emit
+        }
+        let pdf = d2 / (cos_y * self.area);
+        pdf.is_finite().then_some(AreaSample { wi, distance, radiance: self.radiance, pdf })
+    }
+
+    /// Solid-angle density with which [`AreaLight::sample`] returns the point at
+    /// distance `distance` along `wi`, where the light's outward normal is `normal`.
+    pub fn pdf(&self, wi: Vec3, distance: f64, normal: Vec3) -> f64 {
+        let cos_y = wi.dot(normal).abs();
+        if cos_y <= 0.0 {
+            return 0.0;
+        }
+        distance * distance / (cos_y * self.area)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shapes::{Rectangle, Sphere};
+
+    #[test]
+    fn solid_angle_of_a_sphere_from_its_samples() {
+        // E[1{front} / pdf] over area samples = solid angle subtended by the visible cap,
+        // 2 pi (1 - sqrt(1 - (r/d)^2)) for a sphere of radius r at distance d.
+        let light = AreaLight::new(0, Arc::new(Sphere::new(Vec3::new(0.0, 0.0, 3.0), 1.0).unwrap()), Rgb::ONE).unwrap();
+        let n = 400;
+        let mut omega = 0.0;
+        for i in 0..n {
+            for j in 0..n {
+                let u = ((i as f64 + 0.5) / n as f64, (j as f64 + 0.5) / n as f64);
+                if let Some(s) = light.sample(Vec3::ZERO, u) {
+                    // Only points seen from x (the near cap) count: they are the ones
+                    // whose direction back to x is within the visible cap.
+                    let hit = light.shape.intersect(&crate::ray::Ray { origin: Vec3::ZERO, dir: s.wi }, 0.0, f64::INFINITY).unwrap();
+                    if (hit.t - s.distance).abs() < 1e-9 {
+                        omega += 1.0 / s.pdf;
+                    }
+                }
+            }
+        }
+        omega /= (n * n) as f64;
+        let expected = 2.0 * std::f64::consts::PI * (1.0 - (1.0f64 - 1.0 / 9.0).sqrt());
+        assert!((omega - expected).abs() / expected < 2e-3, "{omega} vs {expected}");
+    }
+
+    #[test]
+    fn rectangle_pdf_agrees_with_sample() {
+        let rect = Rectangle::new(Vec3::new(-0.5, 2.0, -0.5), Vec3::X, Vec3::Z).unwrap(); // normal X x Z = -Y
+        let light = AreaLight::new(3, Arc::new(rect), Rgb::splat(5.0)).unwrap();
+        let s = light.sample(Vec3::ZERO, (0.3, 0.8)).unwrap();
+        assert!((light.pdf(s.wi, s.distance, -Vec3::Y) - s.pdf).abs() < 1e-12);
+        assert!(light.sample(Vec3::new(0.0, 4.0, 0.0), (0.3, 0.8)).is_none(), "back side is dark");
+    }
+}

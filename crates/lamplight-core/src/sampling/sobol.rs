@@ -1,0 +1,170 @@
+//! Owen-scrambled Sobol points, one independent scramble per (pixel, dimension).
+//!
+//! Every dimension a path consumes takes its values from the first two Sobol
+//! dimensions (the (0,2)-sequence: van der Corput `x_i = reverse_bits(i)` and the
+//! second Sobol dimension, generator columns `v_0 = 2^31`, `v_k = v_{k-1} ^ (v_{k-1} >> 1)`),
+//! each scrambled by a nested uniform (Owen) scramble seeded by a hash of
+//! (render seed, pixel, dimension) (Burley 2020, "Practical Hash-based Owen
+//! Scrambling"). Scrambling keeps the stratification of the first `2^m` points
+//! of every 1D and 2D projection and makes each point uniformly distributed, so
+//! the estimate stays unbiased.
+//!
+//! The dimensions must not share the order of their points, or a pixel's samples
+//! would pair dimension `a`'s point `i` with dimension `b`'s point `i` the same
+//! way every time (measured: 4 % errors per pixel in the white furnace, against
+//! 0.2 % for independent numbers). So each dimension also shuffles the sample
+//! index with its own Owen scramble of the index bits (Burley's "shuffled"
+//! sequence): that maps the first `2^m` indices onto one aligned block of `2^m`
+//! Sobol indices, which is again a net, and the map does not depend on the
+//! sample count. Sample `i` of a pixel is therefore the same whatever the count:
+//! an image of `2N` samples continues the one of `N`.
+
+/// Sample `i` of the van der Corput sequence as 32 bits of binary fraction.
+#[inline]
+fn sobol0(i: u32) -> u32 {
+    i.reverse_bits()
+}
+
+/// Sample `i` of the second Sobol dimension as 32 bits of binary fraction.
+#[inline]
+fn sobol1(mut i: u32) -> u32 {
+    let mut v = 1u32 << 31;
+    let mut x = 0u32;
+    while i != 0 {
+        if i & 1 != 0 {
+            x ^= v;
+        }
+        i >>= 1;
+        v ^= v >> 1;
+    }
+    x
+}
+
+/// Laine and Karras' hash-based permutation, which flips each bit depending only on
+/// the bits below it: applied to bit-reversed values it is a nested uniform scramble.
+#[inline]
+fn laine_karras(mut x: u32, seed: u32) -> u32 {
+    x = x.wrapping_add(seed);
+    x ^= x.wrapping_mul(0x6c50_b47c);
+    x ^= x.wrapping_mul(0xb82f_1e52);
+    x ^= x.wrapping_mul(0xc7af_e638);
+    x ^= x.wrapping_mul(0x8d22_f6e6);
+    x
+}
+
+/// Owen scramble of a 32-bit binary fraction under `seed`.
+#[inline]
+pub fn owen_scramble(x: u32, seed: u32) -> u32 {
+    laine_karras(x.reverse_bits(), seed).reverse_bits()
+}
+
+/// A 64-bit mix (the SplitMix64 finalizer), used to derive scramble seeds.
+#[inline]
+fn mix(mut z: u64) -> u64 {
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+/// Converts 32 bits of binary fraction to a float in `[0, 1)`.
+#[inline]
+fn to_unit(x: u32) -> f64 {
+    x as f64 * (1.0 / 4_294_967_296.0)
+}
+
+/// The sample values of one pixel sample: dimension after dimension, each a 1D
+/// value or a 2D point of its own scrambled (0,2)-sequence.
+#[derive(Clone, Debug)]
+pub struct PixelSampler {
+    pixel_seed: u64,
+    index: u32,
+    dimension: u32,
+}
+
+impl PixelSampler {
+    /// Sample `index` of pixel `pixel` under render seed `seed`.
+    pub fn new(seed: u64, pixel: u64, index: u32) -> PixelSampler {
+        PixelSampler { pixel_seed: mix(mix(seed ^ 0x5851_F42D_4C95_7F2D) ^ pixel.wrapping_mul(0x9E37_79B9_7F4A_7C15)), index, dimension: 0 }
+    }
+
+    /// The next dimension's shuffled index and its two value scramble seeds.
+    #[inline]
+    fn next_dimension(&mut self) -> (u32, u32, u32) {
+        let h = mix(self.pixel_seed ^ (self.dimension as u64).wrapping_mul(0xD1B5_4A32_D192_ED03));
+        let h2 = mix(h ^ 0x2545_F491_4F6C_DD1D);
+        self.dimension += 1;
+        (owen_scramble(self.index, h2 as u32), h as u32, (h >> 32) as u32)
+    }
+
+    /// The next dimension as one value in `[0, 1)`.
+    #[inline]
+    pub fn get_1d(&mut self) -> f64 {
+        let (i, s, _) = self.next_dimension();
+        to_unit(owen_scramble(sobol0(i), s))
+    }
+
+    /// The next dimension as a point in `[0, 1)^2`.
+    #[inline]
+    pub fn get_2d(&mut self) -> (f64, f64) {
+        let (i, s0, s1) = self.next_dimension();
+        (to_unit(owen_scramble(sobol0(i), s0)), to_unit(owen_scramble(sobol1(i), s1)))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn second_dimension_matches_the_published_sequence() {
+        let got: Vec<f64> = (0..4).map(|i| to_unit(sobol1(i))).collect();
+        assert_eq!(got, vec![0.0, 0.5, 0.75, 0.25]);
+    }
+
+    #[test]
+    fn scrambled_points_stay_stratified() {
+        // The first 2^m points of a scrambled (0,2)-sequence put exactly one point
+        // in each of the 2^m elementary boxes of every shape (here 16x16, 4x64, 64x4).
+        for pixel in 0..4u64 {
+            let pts: Vec<(f64, f64)> = (0..256).map(|i| PixelSampler::new(7, pixel, i).get_2d()).collect();
+            for (nx, ny) in [(16usize, 16usize), (4, 64), (64, 4), (256, 1), (1, 256)] {
+                let mut cells = vec![0u32; nx * ny];
+                for &(x, y) in &pts {
+                    cells[(x * nx as f64) as usize * ny + (y * ny as f64) as usize] += 1;
+                }
+                assert!(cells.iter().all(|&c| c == 1), "pixel {pixel}, boxes {nx}x{ny}");
+            }
+        }
+    }
+
+    #[test]
+    fn index_shuffle_keeps_power_of_two_prefixes_in_one_aligned_block() {
+        for seed in [1u32, 0xdead_beef, 12345] {
+            for m in [1u32, 4, 8] {
+                let block: Vec<u32> = (0..1u32 << m).map(|i| owen_scramble(i, seed)).collect();
+                let base = block[0] >> m;
+                assert!(block.iter().all(|&j| j >> m == base), "seed {seed}, 2^{m}");
+                let mut sorted = block.clone();
+                sorted.sort_unstable();
+                sorted.dedup();
+                assert_eq!(sorted.len(), 1 << m);
+            }
+        }
+    }
+
+    #[test]
+    fn dimensions_and_pixels_are_decorrelated_and_uniform() {
+        // Mean of products of two dimensions over many pixels is 1/4 (independent).
+        let n = 20_000;
+        let (mut prod, mut sum) = (0.0, 0.0);
+        for p in 0..n {
+            let mut s = PixelSampler::new(1, p, 3);
+            let a = s.get_1d();
+            let (b, c) = s.get_2d();
+            prod += a * b;
+            sum += a + b + c;
+        }
+        assert!((prod / n as f64 - 0.25).abs() < 0.01, "{}", prod / n as f64);
+        assert!((sum / (3 * n) as f64 - 0.5).abs() < 0.01);
+    }
+}
