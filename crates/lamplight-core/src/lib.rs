@@ -35,6 +35,7 @@ pub mod lights;
 pub mod materials;
 pub mod math;
 pub mod ray;
+pub mod raycast;
 mod render;
 pub mod sampling;
 pub mod scene;
