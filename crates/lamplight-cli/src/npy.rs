@@ -13,6 +13,7 @@ use std::path::Path;
 use crate::args::UsageError;
 
 /// A parsed `(N, 3)` array, converted to the type the caller needs.
+#[derive(Debug)]
 pub struct Array {
     /// Element type as in the header, e.g. `<f4`.
     descr: String,
