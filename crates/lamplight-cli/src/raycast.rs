@@ -142,8 +142,11 @@ fn cpu_seconds() -> Option<f64> {
     Some(total as f64 * 1e-9)
 }
 
+/// Vertex positions and triangles.
+type Mesh = (Vec<[f32; 3]>, Vec<[u32; 3]>);
+
 /// Positions and triangles from `--mesh` or `--vertices`/`--indices`.
-fn load_mesh(args: &RaycastArgs) -> anyhow::Result<(Vec<[f32; 3]>, Vec<[u32; 3]>)> {
+fn load_mesh(args: &RaycastArgs) -> anyhow::Result<Mesh> {
     match (&args.mesh, &args.vertices, &args.indices) {
         (Some(path), _, _) => {
             let imported = lamplight_scene::import::load(path).map_err(|e| UsageError(e.to_string()))?;

@@ -116,9 +116,9 @@ impl Tri4 {
         debug_assert!(tris.len() <= 4);
         let mut packet = Tri4 { v: [[f32::NAN; 4]; 9], prim: [u32::MAX; 4] };
         for (lane, (tri, prim)) in tris.iter().enumerate() {
-            for vertex in 0..3 {
-                for axis in 0..3 {
-                    packet.v[3 * vertex + axis][lane] = tri[vertex][axis];
+            for (vertex, point) in tri.iter().enumerate() {
+                for (axis, value) in point.iter().enumerate() {
+                    packet.v[3 * vertex + axis][lane] = *value;
                 }
             }
             packet.prim[lane] = *prim;
