@@ -16,6 +16,12 @@ use lamplight_core::math::{Mat4, Vec3};
 
 use crate::error::LoadError;
 
+mod gltf;
+mod gltf_material;
+mod mtl;
+mod obj;
+mod ply;
+
 /// Triangle mesh data as read from a file (indices in the file's face order,
 /// polygons triangulated as fans).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -83,6 +89,149 @@ pub const EXTENSIONS: &[&str] = &["obj", "ply", "gltf", "glb"];
 
 /// Reads `path` with the importer its extension names.
 pub fn load(path: &Path) -> Result<Imported, LoadError> {
+    let bytes = read_file(path)?;
+    load_bytes(path, &bytes)
+}
+
+/// Parses `bytes` as the file `path` (whose extension picks the importer, and
+/// against whose folder relative references such as `.mtl` and `.bin` files
+/// are resolved). The fuzz targets and property tests enter here.
+pub fn load_bytes(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
     let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).unwrap_or_default();
-    Err(LoadError::file(path, format!("cannot read .{ext} files yet (supported: {})", EXTENSIONS.join(", "))))
+    if !EXTENSIONS.contains(&ext.as_str()) {
+        return Err(LoadError::file(path, format!("cannot read .{ext} files (supported: {})", EXTENSIONS.join(", "))));
+    }
+    if bytes.is_empty() {
+        return Err(LoadError::file(path, "the file is empty"));
+    }
+    match ext.as_str() {
+        "ply" => ply::parse(path, bytes),
+        "obj" => obj::parse(path, bytes),
+        "gltf" | "glb" => gltf::parse(path, bytes),
+        _ => Err(LoadError::file(path, format!("cannot read .{ext} files yet"))),
+    }
+}
+
+/// All triangles of a mesh file merged into one mesh in file order, in world
+/// space (instance transforms applied). For a PLY file, face `i` is triangle
+/// `i`. Normals are kept only when every merged mesh has them.
+pub fn load_mesh(path: &Path) -> Result<MeshData, LoadError> {
+    Ok(load(path)?.into_mesh())
+}
+
+impl Imported {
+    /// Merges every instance into one world-space mesh, in instance order.
+    pub fn into_mesh(mut self) -> MeshData {
+        // The common case (PLY, one OBJ object): hand the mesh over without copying.
+        if self.meshes.len() == 1 && self.instances.len() == 1 && self.instances[0].transform == Mat4::IDENTITY {
+            return self.meshes.pop().unwrap_or_default();
+        }
+        let mut out = MeshData { name: None, positions: Vec::new(), indices: Vec::new(), normals: Some(Vec::new()) };
+        for instance in &self.instances {
+            let Some(mesh) = self.meshes.get(instance.mesh) else { continue };
+            let base = out.positions.len() as u32;
+            out.positions.extend(mesh.positions.iter().map(|&p| instance.transform.transform_point3(p)));
+            out.indices.extend(mesh.indices.iter().map(|t| t.map(|i| i + base)));
+            match (&mut out.normals, &mesh.normals) {
+                (Some(all), Some(normals)) => {
+                    // Normals transform with the inverse transpose.
+                    let m = instance.transform.inverse().transpose();
+                    all.extend(normals.iter().map(|&n| m.transform_vector3(n).normalize_or_zero()));
+                }
+                (all, _) => *all = None,
+            }
+        }
+        out
+    }
+}
+
+/// Reads a whole file, naming a missing file, a directory or an unreadable one.
+pub(crate) fn read_file(path: &Path) -> Result<Vec<u8>, LoadError> {
+    let meta = std::fs::metadata(path).map_err(|e| io_error(path, &e))?;
+    if meta.is_dir() {
+        return Err(LoadError::file(path, "is a directory, expected a file"));
+    }
+    // Devices and pipes (`/dev/zero`, `/dev/stdin`) could never end or block forever.
+    if !meta.is_file() {
+        return Err(LoadError::file(path, "is not a regular file"));
+    }
+    std::fs::read(path).map_err(|e| io_error(path, &e))
+}
+
+fn io_error(path: &Path, e: &std::io::Error) -> LoadError {
+    match e.kind() {
+        std::io::ErrorKind::NotFound => LoadError::file(path, "file not found"),
+        _ => LoadError::file(path, format!("cannot read the file: {e}")),
+    }
+}
+
+/// Whitespace-separated words of a line with their 1-based character columns.
+pub(crate) fn words(line: &str) -> Vec<(usize, &str)> {
+    let mut out = Vec::new();
+    let mut start = None;
+    for (col, (i, c)) in line.char_indices().enumerate() {
+        match (c.is_whitespace(), start) {
+            (false, None) => start = Some((col + 1, i)),
+            (true, Some((c0, i0))) => {
+                out.push((c0, &line[i0..i]));
+                start = None;
+            }
+            _ => {}
+        }
+    }
+    if let Some((c0, i0)) = start {
+        out.push((c0, &line[i0..]));
+    }
+    out
+}
+
+/// Word `i` of a text line as a finite number, or an error at its column saying what was expected.
+pub(crate) fn number(path: &Path, line_no: usize, line: &str, words: &[(usize, &str)], i: usize, what: &str) -> Result<f64, LoadError> {
+    let Some(&(column, word)) = words.get(i) else {
+        let end = line.trim_end().chars().count() + 1;
+        return Err(LoadError::at(path, line_no, end, format!("expected a number ({what}), found the end of the line")));
+    };
+    match word.parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        Ok(v) => Err(LoadError::at(path, line_no, column, format!("expected a finite number ({what}), found {v}"))),
+        Err(_) => Err(LoadError::at(path, line_no, column, format!("expected a number ({what}), found `{word}`"))),
+    }
+}
+
+/// Warnings in order, each text kept once.
+#[derive(Default)]
+pub(crate) struct Warnings(Vec<String>);
+
+impl Warnings {
+    /// Adds `text` unless it was added before.
+    pub(crate) fn once(&mut self, text: String) {
+        if !self.0.contains(&text) {
+            self.0.push(text);
+        }
+    }
+
+    /// The warnings in the order they were first added.
+    pub(crate) fn into_vec(self) -> Vec<String> {
+        self.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn words_carry_their_columns() {
+        assert_eq!(words("  element  vértex 8"), vec![(3, "element"), (12, "vértex"), (19, "8")]);
+    }
+
+    #[test]
+    fn numbers_must_be_finite() {
+        let p = Path::new("a.obj");
+        let line = "v 1 nan";
+        let w = words(line);
+        assert_eq!(number(p, 2, line, &w, 1, "x"), Ok(1.0));
+        assert_eq!(number(p, 2, line, &w, 2, "y").unwrap_err().to_string(), "a.obj:2:5: expected a finite number (y), found NaN");
+        assert_eq!(number(p, 2, line, &w, 3, "z").unwrap_err().to_string(), "a.obj:2:8: expected a number (z), found the end of the line");
+    }
 }

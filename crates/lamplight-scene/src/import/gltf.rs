@@ -1,0 +1,397 @@
+//! glTF 2.0 reader: `.gltf` (JSON with external or `data:` base64 buffers) and
+//! `.glb` (binary container).
+//!
+//! Reads the default scene's node tree (or the first scene, or with no scenes
+//! every root node) with `matrix` or TRS transforms, triangle primitives (mode
+//! 4, indexed or not) as meshes, perspective cameras and `KHR_lights_punctual`
+//! lights; materials map as in [`super::gltf_material`]. The camera looks down
+//! its node's -Z with +Y up; a directional light shines along -Z. A spot light
+//! has no lamplight counterpart yet: it becomes a point light (warning). Light
+//! intensities (candela, lux) are taken as lamplight intensity/radiance as is.
+//!
+//! The `gltf` crate parses and validates the JSON (`Gltf::from_slice`, so a bad
+//! reference names its JSON path), but the buffers and accessors are read here:
+//! the crate's `import` would report a missing `.bin` without its JSON path,
+//! and its accessor iterators assume valid lengths (`count - 1` underflows,
+//! `debug_assert`s on strides), while every range here is checked against the
+//! buffer first. Unsupported parts (other primitive modes, orthographic
+//! cameras, textures, skins, animations, morph targets, sparse accessors'
+//! meshes are errors) are reported once each as warnings.
+
+use std::collections::HashMap;
+use std::path::Path;
+
+use base64::engine::{general_purpose::GeneralPurpose, DecodePaddingMode, GeneralPurposeConfig};
+use base64::Engine;
+use gltf::accessor::{DataType, Dimensions};
+use gltf::khr_lights_punctual::Kind;
+use lamplight_core::lights::{DirectionalLight, PointLight};
+use lamplight_core::materials::Material;
+use lamplight_core::math::{Mat4, Rgb, Vec3};
+
+use super::{gltf_material, Imported, ImportedCamera, ImportedLight, ImportedMesh, MeshData, Warnings};
+use crate::error::LoadError;
+
+/// Reads a `.gltf` or `.glb` file's bytes; external buffers are read relative to `path`.
+pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
+    let gltf::Gltf { document, blob } = gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| gltf_error(path, bytes, e))?;
+    let root = document.into_json();
+    check_position_accessors(path, &root)?;
+    let document = gltf::Document::from_json(root).map_err(|e| gltf_error(path, bytes, e))?;
+    let buffers = load_buffers(path, &document, blob)?;
+    let mut reader = Reader { path, buffers, warnings: Warnings::default(), primitives: HashMap::new(), materials: HashMap::new() };
+    let mut out = Imported::default();
+    if document.animations().next().is_some() {
+        reader.warnings.once("glTF animations ignored".to_string());
+    }
+    let scene_count = document.scenes().len();
+    let whole_file = scene_count == 0;
+    let roots: Vec<gltf::Node> = match document.default_scene().or_else(|| document.scenes().next()) {
+        Some(scene) => {
+            if scene_count > 1 {
+                reader.warnings.once(format!("glTF file has {scene_count} scenes: only scene {} is read", scene.index()));
+            }
+            scene.nodes().collect()
+        }
+        None => {
+            let mut is_child = vec![false; document.nodes().len()];
+            for node in document.nodes() {
+                for child in node.children() {
+                    is_child[child.index()] = true;
+                }
+            }
+            document.nodes().filter(|n| !is_child[n.index()]).collect()
+        }
+    };
+    // Depth-first, children in file order, with an explicit stack so deep trees cannot overflow it.
+    let mut seen = vec![false; document.nodes().len()];
+    let mut stack: Vec<(gltf::Node, Mat4, String)> =
+        roots.into_iter().rev().map(|n| (n.clone(), Mat4::IDENTITY, "scene.nodes".to_string())).collect();
+    while let Some((node, parent, via)) = stack.pop() {
+        let i = node.index();
+        if std::mem::replace(&mut seen[i], true) {
+            return Err(LoadError::json(
+                path,
+                via,
+                format!("node {i} is reached twice (a cycle or a shared child): glTF nodes must form trees"),
+            ));
+        }
+        let local = Mat4::from_cols_array_2d(&node.transform().matrix().map(|c| c.map(f64::from)));
+        let world = parent * local;
+        if !world.is_finite() {
+            return Err(LoadError::json(path, format!("nodes[{i}]"), "the transform is not finite"));
+        }
+        reader.node(&node, world, &mut out)?;
+        let children: Vec<gltf::Node> = node.children().collect();
+        for (j, child) in children.into_iter().enumerate().rev() {
+            stack.push((child, world, format!("nodes[{i}].children[{j}]")));
+        }
+    }
+    // Without a scene every node is a root or below one, unless it sits on a cycle.
+    if let Some(i) = seen.iter().position(|s| !s).filter(|_| whole_file) {
+        return Err(LoadError::json(
+            path,
+            format!("nodes[{i}]"),
+            format!("node {i} lies on a cycle of children: glTF nodes must form trees"),
+        ));
+    }
+    out.warnings = reader.warnings.into_vec();
+    Ok(out)
+}
+
+/// gltf-json 1.4.1's validation indexes `accessors[POSITION]` without a bounds
+/// check (found by the `gltf` fuzz target: a file whose POSITION names a missing
+/// accessor panicked), so that one reference is checked before validating.
+fn check_position_accessors(path: &Path, root: &gltf::json::Root) -> Result<(), LoadError> {
+    let positions = gltf::json::validation::Checked::Valid(gltf::json::mesh::Semantic::Positions);
+    for (m, mesh) in root.meshes.iter().enumerate() {
+        for (p, primitive) in mesh.primitives.iter().enumerate() {
+            let Some(index) = primitive.attributes.get(&positions) else { continue };
+            if index.value() >= root.accessors.len() {
+                let at = format!("meshes[{m}].primitives[{p}].attributes.POSITION");
+                return Err(LoadError::json(
+                    path,
+                    at,
+                    format!("accessor {} does not exist ({} accessors)", index.value(), root.accessors.len()),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// State while walking the nodes: buffers, caches, warnings.
+struct Reader<'p> {
+    path: &'p Path,
+    buffers: Vec<Vec<u8>>,
+    warnings: Warnings,
+    /// glTF mesh index -> (index into `Imported::meshes`, material) per triangle primitive.
+    primitives: HashMap<usize, Vec<(usize, Option<Material>)>>,
+    materials: HashMap<usize, Material>,
+}
+
+impl Reader<'_> {
+    fn node(&mut self, node: &gltf::Node, world: Mat4, out: &mut Imported) -> Result<(), LoadError> {
+        if node.skin().is_some() {
+            self.warnings.once("glTF skins ignored: meshes are read in their bind pose".to_string());
+        }
+        if let Some(mesh) = node.mesh() {
+            if !self.primitives.contains_key(&mesh.index()) {
+                let list = self.mesh(&mesh, out)?;
+                self.primitives.insert(mesh.index(), list);
+            }
+            for (m, material) in &self.primitives[&mesh.index()] {
+                out.instances.push(ImportedMesh { mesh: *m, transform: world, material: material.clone() });
+            }
+        }
+        let origin = world.transform_point3(Vec3::ZERO);
+        let forward = world.transform_vector3(-Vec3::Z);
+        if let Some(camera) = node.camera() {
+            match camera.projection() {
+                gltf::camera::Projection::Perspective(p) => {
+                    let vfov_deg = f64::from(p.yfov()).to_degrees();
+                    if !(vfov_deg > 0.0 && vfov_deg < 180.0) || forward.length_squared() == 0.0 {
+                        return Err(LoadError::json(
+                            self.path,
+                            format!("cameras[{}].perspective.yfov", camera.index()),
+                            "expected a field of view in (0, pi)",
+                        ));
+                    }
+                    out.cameras.push(ImportedCamera {
+                        eye: origin,
+                        target: origin + forward,
+                        up: world.transform_vector3(Vec3::Y),
+                        vfov_deg,
+                    });
+                }
+                gltf::camera::Projection::Orthographic(_) => self.warnings.once("glTF orthographic cameras ignored".to_string()),
+            }
+        }
+        if let Some(light) = node.light() {
+            let at = format!("extensions.KHR_lights_punctual.lights[{}]", light.index());
+            let power = Rgb::from_array(light.color().map(f64::from)) * f64::from(light.intensity());
+            if light.range().is_some() {
+                self.warnings.once("glTF light range ignored: point lights fall off with the squared distance".to_string());
+            }
+            let made = match light.kind() {
+                Kind::Directional => DirectionalLight::new(forward, power).map(ImportedLight::Directional),
+                kind => {
+                    if matches!(kind, Kind::Spot { .. }) {
+                        self.warnings.once("glTF spot lights read as point lights (no spot light in lamplight yet)".to_string());
+                    }
+                    PointLight::new(origin, power).map(ImportedLight::Point)
+                }
+            };
+            out.lights.push(made.map_err(|e| LoadError::json(self.path, at, e.to_string()))?);
+        }
+        Ok(())
+    }
+
+    /// Reads a mesh's triangle primitives into `out.meshes`.
+    fn mesh(&mut self, mesh: &gltf::Mesh, out: &mut Imported) -> Result<Vec<(usize, Option<Material>)>, LoadError> {
+        let mut list = Vec::new();
+        for p in mesh.primitives() {
+            let at = format!("meshes[{}].primitives[{}]", mesh.index(), p.index());
+            if p.mode() != gltf::mesh::Mode::Triangles {
+                self.warnings.once(format!("glTF primitives of mode {:?} ignored: only triangles (mode 4) are read", p.mode()));
+                continue;
+            }
+            if p.morph_targets().next().is_some() {
+                self.warnings.once("glTF morph targets ignored".to_string());
+            }
+            for (semantic, _) in p.attributes() {
+                if !matches!(semantic, gltf::Semantic::Positions | gltf::Semantic::Normals) {
+                    self.warnings.once(format!("glTF vertex attribute {semantic:?} ignored"));
+                }
+            }
+            let Some(positions) = p.get(&gltf::Semantic::Positions) else {
+                return Err(LoadError::json(self.path, format!("{at}.attributes"), "expected a POSITION attribute"));
+            };
+            let positions = self.vec3s(&positions)?;
+            let normals = match p.get(&gltf::Semantic::Normals) {
+                Some(acc) => {
+                    let normals = self.vec3s(&acc)?;
+                    if normals.len() != positions.len() {
+                        let msg = format!("NORMAL has {} items but POSITION has {}", normals.len(), positions.len());
+                        return Err(LoadError::json(self.path, format!("{at}.attributes.NORMAL"), msg));
+                    }
+                    Some(normals)
+                }
+                None => None,
+            };
+            let indices: Vec<u32> = match p.indices() {
+                Some(acc) => {
+                    let values = self.values(&acc, Dimensions::Scalar, &[DataType::U8, DataType::U16, DataType::U32])?;
+                    let mut out = Vec::with_capacity(values.len());
+                    for (k, v) in values.into_iter().enumerate() {
+                        if v >= positions.len() as f64 {
+                            let msg = format!("index {v} of triangle {} out of range: POSITION has {} vertices", k / 3, positions.len());
+                            return Err(LoadError::json(self.path, format!("accessors[{}]", acc.index()), msg));
+                        }
+                        out.push(v as u32);
+                    }
+                    out
+                }
+                None => (0..positions.len() as u32).collect(),
+            };
+            let leftover = indices.len() % 3;
+            if leftover > 0 {
+                self.warnings.once(format!("glTF {at}: {leftover} trailing indices do not make a triangle and are ignored"));
+            }
+            let name = match (mesh.name(), mesh.primitives().len()) {
+                (Some(n), 1) => Some(n.to_string()),
+                (Some(n), _) => Some(format!("{n}.{}", p.index())),
+                (None, _) => None,
+            };
+            let triangles = indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect();
+            out.meshes.push(MeshData { name, positions, indices: triangles, normals });
+            let material = match p.material().index() {
+                Some(m) => Some(self.materials.entry(m).or_insert_with(|| gltf_material::map(&p.material(), &mut self.warnings)).clone()),
+                None => None,
+            };
+            list.push((out.meshes.len() - 1, material));
+        }
+        Ok(list)
+    }
+
+    /// A VEC3 float accessor as finite vectors.
+    fn vec3s(&self, acc: &gltf::Accessor) -> Result<Vec<Vec3>, LoadError> {
+        let values = self.values(acc, Dimensions::Vec3, &[DataType::F32])?;
+        let mut out = Vec::with_capacity(values.len() / 3);
+        for (k, v) in values.chunks_exact(3).enumerate() {
+            let v = Vec3::new(v[0], v[1], v[2]);
+            if !v.is_finite() {
+                return Err(LoadError::json(
+                    self.path,
+                    format!("accessors[{}]", acc.index()),
+                    format!("item {k} is {v}, expected finite numbers"),
+                ));
+            }
+            out.push(v);
+        }
+        Ok(out)
+    }
+
+    /// Every component of an accessor, in order, after checking its type and that
+    /// its bytes lie inside its buffer view and the view inside its buffer.
+    fn values(&self, acc: &gltf::Accessor, dims: Dimensions, types: &[DataType]) -> Result<Vec<f64>, LoadError> {
+        let at = format!("accessors[{}]", acc.index());
+        let err = |where_: String, msg: String| Err(LoadError::json(self.path, where_, msg));
+        if acc.sparse().is_some() {
+            return err(format!("{at}.sparse"), "sparse accessors are not supported".into());
+        }
+        if acc.dimensions() != dims || !types.contains(&acc.data_type()) {
+            return err(at, format!("expected {dims:?} of {types:?}, found {:?} of {:?}", acc.dimensions(), acc.data_type()));
+        }
+        let Some(view) = acc.view() else {
+            return err(format!("{at}.bufferView"), "accessors without a buffer view (all zeros) are not supported".into());
+        };
+        let count = acc.count() as u64;
+        if count == 0 {
+            return Ok(Vec::new());
+        }
+        let component = acc.data_type().size() as u64;
+        let n = dims.multiplicity() as u64;
+        let item = component * n;
+        let stride = view.stride().map_or(item, |s| s as u64);
+        if stride < item {
+            return err(format!("bufferViews[{}].byteStride", view.index()), format!("stride {stride} is less than the item size {item}"));
+        }
+        let buffer = &self.buffers[view.buffer().index()];
+        let view_start = view.offset() as u64;
+        let view_end = view_start + view.length() as u64;
+        if view_end > buffer.len() as u64 {
+            let msg = format!("bytes {view_start}..{view_end} lie outside buffer {} ({} bytes)", view.buffer().index(), buffer.len());
+            return err(format!("bufferViews[{}]", view.index()), msg);
+        }
+        let start = acc.offset() as u64;
+        let end = u128::from(start) + u128::from(stride) * u128::from(count - 1) + u128::from(item);
+        if end > u128::from(view.length() as u64) {
+            let msg = format!("needs bytes {start}..{end} of bufferView {}, which has {} bytes", view.index(), view.length());
+            return err(at, msg);
+        }
+        let mut out = Vec::with_capacity((count * n) as usize);
+        for k in 0..count {
+            let base = (view_start + start + k * stride) as usize;
+            for c in 0..n as usize {
+                let at = base + c * component as usize;
+                let b = &buffer[at..at + component as usize];
+                out.push(match acc.data_type() {
+                    DataType::I8 => f64::from(b[0] as i8),
+                    DataType::U8 => f64::from(b[0]),
+                    DataType::I16 => f64::from(i16::from_le_bytes([b[0], b[1]])),
+                    DataType::U16 => f64::from(u16::from_le_bytes([b[0], b[1]])),
+                    DataType::U32 => f64::from(u32::from_le_bytes([b[0], b[1], b[2], b[3]])),
+                    DataType::F32 => f64::from(f32::from_le_bytes([b[0], b[1], b[2], b[3]])),
+                });
+            }
+        }
+        Ok(out)
+    }
+}
+
+/// The bytes of every buffer: the GLB chunk, a `data:` URI, or a file beside `path`.
+fn load_buffers(path: &Path, document: &gltf::Document, mut blob: Option<Vec<u8>>) -> Result<Vec<Vec<u8>>, LoadError> {
+    let engine = GeneralPurpose::new(
+        &base64::alphabet::STANDARD,
+        GeneralPurposeConfig::new().with_decode_padding_mode(DecodePaddingMode::Indifferent),
+    );
+    let mut out = Vec::new();
+    for buffer in document.buffers() {
+        let at = format!("buffers[{}]", buffer.index());
+        let data = match buffer.source() {
+            gltf::buffer::Source::Bin => {
+                blob.take().ok_or_else(|| LoadError::json(path, &at, "refers to the GLB binary chunk, but the file has none"))?
+            }
+            gltf::buffer::Source::Uri(uri) => {
+                if let Some(rest) = uri.strip_prefix("data:") {
+                    let Some((_, encoded)) = rest.split_once(";base64,") else {
+                        return Err(LoadError::json(path, format!("{at}.uri"), "expected a base64 data URI (`data:...;base64,...`)"));
+                    };
+                    engine.decode(encoded).map_err(|e| LoadError::json(path, format!("{at}.uri"), format!("invalid base64: {e}")))?
+                } else if uri.contains("://") {
+                    return Err(LoadError::json(
+                        path,
+                        format!("{at}.uri"),
+                        format!("cannot fetch `{uri}`: only files beside the glTF are read"),
+                    ));
+                } else {
+                    let file = path.parent().unwrap_or(Path::new("")).join(uri);
+                    super::read_file(&file).map_err(|e| {
+                        LoadError::json(path, format!("{at}.uri"), format!("cannot read buffer `{}`: {}", file.display(), e.message))
+                    })?
+                }
+            }
+        };
+        if data.len() < buffer.length() {
+            return Err(LoadError::json(
+                path,
+                format!("{at}.byteLength"),
+                format!("claims {} bytes but the data has {}", buffer.length(), data.len()),
+            ));
+        }
+        out.push(data);
+    }
+    Ok(out)
+}
+
+/// A `gltf` crate error as a [`LoadError`] with a JSON path or text position.
+fn gltf_error(path: &Path, bytes: &[u8], e: gltf::Error) -> LoadError {
+    match e {
+        gltf::Error::Validation(errors) => {
+            let more = if errors.len() > 1 { format!(" (and {} more problems)", errors.len() - 1) } else { String::new() };
+            match errors.into_iter().next() {
+                Some((json_path, problem)) => LoadError::json(path, json_path.to_string(), format!("{problem}{more}")),
+                None => LoadError::file(path, "invalid glTF"),
+            }
+        }
+        gltf::Error::Deserialize(e) if !bytes.starts_with(b"glTF") => {
+            LoadError::at(path, e.line().max(1), e.column().max(1), format!("invalid glTF JSON: {e}"))
+        }
+        gltf::Error::Deserialize(e) => {
+            LoadError::file(path, format!("invalid JSON chunk in GLB (line {}, column {}): {e}", e.line(), e.column()))
+        }
+        gltf::Error::Binary(e) => LoadError::file(path, format!("invalid GLB container: {e}")),
+        other => LoadError::file(path, format!("invalid glTF: {other}")),
+    }
+}

@@ -1,0 +1,199 @@
+//! MTL (Wavefront material library) reader and its mapping onto lamplight's
+//! [`Material`].
+//!
+//! MTL's model is the lecture's: `Ka`, `Kd`, `Ks` colours, a Phong exponent
+//! `Ns`, emission `Ke`, transparency `d` (or `Tr = 1 - d`), index `Ni`, and an
+//! illumination model `illum` that switches mirror and glass on. The mapping:
+//!
+//! | MTL | lamplight |
+//! |---|---|
+//! | `Kd` | `kd = Kd`, `color = 1` (so `kd * C = Kd` exactly) |
+//! | `Ka` | `ka = Ka`; when absent `ka = 0.1 Kd` (lamplight's default ambient share) |
+//! | `Ks`, `Ns` | `ks = Ks`, `shininess = Ns` (used as the Blinn exponent as is) |
+//! | `Ke` | `emission = Ke` |
+//! | `illum 0, 1` | `ks = 0` (no highlight) |
+//! | `illum 2` (default) | as read |
+//! | `illum 3, 8` | adds a mirror: `Reflection::Constant(Ks)` |
+//! | `illum 5` | adds a Fresnel mirror: `Reflection::Dielectric { ior: Ni, 0, 1 }` |
+//! | `illum 4, 6, 7, 9` | glass: `Material::glass(Ni, Ks, Ns)` (`Ni` absent: 1.5) with `Kd`, `Ka` kept |
+//! | `d < 1` otherwise | see-through: `Refraction::Constant { ior: Ni or 1, weight: 1 - d }`, `kd`, `ka` scaled by `d`, shadows pass `1 - d` |
+//!
+//! `Tr` follows the specification (`Tr = 1 - d`); whichever of `d`/`Tr` comes
+//! last wins. Texture maps (`map_*`, `bump`, `disp`, `decal`, `refl`) and other
+//! statements are not supported: each kind is reported once as a warning.
+
+use std::collections::HashMap;
+use std::path::Path;
+
+use lamplight_core::materials::{Material, Reflection, Refraction, Texture};
+use lamplight_core::math::Rgb;
+
+use super::{number, words, Warnings};
+use crate::error::LoadError;
+
+/// The values of one `newmtl` block as read.
+#[derive(Clone, Debug, Default)]
+struct MtlValues {
+    ka: Option<Rgb>,
+    kd: Option<Rgb>,
+    ks: Option<Rgb>,
+    ke: Option<Rgb>,
+    ns: Option<f64>,
+    ni: Option<f64>,
+    dissolve: Option<f64>,
+    illum: Option<i64>,
+}
+
+/// Reads a material library into lamplight materials by name.
+pub(super) fn parse(path: &Path, text: &str, warnings: &mut Warnings) -> Result<HashMap<String, Material>, LoadError> {
+    let mut done = HashMap::new();
+    let mut current: Option<(String, MtlValues)> = None;
+    for (line_index, raw) in text.lines().enumerate() {
+        let line_no = line_index + 1;
+        let line = raw.split('#').next().unwrap_or("");
+        let w = words(line);
+        let Some(&(_, keyword)) = w.first() else { continue };
+        if keyword == "newmtl" {
+            if let Some((name, values)) = current.take() {
+                done.insert(name, to_material(&values));
+            }
+            let name = line.trim_start()["newmtl".len()..].trim();
+            if name.is_empty() {
+                return Err(LoadError::at(path, line_no, w[0].0 + 6, "expected a material name after `newmtl`"));
+            }
+            current = Some((name.to_string(), MtlValues::default()));
+            continue;
+        }
+        let is_map = keyword.starts_with("map_") || matches!(keyword, "bump" | "disp" | "decal" | "refl" | "norm");
+        let known = matches!(keyword, "Ka" | "Kd" | "Ks" | "Ke" | "Ns" | "Ni" | "d" | "Tr" | "illum");
+        if !known {
+            let what = if is_map {
+                "MTL texture maps (map_*, bump, disp, decal, refl) ignored".to_string()
+            } else {
+                format!("MTL statement `{keyword}` ignored")
+            };
+            warnings.once(what);
+            continue;
+        }
+        let Some((_, values)) = current.as_mut() else {
+            return Err(LoadError::at(path, line_no, w[0].0, format!("`{keyword}` before any `newmtl`")));
+        };
+        let num = |i: usize, what: &str| number(path, line_no, line, &w, i, what);
+        let rgb = |what: &str| -> Result<Rgb, LoadError> {
+            let r = num(1, what)?;
+            // `Kd r` alone means grey, as in the specification.
+            let (g, b) = if w.len() == 2 { (r, r) } else { (num(2, what)?, num(3, what)?) };
+            let c = Rgb::new(r, g, b);
+            if c.min_element() < 0.0 {
+                return Err(LoadError::at(path, line_no, w[1].0, format!("expected non-negative {what}, found {c}")));
+            }
+            Ok(c)
+        };
+        match keyword {
+            "Ka" => values.ka = Some(rgb("Ka colour")?),
+            "Kd" => values.kd = Some(rgb("Kd colour")?),
+            "Ks" => values.ks = Some(rgb("Ks colour")?),
+            "Ke" => values.ke = Some(rgb("Ke colour")?),
+            "Ns" => values.ns = Some(num(1, "Ns exponent")?.max(0.0)),
+            "Ni" => {
+                let ni = num(1, "Ni index of refraction")?;
+                if !(ni > 0.0) {
+                    return Err(LoadError::at(path, line_no, w[1].0, format!("expected a positive index of refraction, found {ni}")));
+                }
+                values.ni = Some(ni);
+            }
+            "d" | "Tr" => {
+                // `d -halo f` is a variant of `d`; its factor is the last word.
+                let v = num(w.len() - 1, "transparency")?;
+                if !(0.0..=1.0).contains(&v) {
+                    return Err(LoadError::at(path, line_no, w[w.len() - 1].0, format!("expected a value in [0, 1], found {v}")));
+                }
+                values.dissolve = Some(if keyword == "d" { v } else { 1.0 - v });
+            }
+            _ => {
+                let v = num(1, "illumination model")?;
+                if !(v.fract() == 0.0 && (0.0..=10.0).contains(&v)) {
+                    return Err(LoadError::at(path, line_no, w[1].0, format!("expected an illumination model 0..10, found {v}")));
+                }
+                if v == 10.0 {
+                    warnings.once("MTL illum 10 (shadow matte) read as illum 2".to_string());
+                }
+                values.illum = Some(v as i64);
+            }
+        }
+    }
+    if let Some((name, values)) = current.take() {
+        done.insert(name, to_material(&values));
+    }
+    Ok(done)
+}
+
+/// The mapping of the module doc.
+fn to_material(v: &MtlValues) -> Material {
+    let kd = v.kd.unwrap_or(Rgb::splat(0.8));
+    let ka = v.ka.unwrap_or(0.1 * kd);
+    let ks = v.ks.unwrap_or(Rgb::ZERO);
+    let ns = v.ns.unwrap_or(1.0);
+    let illum = v.illum.unwrap_or(2);
+    let mut m = Material {
+        color: Texture::Constant(Rgb::ONE),
+        ka,
+        kd,
+        ks: if illum <= 1 { Rgb::ZERO } else { ks },
+        shininess: ns,
+        emission: v.ke.unwrap_or(Rgb::ZERO),
+        ..Material::default()
+    };
+    match illum {
+        3 | 8 => m.reflection = Reflection::Constant(ks),
+        5 => m.reflection = Reflection::Dielectric { ior: v.ni.unwrap_or(1.5), min: 0.0, max: 1.0 },
+        4 | 6 | 7 | 9 => {
+            let glass = Material::glass(v.ni.unwrap_or(1.5), ks.max_element(), ns);
+            return Material { ka: v.ka.unwrap_or(Rgb::ZERO), kd: v.kd.unwrap_or(Rgb::ZERO), emission: m.emission, ks, ..glass };
+        }
+        _ => {}
+    }
+    if let Some(d) = v.dissolve.filter(|&d| d < 1.0) {
+        m.refraction = Refraction::Constant { ior: v.ni.unwrap_or(1.0), weight: Rgb::splat(1.0 - d) };
+        m.kd *= d;
+        m.ka *= d;
+        m.shadow_transmittance = Rgb::splat(1.0 - d);
+    }
+    m
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn one(text: &str) -> Material {
+        let mut w = Warnings::default();
+        parse(Path::new("t.mtl"), text, &mut w).unwrap().remove("m").unwrap()
+    }
+
+    #[test]
+    fn plastic_maps_exactly() {
+        let m = one("newmtl m\nKa 0.1 0.2 0.3\nKd 0.5 0.6 0.7\nKs 0.2\nNs 40\n");
+        assert_eq!((m.ka, m.kd, m.ks, m.shininess), (Rgb::new(0.1, 0.2, 0.3), Rgb::new(0.5, 0.6, 0.7), Rgb::splat(0.2), 40.0));
+        assert_eq!(m.color, Texture::Constant(Rgb::ONE));
+        assert_eq!(m.reflection, Reflection::None);
+    }
+
+    #[test]
+    fn illum_switches_mirror_and_glass() {
+        assert_eq!(one("newmtl m\nKs 0.9\nillum 3\n").reflection, Reflection::Constant(Rgb::splat(0.9)));
+        assert_eq!(one("newmtl m\nKs 0.9\nillum 1\n").ks, Rgb::ZERO);
+        let glass = one("newmtl m\nNi 1.33\nillum 7\n");
+        assert_eq!(glass.refraction, Refraction::Fresnel { ior: 1.33 });
+        assert_eq!(glass.shadow_transmittance, Rgb::ONE);
+    }
+
+    #[test]
+    fn dissolve_and_tr_are_complements() {
+        let a = one("newmtl m\nKd 1\nd 0.25\n");
+        let b = one("newmtl m\nKd 1\nTr 0.75\n");
+        assert_eq!(a, b);
+        assert_eq!(a.refraction, Refraction::Constant { ior: 1.0, weight: Rgb::splat(0.75) });
+        assert_eq!(a.kd, Rgb::splat(0.25));
+    }
+}

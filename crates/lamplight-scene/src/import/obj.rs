@@ -1,0 +1,220 @@
+//! Wavefront OBJ reader with MTL materials (mapping in [`super::mtl`]).
+//!
+//! Reads `v` (positions), `vn` (normals), `f` (polygons of any size in the forms
+//! `v`, `v/vt`, `v//vn`, `v/vt/vn`, with 1-based or negative, relative indices),
+//! `o`/`g` (names), `usemtl` and `mtllib`. Polygons are fan-triangulated
+//! (`v0 v(k) v(k+1)`). Every run of faces with one object/group name and one
+//! material becomes one mesh, in file order, so merging the meshes
+//! ([`super::load_mesh`]) keeps the file's face order. A mesh has normals when
+//! every corner of its faces names one. Texture coordinates, lines, points,
+//! free-form geometry and unknown statements are reported once each as
+//! warnings; smoothing groups (`s`) only matter with normals and are skipped.
+//! A file with a single run of faces keeps the file's vertex numbering (see
+//! `keep_file_numbering`); otherwise each mesh holds only the vertices it uses.
+//!
+//! Hand-written rather than the `tobj` crate: tobj's `LoadError` is a bare enum
+//! (`PositionParseError`, `FaceParseError`, ...) with no line or column and no
+//! file name for a broken `.mtl`, while this importer must name all three. OBJ is
+//! line-based and small enough that the parser is shorter than the glue would be.
+
+use std::collections::HashMap;
+use std::path::Path;
+
+use lamplight_core::materials::Material;
+use lamplight_core::math::{Mat4, Vec3};
+
+use super::{mtl, number, words, Imported, ImportedMesh, MeshData, Warnings};
+use crate::error::LoadError;
+
+/// One run of faces being built: its own vertices, remapped from the file's.
+#[derive(Default)]
+struct Group {
+    name: Option<String>,
+    material: Option<String>,
+    mesh: MeshData,
+    normals: Vec<Vec3>,
+    all_corners_have_normals: bool,
+    /// File (position, normal) index pair -> index in this mesh.
+    remap: HashMap<(u32, u32), u32>,
+    /// Index in this mesh -> file (position, normal) index pair.
+    origin: Vec<(u32, u32)>,
+}
+
+impl Group {
+    fn new(name: Option<String>, material: Option<String>) -> Group {
+        Group { name, material, all_corners_have_normals: true, ..Group::default() }
+    }
+}
+
+/// Reads an OBJ file's text; `.mtl` files are read relative to `path`'s folder.
+pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
+    let text = String::from_utf8_lossy(bytes);
+    let mut warnings = Warnings::default();
+    let mut positions: Vec<Vec3> = Vec::new();
+    let mut normals: Vec<Vec3> = Vec::new();
+    let mut materials: HashMap<String, Material> = HashMap::new();
+    let mut done: Vec<Group> = Vec::new();
+    let mut group = Group::new(None, None);
+    let mut corners: Vec<(u32, u32)> = Vec::new();
+    for (line_index, raw) in text.lines().enumerate() {
+        let line_no = line_index + 1;
+        let line = raw.split('#').next().unwrap_or("");
+        let w = words(line);
+        let Some(&(_, keyword)) = w.first() else { continue };
+        let num = |i: usize, what: &str| number(path, line_no, line, &w, i, what);
+        match keyword {
+            "v" => positions.push(Vec3::new(num(1, "x")?, num(2, "y")?, num(3, "z")?)),
+            "vn" => normals.push(Vec3::new(num(1, "normal x")?, num(2, "normal y")?, num(3, "normal z")?)),
+            "vt" => warnings.once("OBJ texture coordinates (vt) ignored: textures are not supported".to_string()),
+            "f" => {
+                if w.len() < 4 {
+                    return Err(LoadError::at(path, line_no, w[0].0, format!("a face needs at least 3 vertices, found {}", w.len() - 1)));
+                }
+                corners.clear();
+                for &(column, word) in &w[1..] {
+                    let corner = parse_corner(word, positions.len(), normals.len())
+                        .map_err(|message| LoadError::at(path, line_no, column, format!("face corner `{word}`: {message}")))?;
+                    corners.push(corner);
+                }
+                add_face(&mut group, &corners, &positions, &normals);
+            }
+            "o" | "g" | "usemtl" => {
+                let rest = line.trim_start()[keyword.len()..].trim();
+                let (name, material) = match keyword {
+                    "usemtl" => {
+                        if !materials.contains_key(rest) {
+                            warnings.once(format!("OBJ material `{rest}` is defined by no `mtllib` read so far: no material used"));
+                        }
+                        (group.name.clone(), Some(rest.to_string()))
+                    }
+                    _ => ((!rest.is_empty()).then(|| rest.to_string()), group.material.clone()),
+                };
+                let next = Group::new(name, material);
+                done.push(std::mem::replace(&mut group, next));
+            }
+            "mtllib" => {
+                for &(column, file) in &w[1..] {
+                    let mtl_path = path.parent().unwrap_or(Path::new("")).join(file);
+                    let bytes = super::read_file(&mtl_path).map_err(|e| {
+                        LoadError::at(
+                            path,
+                            line_no,
+                            column,
+                            format!("cannot read material library `{}`: {}", mtl_path.display(), e.message),
+                        )
+                    })?;
+                    materials.extend(mtl::parse(&mtl_path, &String::from_utf8_lossy(&bytes), &mut warnings)?);
+                }
+            }
+            "s" => {}
+            "l" | "p" => warnings.once(format!("OBJ {} elements ignored", if keyword == "l" { "line" } else { "point" })),
+            _ => warnings.once(format!("OBJ statement `{keyword}` ignored")),
+        }
+    }
+    done.push(group);
+    done.retain(|g| !g.mesh.indices.is_empty());
+    if let [single] = done.as_mut_slice() {
+        keep_file_numbering(single, &positions, &normals);
+    }
+    let mut imported = Imported { warnings: warnings.into_vec(), ..Imported::default() };
+    for g in done {
+        let mut mesh = g.mesh;
+        mesh.name = g.name;
+        if g.all_corners_have_normals {
+            mesh.normals = Some(g.normals);
+        }
+        let material = g.material.and_then(|m| materials.get(&m).cloned());
+        imported.instances.push(ImportedMesh { mesh: imported.meshes.len(), transform: Mat4::IDENTITY, material });
+        imported.meshes.push(mesh);
+    }
+    if imported.meshes.is_empty() {
+        imported.warnings.push("OBJ file has no faces: nothing to render".to_string());
+    }
+    Ok(imported)
+}
+
+/// A file of one group keeps the file's vertex numbering (vertex `i` of the mesh is
+/// `v` line `i`, unused ones included) when its corners name no normals, or each
+/// names the normal of the same number, so that tools can refer to file indices.
+fn keep_file_numbering(group: &mut Group, positions: &[Vec3], normals: &[Vec3]) {
+    let no_normals = group.origin.iter().all(|&(_, n)| n == u32::MAX);
+    let paired = normals.len() == positions.len() && group.origin.iter().all(|&(v, n)| v == n);
+    if !(no_normals || paired) {
+        return;
+    }
+    for t in &mut group.mesh.indices {
+        *t = t.map(|i| group.origin[i as usize].0);
+    }
+    group.mesh.positions = positions.to_vec();
+    group.normals = if paired { normals.to_vec() } else { Vec::new() };
+    group.all_corners_have_normals = paired;
+}
+
+/// `v`, `v/vt`, `v//vn` or `v/vt/vn` -> 0-based (position, normal) with `u32::MAX` for "no normal".
+fn parse_corner(word: &str, n_positions: usize, n_normals: usize) -> Result<(u32, u32), String> {
+    let mut parts = word.split('/');
+    let v = resolve(parts.next().unwrap_or(""), n_positions, "vertex")?;
+    let _texture = parts.next();
+    let n = match parts.next() {
+        Some(s) if !s.is_empty() => resolve(s, n_normals, "normal")?,
+        _ => u32::MAX,
+    };
+    if parts.next().is_some() {
+        return Err("expected at most 3 indices separated by `/`".to_string());
+    }
+    Ok((v, n))
+}
+
+/// An OBJ index (1-based, or negative counting back from the last one read) -> 0-based.
+fn resolve(text: &str, count: usize, what: &str) -> Result<u32, String> {
+    let Ok(i) = text.parse::<i64>() else {
+        return Err(format!("expected an integer {what} index, found `{text}`"));
+    };
+    let count = count as i64;
+    let plural = if what == "vertex" { "vertices" } else { "normals" };
+    let zero_based = if i > 0 { i - 1 } else { count + i };
+    if i == 0 || zero_based < 0 || zero_based >= count || zero_based >= i64::from(u32::MAX) {
+        return Err(format!("{what} index {i} out of range ({count} {plural} defined so far)"));
+    }
+    Ok(zero_based as u32)
+}
+
+fn add_face(group: &mut Group, corners: &[(u32, u32)], positions: &[Vec3], normals: &[Vec3]) {
+    let mut local = [0u32; 3];
+    let index_of = |group: &mut Group, (v, n): (u32, u32)| -> u32 {
+        if n == u32::MAX {
+            group.all_corners_have_normals = false;
+        }
+        let next = group.mesh.positions.len() as u32;
+        *group.remap.entry((v, n)).or_insert_with(|| {
+            group.mesh.positions.push(positions[v as usize]);
+            group.normals.push(normals.get(n as usize).copied().unwrap_or(Vec3::ZERO));
+            group.origin.push((v, n));
+            next
+        })
+    };
+    local[0] = index_of(group, corners[0]);
+    let mut previous = index_of(group, corners[1]);
+    for &corner in &corners[2..] {
+        let current = index_of(group, corner);
+        local[1] = previous;
+        local[2] = current;
+        group.mesh.indices.push(local);
+        previous = current;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn negative_indices_count_back() {
+        assert_eq!(resolve("-1", 4, "vertex"), Ok(3));
+        assert_eq!(resolve("4", 4, "vertex"), Ok(3));
+        assert!(resolve("0", 4, "vertex").is_err());
+        assert!(resolve("-5", 4, "vertex").is_err());
+        assert_eq!(parse_corner("2//-1", 3, 2), Ok((1, 1)));
+        assert_eq!(parse_corner("2/7", 3, 0), Ok((1, u32::MAX)));
+    }
+}

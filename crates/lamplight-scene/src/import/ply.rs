@@ -1,0 +1,588 @@
+//! PLY (Stanford polygon file) reader: ASCII, binary little-endian and binary
+//! big-endian bodies, vertex positions with optional normals (`nx ny nz`),
+//! `face` lists of any length (fan-triangulated: `v0 v(k) v(k+1)`), and
+//! `tristrips` lists with `-1` restarts (strip `a b c d ...` gives `abc`, `cbd`,
+//! `cde`, ...: every second triangle swaps its first two corners so that all keep
+//! the strip's winding; degenerate triangles are kept so counts match the file).
+//!
+//! Face `i` of a file whose faces are all triangles is triangle `i` of the mesh,
+//! and strips unroll in file order. Other elements and properties are read past
+//! and reported as warnings. The `vertex` element must come before the faces
+//! (every PLY writer we know does this) so that indices are checked as read.
+//!
+//! Hand-written rather than the `ply-rs` crate because the importer must (1)
+//! report the line and column of a header error and the byte offset (or line
+//! and column, for ASCII) of a body error, (2) compare the sizes the header
+//! claims with the file's size *before* allocating, so a header claiming 10^12
+//! vertices fails at once instead of exhausting memory, (3) stream faces into
+//! triangles without a map per element (ply-rs keeps a `HashMap` per vertex,
+//! several times slower and larger on the 1M-triangle Igea), and (4) unroll
+//! `tristrips`. The format is small enough (a header of `element`/`property`
+//! lines, then packed values) that this is a few hundred lines.
+
+use std::path::Path;
+
+use lamplight_core::math::Vec3;
+
+use super::{words, Imported, ImportedMesh, MeshData};
+use crate::error::LoadError;
+use lamplight_core::math::Mat4;
+
+/// A scalar type of the PLY header.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Scalar {
+    I8,
+    U8,
+    I16,
+    U16,
+    I32,
+    U32,
+    F32,
+    F64,
+}
+
+impl Scalar {
+    fn parse(name: &str) -> Option<Scalar> {
+        Some(match name {
+            "char" | "int8" => Scalar::I8,
+            "uchar" | "uint8" => Scalar::U8,
+            "short" | "int16" => Scalar::I16,
+            "ushort" | "uint16" => Scalar::U16,
+            "int" | "int32" => Scalar::I32,
+            "uint" | "uint32" => Scalar::U32,
+            "float" | "float32" => Scalar::F32,
+            "double" | "float64" => Scalar::F64,
+            _ => return None,
+        })
+    }
+
+    fn size(self) -> usize {
+        match self {
+            Scalar::I8 | Scalar::U8 => 1,
+            Scalar::I16 | Scalar::U16 => 2,
+            Scalar::I32 | Scalar::U32 | Scalar::F32 => 4,
+            Scalar::F64 => 8,
+        }
+    }
+
+    fn name(self) -> &'static str {
+        match self {
+            Scalar::I8 => "char",
+            Scalar::U8 => "uchar",
+            Scalar::I16 => "short",
+            Scalar::U16 => "ushort",
+            Scalar::I32 => "int",
+            Scalar::U32 => "uint",
+            Scalar::F32 => "float",
+            Scalar::F64 => "double",
+        }
+    }
+
+    /// The integer range of the type (`None` for floats).
+    fn int_range(self) -> Option<(i64, i64)> {
+        Some(match self {
+            Scalar::I8 => (i8::MIN.into(), i8::MAX.into()),
+            Scalar::U8 => (0, u8::MAX.into()),
+            Scalar::I16 => (i16::MIN.into(), i16::MAX.into()),
+            Scalar::U16 => (0, u16::MAX.into()),
+            Scalar::I32 => (i32::MIN.into(), i32::MAX.into()),
+            Scalar::U32 => (0, u32::MAX.into()),
+            Scalar::F32 | Scalar::F64 => return None,
+        })
+    }
+}
+
+/// A property: one scalar, or a list with a count type and an item type.
+#[derive(Clone, Debug)]
+struct Property {
+    name: String,
+    count: Option<Scalar>,
+    item: Scalar,
+}
+
+/// An element of the header with the line it was declared on.
+#[derive(Clone, Debug)]
+struct Element {
+    name: String,
+    count: u64,
+    props: Vec<Property>,
+    line: usize,
+    count_column: usize,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Format {
+    Ascii,
+    Binary { big_endian: bool },
+}
+
+/// Reads a PLY file's bytes into one mesh with an identity transform.
+pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
+    let mut warnings = Vec::new();
+    let mut mesh = parse_mesh(path, bytes, &mut warnings)?;
+    mesh.name = path.file_stem().map(|s| s.to_string_lossy().into_owned());
+    Ok(Imported {
+        meshes: vec![mesh],
+        instances: vec![ImportedMesh { mesh: 0, transform: Mat4::IDENTITY, material: None }],
+        warnings,
+        ..Imported::default()
+    })
+}
+
+fn parse_mesh(path: &Path, bytes: &[u8], warnings: &mut Vec<String>) -> Result<MeshData, LoadError> {
+    let (format, elements, body_start) = parse_header(path, bytes)?;
+    let body = &bytes[body_start..];
+    check_sizes(path, format, &elements, body.len())?;
+    let mut reader = match format {
+        Format::Ascii => Reader::Ascii(AsciiReader::new(body, header_lines(bytes, body_start))),
+        Format::Binary { big_endian } => Reader::Binary { bytes, pos: body_start, start_of_last: body_start, big_endian },
+    };
+    let mut mesh = MeshData::default();
+    let mut vertex_count: Option<u64> = None;
+    for element in &elements {
+        match element.name.as_str() {
+            "vertex" => {
+                read_vertices(path, &mut reader, element, &mut mesh, warnings)?;
+                vertex_count = Some(element.count);
+            }
+            "face" | "tristrips" => {
+                let Some(n) = vertex_count else {
+                    return Err(LoadError::at(
+                        path,
+                        element.line,
+                        1,
+                        format!("element `{}` comes before element `vertex`; the vertices must come first", element.name),
+                    ));
+                };
+                read_faces(path, &mut reader, element, n, &mut mesh, warnings)?;
+            }
+            _ => {
+                warnings.push(format!("PLY element `{}` ({} items) ignored", element.name, element.count));
+                // An element without properties takes no bytes, whatever its count: nothing to skip.
+                let count = if element.props.is_empty() { 0 } else { element.count };
+                for i in 0..count {
+                    for p in &element.props {
+                        skip_property(&mut reader, path, p, (&element.name, i))?;
+                    }
+                }
+            }
+        }
+    }
+    if vertex_count.is_none() {
+        return Err(LoadError::file(path, "the PLY header declares no `vertex` element"));
+    }
+    if mesh.indices.is_empty() {
+        warnings.push("PLY file has no faces: the mesh has no triangles".to_string());
+    }
+    Ok(mesh)
+}
+
+/// Splits the header into elements; returns the body's byte offset.
+fn parse_header(path: &Path, bytes: &[u8]) -> Result<(Format, Vec<Element>, usize), LoadError> {
+    let mut pos = 0;
+    let mut line_no = 0;
+    let mut format = None;
+    let mut elements: Vec<Element> = Vec::new();
+    loop {
+        if pos >= bytes.len() {
+            return Err(LoadError::at(path, line_no.max(1), 1, "the PLY header ends without an `end_header` line"));
+        }
+        line_no += 1;
+        let end = bytes[pos..].iter().position(|&b| b == b'\n').map_or(bytes.len(), |i| pos + i);
+        let raw = &bytes[pos..end];
+        pos = (end + 1).min(bytes.len());
+        let raw = raw.strip_suffix(b"\r").unwrap_or(raw);
+        let Ok(line) = std::str::from_utf8(raw) else {
+            return Err(LoadError::at(path, line_no, 1, "expected a PLY header line of text, found binary data"));
+        };
+        let words: Vec<(usize, &str)> = words(line);
+        let err = |i: usize, msg: String| {
+            let col = words.get(i).map_or(line.chars().count() + 1, |w| w.0);
+            LoadError::at(path, line_no, col, msg)
+        };
+        if line_no == 1 {
+            if line.trim_end() != "ply" {
+                return Err(LoadError::at(path, 1, 1, "expected the magic line `ply` (not a PLY file)"));
+            }
+            continue;
+        }
+        let Some(&(_, keyword)) = words.first() else { continue };
+        match keyword {
+            "comment" | "obj_info" => {}
+            "format" => {
+                format = Some(match words.get(1).map(|w| w.1) {
+                    Some("ascii") => Format::Ascii,
+                    Some("binary_little_endian") => Format::Binary { big_endian: false },
+                    Some("binary_big_endian") => Format::Binary { big_endian: true },
+                    other => {
+                        return Err(err(
+                            1,
+                            format!(
+                                "expected `ascii`, `binary_little_endian` or `binary_big_endian`, found {}",
+                                other.map_or("nothing".to_string(), |o| format!("`{o}`"))
+                            ),
+                        ))
+                    }
+                });
+            }
+            "element" => {
+                let (Some(name), Some(count)) = (words.get(1), words.get(2)) else {
+                    return Err(err(words.len(), "expected `element <name> <count>`".to_string()));
+                };
+                let Ok(n) = count.1.parse::<u64>() else {
+                    return Err(err(2, format!("expected a non-negative element count, found `{}`", count.1)));
+                };
+                elements.push(Element { name: name.1.to_string(), count: n, props: Vec::new(), line: line_no, count_column: count.0 });
+            }
+            "property" => {
+                let Some(element) = elements.last_mut() else {
+                    return Err(err(0, "expected an `element` line before the first `property`".to_string()));
+                };
+                let ty = |i: usize| {
+                    let w = words.get(i).map_or("nothing", |w| w.1);
+                    Scalar::parse(w).ok_or_else(|| {
+                        err(i, format!("expected a PLY type (char, uchar, short, ushort, int, uint, float, double), found `{w}`"))
+                    })
+                };
+                let prop = if words.get(1).map(|w| w.1) == Some("list") {
+                    let count = ty(2)?;
+                    if count.int_range().is_none() {
+                        return Err(err(2, format!("a list's count type must be an integer type, found `{}`", count.name())));
+                    }
+                    Property {
+                        count: Some(count),
+                        item: ty(3)?,
+                        name: words.get(4).map(|w| w.1.to_string()).ok_or_else(|| err(4, "expected a property name".into()))?,
+                    }
+                } else {
+                    Property {
+                        count: None,
+                        item: ty(1)?,
+                        name: words.get(2).map(|w| w.1.to_string()).ok_or_else(|| err(2, "expected a property name".into()))?,
+                    }
+                };
+                element.props.push(prop);
+            }
+            "end_header" => break,
+            other => return Err(err(0, format!("expected `format`, `element`, `property`, `comment` or `end_header`, found `{other}`"))),
+        }
+    }
+    let Some(format) = format else {
+        return Err(LoadError::at(path, 2, 1, "the PLY header has no `format` line"));
+    };
+    Ok((format, elements, pos))
+}
+
+fn header_lines(bytes: &[u8], body_start: usize) -> usize {
+    bytes[..body_start].iter().filter(|&&b| b == b'\n').count()
+}
+
+/// Refuses headers whose elements cannot fit in the bytes that follow, before anything is allocated.
+fn check_sizes(path: &Path, format: Format, elements: &[Element], body_len: usize) -> Result<(), LoadError> {
+    let mut needed: u128 = 0;
+    for e in elements {
+        // The fewest bytes one item can take: binary, its scalars and list counts;
+        // ASCII, one character and one separator per value.
+        let per_item: u128 = match format {
+            Format::Binary { .. } => e.props.iter().map(|p| p.count.unwrap_or(p.item).size() as u128).sum(),
+            Format::Ascii => 2 * e.props.len() as u128,
+        };
+        needed += per_item * u128::from(e.count);
+        if needed > body_len as u128 + 1 {
+            return Err(LoadError::at(
+                path,
+                e.line,
+                e.count_column,
+                format!(
+                    "element `{}` claims {} items, which need at least {} bytes, but only {} bytes follow the header",
+                    e.name, e.count, needed, body_len
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Where a value is read from: ASCII words or packed binary.
+enum Reader<'a> {
+    Ascii(AsciiReader<'a>),
+    Binary { bytes: &'a [u8], pos: usize, start_of_last: usize, big_endian: bool },
+}
+
+struct AsciiReader<'a> {
+    body: &'a [u8],
+    pos: usize,
+    line: usize,
+    column: usize,
+    last: (usize, usize),
+}
+
+impl<'a> AsciiReader<'a> {
+    fn new(body: &'a [u8], header_lines: usize) -> AsciiReader<'a> {
+        AsciiReader { body, pos: 0, line: header_lines + 1, column: 1, last: (header_lines + 1, 1) }
+    }
+
+    /// The next whitespace-separated word, or `None` at the end.
+    fn word(&mut self) -> Option<&'a [u8]> {
+        while let Some(&b) = self.body.get(self.pos) {
+            if !b.is_ascii_whitespace() {
+                break;
+            }
+            self.pos += 1;
+            if b == b'\n' {
+                self.line += 1;
+                self.column = 1;
+            } else {
+                self.column += 1;
+            }
+        }
+        if self.pos >= self.body.len() {
+            self.last = (self.line, self.column);
+            return None;
+        }
+        self.last = (self.line, self.column);
+        let start = self.pos;
+        while let Some(&b) = self.body.get(self.pos) {
+            if b.is_ascii_whitespace() {
+                break;
+            }
+            self.pos += 1;
+            // Columns count characters: UTF-8 continuation bytes do not start one.
+            if b & 0xC0 != 0x80 {
+                self.column += 1;
+            }
+        }
+        Some(&self.body[start..self.pos])
+    }
+}
+
+impl Reader<'_> {
+    /// An error at the value read last.
+    fn error(&self, path: &Path, message: String) -> LoadError {
+        match self {
+            Reader::Ascii(a) => LoadError::at(path, a.last.0, a.last.1, message),
+            Reader::Binary { start_of_last, .. } => LoadError::byte(path, *start_of_last as u64, message),
+        }
+    }
+
+    /// Reads one value of type `ty`; `what` names it for messages.
+    fn value(&mut self, path: &Path, ty: Scalar, what: &dyn Fn() -> String) -> Result<f64, LoadError> {
+        match self {
+            Reader::Ascii(a) => {
+                let Some(word) = a.word() else {
+                    return Err(LoadError::at(
+                        path,
+                        a.last.0,
+                        a.last.1,
+                        format!("file ends where {} (a {}) was expected", what(), ty.name()),
+                    ));
+                };
+                let text = String::from_utf8_lossy(word);
+                let parsed = match ty.int_range() {
+                    Some((lo, hi)) => text.parse::<i64>().ok().filter(|v| (lo..=hi).contains(v)).map(|v| v as f64),
+                    None => text.parse::<f64>().ok(),
+                };
+                parsed.ok_or_else(|| {
+                    LoadError::at(path, a.last.0, a.last.1, format!("expected {} (a {}), found `{text}`", what(), ty.name()))
+                })
+            }
+            Reader::Binary { bytes, pos, start_of_last, big_endian } => {
+                let size = ty.size();
+                *start_of_last = *pos;
+                let Some(raw) = bytes.get(*pos..*pos + size) else {
+                    return Err(LoadError::byte(
+                        path,
+                        *pos as u64,
+                        format!("file ends in the middle of {}: expected {size} bytes, {} left", what(), bytes.len() - *pos),
+                    ));
+                };
+                *pos += size;
+                Ok(decode(raw, ty, *big_endian))
+            }
+        }
+    }
+
+    /// Bytes left in a binary body (`usize::MAX` for ASCII, where lists are read word by word).
+    fn remaining(&self) -> usize {
+        match self {
+            Reader::Ascii(_) => usize::MAX,
+            Reader::Binary { bytes, pos, .. } => bytes.len() - *pos,
+        }
+    }
+}
+
+fn decode(raw: &[u8], ty: Scalar, big: bool) -> f64 {
+    macro_rules! num {
+        ($t:ty, $n:expr) => {{
+            let mut a = [0u8; $n];
+            a.copy_from_slice(raw);
+            (if big { <$t>::from_be_bytes(a) } else { <$t>::from_le_bytes(a) }) as f64
+        }};
+    }
+    match ty {
+        Scalar::I8 => raw[0] as i8 as f64,
+        Scalar::U8 => raw[0] as f64,
+        Scalar::I16 => num!(i16, 2),
+        Scalar::U16 => num!(u16, 2),
+        Scalar::I32 => num!(i32, 4),
+        Scalar::U32 => num!(u32, 4),
+        Scalar::F32 => num!(f32, 4),
+        Scalar::F64 => num!(f64, 8),
+    }
+}
+
+/// Reads a list's length, refusing negative counts and (binary) counts that overrun the file.
+fn list_len(reader: &mut Reader, path: &Path, p: &Property, count: Scalar, at: (&str, u64)) -> Result<usize, LoadError> {
+    let n = reader.value(path, count, &|| format!("the length of list `{}` of {} {}", p.name, at.0, at.1))?;
+    if n < 0.0 {
+        return Err(reader.error(path, format!("{} {}: list `{}` has negative length {n}", at.0, at.1, p.name)));
+    }
+    let n = n as usize;
+    if n.saturating_mul(p.item.size()) > reader.remaining() {
+        let msg = format!("{} {}: list `{}` claims {n} items but the file ends before them", at.0, at.1, p.name);
+        return Err(reader.error(path, msg));
+    }
+    Ok(n)
+}
+
+fn skip_property(reader: &mut Reader, path: &Path, p: &Property, at: (&str, u64)) -> Result<(), LoadError> {
+    let n = match p.count {
+        Some(count) => list_len(reader, path, p, count, at)?,
+        None => 1,
+    };
+    for _ in 0..n {
+        reader.value(path, p.item, &|| format!("property `{}` of {} {}", p.name, at.0, at.1))?;
+    }
+    Ok(())
+}
+
+fn read_vertices(path: &Path, reader: &mut Reader, e: &Element, mesh: &mut MeshData, warnings: &mut Vec<String>) -> Result<(), LoadError> {
+    if e.count > u64::from(u32::MAX) {
+        return Err(LoadError::at(path, e.line, e.count_column, format!("{} vertices are more than a mesh can index (2^32 - 1)", e.count)));
+    }
+    let find = |name: &str| e.props.iter().position(|p| p.name == name && p.count.is_none());
+    let mut slot = vec![None; e.props.len()];
+    for (axis, name) in ["x", "y", "z"].iter().enumerate() {
+        let Some(i) = find(name) else {
+            return Err(LoadError::at(path, e.line, 1, format!("element `vertex` has no scalar property `{name}`")));
+        };
+        slot[i] = Some(axis);
+    }
+    let normal_slots: Vec<Option<usize>> = ["nx", "ny", "nz"].iter().map(|n| find(n)).collect();
+    let has_normals = normal_slots.iter().all(Option::is_some);
+    if has_normals {
+        for (axis, i) in normal_slots.iter().enumerate() {
+            slot[i.unwrap_or_default()] = Some(3 + axis);
+        }
+    }
+    let ignored: Vec<&str> = e.props.iter().zip(&slot).filter(|(_, s)| s.is_none()).map(|(p, _)| p.name.as_str()).collect();
+    if !ignored.is_empty() {
+        warnings.push(format!("PLY vertex properties ignored: {}", ignored.join(", ")));
+    }
+    mesh.positions.reserve_exact(e.count as usize);
+    let mut normals = if has_normals { Vec::with_capacity(e.count as usize) } else { Vec::new() };
+    for v in 0..e.count {
+        let mut xyz = [0.0; 6];
+        for (p, s) in e.props.iter().zip(&slot) {
+            match s {
+                Some(k) => {
+                    let value = reader.value(path, p.item, &|| format!("property `{}` of vertex {v}", p.name))?;
+                    if !value.is_finite() {
+                        return Err(reader.error(path, format!("vertex {v}: `{}` is {value}, expected a finite number", p.name)));
+                    }
+                    xyz[*k] = value;
+                }
+                None => skip_property(reader, path, p, ("vertex", v))?,
+            }
+        }
+        mesh.positions.push(Vec3::new(xyz[0], xyz[1], xyz[2]));
+        if has_normals {
+            normals.push(Vec3::new(xyz[3], xyz[4], xyz[5]));
+        }
+    }
+    mesh.normals = has_normals.then_some(normals);
+    Ok(())
+}
+
+fn read_faces(
+    path: &Path,
+    reader: &mut Reader,
+    e: &Element,
+    vertex_count: u64,
+    mesh: &mut MeshData,
+    warnings: &mut Vec<String>,
+) -> Result<(), LoadError> {
+    let strips = e.name == "tristrips";
+    let Some(list) = e.props.iter().position(|p| (p.name == "vertex_indices" || p.name == "vertex_index") && p.count.is_some()) else {
+        return Err(LoadError::at(path, e.line, 1, format!("element `{}` has no list property `vertex_indices`", e.name)));
+    };
+    let others: Vec<&str> = e.props.iter().enumerate().filter(|(i, _)| *i != list).map(|(_, p)| p.name.as_str()).collect();
+    if !others.is_empty() {
+        warnings.push(format!("PLY {} properties ignored: {}", e.name, others.join(", ")));
+    }
+    if !strips {
+        mesh.indices.reserve(e.count as usize);
+    }
+    let mut short_faces = 0u64;
+    let mut corners: Vec<u32> = Vec::new();
+    for f in 0..e.count {
+        for (pi, p) in e.props.iter().enumerate() {
+            let Some(count) = p.count.filter(|_| pi == list) else {
+                skip_property(reader, path, p, (&e.name, f))?;
+                continue;
+            };
+            let n = list_len(reader, path, p, count, (&e.name, f))?;
+            corners.clear();
+            let mut strip_start = 0;
+            for _ in 0..n {
+                let value = reader.value(path, p.item, &|| format!("a vertex index of {} {f}", e.name))?;
+                if strips && value == -1.0 {
+                    unroll_strip(&corners[strip_start..], &mut mesh.indices);
+                    strip_start = corners.len();
+                    continue;
+                }
+                if !(value >= 0.0 && value < vertex_count as f64 && value.fract() == 0.0) {
+                    let msg = format!("{} {f}: vertex index {value} out of range (the file has {vertex_count} vertices)", e.name);
+                    return Err(reader.error(path, msg));
+                }
+                corners.push(value as u32);
+            }
+            if strips {
+                unroll_strip(&corners[strip_start..], &mut mesh.indices);
+            } else if corners.len() < 3 {
+                short_faces += 1;
+            } else {
+                for k in 1..corners.len() - 1 {
+                    mesh.indices.push([corners[0], corners[k], corners[k + 1]]);
+                }
+            }
+        }
+    }
+    if short_faces > 0 {
+        warnings.push(format!("PLY: {short_faces} faces with fewer than 3 vertices skipped"));
+    }
+    Ok(())
+}
+
+/// Unrolls one triangle strip, keeping the winding of its first triangle.
+fn unroll_strip(strip: &[u32], out: &mut Vec<[u32; 3]>) {
+    for k in 2..strip.len() {
+        if k % 2 == 0 {
+            out.push([strip[k - 2], strip[k - 1], strip[k]]);
+        } else {
+            out.push([strip[k - 1], strip[k - 2], strip[k]]);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn strips_alternate_so_the_winding_is_kept() {
+        let mut out = Vec::new();
+        unroll_strip(&[0, 1, 2, 3, 4], &mut out);
+        assert_eq!(out, vec![[0, 1, 2], [2, 1, 3], [2, 3, 4]]);
+    }
+}

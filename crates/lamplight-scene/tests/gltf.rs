@@ -1,0 +1,253 @@
+//! glTF importer: a scene the test writes (embedded buffer, then the same as
+//! `.glb` and with an external `.bin`), the shared sample models, and a table
+//! of malformed files with the exact error each gives.
+
+mod common;
+
+use base64::Engine;
+use common::{error_of, shared_data, triangles, write_and_load};
+use lamplight_core::materials::{Reflection, Refraction};
+use lamplight_core::math::{Rgb, Vec3};
+use lamplight_scene::import::{self, ImportedLight};
+
+/// One triangle: 3 float positions (36 bytes), then 3 `u16` indices and 2 bytes of padding.
+fn triangle_buffer(indices: [u16; 3], y1: f32) -> Vec<u8> {
+    let mut b = Vec::new();
+    for v in [0.0f32, 0.0, 0.0, 1.0, y1, 0.0, 0.0, 1.0, 0.0] {
+        b.extend(v.to_le_bytes());
+    }
+    for i in indices {
+        b.extend(i.to_le_bytes());
+    }
+    b.extend([0, 0]);
+    b
+}
+
+/// A scene of two instances of the triangle, a camera and three lights; `uri` is the buffer's URI (or none for GLB).
+fn scene_json(uri: Option<&str>, position_count: usize, extra_nodes: &str) -> String {
+    let uri = uri.map_or(String::new(), |u| format!(r#""uri": "{u}", "#));
+    format!(
+        r#"{{
+  "asset": {{"version": "2.0"}},
+  "extensionsUsed": ["KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior"],
+  "scene": 0,
+  "scenes": [{{"nodes": [0, 3]}}],
+  "nodes": [
+    {{"mesh": 0, "translation": [0, 0, 5], "children": [1, 2]}},
+    {{"mesh": 0, "matrix": [2,0,0,0, 0,2,0,0, 0,0,2,0, 1,0,0,1]}},
+    {{"camera": 0, "translation": [0, 1, 10]}},
+    {{"extensions": {{"KHR_lights_punctual": {{"light": 0}}}}, "translation": [0, 4, 0],
+      "children": [4, 5]}},
+    {{"extensions": {{"KHR_lights_punctual": {{"light": 1}}}}}},
+    {{"extensions": {{"KHR_lights_punctual": {{"light": 2}}}}}}{extra_nodes}
+  ],
+  "cameras": [{{"type": "perspective", "perspective": {{"yfov": 0.5, "znear": 0.1}}}}],
+  "meshes": [{{"name": "tri", "primitives": [
+    {{"attributes": {{"POSITION": 0}}, "indices": 1, "material": 0}},
+    {{"attributes": {{"POSITION": 0}}, "material": 1}},
+    {{"attributes": {{"POSITION": 0}}, "mode": 1}}
+  ]}}],
+  "materials": [
+    {{"pbrMetallicRoughness": {{"baseColorFactor": [1, 0.5, 0.25, 1], "metallicFactor": 1, "roughnessFactor": 0.5}}}},
+    {{"extensions": {{"KHR_materials_transmission": {{"transmissionFactor": 1}}, "KHR_materials_ior": {{"ior": 1.33}}}}}}
+  ],
+  "extensions": {{"KHR_lights_punctual": {{"lights": [
+    {{"type": "point", "color": [1, 1, 1], "intensity": 20}},
+    {{"type": "directional", "intensity": 2}},
+    {{"type": "spot", "intensity": 3, "spot": {{}}}}
+  ]}}}},
+  "accessors": [
+    {{"bufferView": 0, "componentType": 5126, "count": {position_count}, "type": "VEC3", "min": [0,0,0], "max": [1,1,0]}},
+    {{"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}}
+  ],
+  "bufferViews": [
+    {{"buffer": 0, "byteOffset": 0, "byteLength": 36}},
+    {{"buffer": 0, "byteOffset": 36, "byteLength": 6}}
+  ],
+  "buffers": [{{{uri}"byteLength": 44}}]
+}}"#
+    )
+}
+
+fn data_uri(buffer: &[u8]) -> String {
+    format!("data:application/octet-stream;base64,{}", base64::engine::general_purpose::STANDARD.encode(buffer))
+}
+
+fn glb(json: &str, bin: &[u8]) -> Vec<u8> {
+    let mut json = json.as_bytes().to_vec();
+    json.resize(json.len().div_ceil(4) * 4, b' ');
+    let mut bin = bin.to_vec();
+    bin.resize(bin.len().div_ceil(4) * 4, 0);
+    let total = 12 + 8 + json.len() + 8 + bin.len();
+    let mut out = b"glTF".to_vec();
+    out.extend(2u32.to_le_bytes());
+    out.extend((total as u32).to_le_bytes());
+    out.extend((json.len() as u32).to_le_bytes());
+    out.extend(0x4E4F_534Au32.to_le_bytes());
+    out.extend(json);
+    out.extend((bin.len() as u32).to_le_bytes());
+    out.extend(0x004E_4942u32.to_le_bytes());
+    out.extend(bin);
+    out
+}
+
+fn check_scene(imported: &import::Imported) {
+    // Two triangle primitives per mesh instance (mode 1 skipped with a warning), two nodes with the mesh.
+    assert_eq!(imported.meshes.len(), 2);
+    assert_eq!(imported.meshes[0].indices, vec![[0, 1, 2]]);
+    assert_eq!(imported.meshes[0].name.as_deref(), Some("tri.0"));
+    assert_eq!(imported.instances.len(), 4);
+    let child = &imported.instances[2];
+    assert_eq!(child.transform.transform_point3(Vec3::new(1.0, 0.0, 0.0)), Vec3::new(3.0, 0.0, 5.0), "parent translation * child matrix");
+    let metal = imported.instances[0].material.as_ref().unwrap();
+    assert_eq!(metal.kd, Rgb::ZERO);
+    assert_eq!(metal.shininess, 30.0);
+    assert_eq!(metal.reflection, Reflection::Constant(Rgb::new(0.5, 0.25, 0.125)));
+    let glass = imported.instances[1].material.as_ref().unwrap();
+    assert_eq!(glass.refraction, Refraction::Fresnel { ior: 1.33f32 as f64 });
+    let camera = &imported.cameras[0];
+    assert_eq!(
+        (camera.eye, camera.target, camera.up),
+        (Vec3::new(0.0, 1.0, 15.0), Vec3::new(0.0, 1.0, 14.0), Vec3::Y),
+        "the camera is a child of the translated node"
+    );
+    assert!((camera.vfov_deg - 0.5f64.to_degrees()).abs() < 1e-5);
+    assert_eq!(imported.lights.len(), 3);
+    match &imported.lights[0] {
+        ImportedLight::Point(p) => assert_eq!((p.position, p.intensity), (Vec3::new(0.0, 4.0, 0.0), Rgb::splat(20.0))),
+        other => panic!("expected a point light, got {other:?}"),
+    }
+    match &imported.lights[1] {
+        ImportedLight::Directional(d) => assert_eq!((d.direction, d.radiance), (-Vec3::Z, Rgb::splat(2.0))),
+        other => panic!("expected a directional light, got {other:?}"),
+    }
+    assert!(matches!(imported.lights[2], ImportedLight::Point(_)), "spot -> point");
+    assert_eq!(
+        imported.warnings,
+        vec![
+            "glTF primitives of mode Lines ignored: only triangles (mode 4) are read".to_string(),
+            "glTF spot lights read as point lights (no spot light in lamplight yet)".to_string(),
+        ]
+    );
+}
+
+#[test]
+fn embedded_external_and_binary_buffers_give_the_same_scene() {
+    let dir = tempfile::tempdir().unwrap();
+    let buffer = triangle_buffer([0, 1, 2], 0.0);
+    check_scene(&write_and_load(dir.path(), "embedded.gltf", scene_json(Some(&data_uri(&buffer)), 3, "").as_bytes()).unwrap());
+    std::fs::write(dir.path().join("tri.bin"), &buffer).unwrap();
+    check_scene(&write_and_load(dir.path(), "external.gltf", scene_json(Some("tri.bin"), 3, "").as_bytes()).unwrap());
+    check_scene(&write_and_load(dir.path(), "binary.glb", &glb(&scene_json(None, 3, ""), &buffer)).unwrap());
+    // load_mesh: every triangle in node order, in world space.
+    let merged = import::load_mesh(&dir.path().join("binary.glb")).unwrap();
+    assert_eq!(merged.indices.len(), 4);
+    assert_eq!(merged.positions[1], Vec3::new(1.0, 0.0, 5.0));
+}
+
+#[test]
+fn malformed_files_give_one_exact_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let good = triangle_buffer([0, 1, 2], 0.0);
+    let uri = data_uri(&good);
+    let cycle = ",\n    {\"children\": [7]}, {\"children\": [6]}";
+    let cyclic = scene_json(Some(&uri), 3, cycle).replace("\"children\": [4, 5]", "\"children\": [4, 5, 6]");
+    let cases: Vec<(&str, String, Vec<u8>, &str)> = vec![
+        ("empty", "a.gltf".into(), Vec::new(), "a.gltf: the file is empty"),
+        (
+            "bad json",
+            "a.gltf".into(),
+            b"{\n  \"asset\": [\n".to_vec(),
+            "a.gltf:3:1: invalid glTF JSON: EOF while parsing a list at line 3 column 0",
+        ),
+        (
+            "accessor out of bounds",
+            "a.gltf".into(),
+            scene_json(Some(&uri), 100, "").into_bytes(),
+            "a.gltf: at accessors[0]: needs bytes 0..1200 of bufferView 0, which has 36 bytes",
+        ),
+        (
+            "missing bin",
+            "a.gltf".into(),
+            scene_json(Some("missing.bin"), 3, "").into_bytes(),
+            "a.gltf: at buffers[0].uri: cannot read buffer `missing.bin`: file not found",
+        ),
+        (
+            "index out of range",
+            "a.gltf".into(),
+            scene_json(Some(&data_uri(&triangle_buffer([0, 1, 5], 0.0))), 3, "").into_bytes(),
+            "a.gltf: at accessors[1]: index 5 of triangle 0 out of range: POSITION has 3 vertices",
+        ),
+        (
+            "nan",
+            "a.gltf".into(),
+            scene_json(Some(&data_uri(&triangle_buffer([0, 1, 2], f32::NAN))), 3, "").into_bytes(),
+            "a.gltf: at accessors[0]: item 1 is [1, NaN, 0], expected finite numbers",
+        ),
+        (
+            "cycle",
+            "a.gltf".into(),
+            cyclic.into_bytes(),
+            "a.gltf: at nodes[7].children[0]: node 6 is reached twice (a cycle or a shared child): glTF nodes must form trees",
+        ),
+        (
+            "glb without bin",
+            "a.glb".into(),
+            glb(&scene_json(None, 3, ""), &[]),
+            "a.glb: at buffers[0].byteLength: claims 44 bytes but the data has 0",
+        ),
+        (
+            "truncated glb",
+            "a.glb".into(),
+            glb(&scene_json(None, 3, ""), &good)[..100].to_vec(),
+            "a.glb: invalid GLB container: could not completely read the object",
+        ),
+    ];
+    let mut fails = Vec::new();
+    for (what, name, bytes, expected) in cases {
+        let got = error_of(dir.path(), &name, &bytes);
+        if got != expected {
+            fails.push(format!("{what}: got {got:?}, expected {expected:?}"));
+        }
+    }
+    assert!(fails.is_empty(), "{fails:#?}");
+}
+
+#[test]
+fn shared_gltf_models_load_with_the_readme_counts() {
+    let Some(data) = shared_data("shared_gltf_models_load_with_the_readme_counts") else { return };
+    for (file, count) in [
+        ("gltf/Box/Box.gltf", 12),
+        ("gltf/BoxTextured.glb", 12),
+        ("gltf/Duck.glb", 4_212),
+        ("gltf/DamagedHelmet.glb", 15_452),
+        ("gltf/Suzanne/Suzanne.gltf", 3_936),
+    ] {
+        let imported = import::load(&data.join(file)).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(triangles(&imported), count, "{file}");
+        println!("{file}: {count} triangles, warnings {:?}", imported.warnings);
+    }
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig { cases: 128, rng_seed: proptest::test_runner::RngSeed::Fixed(0x1a3f), ..Default::default() })]
+
+    /// Random bytes, as `.gltf` and as `.glb`, give a scene or a `LoadError`, never a panic.
+    #[test]
+    fn random_bytes_never_panic(bytes in proptest::collection::vec(proptest::prelude::any::<u8>(), 0..512)) {
+        let _ = import::load_bytes(&common::fake_path("x.gltf"), &bytes);
+        let mut with_magic = b"glTF\x02\0\0\0".to_vec();
+        with_magic.extend(&bytes);
+        let _ = import::load_bytes(&common::fake_path("x.glb"), &with_magic);
+    }
+
+    /// Mutations of a valid `.gltf` and `.glb` give a scene or a `LoadError`, never a panic.
+    #[test]
+    fn mutated_files_never_panic(edits in common::edits(), cut in proptest::prelude::any::<usize>()) {
+        let buffer = triangle_buffer([0, 1, 2], 0.0);
+        let text = scene_json(Some(&data_uri(&buffer)), 3, "").into_bytes();
+        let _ = import::load_bytes(&common::fake_path("x.gltf"), &common::mutate(&text, &edits, cut));
+        let binary = glb(&scene_json(None, 3, ""), &buffer);
+        let _ = import::load_bytes(&common::fake_path("x.glb"), &common::mutate(&binary, &edits, cut));
+    }
+}
