@@ -10,7 +10,8 @@
 //! `O` and `D` are `(N, 3)` float32 (or float64) arrays; `T` gets the nearest hit
 //! distance along each (not necessarily unit) direction, `+inf` for a miss, and
 //! `P` the int64 triangle index, `-1` for a miss. Triangles are numbered in the
-//! file's face order (meshes of a multi-mesh file one after the other, untransformed).
+//! file's face order (`lamplight_scene::import::load_mesh`: a multi-mesh file's
+//! instances merged in order, in world space).
 //! With `--any-hit` only occlusion is asked: `T` is 0 for a ray that hits anything
 //! and `+inf` for one that does not. Prints the build time, memory, casting time
 //! and Mrays/s (casting only; with `--repeat K` the median of K casts).
@@ -149,14 +150,8 @@ type Mesh = (Vec<[f32; 3]>, Vec<[u32; 3]>);
 fn load_mesh(args: &RaycastArgs) -> anyhow::Result<Mesh> {
     match (&args.mesh, &args.vertices, &args.indices) {
         (Some(path), _, _) => {
-            let imported = lamplight_scene::import::load(path).map_err(|e| UsageError(e.to_string()))?;
-            let (mut positions, mut indices) = (Vec::new(), Vec::new());
-            for mesh in &imported.meshes {
-                let base = positions.len() as u32;
-                positions.extend(mesh.positions.iter().map(|p| [p.x as f32, p.y as f32, p.z as f32]));
-                indices.extend(mesh.indices.iter().map(|t| t.map(|i| i + base)));
-            }
-            Ok((positions, indices))
+            let mesh = lamplight_scene::import::load_mesh(path).map_err(|e| UsageError(e.to_string()))?;
+            Ok((mesh.positions.iter().map(|p| [p.x as f32, p.y as f32, p.z as f32]).collect(), mesh.indices))
         }
         (None, Some(v), Some(i)) => Ok((npy::read_rows3(v)?.to_f32(v)?, npy::read_rows3(i)?.to_u32(i)?)),
         _ => Err(UsageError("give --mesh FILE, or --vertices V.npy with --indices I.npy".into()).into()),

@@ -58,6 +58,20 @@ fn casts_rays_against_a_two_triangle_square() {
     assert!(prims[1] == 0 || prims[1] == 1, "the diagonal belongs to one of the two");
     assert_eq!(prims[2], -1);
 
+    // The same square as a PLY file through --mesh: the same answers.
+    let ply = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n\
+               element face 2\nproperty list uchar int vertex_indices\nend_header\n\
+               0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n";
+    std::fs::write(p("square.ply"), ply).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_lamplight"))
+        .args(["raycast", "--mesh", p("square.ply").to_str().unwrap()])
+        .args(["--origins", p("o.npy").to_str().unwrap(), "--directions", p("d.npy").to_str().unwrap()])
+        .args(["-o", p("t2.npy").to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert_eq!(read_data(&p("t2.npy")), f32s(&[1.0, 1.0, f32::INFINITY]));
+
     let out = run(&["--any-hit"]);
     assert!(out.status.success());
     assert_eq!(read_data(&p("t.npy")), f32s(&[0.0, 0.0, f32::INFINITY]));
