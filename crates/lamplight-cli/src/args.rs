@@ -45,6 +45,8 @@ pub enum Command {
     Render(RenderArgs),
     /// List the built-in scenes.
     List,
+    /// Cast a batch of rays (.npy arrays) against a mesh; see `raycast.rs`.
+    Raycast(crate::raycast::RaycastArgs),
 }
 
 /// `lamplight render` flags, as typed.
@@ -290,7 +292,7 @@ mod tests {
         let cli = Cli::try_parse_from(["lamplight", "render"].iter().chain(args)).expect("clap accepts the flags");
         match cli.command {
             Command::Render(render) => render.validate(),
-            Command::List => unreachable!(),
+            Command::List | Command::Raycast(_) => unreachable!(),
         }
     }
 

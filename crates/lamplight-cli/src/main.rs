@@ -13,6 +13,8 @@
 //! while running (such as an unwritable output file).
 
 mod args;
+mod npy;
+mod raycast;
 
 use std::io::{self, IsTerminal, Write};
 use std::process::ExitCode;
@@ -49,6 +51,7 @@ fn run() -> anyhow::Result<()> {
     match Cli::parse().command {
         Command::Render(render_args) => render_command(render_args.validate()?),
         Command::List => list_command(),
+        Command::Raycast(raycast_args) => raycast::raycast_command(raycast_args),
     }
 }
 

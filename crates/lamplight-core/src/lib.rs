@@ -37,6 +37,7 @@ pub mod materials;
 pub mod math;
 pub mod progressive;
 pub mod ray;
+pub mod raycast;
 mod render;
 pub mod sampling;
 pub mod scene;

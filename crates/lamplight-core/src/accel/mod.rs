@@ -2,7 +2,10 @@
 
 mod aabb;
 mod bvh;
+mod mesh_bvh;
 mod sah;
+pub mod tri4;
 
 pub use aabb::Aabb;
 pub use bvh::{Bvh, BvhStats};
+pub use mesh_bvh::{MeshBvh, MeshBvhStats};
