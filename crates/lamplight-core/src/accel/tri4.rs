@@ -1,5 +1,5 @@
 //! Four triangles tested against one ray at once, in `f32`: the leaf primitive of
-//! the ray-casting BVH ([`super::mesh_bvh`]).
+//! the ray-casting BVH (`accel/mesh_bvh.rs`).
 //!
 //! The test is the watertight one of Woop, Benthin and Wald (2013), as in
 //! [`crate::shapes::intersect_triangle`] but in single precision: vertices are
