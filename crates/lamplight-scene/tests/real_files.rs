@@ -32,7 +32,7 @@ fn every_shared_file_renders_a_sensible_image() {
         assert_eq!(stats.nonfinite_samples, 0, "{file}: NaN or infinite samples");
         let background = scene.background.as_vec3().to_array();
         let covered: Vec<[f32; 3]> =
-            image.pixels.iter().copied().filter(|p| p.iter().zip(background).any(|(a, b)| (*a as f32 - b as f32).abs() > 1e-6)).collect();
+            image.pixels.iter().copied().filter(|p| p.iter().zip(background).any(|(a, b)| (*a - b).abs() > 1e-6)).collect();
         let fraction = covered.len() as f64 / image.pixels.len() as f64;
         assert!((0.05..0.995).contains(&fraction), "{file}: the model covers {:.1} % of the image", 100.0 * fraction);
         let lit = covered.iter().filter(|p| p.iter().any(|&c| c > 0.02)).count();
