@@ -101,6 +101,26 @@ impl Rectangle {
     pub fn normal(&self) -> Vec3 {
         self.normal
     }
+
+    /// The six faces of the box `[min, max]` placed by the affine `transform`, each
+    /// with its normal pointing out of the box, in the order +x, -x, +y, -y, +z, -z.
+    pub fn box_faces(min: Vec3, max: Vec3, transform: &crate::math::Mat4) -> Result<[Rectangle; 6], Error> {
+        let d = max - min;
+        let (dx, dy, dz) = (Vec3::new(d.x, 0.0, 0.0), Vec3::new(0.0, d.y, 0.0), Vec3::new(0.0, 0.0, d.z));
+        // (corner, edge_u, edge_v) with edge_u x edge_v pointing out of the box.
+        let faces = [
+            (Vec3::new(max.x, min.y, min.z), dy, dz),
+            (min, dz, dy),
+            (Vec3::new(min.x, max.y, min.z), dz, dx),
+            (min, dx, dz),
+            (Vec3::new(min.x, min.y, max.z), dx, dy),
+            (min, dy, dx),
+        ];
+        let face = |(corner, u, v): (Vec3, Vec3, Vec3)| {
+            Rectangle::new(transform.transform_point3(corner), transform.transform_vector3(u), transform.transform_vector3(v))
+        };
+        Ok([face(faces[0])?, face(faces[1])?, face(faces[2])?, face(faces[3])?, face(faces[4])?, face(faces[5])?])
+    }
 }
 
 impl Shape for Rectangle {
@@ -218,6 +238,20 @@ mod tests {
         assert!(hit(2.9, 0.95));
         assert!(!hit(0.2, 0.5), "left of the slanted edge");
         assert!(hit(1.0, 0.5));
+    }
+
+    #[test]
+    fn box_faces_point_outwards() {
+        let faces = Rectangle::box_faces(Vec3::splat(-1.0), Vec3::splat(1.0), &crate::math::Mat4::IDENTITY).unwrap();
+        for face in faces {
+            let centre = face.corner + (face.edge_u + face.edge_v) * 0.5;
+            assert!((face.normal() - centre).length() < 1e-12, "face at {centre} points {}", face.normal());
+        }
+        let placed = crate::math::Mat4::from_translation(Vec3::new(5.0, 0.0, 0.0)) * crate::math::Mat4::from_scale(Vec3::splat(2.0));
+        let hit = Rectangle::box_faces(Vec3::splat(-1.0), Vec3::splat(1.0), &placed).unwrap()[1]
+            .intersect(&Ray::new(Vec3::new(0.0, 0.0, 0.0), Vec3::X), 0.0, INF)
+            .unwrap();
+        assert!((hit.t - 3.0).abs() < 1e-12 && (hit.normal + Vec3::X).length() < 1e-12);
     }
 
     #[test]

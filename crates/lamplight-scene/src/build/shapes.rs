@@ -205,18 +205,8 @@ pub fn instance(shape: Arc<dyn Shape>, m: &Mat4) -> Result<Arc<dyn Shape>, Strin
 
 /// Six rectangles with outward normals (`edge_u x edge_v` out of the box).
 fn boxed(min: Vec3, max: Vec3, m: &Mat4, out: &mut Vec<Arc<dyn Shape>>) -> Result<(), String> {
-    let d = max - min;
-    let (dx, dy, dz) = (Vec3::new(d.x, 0.0, 0.0), Vec3::new(0.0, d.y, 0.0), Vec3::new(0.0, 0.0, d.z));
-    let faces = [
-        (Vec3::new(max.x, min.y, min.z), dy, dz),
-        (min, dz, dy),
-        (Vec3::new(min.x, max.y, min.z), dz, dx),
-        (min, dx, dz),
-        (Vec3::new(min.x, min.y, max.z), dx, dy),
-        (min, dy, dx),
-    ];
-    for (corner, u, v) in faces {
-        out.push(Arc::new(Rectangle::new(m.transform_point3(corner), m.transform_vector3(u), m.transform_vector3(v)).map_err(core)?));
+    for face in Rectangle::box_faces(min, max, m).map_err(core)? {
+        out.push(Arc::new(face));
     }
     Ok(())
 }

@@ -22,23 +22,6 @@ fn rectangle(m: DMat4) -> Result<Rectangle, Error> {
     Rectangle::new(corner, m.transform_vector3(Vec3::new(2.0, 0.0, 0.0)), m.transform_vector3(Vec3::new(0.0, 2.0, 0.0)))
 }
 
-/// The six outward-facing faces of Mitsuba's cube `[-1, 1]^3` under `m`.
-fn cube(m: DMat4) -> Result<Vec<Rectangle>, Error> {
-    // (corner, edge_u, edge_v) with edge_u x edge_v pointing out of the cube.
-    let faces = [
-        (Vec3::new(1.0, -1.0, -1.0), Vec3::Y, Vec3::Z),
-        (Vec3::new(-1.0, -1.0, -1.0), Vec3::Z, Vec3::Y),
-        (Vec3::new(-1.0, 1.0, -1.0), Vec3::Z, Vec3::X),
-        (Vec3::new(-1.0, -1.0, -1.0), Vec3::X, Vec3::Z),
-        (Vec3::new(-1.0, -1.0, 1.0), Vec3::X, Vec3::Y),
-        (Vec3::new(-1.0, -1.0, -1.0), Vec3::Y, Vec3::X),
-    ];
-    faces
-        .iter()
-        .map(|&(c, u, v)| Rectangle::new(m.transform_point3(c), m.transform_vector3(u * 2.0), m.transform_vector3(v * 2.0)))
-        .collect()
-}
-
 fn diffuse(c: Rgb) -> Material {
     Material { color: Texture::Constant(c), ka: Rgb::ZERO, kd: Rgb::ONE, ..Material::default() }
 }
@@ -62,10 +45,12 @@ pub fn build(aspect: f64) -> Result<lamplight_core::Scene, Error> {
     b.object(rectangle(t(0.0, 0.0, -1.0))?, white)?;
     b.object(rectangle(t(1.0, 0.0, 0.0) * ry(-90.0))?, green)?;
     b.object(rectangle(t(-1.0, 0.0, 0.0) * ry(90.0))?, red)?;
-    for face in cube(t(0.335, -0.7, 0.38) * ry(-17.0) * DMat4::from_scale(Vec3::splat(0.3)))? {
+    for face in Rectangle::box_faces(-Vec3::ONE, Vec3::ONE, &(t(0.335, -0.7, 0.38) * ry(-17.0) * DMat4::from_scale(Vec3::splat(0.3))))? {
         b.object(face, white)?;
     }
-    for face in cube(t(-0.33, -0.4, -0.28) * ry(18.25) * DMat4::from_scale(Vec3::new(0.3, 0.61, 0.3)))? {
+    for face in
+        Rectangle::box_faces(-Vec3::ONE, Vec3::ONE, &(t(-0.33, -0.4, -0.28) * ry(18.25) * DMat4::from_scale(Vec3::new(0.3, 0.61, 0.3))))?
+    {
         b.object(face, white)?;
     }
     b.build()
@@ -84,7 +69,7 @@ mod tests {
             * DMat4::from_rotation_y((-17.0f64).to_radians())
             * DMat4::from_scale(Vec3::splat(0.3));
         assert!((m.x_axis.x - 0.286891).abs() < 1e-6 && (m.z_axis.x + 0.0877115).abs() < 1e-6);
-        for face in cube(DMat4::IDENTITY).unwrap() {
+        for face in Rectangle::box_faces(-Vec3::ONE, Vec3::ONE, &DMat4::IDENTITY).unwrap() {
             let centre = face.corner + (face.edge_u + face.edge_v) * 0.5;
             assert!((face.normal() - centre).length() < 1e-12, "face at {centre} points {}", face.normal());
         }

@@ -37,27 +37,6 @@ fn capped_cylinder(scene: &mut SceneBuilder, p0: Vec3, p1: Vec3, radius: f64, ma
     Ok(())
 }
 
-/// Adds the box `[min, max]` (local coordinates) placed by `transform`, as six
-/// rectangles with outward normals.
-fn placed_box(scene: &mut SceneBuilder, min: Vec3, max: Vec3, transform: Mat4, material: usize) -> Result<(), Error> {
-    let d = max - min;
-    let (dx, dy, dz) = (Vec3::new(d.x, 0.0, 0.0), Vec3::new(0.0, d.y, 0.0), Vec3::new(0.0, 0.0, d.z));
-    // (corner, edge_u, edge_v) with edge_u x edge_v pointing out of the box.
-    let faces = [
-        (Vec3::new(max.x, min.y, min.z), dy, dz),
-        (min, dz, dy),
-        (Vec3::new(min.x, max.y, min.z), dz, dx),
-        (min, dx, dz),
-        (Vec3::new(min.x, min.y, max.z), dx, dy),
-        (min, dy, dx),
-    ];
-    for (corner, u, v) in faces {
-        let rect = Rectangle::new(transform.transform_point3(corner), transform.transform_vector3(u), transform.transform_vector3(v))?;
-        scene.object(rect, material)?;
-    }
-    Ok(())
-}
-
 /// Builds the scene for an image of aspect `width / height`.
 pub fn build(aspect: f64) -> Result<Scene, Error> {
     let camera = Camera::look_at(Vec3::new(1.3, 1.6, 3.0), Vec3::new(-0.15, 0.45, -0.2), Vec3::Y, Fov::VerticalDeg(40.0), aspect)?;
@@ -116,7 +95,9 @@ pub fn build(aspect: f64) -> Result<Scene, Error> {
     scene.object(Disk::new(cone_base, -Vec3::Y, 0.22)?, red)?;
     let blue = scene.material(Material::plastic(Rgb::new(0.15, 0.30, 0.75), 0.1, 0.7, 0.3, 30.0))?;
     let placement = Mat4::from_translation(Vec3::new(-0.75, 0.0, 0.45)) * Mat4::from_rotation_y(25f64.to_radians());
-    placed_box(&mut scene, Vec3::new(-0.2, 0.0, -0.2), Vec3::new(0.2, 0.4, 0.2), placement, blue)?;
+    for face in Rectangle::box_faces(Vec3::new(-0.2, 0.0, -0.2), Vec3::new(0.2, 0.4, 0.2), &placement)? {
+        scene.object(face, blue)?;
+    }
     let gold = scene.material(Material::plastic(Rgb::new(0.85, 0.65, 0.15), 0.1, 0.7, 0.4, 50.0))?;
     let (c, half, height) = (Vec3::new(0.05, 0.0, -0.75), 0.22, 0.45);
     let pyramid = TriangleMesh::new(
