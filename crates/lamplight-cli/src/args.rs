@@ -31,7 +31,12 @@ pub const MAX_PIXELS: u64 = 1 << 28;
 
 /// The `lamplight` command line.
 #[derive(Debug, Parser)]
-#[command(name = "lamplight", version, about = "A Whitted ray tracer", arg_required_else_help = true)]
+#[command(
+    name = "lamplight",
+    version,
+    about = "A ray tracer: the lecture's Whitted tracer and a physically based path tracer",
+    arg_required_else_help = true
+)]
 pub struct Cli {
     /// What to do.
     #[command(subcommand)]
@@ -45,7 +50,7 @@ pub enum Command {
     Render(RenderArgs),
     /// List the built-in scenes.
     List,
-    /// Cast a batch of rays (.npy arrays) against a mesh; see `raycast.rs`.
+    /// Cast a batch of rays (.npy arrays) against a mesh: nearest-hit distances and triangle indices.
     Raycast(crate::raycast::RaycastArgs),
 }
 
