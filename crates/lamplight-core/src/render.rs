@@ -90,9 +90,8 @@ impl Default for RenderControl<'_> {
     }
 }
 
-/// Renders `scene` with `options`. Errors on zero sizes, on a thread pool that cannot
-/// start, and on cancellation.
-pub fn render(scene: &Scene, options: &RenderOptions, control: &RenderControl) -> Result<(Image, RenderStats), Error> {
+/// Checks the image size and samples, and returns the depth limit in force.
+fn checked_depth(scene: &Scene, options: &RenderOptions) -> Result<u32, Error> {
     let RenderOptions { width, height, spp, .. } = *options;
     if width == 0 || height == 0 || spp == 0 {
         return Err(Error::invalid("image", "width, height and samples per pixel must be at least 1"));
@@ -104,6 +103,14 @@ pub fn render(scene: &Scene, options: &RenderOptions, control: &RenderControl) -
     if max_depth == 0 {
         return Err(Error::invalid("max_depth", "must be at least 1"));
     }
+    Ok(max_depth)
+}
+
+/// Renders `scene` with `options`. Errors on zero sizes, on a thread pool that cannot
+/// start, and on cancellation.
+pub fn render(scene: &Scene, options: &RenderOptions, control: &RenderControl) -> Result<(Image, RenderStats), Error> {
+    let max_depth = checked_depth(scene, options)?;
+    let RenderOptions { width, height, spp, .. } = *options;
     let integrator: Box<dyn Integrator> = match options.integrator {
         IntegratorKind::Whitted => Box::new(Whitted { max_depth, min_weight: scene.min_weight }),
         IntegratorKind::Path => {
@@ -161,17 +168,7 @@ pub fn render(scene: &Scene, options: &RenderOptions, control: &RenderControl) -
 /// Renders `scene` with the path tracer (whatever `options.integrator` says) and
 /// returns the per-pixel sums, from which the mean and its variance follow.
 pub fn render_path(scene: &Scene, options: &RenderOptions, control: &RenderControl) -> Result<(Accumulator, RenderStats), Error> {
-    let RenderOptions { width, height, spp, .. } = *options;
-    if width == 0 || height == 0 || spp == 0 {
-        return Err(Error::invalid("image", "width, height and samples per pixel must be at least 1"));
-    }
-    if width as u64 * height as u64 > 1 << 28 {
-        return Err(Error::invalid("image", format!("{width}x{height} is too large (at most 2^28 pixels)")));
-    }
-    let max_depth = options.max_depth.unwrap_or(scene.max_depth);
-    if max_depth == 0 {
-        return Err(Error::invalid("max_depth", "must be at least 1"));
-    }
+    let max_depth = checked_depth(scene, options)?;
     crate::progressive::render_path(scene, options, max_depth, control)
 }
 
