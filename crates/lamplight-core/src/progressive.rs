@@ -74,10 +74,7 @@ pub(crate) fn render_path(
 ) -> Result<(Accumulator, RenderStats), Error> {
     let (width, height) = (options.width, options.height);
     let tracer = PathTracer::new(scene, max_depth);
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(options.threads)
-        .build()
-        .map_err(|e| Error::Render(format!("cannot start worker threads: {e}")))?;
+    let pool = crate::render::thread_pool(options.threads)?;
     let threads = pool.current_num_threads();
     let tiles_x = width.div_ceil(TILE);
     let tile_count = tiles_x as u64 * height.div_ceil(TILE) as u64;

@@ -90,6 +90,11 @@ impl Default for RenderControl<'_> {
     }
 }
 
+/// A pool of `threads` workers (0: one per core), shared by every renderer.
+pub(crate) fn thread_pool(threads: usize) -> Result<rayon::ThreadPool, Error> {
+    rayon::ThreadPoolBuilder::new().num_threads(threads).build().map_err(|e| Error::Render(format!("cannot start worker threads: {e}")))
+}
+
 /// Checks the image size and samples, and returns the depth limit in force.
 fn checked_depth(scene: &Scene, options: &RenderOptions) -> Result<u32, Error> {
     let RenderOptions { width, height, spp, .. } = *options;
@@ -118,10 +123,7 @@ pub fn render(scene: &Scene, options: &RenderOptions, control: &RenderControl) -
             return Ok((acc.mean(width, height), stats));
         }
     };
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(options.threads)
-        .build()
-        .map_err(|e| Error::Render(format!("cannot start worker threads: {e}")))?;
+    let pool = thread_pool(options.threads)?;
     let threads = pool.current_num_threads();
 
     let tiles_x = width.div_ceil(TILE);
