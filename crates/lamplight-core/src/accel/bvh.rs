@@ -96,16 +96,14 @@ fn round_up(x: f64) -> f32 {
 
 /// A ray prepared for the `f32` box test.
 struct RayBoxes {
-    /// Per axis: the origin bound the near plane is measured from, splatted.
-    near_origin: [Vec4; 3],
-    /// Per axis: the origin bound the far plane is measured from, splatted.
-    far_origin: [Vec4; 3],
+    /// Per axis: an `f32` at or above the origin coordinate, splatted. Minimum
+    /// planes are measured from it.
+    upper_origin: [Vec4; 3],
+    /// Per axis: an `f32` at or below the origin coordinate, splatted. Maximum
+    /// planes are measured from it.
+    lower_origin: [Vec4; 3],
     /// Per axis: inverse direction, splatted (finite: +-1e30 for zero components).
     inv_dir: [Vec4; 3],
-    /// Per axis: plane row of the near plane (min for positive directions).
-    near_row: [usize; 3],
-    /// Per axis: plane row of the far plane.
-    far_row: [usize; 3],
     t_min: Vec4,
 }
 
@@ -114,49 +112,43 @@ impl RayBoxes {
     fn new(origin: Vec3, dir: Vec3, t_min: f64) -> RayBoxes {
         // Bracket the f64 origin: with pad = 2^-21 |o|_inf (+ a tiny absolute part
         // for o = 0), rounding o -+ pad to f32 moves it by at most half an f32 ulp,
-        // 2^-24 |o|, less than pad, so lo < o < hi on every axis.
+        // 2^-24 |o|, less than pad, so lower < o < upper on every axis.
         let pad = max_abs(origin) * (1.0 / 2_097_152.0) + 1e-30;
-        let lo = [(origin.x - pad) as f32, (origin.y - pad) as f32, (origin.z - pad) as f32];
-        let hi = [(origin.x + pad) as f32, (origin.y + pad) as f32, (origin.z + pad) as f32];
+        let lower = (origin - pad).as_vec3();
+        let upper = (origin + pad).as_vec3();
         // 1/0 is an infinity of the zero's sign; keep it finite so that no 0 * inf
         // NaN can arise in the box test.
-        let inverse = |d: f64| {
-            let inv = (1.0 / d) as f32;
-            if inv.abs() > 1e30 {
-                1e30f32.copysign(inv)
-            } else {
-                inv
-            }
-        };
-        let inv = [inverse(dir.x), inverse(dir.y), inverse(dir.z)];
-        let positive = [inv[0] >= 0.0, inv[1] >= 0.0, inv[2] >= 0.0];
-        // For a positive direction the near plane is the minimum, measured from the
-        // upper origin bound: (min - hi) * inv is at most the true entry, and
-        // (max - lo) * inv at least the true exit; mirrored for a negative one.
-        let pick = |axis: usize, near: bool| {
-            let upper = positive[axis] == near;
-            Vec4::splat(if upper { hi[axis] } else { lo[axis] })
-        };
-        let row = |axis: usize, near: bool| if positive[axis] == near { axis } else { axis + 3 };
+        let inv = dir.recip().as_vec3().clamp(glam::Vec3::splat(-1e30), glam::Vec3::splat(1e30));
         RayBoxes {
-            near_origin: [pick(0, true), pick(1, true), pick(2, true)],
-            far_origin: [pick(0, false), pick(1, false), pick(2, false)],
-            inv_dir: [Vec4::splat(inv[0]), Vec4::splat(inv[1]), Vec4::splat(inv[2])],
-            near_row: [row(0, true), row(1, true), row(2, true)],
-            far_row: [row(0, false), row(1, false), row(2, false)],
+            upper_origin: [Vec4::splat(upper.x), Vec4::splat(upper.y), Vec4::splat(upper.z)],
+            lower_origin: [Vec4::splat(lower.x), Vec4::splat(lower.y), Vec4::splat(lower.z)],
+            inv_dir: [Vec4::splat(inv.x), Vec4::splat(inv.y), Vec4::splat(inv.z)],
             t_min: Vec4::splat(t_min.max(0.0) as f32),
         }
     }
 
     /// Entry distances of the four children and the mask of those the ray enters
     /// before `t_max`.
+    ///
+    /// Conservative whatever the direction's signs: `(min - upper) * inv` is at most
+    /// the true distance to the minimum plane for a positive direction (where it is
+    /// the entry) and at least it for a negative one (where it is the exit), and
+    /// `(max - lower) * inv` the reverse, so the interval between the nearer and the
+    /// farther plane of each axis contains the true one. No index depends on the
+    /// ray, so the test has no branches and no per-ray setup of plane rows.
     #[inline(always)]
     fn test(&self, node: &Node, t_max: f32) -> (Vec4, u32) {
         let p = &node.planes;
-        let near = |a: usize| (Vec4::from_array(p[self.near_row[a]]) - self.near_origin[a]) * self.inv_dir[a];
-        let far = |a: usize| (Vec4::from_array(p[self.far_row[a]]) - self.far_origin[a]) * self.inv_dir[a];
-        let enter = near(0).max(near(1)).max(near(2)).max(self.t_min);
-        let exit = far(0).min(far(1)).min(far(2)).min(Vec4::splat(t_max));
+        let axis = |a: usize| {
+            let to_min = (Vec4::from_array(p[a]) - self.upper_origin[a]) * self.inv_dir[a];
+            let to_max = (Vec4::from_array(p[a + 3]) - self.lower_origin[a]) * self.inv_dir[a];
+            (to_min.min(to_max), to_min.max(to_max))
+        };
+        let (near_x, far_x) = axis(0);
+        let (near_y, far_y) = axis(1);
+        let (near_z, far_z) = axis(2);
+        let enter = near_x.max(near_y).max(near_z).max(self.t_min);
+        let exit = far_x.min(far_y).min(far_z).min(Vec4::splat(t_max));
         let hit = (enter * (1.0 - WIDEN)).cmple(exit * (1.0 + WIDEN));
         (enter, hit.bitmask() & node.valid as u32)
     }

@@ -30,22 +30,48 @@ impl Image {
     /// 8-bit sRGB bytes, three per pixel: each channel clamped to `[0, 1]`, encoded
     /// with [`srgb_encode`] and rounded (see [`srgb8`]).
     pub fn to_srgb8(&self) -> Vec<u8> {
-        self.pixels.iter().flat_map(|p| p.map(srgb8)).collect()
+        let quantizer = Srgb8::get();
+        self.pixels.iter().flat_map(|p| p.map(|c| quantizer.encode(c))).collect()
     }
 }
 
-/// `round(255 * srgb_encode(x))` without a `pow` per value: a binary search over
-/// the 255 linear values where the rounded code changes. Each boundary is found by
-/// bisection on the `f32` bit patterns against the direct formula, so the result
-/// equals the direct formula for every `f32` input.
+/// `round(255 * srgb_encode(x))`, equal to the direct formula for every `f32` input
+/// (NaN gives 0), without a `pow` per value. See [`Srgb8`].
 pub fn srgb8(x: f32) -> u8 {
-    static BOUNDARIES: std::sync::OnceLock<[f32; 255]> = std::sync::OnceLock::new();
-    let boundaries = BOUNDARIES.get_or_init(|| {
+    Srgb8::get().encode(x)
+}
+
+/// Mantissa bits of an `f32` that, with its exponent, select a bucket.
+const BUCKET_MANTISSA_BITS: u32 = 8;
+const BUCKET_SHIFT: u32 = 23 - BUCKET_MANTISSA_BITS;
+
+/// The exact 8-bit sRGB quantizer as two small tables.
+///
+/// `boundaries[k]` is the smallest `f32` whose code exceeds `k`, found by bisection
+/// on the bit patterns (which order like the values for non-negative floats)
+/// against the direct formula. For a value in `[boundaries[0], boundaries[254])`,
+/// its exponent and top mantissa bits select a bucket; `bucket_codes` holds the
+/// code at the bucket's lowest value, and since no bucket holds two boundaries
+/// (buckets are at most 2^-8 relative wide; boundaries are at least 0.9 % apart,
+/// checked by a test) one comparison with the next boundary finishes the job.
+#[derive(Debug)]
+pub struct Srgb8 {
+    boundaries: [f32; 255],
+    first_bucket: u32,
+    bucket_codes: Vec<u8>,
+}
+
+impl Srgb8 {
+    /// The shared quantizer, built on first use (about a millisecond).
+    pub fn get() -> &'static Srgb8 {
+        static TABLE: std::sync::OnceLock<Srgb8> = std::sync::OnceLock::new();
+        TABLE.get_or_init(Srgb8::build)
+    }
+
+    fn build() -> Srgb8 {
         let direct = |v: f32| (srgb_encode(v as f64) * 255.0).round() as u8;
-        let mut table = [0f32; 255];
-        for (k, slot) in table.iter_mut().enumerate() {
-            // Smallest non-negative f32 whose code exceeds k: bisect on bit patterns,
-            // which are ordered like the values for non-negative floats.
+        let mut boundaries = [0f32; 255];
+        for (k, slot) in boundaries.iter_mut().enumerate() {
             let (mut lo, mut hi) = (0u32, 1f32.to_bits());
             while lo < hi {
                 let mid = lo + (hi - lo) / 2;
@@ -57,12 +83,30 @@ pub fn srgb8(x: f32) -> u8 {
             }
             *slot = f32::from_bits(lo);
         }
-        table
-    });
-    if x.is_nan() {
-        return 0;
+        let first_bucket = boundaries[0].to_bits() >> BUCKET_SHIFT;
+        let last_bucket = boundaries[254].to_bits() >> BUCKET_SHIFT;
+        let bucket_codes = (first_bucket..=last_bucket)
+            .map(|bucket| {
+                let lowest = f32::from_bits(bucket << BUCKET_SHIFT);
+                boundaries.partition_point(|&b| b <= lowest) as u8
+            })
+            .collect();
+        Srgb8 { boundaries, first_bucket, bucket_codes }
     }
-    boundaries.partition_point(|&b| b <= x) as u8
+
+    /// The code of linear value `x` (clamped to `[0, 1]`; NaN gives 0).
+    #[inline]
+    pub fn encode(&self, x: f32) -> u8 {
+        // `!(x >= b)` is also true for NaN.
+        if !(x >= self.boundaries[0]) {
+            return 0;
+        }
+        if x >= self.boundaries[254] {
+            return 255;
+        }
+        let code = self.bucket_codes[((x.to_bits() >> BUCKET_SHIFT) - self.first_bucket) as usize];
+        code + (x >= self.boundaries[code as usize]) as u8
+    }
 }
 
 /// The sRGB transfer curve (IEC 61966-2-1) on a value clamped to `[0, 1]`:
@@ -105,5 +149,26 @@ mod tests {
             assert_eq!(srgb8(v), direct(v), "{v}");
         }
         assert_eq!(srgb8(f32::NAN), 0);
+    }
+
+    #[test]
+    fn quantizer_is_exact_at_every_boundary_and_bucket_edge() {
+        let direct = |v: f32| (srgb_encode(v as f64) * 255.0).round() as u8;
+        let table = Srgb8::get();
+        // Both functions are steps that only rise, so agreeing just below and at
+        // every boundary, and at every bucket edge, means agreeing everywhere.
+        for &b in &table.boundaries {
+            for v in [b.next_down(), b, b.next_up()] {
+                assert_eq!(srgb8(v), direct(v), "{v}");
+            }
+        }
+        for bucket in table.first_bucket..=table.first_bucket + table.bucket_codes.len() as u32 {
+            let lowest = f32::from_bits(bucket << BUCKET_SHIFT);
+            for v in [lowest.next_down(), lowest] {
+                assert_eq!(srgb8(v), direct(v), "{v}");
+            }
+            let inside = table.boundaries.iter().filter(|&&b| b > lowest && b < f32::from_bits((bucket + 1) << BUCKET_SHIFT)).count();
+            assert!(inside <= 1, "bucket at {lowest} holds {inside} boundaries");
+        }
     }
 }
