@@ -16,9 +16,24 @@ pub type Mat4 = glam::DMat4;
 pub type Rgb = glam::DVec3;
 
 /// The largest absolute coordinate of `v`, the magnitude used to scale ray offsets.
+///
+/// Plain comparisons rather than `f64::max`, whose NaN rules cost a dozen
+/// instructions on every ray; a NaN coordinate may be skipped, but callers pass
+/// finite points.
 #[inline]
 pub fn max_abs(v: Vec3) -> f64 {
-    v.abs().max_element()
+    max_component(v.abs())
+}
+
+/// The largest component of `v`, by plain comparisons (see [`max_abs`]).
+#[inline]
+pub fn max_component(v: Vec3) -> f64 {
+    let xy = if v.x > v.y { v.x } else { v.y };
+    if xy > v.z {
+        xy
+    } else {
+        v.z
+    }
 }
 
 /// Builds an orthonormal basis `(t, b)` such that `(t, b, n)` is right-handed,

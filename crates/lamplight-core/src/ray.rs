@@ -40,7 +40,8 @@ pub const OFFSET_SCALE: f64 = 1.0 / 4_294_967_296.0;
 /// `error`, whichever is larger.
 #[inline]
 pub fn offset_origin(point: Vec3, normal: Vec3, dir: Vec3, travelled: f64, error: f64) -> Vec3 {
-    let magnitude = (OFFSET_SCALE * (max_abs(point) + travelled.abs())).max(4.0 * error);
+    let scaled = OFFSET_SCALE * (max_abs(point) + travelled.abs());
+    let magnitude = if scaled > 4.0 * error { scaled } else { 4.0 * error };
     let offset = normal * magnitude;
     if dir.dot(normal) >= 0.0 {
         point + offset

@@ -277,6 +277,13 @@ impl Bvh {
             } else {
                 let node = &self.nodes[current as usize];
                 let (enter, mut mask) = ray.test(node, t_max as f32);
+                if mask != 0 && mask & (mask - 1) == 0 {
+                    // One child entered (the usual case): nothing to order.
+                    let slot = mask.trailing_zeros() as usize;
+                    current = node.child[slot];
+                    leaf_count = node.count[slot];
+                    continue;
+                }
                 if mask != 0 {
                     let enter = enter.to_array();
                     // Push the hit children farthest first, then continue with the nearest.

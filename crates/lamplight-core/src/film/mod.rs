@@ -31,7 +31,7 @@ impl Image {
     /// with [`srgb_encode`] and rounded (see [`srgb8`]).
     pub fn to_srgb8(&self) -> Vec<u8> {
         let quantizer = Srgb8::get();
-        self.pixels.iter().flat_map(|p| p.map(|c| quantizer.encode(c))).collect()
+        self.pixels.as_flattened().iter().map(|&c| quantizer.encode(c)).collect()
     }
 }
 

@@ -12,7 +12,7 @@ use std::mem::MaybeUninit;
 
 use super::{Integrator, RayCounts};
 use crate::materials::{fresnel_conductor, fresnel_dielectric, Material, Reflection, Refraction};
-use crate::math::{Rgb, Vec3};
+use crate::math::{max_component, Rgb, Vec3};
 use crate::ray::{offset_origin, Ray};
 use crate::sampling::Rng;
 use crate::scene::{Hit, Scene};
@@ -71,7 +71,7 @@ impl Integrator for Whitted {
             }
             for (dir, w) in smooth_directions(&ray, &hit, material) {
                 let w = weight * w;
-                if w.max_element() <= self.min_weight {
+                if max_component(w) <= self.min_weight {
                     continue;
                 }
                 counts.secondary += 1;
@@ -108,7 +108,7 @@ pub fn direct_light(scene: &Scene, ray: &Ray, hit: &Hit, material: &Material, co
         let specular =
             if cos_half > 0.0 && material.ks != Rgb::ZERO { material.ks * blinn_power(cos_half, material.shininess) } else { Rgb::ZERO };
         let reflected = diffuse + specular;
-        if reflected.max_element() < NEGLIGIBLE {
+        if max_component(reflected) < NEGLIGIBLE {
             continue;
         }
         counts.shadow += 1;
