@@ -30,8 +30,11 @@ impl Image {
     /// 8-bit sRGB bytes, three per pixel: each channel clamped to `[0, 1]`, encoded
     /// with [`srgb_encode`] and rounded (see [`srgb8`]).
     pub fn to_srgb8(&self) -> Vec<u8> {
+        // In parallel: for a large image this is the longest serial step after
+        // the render (about 18 instructions per channel).
+        use rayon::prelude::*;
         let quantizer = Srgb8::get();
-        self.pixels.as_flattened().iter().map(|&c| quantizer.encode(c)).collect()
+        self.pixels.as_flattened().par_iter().with_min_len(1 << 16).map(|&c| quantizer.encode(c)).collect()
     }
 }
 
@@ -56,10 +59,17 @@ const BUCKET_SHIFT: u32 = 23 - BUCKET_MANTISSA_BITS;
 /// checked by a test) one comparison with the next boundary finishes the job.
 #[derive(Debug)]
 pub struct Srgb8 {
-    boundaries: [f32; 255],
+    /// 255 boundaries, padded to 256 so a `u8` code indexes it without a check.
+    boundaries: [f32; 256],
     first_bucket: u32,
-    bucket_codes: Vec<u8>,
+    /// Codes of the buckets from `first_bucket` on, padded to a power of two so
+    /// that a masked index needs no check.
+    bucket_codes: Box<[u8; BUCKET_TABLE]>,
 }
+
+/// Size of the bucket table: at least the 13 binades from `boundaries[0]` (about
+/// 2^-13) to 1, times 2^BUCKET_MANTISSA_BITS buckets each.
+const BUCKET_TABLE: usize = 4096;
 
 impl Srgb8 {
     /// The shared quantizer, built on first use (about a millisecond).
@@ -70,8 +80,8 @@ impl Srgb8 {
 
     fn build() -> Srgb8 {
         let direct = |v: f32| (srgb_encode(v as f64) * 255.0).round() as u8;
-        let mut boundaries = [0f32; 255];
-        for (k, slot) in boundaries.iter_mut().enumerate() {
+        let mut boundaries = [f32::INFINITY; 256];
+        for (k, slot) in boundaries[..255].iter_mut().enumerate() {
             let (mut lo, mut hi) = (0u32, 1f32.to_bits());
             while lo < hi {
                 let mid = lo + (hi - lo) / 2;
@@ -85,12 +95,12 @@ impl Srgb8 {
         }
         let first_bucket = boundaries[0].to_bits() >> BUCKET_SHIFT;
         let last_bucket = boundaries[254].to_bits() >> BUCKET_SHIFT;
-        let bucket_codes = (first_bucket..=last_bucket)
-            .map(|bucket| {
-                let lowest = f32::from_bits(bucket << BUCKET_SHIFT);
-                boundaries.partition_point(|&b| b <= lowest) as u8
-            })
-            .collect();
+        assert!(((last_bucket - first_bucket) as usize) < BUCKET_TABLE, "the bucket table covers [boundaries[0], 1)");
+        let mut bucket_codes = Box::new([255u8; BUCKET_TABLE]);
+        for (bucket, code) in (first_bucket..=last_bucket).zip(bucket_codes.iter_mut()) {
+            let lowest = f32::from_bits(bucket << BUCKET_SHIFT);
+            *code = boundaries[..255].partition_point(|&b| b <= lowest) as u8;
+        }
         Srgb8 { boundaries, first_bucket, bucket_codes }
     }
 
@@ -104,7 +114,8 @@ impl Srgb8 {
         if x >= self.boundaries[254] {
             return 255;
         }
-        let code = self.bucket_codes[((x.to_bits() >> BUCKET_SHIFT) - self.first_bucket) as usize];
+        let bucket = ((x.to_bits() >> BUCKET_SHIFT) - self.first_bucket) as usize;
+        let code = self.bucket_codes[bucket & (BUCKET_TABLE - 1)];
         code + (x >= self.boundaries[code as usize]) as u8
     }
 }
@@ -157,17 +168,19 @@ mod tests {
         let table = Srgb8::get();
         // Both functions are steps that only rise, so agreeing just below and at
         // every boundary, and at every bucket edge, means agreeing everywhere.
-        for &b in &table.boundaries {
+        for &b in &table.boundaries[..255] {
             for v in [b.next_down(), b, b.next_up()] {
                 assert_eq!(srgb8(v), direct(v), "{v}");
             }
         }
-        for bucket in table.first_bucket..=table.first_bucket + table.bucket_codes.len() as u32 {
+        let last_bucket = table.boundaries[254].to_bits() >> BUCKET_SHIFT;
+        for bucket in table.first_bucket..=last_bucket + 1 {
             let lowest = f32::from_bits(bucket << BUCKET_SHIFT);
             for v in [lowest.next_down(), lowest] {
                 assert_eq!(srgb8(v), direct(v), "{v}");
             }
-            let inside = table.boundaries.iter().filter(|&&b| b > lowest && b < f32::from_bits((bucket + 1) << BUCKET_SHIFT)).count();
+            let inside =
+                table.boundaries[..255].iter().filter(|&&b| b > lowest && b < f32::from_bits((bucket + 1) << BUCKET_SHIFT)).count();
             assert!(inside <= 1, "bucket at {lowest} holds {inside} boundaries");
         }
     }
