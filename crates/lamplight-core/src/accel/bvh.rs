@@ -13,12 +13,9 @@
 //! area. A node stores its children's boxes as `f32` structure-of-arrays, so one
 //! ray is tested against four boxes with a few SSE instructions (glam's `Vec4`).
 //!
-//! Exactness: geometry is `f64`, the boxes `f32`. The test stays conservative (it
-//! may report a box the ray misses, never miss one it enters): boxes are rounded
-//! outwards; the ray origin is replaced by two `f32` points bracketing it on every
-//! axis, the near slab plane measured from one and the far plane from the other;
-//! and the entry/exit interval is widened by a few `f32` ulps for the rounding of
-//! the subtraction, the product and the inverse direction.
+//! Exactness: geometry is `f64`, the boxes `f32`. Boxes are rounded outwards and
+//! tested by [`super::slab`], which is conservative for `f64` rays (it may report a
+//! box the ray misses, never miss one it enters).
 //!
 //! Traversal is ordered (nearest child first, by entry distance), with an explicit
 //! stack; entries farther than the closest hit so far are skipped when popped.
@@ -28,13 +25,12 @@ use std::mem::MaybeUninit;
 use glam::Vec4;
 
 use super::sah::{self, Tree};
+use super::slab::{SlabRay, WIDEN};
 use super::Aabb;
-use crate::math::{max_abs, Vec3};
+use crate::math::Vec3;
 
 /// Marks a child reference as a leaf: low bits are the first index in `indices`.
 const LEAF: u32 = 1 << 31;
-/// Relative widening of the entry/exit interval (a few f32 ulps).
-const WIDEN: f32 = 4.0 * f32::EPSILON;
 /// Traversal stack size: three pending siblings per level of a tree whose depth
 /// the SAH build bounds by `SAH_DEPTH + 32`.
 const STACK: usize = 3 * (sah::SAH_DEPTH + 32) + 4;
@@ -91,66 +87,6 @@ fn round_up(x: f64) -> f32 {
         f.next_up()
     } else {
         f
-    }
-}
-
-/// A ray prepared for the `f32` box test.
-struct RayBoxes {
-    /// Per axis: an `f32` at or above the origin coordinate, splatted. Minimum
-    /// planes are measured from it.
-    upper_origin: [Vec4; 3],
-    /// Per axis: an `f32` at or below the origin coordinate, splatted. Maximum
-    /// planes are measured from it.
-    lower_origin: [Vec4; 3],
-    /// Per axis: inverse direction, splatted (finite: +-1e30 for zero components).
-    inv_dir: [Vec4; 3],
-    t_min: Vec4,
-}
-
-impl RayBoxes {
-    #[inline(always)]
-    fn new(origin: Vec3, dir: Vec3, t_min: f64) -> RayBoxes {
-        // Bracket the f64 origin: with pad = 2^-21 |o|_inf (+ a tiny absolute part
-        // for o = 0), rounding o -+ pad to f32 moves it by at most half an f32 ulp,
-        // 2^-24 |o|, less than pad, so lower < o < upper on every axis.
-        let pad = max_abs(origin) * (1.0 / 2_097_152.0) + 1e-30;
-        let lower = (origin - pad).as_vec3();
-        let upper = (origin + pad).as_vec3();
-        // 1/0 is an infinity of the zero's sign; keep it finite so that no 0 * inf
-        // NaN can arise in the box test.
-        let inv = dir.recip().as_vec3().clamp(glam::Vec3::splat(-1e30), glam::Vec3::splat(1e30));
-        RayBoxes {
-            upper_origin: [Vec4::splat(upper.x), Vec4::splat(upper.y), Vec4::splat(upper.z)],
-            lower_origin: [Vec4::splat(lower.x), Vec4::splat(lower.y), Vec4::splat(lower.z)],
-            inv_dir: [Vec4::splat(inv.x), Vec4::splat(inv.y), Vec4::splat(inv.z)],
-            t_min: Vec4::splat(t_min.max(0.0) as f32),
-        }
-    }
-
-    /// Entry distances of the four children and the mask of those the ray enters
-    /// before `t_max`.
-    ///
-    /// Conservative whatever the direction's signs: `(min - upper) * inv` is at most
-    /// the true distance to the minimum plane for a positive direction (where it is
-    /// the entry) and at least it for a negative one (where it is the exit), and
-    /// `(max - lower) * inv` the reverse, so the interval between the nearer and the
-    /// farther plane of each axis contains the true one. No index depends on the
-    /// ray, so the test has no branches and no per-ray setup of plane rows.
-    #[inline(always)]
-    fn test(&self, node: &Node, t_max: f32) -> (Vec4, u32) {
-        let p = &node.planes;
-        let axis = |a: usize| {
-            let to_min = (Vec4::from_array(p[a]) - self.upper_origin[a]) * self.inv_dir[a];
-            let to_max = (Vec4::from_array(p[a + 3]) - self.lower_origin[a]) * self.inv_dir[a];
-            (to_min.min(to_max), to_min.max(to_max))
-        };
-        let (near_x, far_x) = axis(0);
-        let (near_y, far_y) = axis(1);
-        let (near_z, far_z) = axis(2);
-        let enter = near_x.max(near_y).max(near_z).max(self.t_min);
-        let exit = far_x.min(far_y).min(far_z).min(Vec4::splat(t_max));
-        let hit = (enter * (1.0 - WIDEN)).cmple(exit * (1.0 + WIDEN));
-        (enter, hit.bitmask() & node.valid as u32)
     }
 }
 
@@ -260,7 +196,7 @@ impl Bvh {
         if self.nodes.is_empty() {
             return t_max;
         }
-        let ray = RayBoxes::new(origin, dir, t_min);
+        let ray = SlabRay::new(origin, dir, t_min);
         // Uninitialized: zero-filling the stack cost more than a short traversal.
         let mut stack = [const { MaybeUninit::<(u32, f32, u8)>::uninit() }; STACK];
         let mut top = 0usize;
@@ -276,7 +212,8 @@ impl Bvh {
                 }
             } else {
                 let node = &self.nodes[current as usize];
-                let (enter, mut mask) = ray.test(node, t_max as f32);
+                let (enter, mask) = ray.test(|r| Vec4::from_array(node.planes[r]), t_max as f32);
+                let mut mask = mask & node.valid as u32;
                 if mask != 0 && mask & (mask - 1) == 0 {
                     // One child entered (the usual case): nothing to order.
                     let slot = mask.trailing_zeros() as usize;
@@ -334,7 +271,7 @@ impl Bvh {
         if self.nodes.is_empty() {
             return false;
         }
-        let ray = RayBoxes::new(origin, dir, t_min);
+        let ray = SlabRay::new(origin, dir, t_min);
         let t_max32 = t_max as f32;
         let mut stack = [const { MaybeUninit::<u32>::uninit() }; STACK];
         stack[0].write(0); // the root node
@@ -343,7 +280,8 @@ impl Bvh {
             top -= 1;
             // SAFETY: entries below `top` were written before.
             let node = &self.nodes[unsafe { stack[top].assume_init() } as usize];
-            let (_, mut mask) = ray.test(node, t_max32);
+            let (_, mask) = ray.test(|r| Vec4::from_array(node.planes[r]), t_max32);
+            let mut mask = mask & node.valid as u32;
             while mask != 0 {
                 let slot = mask.trailing_zeros() as usize;
                 mask &= mask - 1;

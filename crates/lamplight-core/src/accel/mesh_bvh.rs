@@ -17,18 +17,19 @@
 //! tree is then collapsed into 8-wide nodes by repeatedly opening the child of
 //! largest surface area.
 //!
-//! Box test: slabs `(plane - o) / d`, the entry clamped at 0 and the exit at the
-//! current closest hit; the exit is widened by `4 f32::EPSILON` relative, more than
-//! the three roundings of subtraction, reciprocal and product, so no box a
-//! triangle hit lies in is missed. Traversal is ordered (nearest child first, by
-//! entry distance; popped entries beyond the closest hit are skipped); the any-hit
+//! Box test: [`super::slab`], shared with the scene's BVH (an `f32` ray converts
+//! to `f64` exactly), conservative so that no box a triangle hit lies in is
+//! missed. Traversal is ordered (nearest child first, by entry distance; popped
+//! entries beyond the closest hit are skipped); the any-hit
 //! query stops at the first hit.
 
 use std::mem::MaybeUninit;
 
 use glam::{Vec3A, Vec4};
 
+use super::slab::{SlabRay, WIDEN};
 use super::tri4::{ShearRay, Tri4};
+use crate::math::Vec3;
 
 /// Marks a child reference as a leaf.
 const LEAF: u32 = 1 << 31;
@@ -51,11 +52,9 @@ const WIDTH: usize = 8;
 /// Traversal stack: `WIDTH - 1` siblings per level of a tree at most
 /// `SAH_DEPTH + 32` deep.
 const STACK: usize = (WIDTH - 1) * (SAH_DEPTH + 32) + WIDTH;
-/// Relative widening of a box's exit distance.
-const WIDEN: f32 = 4.0 * f32::EPSILON;
 
 /// Eight child boxes (rows min x, y, z, max x, y, z) and references. An unused
-/// slot has an empty box (`min = +inf`, `max = -inf`), which no ray enters.
+/// slot has its bit clear in `valid` (and an empty box, `min = +inf`, `max = -inf`).
 ///
 /// Aligned to a cache line, so that a node is exactly four lines: traversal of
 /// incoherent rays waits mostly on node loads.
@@ -65,6 +64,8 @@ struct Node {
     planes: [[f32; WIDTH]; 6],
     /// Node index, or `LEAF | count << COUNT_SHIFT | first packet`.
     child: [u32; WIDTH],
+    /// Bit `i` set when child `i` exists (fits in the padding of the fourth line).
+    valid: u8,
 }
 
 const EMPTY_NODE: Node = Node {
@@ -77,6 +78,7 @@ const EMPTY_NODE: Node = Node {
         [f32::NEG_INFINITY; WIDTH],
     ],
     child: [0; WIDTH],
+    valid: 0,
 };
 
 /// A triangle during the build: its box and index.
@@ -224,61 +226,16 @@ pub struct MeshBvhStats {
     pub bytes: usize,
 }
 
-/// A ray prepared for the box test: per axis the origin, the inverse direction
-/// and which plane row is near.
-struct BoxRay {
-    origin: [Vec4; 3],
-    /// The origin the far planes are measured from: `origin`, except on an axis
-    /// the direction does not move along (see [`BoxRay::new`]).
-    far_origin: [Vec4; 3],
-    inv: [Vec4; 3],
-    near: [usize; 3],
-    far: [usize; 3],
-}
-
-impl BoxRay {
-    #[inline(always)]
-    fn new(o: [f32; 3], d: [f32; 3]) -> BoxRay {
-        let mut ray = BoxRay { origin: [Vec4::ZERO; 3], far_origin: [Vec4::ZERO; 3], inv: [Vec4::ZERO; 3], near: [0; 3], far: [0; 3] };
-        for axis in 0..3 {
-            // Finite even for a zero component, so no 0 * inf = NaN.
-            let inv = if d[axis] == 0.0 { 1e30f32.copysign(d[axis]) } else { (1.0 / d[axis]).clamp(-1e30, 1e30) };
-            ray.origin[axis] = Vec4::splat(o[axis]);
-            // A ray that does not move along this axis is inside the slab for all t
-            // when the origin is; but an origin exactly on the far plane would give
-            // exit 0 * 1e30 = 0. Measuring the far plane from an origin moved back
-            // (by more than an f32 ulp) makes that exit >= 1e-20 * 1e30 instead.
-            let far_origin = if d[axis] == 0.0 { o[axis] - (o[axis].abs() * (1.0 / 1_048_576.0) + 1e-20).copysign(inv) } else { o[axis] };
-            ray.far_origin[axis] = Vec4::splat(far_origin);
-            ray.inv[axis] = Vec4::splat(inv);
-            (ray.near[axis], ray.far[axis]) = if inv >= 0.0 { (axis, axis + 3) } else { (axis + 3, axis) };
-        }
-        ray
-    }
-
-    /// Entry distances of four children (`half` 0: slots 0-3, 1: slots 4-7), and
-    /// the mask of those entered in `[0, t_max]`.
-    #[inline(always)]
-    fn test_half(&self, node: &Node, half: usize, t_max: f32) -> (Vec4, u32) {
-        let p = &node.planes;
-        let row = |r: usize| Vec4::from_slice(&p[r][4 * half..4 * half + 4]);
-        let near = |a: usize| (row(self.near[a]) - self.origin[a]) * self.inv[a];
-        let far = |a: usize| (row(self.far[a]) - self.far_origin[a]) * self.inv[a];
-        let enter = near(0).max(near(1)).max(near(2)).max(Vec4::ZERO);
-        let exit = far(0).min(far(1)).min(far(2)).min(Vec4::splat(t_max));
-        (enter, enter.cmple(exit * (1.0 + WIDEN)).bitmask())
-    }
-
-    /// Entry distances of the eight children, and the mask of those entered.
-    #[inline(always)]
-    fn test(&self, node: &Node, t_max: f32) -> ([f32; WIDTH], u32) {
-        let (lo, lo_mask) = self.test_half(node, 0, t_max);
-        let (hi, hi_mask) = self.test_half(node, 1, t_max);
-        let mut enter = [0.0; WIDTH];
-        enter[..4].copy_from_slice(&lo.to_array());
-        enter[4..].copy_from_slice(&hi.to_array());
-        (enter, lo_mask | hi_mask << 4)
-    }
+/// The entry distances of a node's eight children, and the mask of those entered.
+#[inline(always)]
+fn test_node(ray: &SlabRay, node: &Node, t_max: f32) -> ([f32; WIDTH], u32) {
+    let half = |h: usize| ray.test(|r| Vec4::from_slice(&node.planes[r][4 * h..4 * h + 4]), t_max);
+    let (lo, lo_mask) = half(0);
+    let (hi, hi_mask) = half(1);
+    let mut enter = [0.0; WIDTH];
+    enter[..4].copy_from_slice(&lo.to_array());
+    enter[4..].copy_from_slice(&hi.to_array());
+    (enter, (lo_mask | hi_mask << 4) & node.valid as u32)
 }
 
 impl MeshBvh {
@@ -326,7 +283,7 @@ impl MeshBvh {
         if self.nodes.is_empty() {
             return None;
         }
-        let ray = BoxRay::new(o, d);
+        let ray = SlabRay::new(Vec3::from(o.map(f64::from)), Vec3::from(d.map(f64::from)), 0.0);
         let mut best = None;
         let mut stack = [const { MaybeUninit::<(u32, f32)>::uninit() }; STACK];
         let mut top = 0usize;
@@ -343,7 +300,7 @@ impl MeshBvh {
                 }
             } else {
                 let node = &self.nodes[current as usize];
-                let (enter, mut mask) = ray.test(node, t_max);
+                let (enter, mut mask) = test_node(&ray, node, t_max);
                 if mask != 0 {
                     // Insertion sort, farthest first; continue with the nearest.
                     let mut order = [(0f32, 0u32); WIDTH];
@@ -389,7 +346,7 @@ impl MeshBvh {
         if self.nodes.is_empty() {
             return false;
         }
-        let ray = BoxRay::new(o, d);
+        let ray = SlabRay::new(Vec3::from(o.map(f64::from)), Vec3::from(d.map(f64::from)), 0.0);
         let mut stack = [const { MaybeUninit::<u32>::uninit() }; STACK];
         stack[0].write(0);
         let mut top = 1usize;
@@ -397,7 +354,7 @@ impl MeshBvh {
             top -= 1;
             // SAFETY: entries below `top` were written before.
             let node = &self.nodes[unsafe { stack[top].assume_init() } as usize];
-            let (_, mut mask) = ray.test(node, t_max);
+            let (_, mut mask) = test_node(&ray, node, t_max);
             while mask != 0 {
                 let slot = mask.trailing_zeros() as usize;
                 mask &= mask - 1;
@@ -468,5 +425,6 @@ impl<F: Fn(usize) -> [[f32; 3]; 3]> Emitter<'_, F> {
             Bin::Inner { .. } => self.collapse(tree),
         };
         self.bvh.nodes[node].child[slot] = child;
+        self.bvh.nodes[node].valid |= 1 << slot;
     }
 }

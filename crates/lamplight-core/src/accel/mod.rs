@@ -4,6 +4,7 @@ mod aabb;
 mod bvh;
 mod mesh_bvh;
 mod sah;
+mod slab;
 pub mod tri4;
 
 pub use aabb::Aabb;

@@ -1,0 +1,131 @@
+//! The ray/box slab test both hierarchies use: a ray prepared once, then tested
+//! against four boxes at a time, stored as `f32` structure of arrays.
+//!
+//! Per axis the ray meets a box's planes at `(plane - o) / d`; the entry is the
+//! largest near distance, the exit the smallest far distance, and the box is
+//! entered when `entry <= exit` (Kay and Kajiya's slabs).
+//!
+//! Conservative for `f64` rays against `f32` boxes: it may report a box the ray
+//! misses, never miss one it enters. The origin is replaced by two `f32` points
+//! bracketing it on every axis, `lower < o < upper`; minimum planes are measured
+//! from `upper` and maximum planes from `lower`. For a positive direction that
+//! makes the entry (minimum plane) no later and the exit (maximum plane) no earlier
+//! than the true ones, and for a negative direction the same with the roles of the
+//! planes swapped, so no index depends on the ray's signs. The entry/exit interval
+//! is then widened by a few `f32` ulps for the rounding of the subtraction, the
+//! product and the inverse direction. The strict bracket also covers a ray that
+//! does not move along an axis and starts exactly on a box's face: its distances
+//! on that axis are `+-1e30` scaled by a nonzero gap, never `0`, so it stays inside.
+//!
+//! `f32` rays (the ray-casting API) go through the same `f64` setup: converting
+//! them is exact.
+
+use glam::Vec4;
+
+use crate::math::{max_abs, Vec3};
+
+/// Relative widening of the entry/exit interval (a few f32 ulps).
+pub(super) const WIDEN: f32 = 4.0 * f32::EPSILON;
+
+/// A ray prepared for [`SlabRay::test`].
+pub(super) struct SlabRay {
+    /// Per axis: an `f32` above the origin coordinate, splatted. Minimum planes are
+    /// measured from it.
+    upper_origin: [Vec4; 3],
+    /// Per axis: an `f32` below the origin coordinate, splatted. Maximum planes are
+    /// measured from it.
+    lower_origin: [Vec4; 3],
+    /// Per axis: inverse direction, splatted (finite: +-1e30 for zero components).
+    inv_dir: [Vec4; 3],
+    t_min: Vec4,
+}
+
+impl SlabRay {
+    /// Prepares `origin + t dir`, `t >= t_min`, for box tests.
+    #[inline(always)]
+    pub(super) fn new(origin: Vec3, dir: Vec3, t_min: f64) -> SlabRay {
+        // Bracket the origin: with pad = 2^-21 |o|_inf (+ a tiny absolute part for
+        // o = 0), rounding o -+ pad to f32 moves it by at most half an f32 ulp,
+        // 2^-24 |o|, less than pad, so lower < o < upper on every axis.
+        let pad = max_abs(origin) * (1.0 / 2_097_152.0) + 1e-30;
+        let lower = (origin - pad).as_vec3();
+        let upper = (origin + pad).as_vec3();
+        // 1/0 is an infinity of the zero's sign; keep it finite so that no 0 * inf
+        // NaN can arise in the box test.
+        let inv = dir.recip().as_vec3().clamp(glam::Vec3::splat(-1e30), glam::Vec3::splat(1e30));
+        SlabRay {
+            upper_origin: [Vec4::splat(upper.x), Vec4::splat(upper.y), Vec4::splat(upper.z)],
+            lower_origin: [Vec4::splat(lower.x), Vec4::splat(lower.y), Vec4::splat(lower.z)],
+            inv_dir: [Vec4::splat(inv.x), Vec4::splat(inv.y), Vec4::splat(inv.z)],
+            t_min: Vec4::splat(t_min.max(0.0) as f32),
+        }
+    }
+
+    /// Entry distances of four boxes and the mask of those the ray enters before
+    /// `t_max`. `row(r)` gives plane row `r` of the four boxes: minimum x, y, z,
+    /// then maximum x, y, z. Lanes of unused slots must be masked by the caller:
+    /// their planes are arbitrary here.
+    #[inline(always)]
+    pub(super) fn test(&self, row: impl Fn(usize) -> Vec4, t_max: f32) -> (Vec4, u32) {
+        let axis = |a: usize| {
+            let to_min = (row(a) - self.upper_origin[a]) * self.inv_dir[a];
+            let to_max = (row(a + 3) - self.lower_origin[a]) * self.inv_dir[a];
+            (to_min.min(to_max), to_min.max(to_max))
+        };
+        let (near_x, far_x) = axis(0);
+        let (near_y, far_y) = axis(1);
+        let (near_z, far_z) = axis(2);
+        let enter = near_x.max(near_y).max(near_z).max(self.t_min);
+        let exit = far_x.min(far_y).min(far_z).min(Vec4::splat(t_max));
+        let hit = (enter * (1.0 - WIDEN)).cmple(exit * (1.0 + WIDEN));
+        (enter, hit.bitmask())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn rows(min: [f32; 3], max: [f32; 3]) -> impl Fn(usize) -> Vec4 {
+        move |r| Vec4::splat(if r < 3 { min[r] } else { max[r - 3] })
+    }
+
+    #[test]
+    fn a_ray_along_a_face_is_inside() {
+        // The ray lies in the plane x = 1, the box's maximum x: it touches the box.
+        let ray = SlabRay::new(Vec3::new(1.0, 0.5, -5.0), Vec3::Z, 0.0);
+        let (_, mask) = ray.test(rows([0.0; 3], [1.0; 3]), f32::INFINITY);
+        assert_eq!(mask, 0b1111);
+        let ray = SlabRay::new(Vec3::new(0.0, 0.5, -5.0), -Vec3::Z * -1.0, 0.0);
+        assert_eq!(ray.test(rows([0.0; 3], [1.0; 3]), f32::INFINITY).1, 0b1111);
+        // Just outside the face: missed.
+        let ray = SlabRay::new(Vec3::new(1.001, 0.5, -5.0), Vec3::Z, 0.0);
+        assert_eq!(ray.test(rows([0.0; 3], [1.0; 3]), f32::INFINITY).1, 0);
+    }
+
+    #[test]
+    fn entry_distances_and_t_limits() {
+        let ray = SlabRay::new(Vec3::new(0.5, 0.5, -2.0), Vec3::Z, 0.0);
+        let (enter, mask) = ray.test(rows([0.0; 3], [1.0; 3]), f32::INFINITY);
+        assert_eq!(mask, 0b1111);
+        assert!((enter.x - 2.0).abs() < 1e-5);
+        // The box lies beyond t_max = 1.5, or before t_min = 3.5: not entered.
+        assert_eq!(ray.test(rows([0.0; 3], [1.0; 3]), 1.5).1, 0);
+        let late = SlabRay::new(Vec3::new(0.5, 0.5, -2.0), Vec3::Z, 3.5);
+        assert_eq!(late.test(rows([0.0; 3], [1.0; 3]), f32::INFINITY).1, 0);
+        // Negative directions see the same box from the other side.
+        let back = SlabRay::new(Vec3::new(0.5, 0.5, 3.0), -Vec3::Z, 0.0);
+        let (enter, mask) = back.test(rows([0.0; 3], [1.0; 3]), f32::INFINITY);
+        assert_eq!(mask, 0b1111);
+        assert!((enter.x - 2.0).abs() < 1e-5);
+    }
+
+    #[test]
+    fn f64_origins_between_f32_values_are_bracketed() {
+        // A box whose face is the f32 just above an f64 origin coordinate.
+        let o = 1.0 + 1e-9;
+        let face = (o as f32).next_up();
+        let ray = SlabRay::new(Vec3::new(o, 0.5, -1.0), Vec3::Z, 0.0);
+        assert_eq!(ray.test(rows([face - 1.0, 0.0, 0.0], [face, 1.0, 1.0]), f32::INFINITY).1, 0b1111);
+    }
+}
