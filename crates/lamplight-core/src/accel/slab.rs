@@ -96,7 +96,8 @@ mod tests {
         let ray = SlabRay::new(Vec3::new(1.0, 0.5, -5.0), Vec3::Z, 0.0);
         let (_, mask) = ray.test(rows([0.0; 3], [1.0; 3]), f32::INFINITY);
         assert_eq!(mask, 0b1111);
-        let ray = SlabRay::new(Vec3::new(0.0, 0.5, -5.0), -Vec3::Z * -1.0, 0.0);
+        // Along the minimum face x = 0, travelling the other way.
+        let ray = SlabRay::new(Vec3::new(0.0, 0.5, 5.0), -Vec3::Z, 0.0);
         assert_eq!(ray.test(rows([0.0; 3], [1.0; 3]), f32::INFINITY).1, 0b1111);
         // Just outside the face: missed.
         let ray = SlabRay::new(Vec3::new(1.001, 0.5, -5.0), Vec3::Z, 0.0);
