@@ -128,7 +128,9 @@ pub fn direct_light(scene: &Scene, ray: &Ray, hit: &Hit, material: &Material, co
 /// the same order, so the value is the same.
 #[inline]
 fn blinn_power(x: f64, n: f64) -> f64 {
-    if n.fract() == 0.0 && (0.0..=4096.0).contains(&n) {
+    // `(n as u32) as f64 == n` tests for an integer without the libm call that
+    // `fract` is on baseline x86-64.
+    if (0.0..=4096.0).contains(&n) && (n as u32) as f64 == n {
         let (mut base, mut exponent, mut result) = (x, n as u32, 1.0);
         loop {
             if exponent & 1 != 0 {

@@ -30,9 +30,8 @@ impl Texture {
         match self {
             Texture::Constant(c) => *c,
             Texture::Checker { size, even, odd, offset } => {
-                let cell = ((p + *offset) / *size).floor();
-                let parity = (cell.x + cell.y + cell.z).rem_euclid(2.0);
-                if parity < 0.5 {
+                let cell = (p + *offset) / *size;
+                if cell_parity(cell) == 0 {
                     *even
                 } else {
                     *odd
@@ -42,9 +41,47 @@ impl Texture {
     }
 }
 
+/// `(floor(x) + floor(y) + floor(z)) mod 2` for the checker's cell coordinates.
+///
+/// In integers where they fit (the usual case): `floor` and `rem_euclid` are libm
+/// calls on baseline x86-64 and cost more than the rest of the lookup. Beyond
+/// 2^50 every `f64` is an integer and the float formula is exact.
+#[inline]
+fn cell_parity(cell: Vec3) -> u8 {
+    const FITS: f64 = (1u64 << 50) as f64;
+    if cell.x.abs() < FITS && cell.y.abs() < FITS && cell.z.abs() < FITS {
+        // Truncation, minus one for negative non-integers, is floor.
+        let floor = |v: f64| {
+            let t = v as i64;
+            t - ((t as f64) > v) as i64
+        };
+        ((floor(cell.x) + floor(cell.y) + floor(cell.z)) & 1) as u8
+    } else {
+        let c = cell.floor();
+        (c.x + c.y + c.z).rem_euclid(2.0) as u8
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn cell_parity_equals_the_float_formula() {
+        let float = |c: Vec3| {
+            let f = c.floor();
+            (f.x + f.y + f.z).rem_euclid(2.0) as u8
+        };
+        let values = [-3.5, -2.0, -1.0, -0.5, -1e-300, 0.0, 0.5, 1.0, 1.5, 2.999, 7.0, 1e9 + 0.5, -1e9 - 0.5, 3e15, -3e15, 1e300];
+        for &x in &values {
+            for &y in &values {
+                for &z in &[-0.25, 0.0, 2.5] {
+                    let c = Vec3::new(x, y, z);
+                    assert_eq!(cell_parity(c), float(c), "{c}");
+                }
+            }
+        }
+    }
 
     #[test]
     fn checker_alternates_across_cells() {
