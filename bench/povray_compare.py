@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Times `lamplight render SCENE` against POV-Ray 3.7 on the same machine, in one run.
 
-lamplight is timed as a whole process (start to image file written); POV-Ray by
+lamplight is timed as a whole process (start to PNG written, as the issue asks;
+an extra untimed run writes the PPM that is compared with POV-Ray's); POV-Ray by
 its own "Trace Time" (its process also idles ~0.7 s at start and stop, see
 shared/anchors/README.md). Runs alternate between the two, and medians are
 reported. Both write 8-bit sRGB PPM images, which are then compared.
@@ -80,8 +81,9 @@ def main():
     shutil.copy(pov_src, work)
     ll_out = os.path.join(work, "lamplight.ppm")
     pov_out = os.path.join(work, "povray.ppm")
-    ll_cmd = [args.lamplight, "render", args.scene, "--width", str(args.width), "--height", str(args.height),
-              "--spp", "1", "--threads", str(args.threads), "--quiet", "-o", ll_out]
+    ll_base = [args.lamplight, "render", args.scene, "--width", str(args.width), "--height", str(args.height),
+               "--spp", "1", "--threads", str(args.threads), "--quiet", "-o"]
+    ll_cmd = ll_base + [os.path.join(work, "lamplight.png")]
     pov_cmd = ["povray", "-D", "-A", f"+W{args.width}", f"+H{args.height}", f"+WT{args.threads}", "+FP",
                f"+O{pov_out}", f"{args.scene}.pov"]
 
@@ -98,6 +100,7 @@ def main():
             sys.exit("could not find POV-Ray's Trace Time in its output")
         pov_times.append(float(m.group(1)))
 
+    subprocess.run(ll_base + [ll_out], check=True)
     w1, h1, a = read_ppm(ll_out)
     w2, h2, b = read_ppm(pov_out)
     assert (w1, h1) == (w2, h2), "image sizes differ"
@@ -111,7 +114,7 @@ def main():
     print()
     print("| measure | median (s) | min | max |")
     print("|---|---:|---:|---:|")
-    print(f"| lamplight whole process | {ll_med:.3f} | {min(ll_times):.3f} | {max(ll_times):.3f} |")
+    print(f"| lamplight whole process (to PNG) | {ll_med:.3f} | {min(ll_times):.3f} | {max(ll_times):.3f} |")
     print(f"| POV-Ray trace time | {pov_med:.3f} | {min(pov_times):.3f} | {max(pov_times):.3f} |")
     print(f"| POV-Ray whole process | {statistics.median(pov_wall):.3f} | {min(pov_wall):.3f} | {max(pov_wall):.3f} |")
     print()
