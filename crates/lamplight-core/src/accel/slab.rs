@@ -13,7 +13,8 @@
 //! than the true ones, and for a negative direction the same with the roles of the
 //! planes swapped, so no index depends on the ray's signs. The entry/exit interval
 //! is then widened by a few `f32` ulps for the rounding of the subtraction, the
-//! product and the inverse direction. The strict bracket also covers a ray that
+//! product, the direction and its inverse (four half-ulps in all, against eight
+//! in [`WIDEN`]). The strict bracket also covers a ray that
 //! does not move along an axis and starts exactly on a box's face: its distances
 //! on that axis are `+-1e30` scaled by a nonzero gap, never `0`, so it stays inside.
 //!
@@ -50,9 +51,11 @@ impl SlabRay {
         let pad = max_abs(origin) * (1.0 / 2_097_152.0) + 1e-30;
         let lower = (origin - pad).as_vec3();
         let upper = (origin + pad).as_vec3();
-        // 1/0 is an infinity of the zero's sign; keep it finite so that no 0 * inf
-        // NaN can arise in the box test.
-        let inv = dir.recip().as_vec3().clamp(glam::Vec3::splat(-1e30), glam::Vec3::splat(1e30));
+        // One f32 division for the three axes: rounding the direction to f32 first
+        // adds half an ulp to the inverse, inside WIDEN's allowance. 1/0 is an
+        // infinity of the zero's sign; keep it finite so that no 0 * inf NaN can
+        // arise in the box test.
+        let inv = (Vec4::ONE / Vec4::new(dir.x as f32, dir.y as f32, dir.z as f32, 1.0)).clamp(Vec4::splat(-1e30), Vec4::splat(1e30));
         SlabRay {
             upper_origin: [Vec4::splat(upper.x), Vec4::splat(upper.y), Vec4::splat(upper.z)],
             lower_origin: [Vec4::splat(lower.x), Vec4::splat(lower.y), Vec4::splat(lower.z)],
