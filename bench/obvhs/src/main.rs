@@ -47,7 +47,7 @@ fn parse_args() -> Result<Args, String> {
         let list = || value.split(',').map(str::to_owned).collect::<Vec<_>>();
         match flag.as_str() {
             "--rays" => args.rays = PathBuf::from(&value),
-            "--meshes" => args.meshes = list(),
+            "--meshes" => args.meshes = list().into_iter().filter(|m| !m.is_empty()).collect(),
             "--runs" => args.runs = value.parse().map_err(|_| "--runs: a number")?,
             "--threads" => args.threads = list().iter().map(|t| t.parse().map_err(|_| "--threads: numbers")).collect::<Result<_, _>>()?,
             "--structures" => args.kinds = list().iter().map(|k| Kind::parse(k)).collect::<Result<_, _>>()?,
@@ -315,6 +315,17 @@ fn watertight_probe(args: &Args, pool: &rayon::ThreadPool) {
         pool.install(|| accel.cast(&origins, &dirs, &mut t, &mut p));
         let leaks: Vec<usize> = (0..n).filter(|&i| !t[i].is_finite()).collect();
         print!("; {} {}", kind.name(), leaks.len());
+        if !leaks.is_empty() {
+            // By target (ray i aims at a vertex when i % 4 == 0, else at a point on the
+            // x, y or diagonal edge) and side (front when i % 8 < 4), in % of such rays.
+            let mut by = [[0usize; 2]; 4];
+            for &i in &leaks {
+                by[i % 4][usize::from(i % 8 >= 4)] += 1;
+            }
+            let pct = |c: usize| 100.0 * c as f64 / (n / 8) as f64;
+            let part = |k: usize| format!("{:.1}/{:.1}", pct(by[k][0]), pct(by[k][1]));
+            print!(" [% front/back: vertex {}, x edge {}, y edge {}, diagonal {}]", part(0), part(1), part(2), part(3));
+        }
         if kind != Kind::Lamplight && !leaks.is_empty() {
             // Whether the triangle test itself leaks: every triangle against each leaking ray.
             let tris: Vec<RtTriangle> = indices
