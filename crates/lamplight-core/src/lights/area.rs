@@ -4,10 +4,12 @@
 //! lights in pbrt and Mitsuba do). Light sampling picks a point `y` uniformly on
 //! the shape's area `A`; seen from `x`, its density in solid angle is
 //! `pdf = |x - y|^2 / (|cos(theta_y)| A)`, where `theta_y` is between the light's
-//! normal and the direction back to `x`.
+//! normal and the direction back to `x`. Shapes that only know their area as
+//! triangles (meshes, placed meshes) are sampled by a [`TriangleSampler`].
 
 use std::sync::Arc;
 
+use super::mesh::TriangleSampler;
 use crate::math::{Rgb, Vec3};
 use crate::shapes::Shape;
 
@@ -21,6 +23,8 @@ pub struct AreaLight {
     /// Emitted radiance on the outward side.
     pub radiance: Rgb,
     area: f64,
+    /// The triangles of a mesh emitter (`None`: the shape samples itself).
+    triangles: Option<Arc<TriangleSampler>>,
 }
 
 /// A point sampled on an area light, as seen from a receiving point.
@@ -38,10 +42,16 @@ pub struct AreaSample {
 
 impl AreaLight {
     /// The area light of object `object`, or `None` when the shape cannot be sampled
-    /// or has no area.
+    /// (neither [`Shape::area`] nor [`Shape::triangles`]) or has no area.
     pub fn new(object: usize, shape: Arc<dyn Shape>, radiance: Rgb) -> Option<AreaLight> {
-        let area = shape.area()?;
-        (area > 0.0 && area.is_finite()).then_some(AreaLight { object, shape, radiance, area })
+        let (area, triangles) = match shape.area() {
+            Some(area) => (area, None),
+            None => {
+                let sampler = TriangleSampler::new(shape.triangles()?)?;
+                (sampler.area(), Some(Arc::new(sampler)))
+            }
+        };
+        (area > 0.0 && area.is_finite()).then_some(AreaLight { object, shape, radiance, area, triangles })
     }
 
     /// Surface area.
@@ -51,7 +61,10 @@ impl AreaLight {
 
     /// A light point for receiver `x` from `u`.
     pub fn sample(&self, x: Vec3, u: (f64, f64)) -> Option<AreaSample> {
-        let (y, n) = self.shape.sample_area(u)?;
+        let (y, n) = match &self.triangles {
+            Some(t) => t.sample(u)?,
+            None => self.shape.sample_area(u)?,
+        };
         let to = y - x;
         let d2 = to.length_squared();
         if !(d2 > 0.0) {
