@@ -100,7 +100,7 @@ pub struct RenderArgs {
     /// Tone map for .png/.ppm output: `clamp` or `filmic` (ACES fit).
     #[arg(long, value_name = "NAME", default_value = "clamp")]
     pub tonemap: ToneMap,
-    /// Path tracer: light the scene with this equirectangular HDR map (.exr), importance-sampled.
+    /// Path tracer: light the scene with this equirectangular HDR map (.exr or .hdr), importance-sampled.
     #[arg(long, value_name = "FILE")]
     pub environment: Option<PathBuf>,
     /// Path tracer: also write the per-pixel variance of the image's mean to this .exr file.

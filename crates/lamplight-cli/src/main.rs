@@ -80,7 +80,7 @@ fn render_command(job: RenderJob) -> anyhow::Result<()> {
         SceneSource::Mesh(path) => imported::load(&path, aspect).map_err(|e| UsageError(e.to_string()))?,
     };
     if let Some(path) = &environment {
-        let map = image_io::read_exr(path)?;
+        let map = lamplight_scene::env_map::read_environment(path)?;
         let pixels = map.pixels.iter().map(|p| lamplight_core::math::Rgb::new(p[0] as f64, p[1] as f64, p[2] as f64)).collect();
         let env = lamplight_core::lights::EnvMap::new(map.width as usize, map.height as usize, pixels)
             .with_context(|| format!("cannot use '{}' as an environment map", path.display()))?;

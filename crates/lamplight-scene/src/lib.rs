@@ -9,6 +9,7 @@
 pub mod build;
 pub mod builtin;
 pub mod description;
+pub mod env_map;
 mod error;
 pub mod expr;
 pub mod formats;
