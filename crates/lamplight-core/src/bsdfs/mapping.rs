@@ -6,7 +6,7 @@
 //! | `kd * C` | Lambertian albedo (`f = kd C / pi`) |
 //! | `ks`, `shininess` | GGX reflection of reflectance `ks`, roughness `sqrt(2 / (shine + 2))` |
 //! | `Reflection::Constant(w)` | mirror of weight `w` |
-//! | `Reflection::Dielectric` + `Refraction::Fresnel` of one index, `min 0 max 1` | smooth glass |
+//! | `Reflection::Dielectric` + `Refraction::Fresnel` of one index, `min 0 max 1` | smooth glass; rough glass (GGX, [`super::rough_dielectric`]) of `alpha = roughness` when `roughness >= 0.001` |
 //! | `Reflection::Dielectric {min, max}` otherwise | mirror of weight `min + (max - min) F` |
 //! | `Reflection::Conductor {eta, k}` | conductor mirror with complex Fresnel |
 //! | `Refraction::Fresnel` alone | refraction of weight `1 - F` |
@@ -48,7 +48,12 @@ pub fn bsdf_for(material: &Material, point: Vec3, front_face: bool) -> Bsdf {
     }
     if glass {
         if let Refraction::Fresnel { ior } = material.refraction {
-            push(Lobe::Glass { eta: relative(ior), tint: Rgb::ONE });
+            // Below the smallest GGX roughness the lobe is a mirror that f64 cannot sample.
+            if material.roughness >= microfacet::MIN_ALPHA {
+                push(Lobe::RoughGlass { eta: relative(ior), alpha: material.roughness, tint: Rgb::ONE });
+            } else {
+                push(Lobe::Glass { eta: relative(ior), tint: Rgb::ONE });
+            }
         }
     } else {
         match material.reflection {
