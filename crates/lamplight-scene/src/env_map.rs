@@ -2,7 +2,7 @@
 //! (`.hdr`), chosen by the extension in any case.
 //!
 //! An RGBE pixel stores three 8-bit mantissas and one shared exponent `e`: channel
-//! `c = (m + 0.5) 2^(e - 136)` (Greg Ward's format; the `image` crate decodes it),
+//! `c = m 2^(e - 136)` (Greg Ward's format; the `image` crate decodes it),
 //! so each channel keeps about `1/256` of the pixel's brightest channel.
 
 use std::fs::File;
