@@ -26,7 +26,7 @@ import numpy as np
 import mitsuba as mi
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-LAMPLIGHT = os.path.join(ROOT, "target", "release", "lamplight")
+LAMPLIGHT = os.environ.get("LAMPLIGHT", os.path.join(ROOT, "target", "release", "lamplight"))
 
 
 def set_variant():
@@ -39,20 +39,23 @@ def set_variant():
     raise SystemExit("no usable Mitsuba variant")
 
 
-def mitsuba_scene(size, spp):
+SAMPLER = "independent"
+
+
+def mitsuba_scene(size, spp, sampler=None):
     d = mi.cornell_box()
     d["integrator"] = {"type": "path", "max_depth": 8}
     d["sensor"]["film"]["width"] = size
     d["sensor"]["film"]["height"] = size
     d["sensor"]["film"]["rfilter"] = {"type": "box"}
-    d["sensor"]["sampler"]["sample_count"] = spp
+    d["sensor"]["sampler"] = {"type": sampler or SAMPLER, "sample_count": spp}
     return mi.load_dict(d)
 
 
-def render_mitsuba(size, spp, seed=0):
-    scene = mitsuba_scene(size, spp)
+def render_mitsuba(size, spp, seed=0, sampler=None):
+    scene = mitsuba_scene(size, spp, sampler)
     # Warm-up at 1 spp so that JIT compilation is not timed (llvm variant).
-    mi.render(mitsuba_scene(size, 1), spp=1)
+    mi.render(mitsuba_scene(size, 1, sampler), spp=1)
     t0 = time.perf_counter()
     img = mi.render(scene, spp=spp, seed=seed)
     arr = np.array(img, dtype=np.float64)  # forces evaluation
@@ -91,10 +94,16 @@ def main():
     ap.add_argument("--ref-spp", type=int, default=4096)
     ap.add_argument("--speed-size", type=int, default=512)
     ap.add_argument("--speed-spp", type=int, default=16)
-    ap.add_argument("--ladder", default="4,16,64,256")
+    ap.add_argument("--ladder", default="4,16,64,256", help="spp list for time to quality; empty: skip")
+    ap.add_argument("--mitsuba-sampler", default="independent",
+                    help="Mitsuba sampler for the accuracy renders (independent, stratified, multijitter, ldsampler); "
+                         "speed and time to quality always use cornell_box()'s independent sampler")
+    ap.add_argument("--skip-speed", action="store_true")
     args = ap.parse_args()
+    global SAMPLER
     variant = set_variant()
     print(f"Mitsuba {mi.__version__}, variant {variant}, {os.cpu_count()} CPUs")
+    SAMPLER = args.mitsuba_sampler
 
     # Two independent renders per renderer: their difference measures each one's
     # noise, which is subtracted from the squared difference between renderers to
@@ -124,14 +133,26 @@ def main():
     print(f"  without the {np.sum(~off)} pixels that see the light: {np.sqrt(mse_off) / mean * 100:.3f} %, "
           f"noise removed {np.sqrt(max(0.0, mse_off - vm_off - vl_off)) / mean * 100:.3f} %")
     print("mean per channel lamplight / Mitsuba = " + ", ".join(f"{r:.4f}" for r in ref_l.mean(axis=(0, 1)) / ref_m.mean(axis=(0, 1))))
-    print(f"(reference renders took {tl:.1f} s lamplight, {tm:.1f} s Mitsuba)")
+    print(f"(reference renders took {tl:.1f} s lamplight, {tm:.1f} s Mitsuba, Mitsuba sampler {SAMPLER})")
+    # Where the disagreement sits: the light itself, its edge pixels, the rest.
+    light = ref_m.max(axis=2) > 5.0
+    edge = (~light) & (~off)
+    for name, mask in (("light interior", light), ("light edge", edge), ("rest", off)):
+        d2 = np.sum((ref_l - ref_m)[mask] ** 2) / ref_m.size
+        n2 = (np.sum((m1 - m2)[mask] ** 2) + np.sum((l1 - l2)[mask] ** 2)) / 4.0 / ref_m.size
+        print(f"  {name}: {np.sum(mask)} pixels, share of squared difference {d2 / mse * 100:.1f} %, "
+              f"of which noise {n2 / max(d2, 1e-30) * 100:.0f} %")
+    SAMPLER = "independent"
 
-    n = args.speed_size * args.speed_size * args.speed_spp
-    _, t_l = render_lamplight(args.speed_size, args.speed_spp)
-    _, t_m = render_mitsuba(args.speed_size, args.speed_spp)
-    print(f"\n## Speed: {args.speed_size}x{args.speed_size}, {args.speed_spp} spp")
-    print(f"lamplight: {t_l:.2f} s, {n / t_l / 1e6:.3f} M samples/s")
-    print(f"Mitsuba {variant}: {t_m:.2f} s, {n / t_m / 1e6:.3f} M samples/s")
+    if not args.skip_speed:
+        n = args.speed_size * args.speed_size * args.speed_spp
+        _, t_l = render_lamplight(args.speed_size, args.speed_spp)
+        _, t_m = render_mitsuba(args.speed_size, args.speed_spp)
+        print(f"\n## Speed: {args.speed_size}x{args.speed_size}, {args.speed_spp} spp")
+        print(f"lamplight: {t_l:.2f} s, {n / t_l / 1e6:.3f} M samples/s")
+        print(f"Mitsuba {variant}: {t_m:.2f} s, {n / t_m / 1e6:.3f} M samples/s")
+    if not args.ladder:
+        return
 
     # Time to quality: each renderer against its own high-spp reference (other seeds),
     # so that the residual difference between the renderers does not set a floor.

@@ -64,9 +64,12 @@ pub fn write_exr_with_layers(path: &Path, image: &Image, extra: &[ExtraLayer]) -
     write_atomically(path, &bytes.into_inner())
 }
 
+/// Named channels of an image: `(name, values)`, values row-major.
+pub type Channels = Vec<(String, Vec<f32>)>;
+
 /// Every channel of the first part of an `.exr` file as 32-bit floats, by name:
-/// `(width, height, [(name, values)])`, values row-major.
-pub fn read_exr_channels(path: &Path) -> Result<(usize, usize, Vec<(String, Vec<f32>)>), ImageError> {
+/// `(width, height, channels)`.
+pub fn read_exr_channels(path: &Path) -> Result<(usize, usize, Channels), ImageError> {
     let read_error = |reason: String| ImageError::Read { path: path.to_path_buf(), reason };
     let image = exr::prelude::read_first_flat_layer_from_file(path).map_err(|e| read_error(e.to_string()))?;
     let size = image.layer_data.size;

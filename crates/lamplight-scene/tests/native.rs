@@ -153,3 +153,15 @@ fn the_documented_examples_load() {
         image(&s, 8, 8);
     }
 }
+
+#[test]
+fn roughness_reaches_the_material() {
+    let s = scene(
+        "[materials.frosted]\nkd = 0\nreflection = { type = \"dielectric\", ior = 1.5 }\nrefraction = { type = \"fresnel\", ior = 1.5 }\nroughness = 0.3\n\
+         [[objects]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"frosted\"\n",
+    );
+    let m = &s.materials[s.objects[0].material];
+    assert_eq!(m.roughness, 0.3);
+    let bsdf = lamplight_core::bsdfs::bsdf_for(m, lamplight_core::math::Vec3::ZERO, true);
+    assert!(matches!(bsdf.lobes(), [lamplight_core::bsdfs::Lobe::RoughGlass { alpha, .. }] if *alpha == 0.3), "{:?}", bsdf.lobes());
+}
