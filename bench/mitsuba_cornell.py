@@ -11,7 +11,16 @@ same scene) with a box pixel filter and paths of at most 8 segments. Reports:
 * time to quality: seconds each needs to reach a fixed RMSE against the
   high-spp reference (interpolated in log-log between measured spp).
 
+The accuracy renders may use another Mitsuba sampler (`--mitsuba-sampler
+stratified`): the sampler changes only the noise, not the expected image, and
+cornell_box()'s `independent` sampler leaves binomial noise of the light's full
+radiance in the pixels on the light's edges, which dominates the difference.
+The accuracy report splits the squared difference into the light, its edge
+pixels and the rest, each with the share two renders per renderer attribute to
+noise.
+
 Usage: python bench/mitsuba_cornell.py [--size 128] [--ref-spp 4096] [--speed-size 512]
+       [--mitsuba-sampler stratified] [--skip-speed] [--ladder ""]
 Needs `pip install mitsuba numpy`; for the LLVM variant set DRJIT_LIBLLVM_PATH
 (e.g. /usr/lib/x86_64-linux-gnu/libLLVM.so.19.1; LLVM 15 crashed in code generation). Run from the repository root
 after `cargo build --release`.
@@ -99,6 +108,7 @@ def main():
                     help="Mitsuba sampler for the accuracy renders (independent, stratified, multijitter, ldsampler); "
                          "speed and time to quality always use cornell_box()'s independent sampler")
     ap.add_argument("--skip-speed", action="store_true")
+    ap.add_argument("--save", metavar="DIR", help="save the four accuracy renders as .npy files in DIR")
     args = ap.parse_args()
     global SAMPLER
     variant = set_variant()
@@ -113,6 +123,9 @@ def main():
     l1, tl = render_lamplight(args.size, args.ref_spp, seed=7)
     l2, _ = render_lamplight(args.size, args.ref_spp, seed=8)
     ref_m, ref_l = 0.5 * (m1 + m2), 0.5 * (l1 + l2)
+    if args.save:
+        for name, arr in (("m1", m1), ("m2", m2), ("l1", l1), ("l2", l2)):
+            np.save(os.path.join(args.save, f"{name}.npy"), arr)
     mean = ref_m.mean()
     var_m = np.mean((m1 - m2) ** 2) / 4.0  # variance of the mean of two renders
     var_l = np.mean((l1 - l2) ** 2) / 4.0
