@@ -1,6 +1,7 @@
 //! Emitting meshes from every source become area lights of the path tracer: an
-//! OBJ with an emissive MTL, and a native `mesh` node with an emitting material
-//! (placed by a transform, so through an instance).
+//! OBJ with an emissive MTL, a glTF mesh with `emissiveFactor`, and a native
+//! `mesh` node with an emitting material (the last two placed by a transform, so
+//! through an instance).
 
 mod common;
 
@@ -38,4 +39,33 @@ fn a_native_mesh_node_with_an_emitting_material_is_an_area_light() {
     let lights = LightSet::new(&scene);
     assert_eq!(lights.area.len(), 1);
     assert!((lights.area[0].area() - 6.0).abs() < 1e-12, "scaled by 2 x 3");
+}
+
+#[test]
+fn a_gltf_mesh_with_an_emissive_factor_is_an_area_light() {
+    use base64::Engine;
+    // One triangle (0,0,0), (1,0,0), (0,1,0) of area 1/2, placed by a node scaled 2x.
+    let mut buffer = Vec::new();
+    for v in [0.0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0] {
+        buffer.extend(v.to_le_bytes());
+    }
+    let uri = format!("data:application/octet-stream;base64,{}", base64::engine::general_purpose::STANDARD.encode(&buffer));
+    let json = format!(
+        r#"{{"asset": {{"version": "2.0"}}, "scene": 0, "scenes": [{{"nodes": [0]}}],
+  "nodes": [{{"mesh": 0, "scale": [2, 2, 2]}}],
+  "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0}}, "material": 0}}]}}],
+  "materials": [{{"emissiveFactor": [1, 0.5, 0.25]}}],
+  "accessors": [{{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0,0,0], "max": [1,1,0]}}],
+  "bufferViews": [{{"buffer": 0, "byteOffset": 0, "byteLength": 36}}],
+  "buffers": [{{"uri": "{uri}", "byteLength": 36}}]}}"#
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("glow.gltf");
+    std::fs::write(&path, json).unwrap();
+    let scene = imported::load(&path, 1.0).unwrap();
+    let lights = LightSet::new(&scene);
+    assert_eq!(lights.area.len(), 1);
+    assert!((lights.area[0].area() - 2.0).abs() < 1e-12, "area 1/2 scaled by 2 x 2");
+    assert_eq!(lights.area[0].radiance, lamplight_core::math::Rgb::new(1.0, 0.5, 0.25));
+    assert!(scene.lights.is_empty(), "no default point light");
 }
