@@ -98,21 +98,24 @@ fn rough_glass_furnace_loses_only_the_microfacet_shadowing() {
 
 #[test]
 fn next_event_estimation_agrees_with_bsdf_sampling_alone() {
-    // A diffuse floor, a glossy ball and a glass ball lit by a spherical area light
-    // and a dim sky: NEE + MIS and the BSDF-only oracle estimate the same integral,
-    // so their image means agree within their noise.
+    // A diffuse floor, a glossy ball, a glass ball, a frosted-glass ball and a rough
+    // gold ball lit by a spherical area light and a dim sky: NEE + MIS and the
+    // BSDF-only oracle estimate the same integral, so their image means agree within
+    // their noise.
     let camera = Camera::look_at(Vec3::new(0.0, 1.0, 5.0), Vec3::new(0.0, 0.5, 0.0), Vec3::Y, Fov::VerticalDeg(40.0), 1.0).unwrap();
     let mut b = SceneBuilder::new(camera);
     let floor = b.material(Material::plastic(Rgb::new(0.8, 0.6, 0.4), 0.0, 0.9, 0.0, 1.0)).unwrap();
     let glossy = b.material(Material::plastic(Rgb::new(0.2, 0.4, 0.8), 0.0, 0.5, 0.4, 30.0)).unwrap();
     let glass = b.material(Material { ks: Rgb::ZERO, ..Material::glass(1.5, 0.0, 1.0) }).unwrap();
     let frosted = b.material(Material { roughness: 0.3, ..Material::glass(1.5, 0.0, 1.0) }).unwrap();
+    let brushed = b.material(Material { roughness: 0.2, ..Material::metal(Metal::Gold, 0.0, 1.0) }).unwrap();
     let lamp = b.material(Material { emission: Rgb::splat(20.0), kd: Rgb::ZERO, ..Material::default() }).unwrap();
     b.object(Rectangle::horizontal(0.0, -3.0, 3.0, -3.0, 3.0).unwrap(), floor).unwrap();
     b.object(Sphere::new(Vec3::new(-0.7, 0.6, 0.0), 0.6).unwrap(), glossy).unwrap();
     b.object(Sphere::new(Vec3::new(0.8, 0.5, 0.5), 0.5).unwrap(), glass).unwrap();
     b.object(Sphere::new(Vec3::new(0.5, 2.5, 1.0), 0.3).unwrap(), lamp).unwrap();
     b.object(Sphere::new(Vec3::new(0.0, 0.35, 1.5), 0.35).unwrap(), frosted).unwrap();
+    b.object(Sphere::new(Vec3::new(-1.0, 0.3, 1.2), 0.3).unwrap(), brushed).unwrap();
     b.environment = Some(Arc::new(Environment::Constant(Rgb::splat(0.2))));
     let scene = b.build().unwrap();
     let (w, h, spp) = (12u32, 12u32, 256u32);

@@ -16,6 +16,7 @@ pub mod dielectric;
 pub mod lambertian;
 pub mod mapping;
 pub mod microfacet;
+pub mod rough_conductor;
 pub mod rough_dielectric;
 
 pub use conductor::MirrorFresnel;
@@ -75,6 +76,15 @@ pub enum Lobe {
         /// Colour filter of both branches (1 for clear glass).
         tint: Rgb,
     },
+    /// Rough metal: GGX reflection with conductor Fresnel ([`rough_conductor`]).
+    RoughConductor {
+        /// Real part of the index, per channel.
+        eta: Rgb,
+        /// Extinction coefficient, per channel.
+        k: Rgb,
+        /// GGX roughness.
+        alpha: f64,
+    },
     /// Rough glass: GGX microfacet reflection and refraction ([`rough_dielectric`]).
     RoughGlass {
         /// Relative index across the boundary.
@@ -96,7 +106,7 @@ pub enum Lobe {
 impl Lobe {
     /// True for lobes that scatter into single directions.
     pub fn is_delta(&self) -> bool {
-        !matches!(self, Lobe::Diffuse(_) | Lobe::Glossy { .. } | Lobe::RoughGlass { .. })
+        !matches!(self, Lobe::Diffuse(_) | Lobe::Glossy { .. } | Lobe::RoughConductor { .. } | Lobe::RoughGlass { .. })
     }
 
     /// Per-channel upper bound of the reflectance (albedo) over all angles.
@@ -105,6 +115,7 @@ impl Lobe {
             Lobe::Diffuse(a) => a,
             Lobe::Glossy { ks, .. } => ks,
             Lobe::Mirror(m) => m.bound(),
+            Lobe::RoughConductor { .. } => Rgb::ONE,
             Lobe::Glass { tint, .. } | Lobe::RoughGlass { tint, .. } => tint,
             Lobe::Refract { weight, .. } => weight.unwrap_or(Rgb::ONE),
         }
@@ -126,6 +137,9 @@ impl Lobe {
             }
             Lobe::Glass { eta, tint } => Lobe::Glass { eta, tint: tint * s },
             Lobe::RoughGlass { eta, alpha, tint } => Lobe::RoughGlass { eta, alpha, tint: tint * s },
+            // Like the conductor mirror: physics when unscaled, else a constant-reflectance GGX lobe.
+            Lobe::RoughConductor { alpha, .. } if s != Rgb::ONE => Lobe::Glossy { ks: s, alpha },
+            Lobe::RoughConductor { .. } => self,
             Lobe::Refract { eta, weight } => Lobe::Refract { eta, weight: Some(weight.unwrap_or(Rgb::ONE) * s) },
         }
     }
@@ -206,6 +220,7 @@ impl Bsdf {
                 Lobe::Diffuse(a) => sum += lambertian::f(a, wo, wi),
                 Lobe::Glossy { ks, alpha } => sum += microfacet::f(ks, alpha, wo, wi),
                 Lobe::RoughGlass { eta, alpha, tint } => sum += tint * rough_dielectric::f(alpha, eta, wo, wi),
+                Lobe::RoughConductor { eta, k, alpha } => sum += rough_conductor::f(eta, k, alpha, wo, wi),
                 _ => {}
             }
         }
@@ -219,7 +234,7 @@ impl Bsdf {
         for (lobe, p) in self.lobes().iter().zip(self.probs) {
             match *lobe {
                 Lobe::Diffuse(_) => pdf += p * lambertian::pdf(wo, wi),
-                Lobe::Glossy { alpha, .. } => pdf += p * microfacet::pdf(alpha, wo, wi),
+                Lobe::Glossy { alpha, .. } | Lobe::RoughConductor { alpha, .. } => pdf += p * microfacet::pdf(alpha, wo, wi),
                 Lobe::RoughGlass { eta, alpha, .. } => pdf += p * rough_dielectric::pdf(alpha, eta, wo, wi),
                 _ => {}
             }
@@ -244,7 +259,7 @@ impl Bsdf {
         let delta = |wi: Vec3, weight: Rgb, eta: f64| Some(BsdfSample { wi, weight: weight / p, pdf: 0.0, delta: true, eta });
         let wi = match self.lobes[chosen] {
             Lobe::Diffuse(_) => lambertian::sample(u),
-            Lobe::Glossy { alpha, .. } => microfacet::sample(alpha, wo, u)?,
+            Lobe::Glossy { alpha, .. } | Lobe::RoughConductor { alpha, .. } => microfacet::sample(alpha, wo, u)?,
             Lobe::RoughGlass { eta, alpha, .. } => rough_dielectric::sample(alpha, eta, wo, u_rest, u)?,
             Lobe::Mirror(m) => return delta(dielectric::reflect_local(wo), m.reflectance(wo.z), 1.0),
             Lobe::Glass { eta, tint } => {

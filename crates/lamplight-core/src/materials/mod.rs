@@ -102,8 +102,8 @@ pub struct Material {
     /// Fraction of light a shadow ray keeps when it crosses this surface:
     /// 0 for opaque objects; POV-Ray lets clear glass pass shadow rays (1).
     pub shadow_transmittance: Rgb,
-    /// GGX roughness `alpha` of Fresnel glass for the path tracer (0: smooth; see
-    /// [`crate::bsdfs::mapping`]); the Whitted tracer ignores it.
+    /// GGX roughness `alpha` of Fresnel glass and of conductor reflection for the path
+    /// tracer (0: smooth; see [`crate::bsdfs::mapping`]); the Whitted tracer ignores it.
     pub roughness: f64,
 }
 
