@@ -122,6 +122,29 @@ mod tests {
     }
 
     #[test]
+    fn mesh_light_pdf_of_the_hit_agrees_with_sample() {
+        // What MIS needs: a BSDF ray that hits the mesh where a light sample landed
+        // gets the sample's density from the hit's distance and normal alone.
+        let positions = vec![Vec3::ZERO, Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 1.0), Vec3::new(3.0, 0.0, 3.0)];
+        let mesh = crate::shapes::TriangleMesh::new(positions, vec![[0, 2, 1], [1, 2, 3]], None).unwrap(); // both face +y
+        let light = AreaLight::new(0, Arc::new(mesh), Rgb::ONE).unwrap();
+        assert!((light.area() - 4.5).abs() < 1e-12, "areas 1 and 3.5");
+        let x = Vec3::new(0.7, 1.5, 0.9);
+        for i in 0..20 {
+            let s = light.sample(x, ((i as f64 * 0.37).fract(), (i as f64 * 0.61).fract())).unwrap();
+            let hit = light.shape.intersect(&crate::ray::Ray { origin: x, dir: s.wi }, 0.0, f64::INFINITY).unwrap();
+            assert!((hit.t - s.distance).abs() < 1e-9);
+            assert!(
+                (light.pdf(s.wi, hit.t, hit.normal) - s.pdf).abs() < 1e-9 * s.pdf,
+                "{} vs {}",
+                light.pdf(s.wi, hit.t, hit.normal),
+                s.pdf
+            );
+        }
+        assert!(light.sample(Vec3::new(0.7, -1.5, 0.9), (0.3, 0.3)).is_none(), "back side is dark");
+    }
+
+    #[test]
     fn rectangle_pdf_agrees_with_sample() {
         let rect = Rectangle::new(Vec3::new(-0.5, 2.0, -0.5), Vec3::X, Vec3::Z).unwrap(); // normal X x Z = -Y
         let light = AreaLight::new(3, Arc::new(rect), Rgb::splat(5.0)).unwrap();
