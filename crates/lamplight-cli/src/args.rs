@@ -100,12 +100,25 @@ pub struct RenderArgs {
     /// Tone map for .png/.ppm output: `clamp` or `filmic` (ACES fit).
     #[arg(long, value_name = "NAME", default_value = "clamp")]
     pub tonemap: ToneMap,
-    /// Path tracer: light the scene with this equirectangular HDR map (.exr), importance-sampled.
+    /// Path tracer: light the scene with this equirectangular HDR map (.exr or .hdr), importance-sampled.
     #[arg(long, value_name = "FILE")]
     pub environment: Option<PathBuf>,
     /// Path tracer: also write the per-pixel variance of the image's mean to this .exr file.
     #[arg(long, value_name = "FILE")]
     pub variance_output: Option<PathBuf>,
+    /// Path tracer, .exr output: extra layers in the same file, comma-separated:
+    /// `variance` (of each pixel's mean: variance.R/G/B), `samples` (per pixel: samples.Y).
+    #[arg(long, value_name = "LIST", value_delimiter = ',')]
+    pub exr_layers: Vec<ExrLayer>,
+}
+
+/// An extra layer of the .exr output.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum ExrLayer {
+    /// Variance of each pixel's mean, per channel.
+    Variance,
+    /// Samples taken per pixel.
+    Samples,
 }
 
 /// Where the scene comes from.
@@ -140,6 +153,8 @@ pub struct RenderJob {
     pub environment: Option<PathBuf>,
     /// Where the path tracer's variance image goes.
     pub variance_output: Option<PathBuf>,
+    /// Extra layers of the .exr output (path tracer), each at most once.
+    pub exr_layers: Vec<ExrLayer>,
 }
 
 /// Bad input from the user: the program exits with code 2.
@@ -195,7 +210,17 @@ impl RenderArgs {
             }
         }
         let output = self.output.unwrap_or_else(|| PathBuf::from(format!("{name}.png")));
-        Format::from_path(&output).map_err(|e| usage(e.to_string()))?;
+        let format = Format::from_path(&output).map_err(|e| usage(e.to_string()))?;
+        let mut exr_layers = self.exr_layers;
+        exr_layers.dedup();
+        if !exr_layers.is_empty() {
+            if integrator != IntegratorKind::Path {
+                return Err(usage("--exr-layers needs --integrator path"));
+            }
+            if format != Format::Exr {
+                return Err(usage("--exr-layers needs an .exr output file"));
+            }
+        }
         let options = RenderOptions {
             width,
             height,
@@ -217,6 +242,7 @@ impl RenderArgs {
             tonemap: self.tonemap,
             environment: self.environment,
             variance_output,
+            exr_layers,
         })
     }
 }

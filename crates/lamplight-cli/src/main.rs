@@ -26,9 +26,10 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use lamplight_core::film::tonemap::ToneMap;
 use lamplight_core::{render, RenderControl, RenderStats};
 use lamplight_scene::build::imported;
+use lamplight_scene::exr_layers::{write_exr_with_layers, ExtraLayer};
 use lamplight_scene::{builtin, image_io};
 
-use crate::args::{Cli, Command, RenderJob, SceneSource, UsageError};
+use crate::args::{Cli, Command, ExrLayer, RenderJob, SceneSource, UsageError};
 
 fn main() -> ExitCode {
     match run() {
@@ -67,7 +68,7 @@ fn list_command() -> anyhow::Result<()> {
 }
 
 fn render_command(job: RenderJob) -> anyhow::Result<()> {
-    let RenderJob { scene, name, output, options, quiet, exposure, tonemap, environment, variance_output } = job;
+    let RenderJob { scene, name, output, options, quiet, exposure, tonemap, environment, variance_output, exr_layers } = job;
     // Fail before a long render, not after it, when the file cannot be written.
     image_io::check_writable(&output)?;
 
@@ -80,7 +81,7 @@ fn render_command(job: RenderJob) -> anyhow::Result<()> {
         SceneSource::Mesh(path) => imported::load(&path, aspect).map_err(|e| UsageError(e.to_string()))?,
     };
     if let Some(path) = &environment {
-        let map = image_io::read_exr(path)?;
+        let map = lamplight_scene::env_map::read_environment(path)?;
         let pixels = map.pixels.iter().map(|p| lamplight_core::math::Rgb::new(p[0] as f64, p[1] as f64, p[2] as f64)).collect();
         let env = lamplight_core::lights::EnvMap::new(map.width as usize, map.height as usize, pixels)
             .with_context(|| format!("cannot use '{}' as an environment map", path.display()))?;
@@ -96,13 +97,17 @@ fn render_command(job: RenderJob) -> anyhow::Result<()> {
         }
     };
     let control = RenderControl { progress: &progress, cancel: None };
+    // The variance file and the extra EXR layers need the path tracer's per-pixel sums.
     let mut variance = None;
-    let rendered = match &variance_output {
-        Some(_) => lamplight_core::render_path(&scene, &options, &control).map(|(acc, stats)| {
+    let mut samples = 0;
+    let rendered = if variance_output.is_some() || !exr_layers.is_empty() {
+        lamplight_core::render_path(&scene, &options, &control).map(|(acc, stats)| {
             variance = Some(acc.variance(options.width, options.height));
+            samples = acc.samples;
             (acc.mean(options.width, options.height), stats)
-        }),
-        None => render(&scene, &options, &control),
+        })
+    } else {
+        render(&scene, &options, &control)
     };
     if let Some(bar) = &bar {
         bar.finish_and_clear();
@@ -114,7 +119,18 @@ fn render_command(job: RenderJob) -> anyhow::Result<()> {
         _ if exposure == 0.0 && tonemap == ToneMap::Clamp => image,
         _ => lamplight_core::film::tonemap::apply(&image, exposure, tonemap),
     };
-    image_io::write_image(&output, &image)?;
+    if exr_layers.is_empty() {
+        image_io::write_image(&output, &image)?;
+    } else {
+        let layers: Vec<ExtraLayer> = exr_layers
+            .iter()
+            .map(|layer| match layer {
+                ExrLayer::Variance => ExtraLayer::rgb("variance", variance.as_ref().expect("the path tracer ran")),
+                ExrLayer::Samples => ExtraLayer::single("samples", vec![samples as f32; image.pixels.len()]),
+            })
+            .collect();
+        write_exr_with_layers(&output, &image, &layers)?;
+    }
     if let (Some(path), Some(variance)) = (&variance_output, &variance) {
         image_io::write_image(path, variance)?;
     }

@@ -239,3 +239,49 @@ fn path_traces_the_cornell_box_with_an_environment_map() {
     ok(d, &args);
     assert!(d.join("spheres.png").exists());
 }
+
+#[test]
+fn exr_layers_hold_the_variance_and_sample_count_of_the_same_render() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let cb = ["render", "cornell-box", "--integrator", "path", "--width", "16", "--height", "16", "--spp", "4"];
+    // One render writes the layered file and the separate variance file from one accumulator.
+    ok(d, &[&cb[..], &["-o", "layered.exr", "--exr-layers", "variance,samples", "--variance-output", "var.exr"]].concat());
+    ok(d, &[&cb[..], &["-o", "plain.exr"]].concat());
+    let (w, h, channels) = lamplight_scene::exr_layers::read_exr_channels(&d.join("layered.exr")).unwrap();
+    assert_eq!((w, h), (16, 16));
+    let get = |n: &str| channels.iter().find(|(name, _)| name == n).unwrap_or_else(|| panic!("no channel {n}")).1.clone();
+    let variance = read_exr(&d.join("var.exr")).unwrap();
+    for (c, name) in ["variance.R", "variance.G", "variance.B"].iter().enumerate() {
+        assert_eq!(get(name), variance.pixels.iter().map(|p| p[c]).collect::<Vec<_>>(), "{name}");
+    }
+    assert!(get("variance.R").iter().any(|v| *v > 0.0));
+    assert_eq!(get("samples.Y"), vec![4.0; 256]);
+    // The image channels are the plain render's, bit for bit.
+    assert_eq!(read_exr(&d.join("layered.exr")).unwrap().pixels, read_exr(&d.join("plain.exr")).unwrap().pixels);
+    fails(d, &[&cb[..], &["-o", "x.png", "--exr-layers", "variance"]].concat(), 2, "--exr-layers needs an .exr output file");
+    let whitted = ["render", "spheres", "--width", "8", "--height", "8", "-o", "x.exr", "--exr-layers", "samples"];
+    fails(d, &whitted, 2, "--exr-layers needs --integrator path");
+}
+
+#[test]
+fn radiance_hdr_files_light_the_scene_like_the_same_exr() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    // A uniform sky of 2 is exact in RGBE (mantissa 128, exponent 130), so both maps give the same image.
+    let sky = lamplight_core::film::Image { width: 4, height: 2, pixels: vec![[2.0, 2.0, 2.0]; 8] };
+    lamplight_scene::image_io::write_image(&d.join("sky.exr"), &sky).unwrap();
+    // Rows of 4 pixels are too short for run-length encoding: flat RGBE quadruples.
+    let mut hdr = b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X 4\n".to_vec();
+    for _ in 0..8 {
+        hdr.extend([128, 128, 128, 130]);
+    }
+    std::fs::write(d.join("sky.hdr"), hdr).unwrap();
+    let base = ["render", "spheres", "--integrator", "path", "--width", "12", "--height", "8", "--spp", "4"];
+    ok(d, &[&base[..], &["--environment", "sky.exr", "-o", "a.exr"]].concat());
+    ok(d, &[&base[..], &["--environment", "sky.hdr", "-o", "b.exr"]].concat());
+    assert_eq!(read_exr(&d.join("a.exr")).unwrap().pixels, read_exr(&d.join("b.exr")).unwrap().pixels);
+    std::fs::write(d.join("bad.hdr"), b"#?RADIANCE\nnot really").unwrap();
+    let message = fails(d, &[&base[..], &["--environment", "bad.hdr", "-o", "c.exr"]].concat(), 1, "bad.hdr");
+    assert!(message.contains("not a valid Radiance .hdr file"), "{message}");
+}

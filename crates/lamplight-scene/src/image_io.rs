@@ -148,7 +148,7 @@ fn encode(format: Format, image: &Image) -> Result<Vec<u8>, String> {
 
 /// Writes `bytes` to a temporary file beside `path`, syncs it and renames it over
 /// `path`; on failure the temporary file is removed.
-fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), ImageError> {
+pub(crate) fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), ImageError> {
     let (mut file, temp) = create_temp(path)?;
     let written = file.write_all(bytes).and_then(|()| file.sync_all());
     drop(file);

@@ -9,8 +9,10 @@
 pub mod build;
 pub mod builtin;
 pub mod description;
+pub mod env_map;
 mod error;
 pub mod expr;
+pub mod exr_layers;
 pub mod formats;
 pub mod image_io;
 pub mod import;

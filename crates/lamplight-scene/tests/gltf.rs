@@ -105,6 +105,8 @@ fn check_scene(imported: &import::Imported) {
     assert_eq!(metal.reflection, Reflection::Constant(Rgb::new(0.5, 0.25, 0.125)));
     let glass = imported.instances[1].material.as_ref().unwrap();
     assert_eq!(glass.refraction, Refraction::Fresnel { ior: 1.33f32 as f64 });
+    // glTF's default roughnessFactor 1 is GGX alpha 1 (rough glass in the path tracer).
+    assert_eq!(glass.roughness, 1.0);
     let camera = &imported.cameras[0];
     assert_eq!(
         (camera.eye, camera.target, camera.up),

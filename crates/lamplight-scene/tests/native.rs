@@ -153,3 +153,43 @@ fn the_documented_examples_load() {
         image(&s, 8, 8);
     }
 }
+
+#[test]
+fn roughness_reaches_the_material() {
+    let s = scene(
+        "[materials.frosted]\nkd = 0\nreflection = { type = \"dielectric\", ior = 1.5 }\nrefraction = { type = \"fresnel\", ior = 1.5 }\nroughness = 0.3\n\
+         [[objects]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"frosted\"\n",
+    );
+    let m = &s.materials[s.objects[0].material];
+    assert_eq!(m.roughness, 0.3);
+    let bsdf = lamplight_core::bsdfs::bsdf_for(m, lamplight_core::math::Vec3::ZERO, true);
+    assert!(matches!(bsdf.lobes(), [lamplight_core::bsdfs::Lobe::RoughGlass { alpha, .. }] if *alpha == 0.3), "{:?}", bsdf.lobes());
+}
+
+#[test]
+fn frosted_example_has_rough_lobes_and_a_mesh_light() {
+    use lamplight_core::bsdfs::{bsdf_for, Lobe};
+    let path = example("frosted");
+    let file = SceneFile::parse(&path, &std::fs::read_to_string(&path).unwrap()).unwrap_or_else(|e| panic!("{e}"));
+    let s = file.build(24, 16).unwrap_or_else(|e| panic!("{e}"));
+    let lights = lamplight_core::lights::LightSet::new(&s);
+    assert_eq!(lights.area.len(), 1, "the lamp mesh");
+    assert!((lights.area[0].area() - 1.0).abs() < 1e-12);
+    let lobes: Vec<Lobe> = s
+        .objects
+        .iter()
+        .flat_map(|o| bsdf_for(&s.materials[o.material], lamplight_core::math::Vec3::ZERO, true).lobes().to_vec())
+        .collect();
+    assert!(lobes.iter().any(|l| matches!(l, Lobe::RoughGlass { alpha, .. } if *alpha == 0.2)));
+    assert!(lobes.iter().any(|l| matches!(l, Lobe::RoughConductor { alpha, .. } if *alpha == 0.3)));
+    let options = RenderOptions {
+        width: 24,
+        height: 16,
+        spp: 16,
+        integrator: lamplight_core::integrators::IntegratorKind::Path,
+        ..RenderOptions::default()
+    };
+    let (image, stats) = render(&s, &options, &RenderControl::default()).unwrap();
+    assert_eq!(stats.nonfinite_samples, 0);
+    assert!(image.pixels.iter().any(|p| p[0] > 0.05), "the lamp lights the scene");
+}

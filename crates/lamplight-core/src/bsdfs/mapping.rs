@@ -6,9 +6,9 @@
 //! | `kd * C` | Lambertian albedo (`f = kd C / pi`) |
 //! | `ks`, `shininess` | GGX reflection of reflectance `ks`, roughness `sqrt(2 / (shine + 2))` |
 //! | `Reflection::Constant(w)` | mirror of weight `w` |
-//! | `Reflection::Dielectric` + `Refraction::Fresnel` of one index, `min 0 max 1` | smooth glass |
+//! | `Reflection::Dielectric` + `Refraction::Fresnel` of one index, `min 0 max 1` | smooth glass; rough glass (GGX, [`super::rough_dielectric`]) of `alpha = roughness` when `roughness >= 0.001` |
 //! | `Reflection::Dielectric {min, max}` otherwise | mirror of weight `min + (max - min) F` |
-//! | `Reflection::Conductor {eta, k}` | conductor mirror with complex Fresnel |
+//! | `Reflection::Conductor {eta, k}` | conductor mirror with complex Fresnel; rough metal (GGX, [`super::rough_conductor`]) of `alpha = roughness` when `roughness >= 0.001` |
 //! | `Refraction::Fresnel` alone | refraction of weight `1 - F` |
 //! | `Refraction::Constant(w)` | refraction of weight `w` |
 //! | `emission` | area light radiance (see [`crate::lights::area`]) |
@@ -48,13 +48,21 @@ pub fn bsdf_for(material: &Material, point: Vec3, front_face: bool) -> Bsdf {
     }
     if glass {
         if let Refraction::Fresnel { ior } = material.refraction {
-            push(Lobe::Glass { eta: relative(ior), tint: Rgb::ONE });
+            // Below the smallest GGX roughness the lobe is a mirror that f64 cannot sample.
+            if material.roughness >= microfacet::MIN_ALPHA {
+                push(Lobe::RoughGlass { eta: relative(ior), alpha: material.roughness, tint: Rgb::ONE });
+            } else {
+                push(Lobe::Glass { eta: relative(ior), tint: Rgb::ONE });
+            }
         }
     } else {
         match material.reflection {
             Reflection::None => {}
             Reflection::Constant(w) => push(Lobe::Mirror(MirrorFresnel::Constant(w))),
             Reflection::Dielectric { ior, min, max } => push(Lobe::Mirror(MirrorFresnel::Dielectric { eta: relative(ior), min, max })),
+            Reflection::Conductor { eta, k } if material.roughness >= microfacet::MIN_ALPHA => {
+                push(Lobe::RoughConductor { eta, k, alpha: material.roughness })
+            }
             Reflection::Conductor { eta, k } => push(Lobe::Mirror(MirrorFresnel::Conductor { eta, k })),
         }
         match material.refraction {

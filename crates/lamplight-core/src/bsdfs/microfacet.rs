@@ -36,9 +36,9 @@ pub fn d(alpha: f64, h: Vec3) -> f64 {
     a2 / (PI * denom * denom)
 }
 
-/// Smith's `Lambda(v)`.
+/// Smith's `Lambda(v)` (even in `v.z`: the same on both sides of the surface).
 #[inline]
-fn lambda(alpha: f64, v: Vec3) -> f64 {
+pub fn lambda(alpha: f64, v: Vec3) -> f64 {
     let c2 = v.z * v.z;
     if c2 <= 0.0 {
         return f64::INFINITY;
@@ -74,13 +74,21 @@ pub fn pdf(alpha: f64, wo: Vec3, wi: Vec3) -> f64 {
     g1(alpha, wo) * d(alpha, h) / (4.0 * wo.z)
 }
 
-/// A reflected direction: a visible normal `h` (Heitz 2018, "Sampling the GGX
-/// Distribution of Visible Normals"), then `wi = reflect(wo, h)`; `None` when it
-/// falls below the surface.
+/// A reflected direction: a visible normal `h` ([`visible_normal`]), then
+/// `wi = reflect(wo, h)`; `None` when it falls below the surface.
 pub fn sample(alpha: f64, wo: Vec3, u: (f64, f64)) -> Option<Vec3> {
     if wo.z <= 0.0 {
         return None;
     }
+    let h = visible_normal(alpha, wo, u);
+    let wi = h * (2.0 * wo.dot(h)) - wo;
+    (wi.z > 0.0).then_some(wi)
+}
+
+/// A microfacet normal distributed as the normals visible from `wo` (`wo.z > 0`),
+/// density `D_wo(h) = G1(wo) max(0, wo.h) D(h) / cos(theta_o)` (Heitz 2018,
+/// "Sampling the GGX Distribution of Visible Normals").
+pub fn visible_normal(alpha: f64, wo: Vec3, u: (f64, f64)) -> Vec3 {
     // Stretch to the unit-roughness configuration.
     let vh = Vec3::new(alpha * wo.x, alpha * wo.y, wo.z).normalize();
     let len2 = vh.x * vh.x + vh.y * vh.y;
@@ -92,9 +100,7 @@ pub fn sample(alpha: f64, wo: Vec3, u: (f64, f64)) -> Option<Vec3> {
     let s = 0.5 * (1.0 + vh.z);
     let p2 = (1.0 - s) * (1.0 - p1 * p1).max(0.0).sqrt() + s * r * phi.sin();
     let nh = t1 * p1 + t2 * p2 + vh * (1.0 - p1 * p1 - p2 * p2).max(0.0).sqrt();
-    let h = Vec3::new(alpha * nh.x, alpha * nh.y, nh.z.max(1e-9)).normalize();
-    let wi = h * (2.0 * wo.dot(h)) - wo;
-    (wi.z > 0.0).then_some(wi)
+    Vec3::new(alpha * nh.x, alpha * nh.y, nh.z.max(1e-9)).normalize()
 }
 
 #[cfg(test)]

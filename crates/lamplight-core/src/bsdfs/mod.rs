@@ -2,7 +2,7 @@
 //! of lobes (one file each), evaluated and sampled in a local shading frame whose
 //! `z` axis is the shading normal on the side the ray arrived from.
 //!
-//! Non-delta lobes (Lambertian, GGX) have a value `f(wo, wi)` and a density; delta
+//! Non-delta lobes (Lambertian, GGX reflection, rough glass) have a value `f(wo, wi)` and a density; delta
 //! lobes (mirrors, smooth glass) are only sampled. Sampling picks a lobe with
 //! probability proportional to its reflectance bound; for a non-delta lobe the
 //! returned weight uses the mixture value and density of all non-delta lobes
@@ -16,6 +16,8 @@ pub mod dielectric;
 pub mod lambertian;
 pub mod mapping;
 pub mod microfacet;
+pub mod rough_conductor;
+pub mod rough_dielectric;
 
 pub use conductor::MirrorFresnel;
 pub use mapping::bsdf_for;
@@ -74,6 +76,24 @@ pub enum Lobe {
         /// Colour filter of both branches (1 for clear glass).
         tint: Rgb,
     },
+    /// Rough metal: GGX reflection with conductor Fresnel ([`rough_conductor`]).
+    RoughConductor {
+        /// Real part of the index, per channel.
+        eta: Rgb,
+        /// Extinction coefficient, per channel.
+        k: Rgb,
+        /// GGX roughness.
+        alpha: f64,
+    },
+    /// Rough glass: GGX microfacet reflection and refraction ([`rough_dielectric`]).
+    RoughGlass {
+        /// Relative index across the boundary.
+        eta: f64,
+        /// GGX roughness.
+        alpha: f64,
+        /// Colour filter of both branches (1 for clear glass).
+        tint: Rgb,
+    },
     /// Smooth refraction only, with weight `Constant` or `1 - F` (delta).
     Refract {
         /// Relative index across the boundary.
@@ -86,7 +106,7 @@ pub enum Lobe {
 impl Lobe {
     /// True for lobes that scatter into single directions.
     pub fn is_delta(&self) -> bool {
-        !matches!(self, Lobe::Diffuse(_) | Lobe::Glossy { .. })
+        !matches!(self, Lobe::Diffuse(_) | Lobe::Glossy { .. } | Lobe::RoughConductor { .. } | Lobe::RoughGlass { .. })
     }
 
     /// Per-channel upper bound of the reflectance (albedo) over all angles.
@@ -95,7 +115,8 @@ impl Lobe {
             Lobe::Diffuse(a) => a,
             Lobe::Glossy { ks, .. } => ks,
             Lobe::Mirror(m) => m.bound(),
-            Lobe::Glass { tint, .. } => tint,
+            Lobe::RoughConductor { .. } => Rgb::ONE,
+            Lobe::Glass { tint, .. } | Lobe::RoughGlass { tint, .. } => tint,
             Lobe::Refract { weight, .. } => weight.unwrap_or(Rgb::ONE),
         }
     }
@@ -115,6 +136,10 @@ impl Lobe {
                 }
             }
             Lobe::Glass { eta, tint } => Lobe::Glass { eta, tint: tint * s },
+            Lobe::RoughGlass { eta, alpha, tint } => Lobe::RoughGlass { eta, alpha, tint: tint * s },
+            // Like the conductor mirror: physics when unscaled, else a constant-reflectance GGX lobe.
+            Lobe::RoughConductor { alpha, .. } if s != Rgb::ONE => Lobe::Glossy { ks: s, alpha },
+            Lobe::RoughConductor { .. } => self,
             Lobe::Refract { eta, weight } => Lobe::Refract { eta, weight: Some(weight.unwrap_or(Rgb::ONE) * s) },
         }
     }
@@ -194,19 +219,23 @@ impl Bsdf {
             match *lobe {
                 Lobe::Diffuse(a) => sum += lambertian::f(a, wo, wi),
                 Lobe::Glossy { ks, alpha } => sum += microfacet::f(ks, alpha, wo, wi),
+                Lobe::RoughGlass { eta, alpha, tint } => sum += tint * rough_dielectric::f(alpha, eta, wo, wi),
+                Lobe::RoughConductor { eta, k, alpha } => sum += rough_conductor::f(eta, k, alpha, wo, wi),
                 _ => {}
             }
         }
         sum
     }
 
-    /// Solid-angle density with which [`Bsdf::sample`] returns `wi` from a non-delta lobe.
+    /// Solid-angle density with which [`Bsdf::sample`] returns `wi` from a non-delta lobe
+    /// (`wi.z < 0`: transmitted).
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f64 {
         let mut pdf = 0.0;
         for (lobe, p) in self.lobes().iter().zip(self.probs) {
             match *lobe {
                 Lobe::Diffuse(_) => pdf += p * lambertian::pdf(wo, wi),
-                Lobe::Glossy { alpha, .. } => pdf += p * microfacet::pdf(alpha, wo, wi),
+                Lobe::Glossy { alpha, .. } | Lobe::RoughConductor { alpha, .. } => pdf += p * microfacet::pdf(alpha, wo, wi),
+                Lobe::RoughGlass { eta, alpha, .. } => pdf += p * rough_dielectric::pdf(alpha, eta, wo, wi),
                 _ => {}
             }
         }
@@ -230,7 +259,8 @@ impl Bsdf {
         let delta = |wi: Vec3, weight: Rgb, eta: f64| Some(BsdfSample { wi, weight: weight / p, pdf: 0.0, delta: true, eta });
         let wi = match self.lobes[chosen] {
             Lobe::Diffuse(_) => lambertian::sample(u),
-            Lobe::Glossy { alpha, .. } => microfacet::sample(alpha, wo, u)?,
+            Lobe::Glossy { alpha, .. } | Lobe::RoughConductor { alpha, .. } => microfacet::sample(alpha, wo, u)?,
+            Lobe::RoughGlass { eta, alpha, .. } => rough_dielectric::sample(alpha, eta, wo, u_rest, u)?,
             Lobe::Mirror(m) => return delta(dielectric::reflect_local(wo), m.reflectance(wo.z), 1.0),
             Lobe::Glass { eta, tint } => {
                 let s = dielectric::sample(wo, eta, u_rest);
@@ -246,7 +276,12 @@ impl Bsdf {
         if !(pdf > 0.0) {
             return None;
         }
-        Some(BsdfSample { wi, weight: self.f(wo, wi) * wi.z.abs() / pdf, pdf, delta: false, eta: 1.0 })
+        // Only a rough glass lobe transmits among the non-delta lobes.
+        let eta = match self.lobes[chosen] {
+            Lobe::RoughGlass { eta, .. } if wi.z < 0.0 => eta,
+            _ => 1.0,
+        };
+        Some(BsdfSample { wi, weight: self.f(wo, wi) * wi.z.abs() / pdf, pdf, delta: false, eta })
     }
 }
 

@@ -26,7 +26,11 @@ fn presets() -> Vec<(&'static str, Material)> {
         ("plastic", Material::plastic(Rgb::new(1.0, 0.2, 0.2), 0.1, 0.9, 0.8, 40.0)),
         ("rough plastic", Material::plastic(Rgb::ONE, 0.1, 0.7, 0.5, 2.0)),
         ("glass", Material::glass(1.5, 0.5, 50.0)),
+        ("rough glass", Material { roughness: 0.3, ..Material::glass(1.5, 0.5, 50.0) }),
+        ("frosted glass", Material { roughness: 1.0, ..Material::glass(1.33, 0.0, 1.0) }),
         ("gold", Material::metal(Metal::Gold, 0.5, 50.0)),
+        ("rough gold", Material { roughness: 0.3, ..Material::metal(Metal::Gold, 0.5, 50.0) }),
+        ("rough diffuse copper", Material { roughness: 0.6, kd: Rgb::splat(0.5), ..Material::metal(Metal::Copper, 0.0, 1.0) }),
         ("heckbert mirror", Material { reflection: Reflection::Constant(Rgb::splat(0.7)), kd: Rgb::splat(0.6), ..Material::default() }),
         (
             "constant glass",

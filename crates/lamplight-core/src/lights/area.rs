@@ -4,10 +4,12 @@
 //! lights in pbrt and Mitsuba do). Light sampling picks a point `y` uniformly on
 //! the shape's area `A`; seen from `x`, its density in solid angle is
 //! `pdf = |x - y|^2 / (|cos(theta_y)| A)`, where `theta_y` is between the light's
-//! normal and the direction back to `x`.
+//! normal and the direction back to `x`. Shapes that only know their area as
+//! triangles (meshes, placed meshes) are sampled by a [`TriangleSampler`].
 
 use std::sync::Arc;
 
+use super::mesh::TriangleSampler;
 use crate::math::{Rgb, Vec3};
 use crate::shapes::Shape;
 
@@ -21,6 +23,8 @@ pub struct AreaLight {
     /// Emitted radiance on the outward side.
     pub radiance: Rgb,
     area: f64,
+    /// The triangles of a mesh emitter (`None`: the shape samples itself).
+    triangles: Option<Arc<TriangleSampler>>,
 }
 
 /// A point sampled on an area light, as seen from a receiving point.
@@ -38,10 +42,16 @@ pub struct AreaSample {
 
 impl AreaLight {
     /// The area light of object `object`, or `None` when the shape cannot be sampled
-    /// or has no area.
+    /// (neither [`Shape::area`] nor [`Shape::triangles`]) or has no area.
     pub fn new(object: usize, shape: Arc<dyn Shape>, radiance: Rgb) -> Option<AreaLight> {
-        let area = shape.area()?;
-        (area > 0.0 && area.is_finite()).then_some(AreaLight { object, shape, radiance, area })
+        let (area, triangles) = match shape.area() {
+            Some(area) => (area, None),
+            None => {
+                let sampler = TriangleSampler::new(shape.triangles()?)?;
+                (sampler.area(), Some(Arc::new(sampler)))
+            }
+        };
+        (area > 0.0 && area.is_finite()).then_some(AreaLight { object, shape, radiance, area, triangles })
     }
 
     /// Surface area.
@@ -51,7 +61,10 @@ impl AreaLight {
 
     /// A light point for receiver `x` from `u`.
     pub fn sample(&self, x: Vec3, u: (f64, f64)) -> Option<AreaSample> {
-        let (y, n) = self.shape.sample_area(u)?;
+        let (y, n) = match &self.triangles {
+            Some(t) => t.sample(u)?,
+            None => self.shape.sample_area(u)?,
+        };
         let to = y - x;
         let d2 = to.length_squared();
         if !(d2 > 0.0) {
@@ -106,6 +119,29 @@ mod tests {
         omega /= (n * n) as f64;
         let expected = 2.0 * std::f64::consts::PI * (1.0 - (1.0f64 - 1.0 / 9.0).sqrt());
         assert!((omega - expected).abs() / expected < 2e-3, "{omega} vs {expected}");
+    }
+
+    #[test]
+    fn mesh_light_pdf_of_the_hit_agrees_with_sample() {
+        // What MIS needs: a BSDF ray that hits the mesh where a light sample landed
+        // gets the sample's density from the hit's distance and normal alone.
+        let positions = vec![Vec3::ZERO, Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 1.0), Vec3::new(3.0, 0.0, 3.0)];
+        let mesh = crate::shapes::TriangleMesh::new(positions, vec![[0, 2, 1], [1, 2, 3]], None).unwrap(); // both face +y
+        let light = AreaLight::new(0, Arc::new(mesh), Rgb::ONE).unwrap();
+        assert!((light.area() - 4.5).abs() < 1e-12, "areas 1 and 3.5");
+        let x = Vec3::new(0.7, 1.5, 0.9);
+        for i in 0..20 {
+            let s = light.sample(x, ((i as f64 * 0.37).fract(), (i as f64 * 0.61).fract())).unwrap();
+            let hit = light.shape.intersect(&crate::ray::Ray { origin: x, dir: s.wi }, 0.0, f64::INFINITY).unwrap();
+            assert!((hit.t - s.distance).abs() < 1e-9);
+            assert!(
+                (light.pdf(s.wi, hit.t, hit.normal) - s.pdf).abs() < 1e-9 * s.pdf,
+                "{} vs {}",
+                light.pdf(s.wi, hit.t, hit.normal),
+                s.pdf
+            );
+        }
+        assert!(light.sample(Vec3::new(0.7, -1.5, 0.9), (0.3, 0.3)).is_none(), "back side is dark");
     }
 
     #[test]

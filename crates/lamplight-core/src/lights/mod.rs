@@ -9,12 +9,14 @@ use crate::math::{Rgb, Vec3};
 pub mod area;
 mod directional;
 pub mod environment;
+pub mod mesh;
 mod point;
 mod set;
 
 pub use area::AreaLight;
 pub use directional::DirectionalLight;
 pub use environment::{EnvMap, Environment};
+pub use mesh::TriangleSampler;
 pub use point::{Falloff, PointLight};
 pub use set::{LightSet, Picked};
 

@@ -102,6 +102,9 @@ pub struct Material {
     /// Fraction of light a shadow ray keeps when it crosses this surface:
     /// 0 for opaque objects; POV-Ray lets clear glass pass shadow rays (1).
     pub shadow_transmittance: Rgb,
+    /// GGX roughness `alpha` of Fresnel glass and of conductor reflection for the path
+    /// tracer (0: smooth; see [`crate::bsdfs::mapping`]); the Whitted tracer ignores it.
+    pub roughness: f64,
 }
 
 impl Default for Material {
@@ -117,6 +120,7 @@ impl Default for Material {
             reflection: Reflection::None,
             refraction: Refraction::None,
             shadow_transmittance: Rgb::ZERO,
+            roughness: 0.0,
         }
     }
 }
@@ -185,6 +189,9 @@ impl Material {
         rgb_ok("shadow_transmittance", self.shadow_transmittance)?;
         if !(self.shininess.is_finite() && self.shininess >= 0.0) {
             return Err(crate::Error::invalid("shininess", "must be a non-negative number"));
+        }
+        if !(self.roughness.is_finite() && (0.0..=1.0).contains(&self.roughness)) {
+            return Err(crate::Error::invalid("roughness", format!("must be between 0 and 1, got {}", self.roughness)));
         }
         match &self.color {
             Texture::Constant(c) => rgb_ok("color", *c)?,

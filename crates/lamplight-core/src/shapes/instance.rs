@@ -121,6 +121,19 @@ impl Shape for Instance {
     fn primitive_count(&self) -> usize {
         self.shape.primitive_count()
     }
+
+    /// The shape's triangles moved by `M`; a mirroring `M` (`det < 0`) reverses the
+    /// winding, so two corners swap to keep the outward side counter-clockwise.
+    fn triangles(&self) -> Option<Vec<[Vec3; 3]>> {
+        let m = self.world_from_object;
+        let mirror = m.determinant() < 0.0;
+        let mut triangles = self.shape.triangles()?;
+        for t in &mut triangles {
+            let [a, b, c] = t.map(|p| m.transform_point3(p));
+            *t = if mirror { [a, c, b] } else { [a, b, c] };
+        }
+        Some(triangles)
+    }
 }
 
 #[cfg(test)]
@@ -149,6 +162,22 @@ mod tests {
         assert!(e.intersect(&Ray::new(Vec3::ZERO, -Vec3::Z), 0.0, 6.9).is_none(), "t_max is a world distance");
         assert!(e.intersect_p(&Ray::new(Vec3::ZERO, -Vec3::Z), 0.0, 7.1));
         assert!(!e.intersect_p(&Ray::new(Vec3::ZERO, -Vec3::Z), 0.0, 6.9));
+    }
+
+    #[test]
+    fn placed_triangles_keep_their_outward_side() {
+        // Normal (p1 - p0) x (p2 - p0) of a moved triangle equals the normal the
+        // instance reports for a hit, for a plain and for a mirroring transform.
+        let tri = crate::shapes::TriangleMesh::new(vec![Vec3::ZERO, Vec3::X, Vec3::Y], vec![[0, 1, 2]], None).unwrap();
+        let tri: Arc<dyn Shape> = Arc::new(tri);
+        for m in [Mat4::from_scale(Vec3::new(2.0, 3.0, 1.0)), Mat4::from_scale(Vec3::new(-2.0, 1.0, 1.0))] {
+            let e = Instance::new(tri.clone(), m).unwrap();
+            let [a, b, c] = e.triangles().unwrap()[0];
+            let n = (b - a).cross(c - a).normalize();
+            let centre = (a + b + c) / 3.0;
+            let hit = e.intersect(&Ray::new(centre + Vec3::Z, -Vec3::Z), 0.0, f64::INFINITY).unwrap();
+            assert!((hit.normal - n).length() < 1e-12, "{} vs {n}", hit.normal);
+        }
     }
 
     #[test]

@@ -200,6 +200,10 @@ impl Shape for TriangleMesh {
     fn primitive_count(&self) -> usize {
         self.indices.len()
     }
+
+    fn triangles(&self) -> Option<Vec<[Vec3; 3]>> {
+        Some((0..self.indices.len() as u32).map(|f| self.face_vertices(f)).collect())
+    }
 }
 
 #[cfg(test)]

@@ -88,4 +88,11 @@ pub trait Shape: Send + Sync + std::fmt::Debug {
     fn sample_area(&self, _u: (f64, f64)) -> Option<(Vec3, Vec3)> {
         None
     }
+
+    /// The surface as triangles, counter-clockwise seen from the outward side, for
+    /// shapes made of triangles (meshes, placed meshes): how an emitting mesh becomes
+    /// an area light ([`crate::lights::AreaLight`]). `None` (the default) otherwise.
+    fn triangles(&self) -> Option<Vec<[Vec3; 3]>> {
+        None
+    }
 }

@@ -192,6 +192,10 @@ impl Shape for Triangle {
         Some((p, self.normal))
     }
 
+    fn triangles(&self) -> Option<Vec<[Vec3; 3]>> {
+        Some(vec![[self.p0, self.p1, self.p2]])
+    }
+
     fn bounds(&self) -> Aabb {
         Aabb::from_points([self.p0, self.p1, self.p2])
     }

@@ -1,7 +1,9 @@
 //! A scene from an imported mesh file (OBJ, PLY, glTF): its meshes, placed as
 //! the file places them, seen by the file's first camera or else by a default
 //! camera framing everything, and lit by the file's lights or else by a default
-//! point light at the camera.
+//! point light at the camera. Emitting meshes (MTL `Ke`, glTF `emissiveFactor`) are
+//! lights of the file too: they are the path tracer's area lights, and a scene
+//! with one gets no default light.
 
 use std::path::Path;
 use std::sync::Arc;
@@ -66,7 +68,8 @@ pub fn build(path: &Path, imported: &Imported, aspect: f64) -> Result<Scene, Loa
         let shape = super::shapes::instance(meshes[placed.mesh].clone(), &placed.transform).map_err(|m| LoadError::file(path, m))?;
         builder.shared_object(shape, material).map_err(fail)?;
     }
-    if imported.lights.is_empty() {
+    let emits = imported.instances.iter().any(|p| p.material.as_ref().is_some_and(|m| m.emission.max_element() > 0.0));
+    if imported.lights.is_empty() && !emits {
         // A light at the eye, of intensity d^2 so that it gives about unit irradiance at the model.
         let distance = (camera.eye - center).length();
         let light = lamplight_core::lights::PointLight::new(camera.eye, Rgb::splat(distance * distance)).map_err(fail)?;

@@ -238,6 +238,7 @@ fn material(m: &MaterialDesc) -> Result<Material, String> {
         reflection,
         refraction,
         shadow_transmittance: rgb(m.shadow_transmittance, d.shadow_transmittance),
+        roughness: m.roughness.unwrap_or(d.roughness),
     };
     material.validate().map_err(|e| e.to_string())?;
     Ok(material)

@@ -163,6 +163,7 @@ pub fn build(aspect: f64) -> Result<Scene, Error> {
             reflection: Reflection::Constant(Rgb::splat(s.ks)),
             refraction: Refraction::Constant { ior: s.ir, weight: Rgb::splat(s.kt) },
             shadow_transmittance: Rgb::ZERO,
+            roughness: 0.0,
         })?;
         let center = Vec3::from_array(s.center);
         let index = scene.object(Sphere::new(center, s.radius)?, material)?;

@@ -114,6 +114,8 @@ pub struct MaterialDesc {
     pub refraction: Option<RefractionDesc>,
     /// Fraction of light a shadow ray keeps crossing this surface (default 0).
     pub shadow_transmittance: Option<Triple>,
+    /// GGX roughness of Fresnel glass and conductors in the path tracer (default 0: smooth).
+    pub roughness: Option<f64>,
 }
 
 /// `checker = { size, even, odd, offset }`.

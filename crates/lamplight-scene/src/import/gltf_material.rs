@@ -11,7 +11,7 @@
 //! | `r` | `shininess = clamp(2 / max(r^4, 1e-4) - 2, 1, 10000)`: the Blinn exponent whose lobe matches a GGX lobe of `alpha = r^2` (`n = 2 / alpha^2 - 2`) |
 //! | `m > 0` | mirror `Reflection::Constant(m B (1 - r))`: a conductor tinted by its base colour, fading as it roughens since a sharp mirror of a rough metal would look wrong |
 //! | `emissiveFactor` | `emission`; 0 when an `emissiveTexture` modulates it (textures are unsupported, and the factor alone would make the whole surface glow: glTF assets set it to 1 and paint the glowing parts in the texture) |
-//! | `KHR_materials_transmission` `t > 0` | `Material::glass(ior, ..)` (index from `KHR_materials_ior`, default 1.5) with `kd`, `ka` scaled by `1 - t` and shadow rays passing `t B` |
+//! | `KHR_materials_transmission` `t > 0` | `Material::glass(ior, ..)` (index from `KHR_materials_ior`, default 1.5) with `kd`, `ka` scaled by `1 - t`, shadow rays passing `t B`, and GGX `roughness = r^2` (glTF's `alpha`; rough glass in the path tracer) |
 //!
 //! `KHR_materials_ior` without transmission changes only the dielectric F0,
 //! which the fixed 0.04 above already stands for, so it is read but unused.
@@ -87,6 +87,7 @@ pub(super) fn map(m: &gltf::Material, warnings: &mut Warnings) -> Material {
             ka: 0.1 * (1.0 - transmission) * kd,
             emission,
             shadow_transmittance: transmission * base,
+            roughness: rough * rough,
             ..glass
         };
     }

@@ -1,0 +1,105 @@
+//! Environment maps from files: OpenEXR (`.exr`, linear float) or Radiance RGBE
+//! (`.hdr`), chosen by the extension in any case.
+//!
+//! An RGBE pixel stores three 8-bit mantissas and one shared exponent `e`: channel
+//! `c = m 2^(e - 136)` (Greg Ward's format; the `image` crate decodes it),
+//! so each channel keeps about `1/256` of the pixel's brightest channel.
+
+use std::fs::File;
+use std::io::BufReader;
+use std::path::Path;
+
+use lamplight_core::film::Image;
+
+use crate::image_io::{read_exr, ImageError};
+
+/// The extensions [`read_environment`] understands, for messages.
+pub const ENVIRONMENT_EXTENSIONS: &str = ".exr, .hdr";
+
+/// Reads an equirectangular environment map (`.exr` or `.hdr`) as linear RGB.
+pub fn read_environment(path: &Path) -> Result<Image, ImageError> {
+    let ext = path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
+    match ext.as_str() {
+        "exr" => read_exr(path),
+        "hdr" => read_hdr(path),
+        _ => Err(ImageError::Read {
+            path: path.to_path_buf(),
+            reason: format!("unknown environment map format {ext:?} (supported: {ENVIRONMENT_EXTENSIONS})"),
+        }),
+    }
+}
+
+/// Reads a Radiance RGBE (`.hdr`) file as linear RGB.
+pub fn read_hdr(path: &Path) -> Result<Image, ImageError> {
+    let read_error = |reason: String| ImageError::Read { path: path.to_path_buf(), reason };
+    let file = File::open(path).map_err(|e| read_error(e.to_string()))?;
+    let decoded = image::ImageReader::with_format(BufReader::new(file), image::ImageFormat::Hdr)
+        .decode()
+        .map_err(|e| read_error(format!("not a valid Radiance .hdr file: {e}")))?;
+    let rgb = decoded.into_rgb32f();
+    let (width, height) = (rgb.width(), rgb.height());
+    let mut image = Image::new(width, height);
+    for (p, q) in image.pixels.iter_mut().zip(rgb.pixels()) {
+        *p = q.0;
+    }
+    if let Some(i) = image.pixels.iter().position(|p| p.iter().any(|c| !c.is_finite() || *c < 0.0)) {
+        return Err(read_error(format!("pixel {i} is not a finite non-negative colour: {:?}", image.pixels[i])));
+    }
+    Ok(image)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::image_io::write_image;
+
+    fn scratch() -> tempfile::TempDir {
+        tempfile::Builder::new().prefix("lamplight-env-map-").tempdir().unwrap()
+    }
+
+    #[test]
+    fn hdr_and_exr_of_the_same_map_load_equal_within_rgbe_precision() {
+        let dir = scratch();
+        let (w, h) = (8u32, 4u32);
+        let mut image = Image::new(w, h);
+        for (i, p) in image.pixels.iter_mut().enumerate() {
+            let v = (i as f32 * 0.37).fract();
+            *p = [v * 40.0, 0.01 + v * v, 1.0 / (1.0 + i as f32)];
+        }
+        let exr = dir.path().join("sky.exr");
+        write_image(&exr, &image).unwrap();
+        let hdr = dir.path().join("sky.HDR");
+        let pixels: Vec<image::Rgb<f32>> = image.pixels.iter().map(|p| image::Rgb(*p)).collect();
+        let file = std::io::BufWriter::new(File::create(&hdr).unwrap());
+        image::codecs::hdr::HdrEncoder::new(file).encode(&pixels, w as usize, h as usize).unwrap();
+
+        let a = read_environment(&exr).unwrap();
+        let b = read_environment(&hdr).unwrap();
+        assert_eq!((a.width, a.height), (w, h));
+        assert_eq!((b.width, b.height), (w, h));
+        for (i, (p, q)) in a.pixels.iter().zip(&b.pixels).enumerate() {
+            // Shared exponent: each channel within 1/128 of the pixel's largest channel.
+            let max = p.iter().fold(0.0f32, |m, c| m.max(*c));
+            for c in 0..3 {
+                assert!((p[c] - q[c]).abs() <= max / 128.0, "pixel {i} channel {c}: exr {} vs hdr {}", p[c], q[c]);
+            }
+        }
+    }
+
+    #[test]
+    fn malformed_or_unknown_maps_name_the_file() {
+        let dir = scratch();
+        let bad = dir.path().join("broken.hdr");
+        std::fs::write(&bad, b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 4 +X nonsense").unwrap();
+        let message = read_environment(&bad).unwrap_err().to_string();
+        assert!(message.contains("broken.hdr") && message.contains("not a valid Radiance .hdr file"), "{message}");
+        let truncated = dir.path().join("short.hdr");
+        std::fs::write(&truncated, b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 4 +X 4\n\x02\x02").unwrap();
+        let message = read_environment(&truncated).unwrap_err().to_string();
+        assert!(message.contains("short.hdr"), "{message}");
+        let message = read_environment(&dir.path().join("sky.png")).unwrap_err().to_string();
+        assert!(message.contains("sky.png") && message.contains(".exr, .hdr"), "{message}");
+        let message = read_environment(&dir.path().join("missing.hdr")).unwrap_err().to_string();
+        assert!(message.contains("missing.hdr"), "{message}");
+    }
+}
