@@ -206,6 +206,7 @@ impl RenderArgs {
             integrator,
             time_limit,
             filter: self.filter,
+            window: None,
         };
         Ok(RenderJob {
             scene,
