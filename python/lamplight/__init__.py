@@ -15,7 +15,7 @@ cluster. The tutorial is ``docs/python.md``.
 
 from __future__ import annotations
 
-from . import objects
+from . import dask, objects
 from ._lamplight import Scene, SceneError, __version__, builtin_names
 from ._render import as_scene, load, render
 from .image import Image, read_exr, save
@@ -45,6 +45,7 @@ __all__ = [
     "box",
     "builtin_names",
     "camera",
+    "dask",
     "directional_light",
     "disk",
     "group",
