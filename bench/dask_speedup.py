@@ -8,7 +8,9 @@ dask[distributed]. For each worker count it starts a LocalCluster of that many
 worker processes with one thread each, renders once to warm up (imports, scene
 build), then times `runs` renders of `lamplight.dask.render` (client side, from
 the call to the stitched image) and checks every image against a local render.
-Prints the machine, the load average, the times and the speed-up of the medians.
+It also times the same render locally on 1 and 2 threads, the ceiling the
+machine allows at that moment. Prints the machine, the load average, the times
+and the speed-ups of the medians.
 """
 
 import argparse
@@ -46,9 +48,20 @@ def main() -> None:
     args = dict(width=a.width, height=a.height, spp=a.spp)
     print(f"nproc {os.cpu_count()}, CPU {cpu_model()}, load average at start {os.getloadavg()}")
     expected = lamplight.render(a.scene, threads=1, progress=False, **args)
+    # The control: the same render in this process on 1 and 2 threads shows what
+    # the machine's second core gives at the moment (it is shared).
+    local = {}
+    for threads in (1, 2):
+        times = []
+        for _ in range(a.runs):
+            start = time.perf_counter()
+            lamplight.render(a.scene, threads=threads, progress=False, **args)
+            times.append(time.perf_counter() - start)
+        local[threads] = statistics.median(times)
+        print(f"local, {threads} thread(s): " + ", ".join(f"{t:.2f}" for t in times) + f" s; median {local[threads]:.2f} s")
     medians = {}
     for workers in (1, 2):
-        with distributed.LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+        with distributed.LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0") as cluster:
             with distributed.Client(cluster) as client:
                 client.wait_for_workers(workers)
                 lamplight.dask.render(a.scene, client, tiles=a.tiles, **args)  # warm-up
@@ -60,7 +73,10 @@ def main() -> None:
                     assert image.tobytes() == expected.tobytes(), "the Dask render differs from the local one"
         medians[workers] = statistics.median(times)
         print(f"{workers} worker(s) x 1 thread: " + ", ".join(f"{t:.2f}" for t in times) + f" s; median {medians[workers]:.2f} s")
-    print(f"speed-up of 2 workers over 1: {medians[1] / medians[2]:.2f}x (load average at end {os.getloadavg()})")
+    print(f"speed-up of 2 workers over 1: {medians[1] / medians[2]:.2f}x")
+    print(f"local speed-up of 2 threads over 1 (the ceiling now): {local[1] / local[2]:.2f}x")
+    print(f"Dask overhead with 1 worker: {medians[1] / local[1]:.2f}x the local 1-thread time")
+    print(f"load average at end {os.getloadavg()}")
 
 
 if __name__ == "__main__":

@@ -7,8 +7,9 @@ pixel alone. :func:`render_frames` renders an animation, one task per frame.
 
 The scene travels to the workers once: it is scattered (``broadcast=True``) as
 its description (the built-in name, the scene file's text, the dict, or the
-mesh path; never built data), and each worker builds it on first use and keeps
-the build for the tiles that follow. Meshes referenced by path are read on the
+mesh path; never built data), and each worker process builds it on first use
+and keeps the build (by a digest of the description) for the tiles that follow
+and for later renders of the same scene. Meshes referenced by path are read on the
 workers, which suits a shared file system; with ``ship_meshes=True`` the client
 reads them and sends their bytes along, and each worker writes them to a
 temporary folder of its own.
@@ -21,9 +22,12 @@ only the ``client`` changes (``docs/python.md`` shows Slurm, PBS and Kubernetes)
 from __future__ import annotations
 
 import atexit
+import collections
+import hashlib
 import json
 import math
 import os
+import pickle
 import re
 import shutil
 import tempfile
@@ -150,21 +154,39 @@ def shipped(scene: Scene) -> Union[Scene, _Shipped]:
     return _Shipped(scene.kind, source, files, depth, scene.camera)
 
 
-def _worker_scene(payload: Union[Scene, _Shipped]) -> Scene:
-    return payload if isinstance(payload, Scene) else payload.scene()
+#: Scenes a worker process has built, by the digest of their description: a
+#: later render of the same scene on this worker reuses the build.
+_WORKER_SCENES: "collections.OrderedDict[str, Scene]" = collections.OrderedDict()
+_WORKER_SCENES_KEPT = 4
 
 
-def _render_tile(payload, options: Dict[str, Any], window: Tuple[int, int, int, int]) -> np.ndarray:
+def _digest(payload: Union[Scene, _Shipped]) -> str:
+    return hashlib.sha256(pickle.dumps(payload, protocol=4)).hexdigest()
+
+
+def _worker_scene(payload: Union[Scene, _Shipped], digest: str) -> Scene:
+    scene = _WORKER_SCENES.get(digest)
+    if scene is None:
+        scene = payload if isinstance(payload, Scene) else payload.scene()
+        _WORKER_SCENES[digest] = scene
+        while len(_WORKER_SCENES) > _WORKER_SCENES_KEPT:
+            _WORKER_SCENES.popitem(last=False)
+    else:
+        _WORKER_SCENES.move_to_end(digest)
+    return scene
+
+
+def _render_tile(payload, digest: str, options: Dict[str, Any], window: Tuple[int, int, int, int]) -> np.ndarray:
     from ._lamplight import render_array
 
-    array, _ = render_array(_worker_scene(payload), window=window, progress=None, **options)
+    array, _ = render_array(_worker_scene(payload, digest), window=window, progress=None, **options)
     return array
 
 
-def _render_frame(payload, camera: Optional[dict], options: Dict[str, Any]) -> np.ndarray:
+def _render_frame(payload, digest: str, camera: Optional[dict], options: Dict[str, Any]) -> np.ndarray:
     from ._lamplight import render_array
 
-    scene = _worker_scene(payload)
+    scene = _worker_scene(payload, digest)
     if camera is not None:
         scene = scene.with_camera(camera)
     array, _ = render_array(scene, progress=None, **options)
@@ -229,10 +251,11 @@ def render(
     options = _options(s, width, height, spp, integrator, seed, max_depth, threads, filter)
     windows = tile_windows(options["width"], options["height"], tiles)
     payload = shipped(s) if ship_meshes else s
+    digest = _digest(payload)
     [remote] = client.scatter([payload], broadcast=True, hash=False)
     token = uuid.uuid4().hex[:12]
     futures = [
-        client.submit(_render_tile, remote, options, w, key=f"lamplight-tile-{token}-{i}", retries=retries)
+        client.submit(_render_tile, remote, digest, options, w, key=f"lamplight-tile-{token}-{i}", retries=retries)
         for i, w in enumerate(windows)
     ]
     try:
@@ -293,10 +316,13 @@ def render_frames(
     if cameras is not None and width is None and height is None:
         # A camera path keeps one size: the scene's.
         options = [options[0]] * len(frames)
+    digests = [_digest(p) for p in payloads]
     remote = client.scatter(payloads, broadcast=True, hash=False)
     token = uuid.uuid4().hex[:12]
     futures = [
-        client.submit(_render_frame, remote[index[i]], camera, options[i], key=f"lamplight-frame-{token}-{i}", retries=retries)
+        client.submit(
+            _render_frame, remote[index[i]], digests[index[i]], camera, options[i], key=f"lamplight-frame-{token}-{i}", retries=retries
+        )
         for i, (_, camera) in enumerate(frames)
     ]
     try:

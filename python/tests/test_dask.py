@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 import lamplight
+from conftest import EXAMPLES
 
 distributed = pytest.importorskip("distributed")
 import lamplight.dask  # noqa: E402  (after the skip: it needs distributed at call time only)
@@ -15,7 +16,7 @@ import lamplight.dask  # noqa: E402  (after the skip: it needs distributed at ca
 
 @pytest.fixture(scope="module")
 def client():
-    cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None)
+    cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0")
     with distributed.Client(cluster) as c:
         yield c
     cluster.close()
@@ -38,6 +39,24 @@ def test_dask_render_equals_the_local_render(client, scene, args):
     remote = lamplight.dask.render(scene, client, tiles=tiles, **args)
     assert remote.shape == (args["height"], args["width"], 3) and remote.dtype == np.float32
     assert remote.tobytes() == local(scene, **args).tobytes()
+
+
+def test_workers_keep_the_build_between_renders(client):
+    scene = lamplight.Scene.from_file(EXAMPLES / "spheres.toml")
+    digest = lamplight.dask._digest(scene)
+
+    def builds():
+        import lamplight.dask as d
+
+        return d._WORKER_SCENES.get(digest) is not None and id(d._WORKER_SCENES[digest])
+
+    first = lamplight.dask.render(scene, client, width=32, height=18, tiles=8)
+    kept = {w: b for w, b in client.run(builds).items() if b}
+    assert kept, "the workers built the scene"
+    second = lamplight.dask.render(scene, client, width=32, height=18, tiles=8)
+    after = client.run(builds)
+    assert all(after[w] == b for w, b in kept.items()), "the second render used the same built scenes"
+    assert first.tobytes() == second.tobytes()
 
 
 def test_tile_windows_cover_the_image_once():
@@ -88,14 +107,14 @@ def test_meshes_are_read_on_workers_or_shipped(client, tmp_path):
     (folder / "meshes").rmdir()
     [remote] = client.scatter([payload], broadcast=True, hash=False)
     options = dict(width=32, height=24, spp=1, integrator="whitted", seed=0, max_depth=None, threads=1, filter="box")
-    tile = client.submit(lamplight.dask._render_tile, remote, options, (0, 0, 32, 24)).result()
+    tile = client.submit(lamplight.dask._render_tile, remote, "shipped-test", options, (0, 0, 32, 24)).result()
     assert tile.tobytes() == expected.tobytes()
 
 
 def test_a_killed_worker_does_not_change_the_image():
     args = dict(width=320, height=180, spp=8)
     expected = local("spheres", **args)
-    cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None)
+    cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0")
     try:
         with distributed.Client(cluster) as client:
             client.wait_for_workers(2)

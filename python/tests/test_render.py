@@ -116,3 +116,12 @@ def test_images_save_and_display(tmp_path):
         lamplight.save(tmp_path / "b.png", np.zeros((4, 4)))
     assert image[:, :, 0]._repr_png_() is None, "a slice that is not an image does not display"
     assert image.stats["camera_rays"] == 32 * 32
+
+
+def test_progress_true_shows_a_tqdm_bar(capsys):
+    pytest.importorskip("tqdm")
+    lamplight.render("business-card", progress=True)
+    err = capsys.readouterr().err
+    assert "lamplight" in err and "tile" in err, err
+    lamplight.render("business-card", progress=False)
+    assert capsys.readouterr().err == ""
