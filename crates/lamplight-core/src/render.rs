@@ -199,7 +199,8 @@ pub fn render(scene: &Scene, options: &RenderOptions, control: &RenderControl) -
 }
 
 /// Renders `scene` with the path tracer (whatever `options.integrator` says) and
-/// returns the per-pixel sums, from which the mean and its variance follow.
+/// returns the per-pixel sums, from which the mean and its variance follow (of the
+/// window's pixels, row-major, when `options.window` is set).
 pub fn render_path(scene: &Scene, options: &RenderOptions, control: &RenderControl) -> Result<(Accumulator, RenderStats), Error> {
     let max_depth = checked_depth(scene, options)?;
     crate::progressive::render_path(scene, options, max_depth, control)
