@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs every lamplight test on a fresh machine: installs what is missing, then
-# checks formatting and lints, and runs the Rust test suites.
+# checks formatting and lints, runs the Rust test suites, then the Python package's tests.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -25,3 +25,23 @@ echo "== cargo test"
 cargo test --workspace --locked
 echo "== cargo doc"
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked --quiet
+
+# The Python package: a virtual environment with what pytest needs, the
+# extension built into it (the dev profile, which reuses the build above), and
+# the Python tests (scene dicts, renders against the binary's EXR output, ray
+# queries, Dask on a LocalCluster, a killed worker).
+echo "== python: .venv with maturin, numpy, pytest, dask[distributed], tqdm"
+python=${PYTHON:-python3}
+if ! command -v "$python" >/dev/null 2>&1; then
+  echo "error: $python not found: install Python 3.9 or newer" >&2
+  exit 1
+fi
+if [ ! -x .venv/bin/python ]; then
+  "$python" -m venv .venv
+fi
+.venv/bin/python -m pip install --quiet --disable-pip-version-check "maturin>=1.5,<2" numpy pytest "dask[distributed]" tqdm
+echo "== python: maturin develop"
+VIRTUAL_ENV="$PWD/.venv" PATH="$PWD/.venv/bin:$PATH" .venv/bin/maturin develop --locked --quiet
+echo "== pytest"
+cargo build --locked --quiet -p lamplight-cli
+LAMPLIGHT_CLI="$PWD/target/debug/lamplight" .venv/bin/python -m pytest python/tests -q -p no:cacheprovider

@@ -231,6 +231,7 @@ impl RenderArgs {
             integrator,
             time_limit,
             filter: self.filter,
+            window: None,
         };
         Ok(RenderJob {
             scene,

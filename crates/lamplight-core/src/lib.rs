@@ -44,7 +44,7 @@ pub mod scene;
 pub mod shapes;
 
 pub use error::Error;
-pub use render::{render, render_path, RenderControl, RenderOptions, RenderStats};
+pub use render::{render, render_path, PixelWindow, RenderControl, RenderOptions, RenderStats};
 pub use scene::{Scene, SceneBuilder};
 
 /// The types most programs need.

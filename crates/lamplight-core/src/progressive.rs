@@ -72,7 +72,7 @@ pub(crate) fn render_path(
     max_depth: u32,
     control: &RenderControl,
 ) -> Result<(Accumulator, RenderStats), Error> {
-    let (width, height) = (options.width, options.height);
+    let crate::render::PixelWindow { x0: wx, y0: wy, width, height } = options.pixel_window();
     let tracer = PathTracer::new(scene, max_depth);
     let pool = crate::render::thread_pool(options.threads)?;
     let threads = pool.current_num_threads();
@@ -102,8 +102,8 @@ pub(crate) fn render_path(
                         expired.store(true, Ordering::Relaxed);
                         return None;
                     }
-                    let x0 = (tile % tiles_x as u64) as u32 * TILE;
-                    let y0 = (tile / tiles_x as u64) as u32 * TILE;
+                    let x0 = wx + (tile % tiles_x as u64) as u32 * TILE;
+                    let y0 = wy + (tile / tiles_x as u64) as u32 * TILE;
                     let out = render_tile(scene, &tracer, options, x0, y0, first, count);
                     let finished = done.fetch_add(1, Ordering::Relaxed) + 1;
                     (control.progress)(finished, total_tiles);
@@ -169,8 +169,9 @@ fn pass_count(spp: u32) -> u32 {
 /// the values and of their squares, added in sample order.
 fn render_tile(scene: &Scene, tracer: &PathTracer, options: &RenderOptions, x0: u32, y0: u32, first: u32, count: u32) -> TilePass {
     let (width, height) = (options.width, options.height);
-    let x1 = (x0 + TILE).min(width);
-    let y1 = (y0 + TILE).min(height);
+    let w = options.pixel_window();
+    let x1 = (x0 + TILE).min(w.x0 + w.width);
+    let y1 = (y0 + TILE).min(w.y0 + w.height);
     let mut out = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
     let mut counts = RayCounts::default();
     let mut nonfinite = 0;

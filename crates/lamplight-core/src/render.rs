@@ -3,7 +3,9 @@
 //! The image is cut into 16x16 tiles rendered in parallel (rayon). Each pixel's
 //! samples use their own generators seeded by (seed, pixel, sample), and each
 //! pixel is averaged in a fixed order, so the bytes of the image do not depend on
-//! the number of threads or the order tiles finish in.
+//! the number of threads or the order tiles finish in. For the same reason a
+//! [`PixelWindow`] of the image renders to exactly the pixels of the full render
+//! there, so an image can be split across machines and stitched back.
 
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::{Duration, Instant};
@@ -43,6 +45,29 @@ pub struct RenderOptions {
     pub time_limit: Option<Duration>,
     /// Path tracer only: the pixel reconstruction filter.
     pub filter: Filter,
+    /// Render only this part of the `width x height` image (the result has the
+    /// window's size); `None` renders all of it.
+    pub window: Option<PixelWindow>,
+}
+
+/// A rectangle of pixels of the full image: columns `x0..x0 + width`, rows `y0..y0 + height`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PixelWindow {
+    /// First column.
+    pub x0: u32,
+    /// First row.
+    pub y0: u32,
+    /// Columns.
+    pub width: u32,
+    /// Rows.
+    pub height: u32,
+}
+
+impl RenderOptions {
+    /// The pixels to render: the window, or the whole image.
+    pub fn pixel_window(&self) -> PixelWindow {
+        self.window.unwrap_or(PixelWindow { x0: 0, y0: 0, width: self.width, height: self.height })
+    }
 }
 
 impl Default for RenderOptions {
@@ -57,6 +82,7 @@ impl Default for RenderOptions {
             integrator: IntegratorKind::Whitted,
             time_limit: None,
             filter: Filter::Box,
+            window: None,
         }
     }
 }
@@ -104,6 +130,10 @@ fn checked_depth(scene: &Scene, options: &RenderOptions) -> Result<u32, Error> {
     if width as u64 * height as u64 > 1 << 28 {
         return Err(Error::invalid("image", format!("{width}x{height} is too large (at most 2^28 pixels)")));
     }
+    let w = options.pixel_window();
+    if w.width == 0 || w.height == 0 || w.x0 as u64 + w.width as u64 > width as u64 || w.y0 as u64 + w.height as u64 > height as u64 {
+        return Err(Error::invalid("window", format!("{w:?} must be non-empty and inside the {width}x{height} image")));
+    }
     let max_depth = options.max_depth.unwrap_or(scene.max_depth);
     if max_depth == 0 {
         return Err(Error::invalid("max_depth", "must be at least 1"));
@@ -115,7 +145,8 @@ fn checked_depth(scene: &Scene, options: &RenderOptions) -> Result<u32, Error> {
 /// start, and on cancellation.
 pub fn render(scene: &Scene, options: &RenderOptions, control: &RenderControl) -> Result<(Image, RenderStats), Error> {
     let max_depth = checked_depth(scene, options)?;
-    let RenderOptions { width, height, spp, .. } = *options;
+    let PixelWindow { x0: wx, y0: wy, width, height } = options.pixel_window();
+    let spp = options.spp;
     let integrator: Box<dyn Integrator> = match options.integrator {
         IntegratorKind::Whitted => Box::new(Whitted { max_depth, min_weight: scene.min_weight }),
         IntegratorKind::Path => {
@@ -138,8 +169,8 @@ pub fn render(scene: &Scene, options: &RenderOptions, control: &RenderControl) -
                 if control.cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
                     return None;
                 }
-                let x0 = (tile % tiles_x as u64) as u32 * TILE;
-                let y0 = (tile / tiles_x as u64) as u32 * TILE;
+                let x0 = wx + (tile % tiles_x as u64) as u32 * TILE;
+                let y0 = wy + (tile / tiles_x as u64) as u32 * TILE;
                 let out = render_tile(scene, integrator.as_ref(), options, x0, y0);
                 let finished = done.fetch_add(1, Ordering::Relaxed) + 1;
                 (control.progress)(finished, tile_count);
@@ -168,7 +199,8 @@ pub fn render(scene: &Scene, options: &RenderOptions, control: &RenderControl) -
 }
 
 /// Renders `scene` with the path tracer (whatever `options.integrator` says) and
-/// returns the per-pixel sums, from which the mean and its variance follow.
+/// returns the per-pixel sums, from which the mean and its variance follow (of the
+/// window's pixels, row-major, when `options.window` is set).
 pub fn render_path(scene: &Scene, options: &RenderOptions, control: &RenderControl) -> Result<(Accumulator, RenderStats), Error> {
     let max_depth = checked_depth(scene, options)?;
     crate::progressive::render_path(scene, options, max_depth, control)
@@ -176,8 +208,9 @@ pub fn render_path(scene: &Scene, options: &RenderOptions, control: &RenderContr
 
 fn render_tile(scene: &Scene, integrator: &dyn Integrator, options: &RenderOptions, x0: u32, y0: u32) -> TileResult {
     let (width, height, spp) = (options.width, options.height, options.spp);
-    let x1 = (x0 + TILE).min(width);
-    let y1 = (y0 + TILE).min(height);
+    let w = options.pixel_window();
+    let x1 = (x0 + TILE).min(w.x0 + w.width);
+    let y1 = (y0 + TILE).min(w.y0 + w.height);
     let mut pixels = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
     let mut counts = RayCounts::default();
     let mut nonfinite = 0;

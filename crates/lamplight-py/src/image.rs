@@ -1,0 +1,71 @@
+//! Images between numpy and files: float32 `(H, W, 3)` arrays of linear
+//! radiance to PNG/PPM/EXR files (the scene crate's atomic writers), to PNG
+//! bytes for Jupyter, and EXR files back to arrays.
+
+use std::path::PathBuf;
+
+use image::ImageEncoder;
+use lamplight_core::film::tonemap::{self, ToneMap};
+use lamplight_core::film::Image;
+use lamplight_scene::image_io::{self, Format};
+use numpy::{PyArray1, PyArray3, PyArrayMethods, PyReadonlyArray3, PyUntypedArrayMethods};
+use pyo3::exceptions::{PyOSError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyBytes;
+
+/// A core image from a float32 `(H, W, 3)` array (any strides).
+fn to_image(array: &PyReadonlyArray3<'_, f32>) -> PyResult<Image> {
+    let shape = array.shape();
+    if shape[2] != 3 || shape[0] == 0 || shape[1] == 0 {
+        return Err(PyValueError::new_err(format!("an image must have shape (H, W, 3) with H, W >= 1, got {shape:?}")));
+    }
+    let (height, width) = (u32::try_from(shape[0]), u32::try_from(shape[1]));
+    let (Ok(height), Ok(width)) = (height, width) else {
+        return Err(PyValueError::new_err(format!("image of shape {shape:?} is too large")));
+    };
+    let view = array.as_array();
+    let pixels = view.outer_iter().flat_map(|row| row.outer_iter().map(|p| [p[0], p[1], p[2]]).collect::<Vec<_>>()).collect();
+    Ok(Image { width, height, pixels })
+}
+
+fn display(image: Image, exposure: f64, tonemap: &str) -> PyResult<Image> {
+    let map: ToneMap =
+        tonemap.parse().map_err(|_| PyValueError::new_err(format!("tonemap must be \"clamp\" or \"filmic\", got {tonemap:?}")))?;
+    if !exposure.is_finite() {
+        return Err(PyValueError::new_err("exposure must be a finite number"));
+    }
+    Ok(if exposure == 0.0 && map == ToneMap::Clamp { image } else { tonemap::apply(&image, exposure, map) })
+}
+
+/// Writes `array` to `path` by its extension (`.png`, `.ppm`: 8-bit sRGB after
+/// `exposure` and `tonemap`; `.exr`: linear float, unchanged), atomically.
+#[pyfunction]
+#[pyo3(signature = (path, array, exposure=0.0, tonemap="clamp"))]
+pub fn write_image(py: Python<'_>, path: PathBuf, array: PyReadonlyArray3<'_, f32>, exposure: f64, tonemap: &str) -> PyResult<()> {
+    let format = Format::from_path(&path).map_err(|e| PyValueError::new_err(e.to_string()))?;
+    let mut image = to_image(&array)?;
+    if format != Format::Exr {
+        image = display(image, exposure, tonemap)?;
+    }
+    py.allow_threads(|| image_io::write_image(&path, &image)).map_err(|e| PyOSError::new_err(e.to_string()))
+}
+
+/// PNG file bytes of `array` (8-bit sRGB after `exposure` and `tonemap`).
+#[pyfunction]
+#[pyo3(signature = (array, exposure=0.0, tonemap="clamp"))]
+pub fn encode_png<'py>(py: Python<'py>, array: PyReadonlyArray3<'_, f32>, exposure: f64, tonemap: &str) -> PyResult<Bound<'py, PyBytes>> {
+    let image = display(to_image(&array)?, exposure, tonemap)?;
+    let mut bytes = Vec::new();
+    image::codecs::png::PngEncoder::new(&mut bytes)
+        .write_image(&image.to_srgb8(), image.width, image.height, image::ExtendedColorType::Rgb8)
+        .map_err(|e| PyValueError::new_err(format!("cannot encode PNG: {e}")))?;
+    Ok(PyBytes::new(py, &bytes))
+}
+
+/// Reads an OpenEXR file's R, G, B as a float32 array `(H, W, 3)`.
+#[pyfunction]
+pub fn read_exr<'py>(py: Python<'py>, path: PathBuf) -> PyResult<Bound<'py, PyArray3<f32>>> {
+    let image = image_io::read_exr(&path).map_err(|e| PyOSError::new_err(e.to_string()))?;
+    let (w, h) = (image.width as usize, image.height as usize);
+    PyArray1::from_vec(py, image.pixels.into_iter().flatten().collect()).reshape([h, w, 3])
+}

@@ -1,0 +1,413 @@
+//! `Scene`: a scene from a built-in name, a scene file, a mesh file or a dict,
+//! with the core scenes built from it cached by image aspect.
+//!
+//! A scene keeps what it was made from (the name, the file's text and path, the
+//! dict, or the mesh path) and pickles as that, never as built data: a Dask
+//! worker that receives it rebuilds it on first use and then keeps the build.
+//! The core camera depends on the image's aspect, so builds are cached per aspect.
+
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
+
+use lamplight_core::integrators::IntegratorKind;
+use lamplight_core::Scene as CoreScene;
+use lamplight_scene::build::{self, imported, SceneFile};
+use lamplight_scene::builtin::{self, Builtin};
+use lamplight_scene::description::{CameraDesc, Located, SceneDescription};
+use lamplight_scene::formats::native::Source as FileSource;
+use lamplight_scene::{import, LoadError};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyTuple};
+
+use crate::convert;
+use crate::SceneError;
+
+/// Builds kept per scene (different image aspects); the oldest goes first.
+const CACHED_BUILDS: usize = 4;
+
+/// Where a scene comes from.
+#[derive(Debug)]
+enum Origin {
+    /// A built-in scene.
+    Builtin(&'static Builtin),
+    /// A native scene file: its text and path.
+    Toml(SceneFile),
+    /// A dict (kept plain, for pickling) and the description read from it.
+    Dict { dict: PyObject, file: SceneFile, base_dir: PathBuf },
+    /// A mesh file for the importers.
+    Mesh(PathBuf),
+}
+
+/// Image and sampling settings a scene asks for when a render does not say.
+#[derive(Clone, Copy, Debug)]
+struct Defaults {
+    width: u32,
+    height: u32,
+    spp: u32,
+    seed: u64,
+    integrator: IntegratorKind,
+}
+
+/// A scene: made from a built-in name, a scene or mesh file, or a dict, and
+/// built (per image aspect) on first use.
+#[pyclass(module = "lamplight._lamplight", frozen)]
+pub struct Scene {
+    origin: Origin,
+    /// A camera replacing the scene's (`with_camera`): the plain dict and its description.
+    camera: Option<(PyObject, Located<CameraDesc>)>,
+    defaults: Defaults,
+    builds: Mutex<Vec<(u64, Arc<CoreScene>)>>,
+}
+
+/// The names of the built-in scenes, the default first.
+#[pyfunction]
+pub fn builtin_names() -> Vec<&'static str> {
+    builtin::BUILTINS.iter().map(|b| b.name).collect()
+}
+
+fn load_error(e: LoadError) -> PyErr {
+    SceneError::new_err(e.to_string())
+}
+
+/// A dict's errors name no file: "scene dict: message".
+fn dict_error(e: LoadError) -> PyErr {
+    SceneError::new_err(format!("scene dict: {}", e.message))
+}
+
+impl Scene {
+    fn new(origin: Origin, camera: Option<(PyObject, Located<CameraDesc>)>) -> PyResult<Scene> {
+        let defaults = match &origin {
+            Origin::Builtin(b) => {
+                Defaults { width: b.default_size.0, height: b.default_size.1, spp: 1, seed: 0, integrator: IntegratorKind::Whitted }
+            }
+            Origin::Toml(file) | Origin::Dict { file, .. } => {
+                let s = file.settings().map_err(|e| if matches!(origin, Origin::Dict { .. }) { dict_error(e) } else { load_error(e) })?;
+                Defaults { width: s.width, height: s.height, spp: s.spp, seed: s.seed, integrator: s.integrator }
+            }
+            Origin::Mesh(_) => Defaults { width: 640, height: 360, spp: 1, seed: 0, integrator: IntegratorKind::Whitted },
+        };
+        Ok(Scene { origin, camera, defaults, builds: Mutex::new(Vec::new()) })
+    }
+
+    /// The core scene for images of aspect `aspect`, built once and kept.
+    pub fn core(&self, py: Python<'_>, aspect: f64) -> PyResult<Arc<CoreScene>> {
+        let key = aspect.to_bits();
+        if let Some((_, scene)) =
+            self.builds.lock().map_err(|_| SceneError::new_err("scene cache poisoned"))?.iter().find(|(k, _)| *k == key)
+        {
+            return Ok(scene.clone());
+        }
+        // Building reads mesh files and builds BVHs: let other Python threads run.
+        let built = py.allow_threads(|| self.build_core(aspect))?;
+        let built = Arc::new(built);
+        let mut builds = self.builds.lock().map_err(|_| SceneError::new_err("scene cache poisoned"))?;
+        if builds.len() >= CACHED_BUILDS {
+            builds.remove(0);
+        }
+        builds.push((key, built.clone()));
+        Ok(built)
+    }
+
+    fn build_core(&self, aspect: f64) -> PyResult<CoreScene> {
+        let camera = self.camera.as_ref().map(|(_, c)| c.clone());
+        let mut scene = match &self.origin {
+            Origin::Builtin(b) => (b.build)(aspect).map_err(|e| SceneError::new_err(format!("cannot build scene '{}': {e}", b.name)))?,
+            Origin::Toml(file) | Origin::Dict { file, .. } => {
+                let is_dict = matches!(self.origin, Origin::Dict { .. });
+                let fail = |e| if is_dict { dict_error(e) } else { load_error(e) };
+                return match camera {
+                    Some(camera) => {
+                        let description = SceneDescription { camera: Some(camera), ..file.description.clone() };
+                        build::build(&description, &file.source, aspect).map_err(fail)
+                    }
+                    None => build::build(&file.description, &file.source, aspect).map_err(fail),
+                };
+            }
+            Origin::Mesh(path) => imported::load(path, aspect).map_err(load_error)?,
+        };
+        if let Some(camera) = camera {
+            // Built-in and imported scenes have no description: build the camera
+            // alone with the scene format's rules and put it in.
+            let description = SceneDescription { camera: Some(camera), ..SceneDescription::default() };
+            let camera_only = build::build(&description, &FileSource::without_text("camera"), aspect)
+                .map_err(|e| SceneError::new_err(format!("camera: {}", e.message)))?;
+            scene.camera = camera_only.camera.clone();
+        }
+        Ok(scene)
+    }
+
+    fn from_dict_with(py: Python<'_>, dict: &Bound<'_, PyAny>, base_dir: Option<PathBuf>) -> PyResult<Scene> {
+        if !dict.is_instance_of::<PyDict>() {
+            return Err(pyo3::exceptions::PyTypeError::new_err(format!("a scene dict must be a dict, got {}", dict.get_type().name()?)));
+        }
+        let plain = convert::plain(dict)?;
+        let description: SceneDescription = convert::from_python(plain.bind(py), "scene dict")?;
+        let base_dir = match base_dir {
+            Some(dir) => dir,
+            None => std::env::current_dir().map_err(|e| SceneError::new_err(format!("cannot read the current directory: {e}")))?,
+        };
+        // Relative mesh paths resolve against the folder of the source's path.
+        let file = SceneFile { description, source: FileSource::without_text(base_dir.join("<dict>")) };
+        Scene::new(Origin::Dict { dict: plain, file, base_dir }, None)
+    }
+}
+
+#[pymethods]
+impl Scene {
+    /// A scene from a built-in name (`lamplight.builtin_names()`), a scene file
+    /// (`.toml`) or a mesh file (`.obj`, `.ply`, `.gltf`, `.glb`): a string with no
+    /// path separator and no extension is a built-in name, as on the command line.
+    #[new]
+    fn py_new(scene: &Bound<'_, PyAny>) -> PyResult<Scene> {
+        if scene.is_instance_of::<PyDict>() {
+            return Scene::from_dict_with(scene.py(), scene, None);
+        }
+        let text: PathBuf = scene.extract().map_err(|_| {
+            pyo3::exceptions::PyTypeError::new_err(format!(
+                "a scene is a built-in name, a file path, a dict or a lamplight.Scene, got {}",
+                scene.get_type().name().map(|n| n.to_string()).unwrap_or_default()
+            ))
+        })?;
+        let arg = text.to_string_lossy().into_owned();
+        let has_separator = arg.contains('/') || arg.contains(std::path::MAIN_SEPARATOR);
+        let extension = text.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+        if !has_separator && extension.is_none() {
+            return Scene::builtin(&arg);
+        }
+        Scene::from_file(text)
+    }
+
+    /// The built-in scene `name`.
+    #[staticmethod]
+    fn builtin(name: &str) -> PyResult<Scene> {
+        let b = builtin::find(name)
+            .ok_or_else(|| PyValueError::new_err(format!("unknown scene '{name}' (built-in scenes: {})", builtin::names())))?;
+        Scene::new(Origin::Builtin(b), None)
+    }
+
+    /// A scene file (`.toml`, read now) or a mesh file (`.obj`, `.ply`, `.gltf`,
+    /// `.glb`, read when the scene is built), by extension.
+    #[staticmethod]
+    fn from_file(path: PathBuf) -> PyResult<Scene> {
+        let extension = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).unwrap_or_default();
+        if extension == "toml" {
+            return Scene::new(Origin::Toml(SceneFile::read(&path).map_err(load_error)?), None);
+        }
+        if import::EXTENSIONS.contains(&extension.as_str()) {
+            if !path.is_file() {
+                return Err(pyo3::exceptions::PyFileNotFoundError::new_err(format!("{}: no such file", path.display())));
+            }
+            let path = std::path::absolute(&path).unwrap_or(path);
+            return Scene::new(Origin::Mesh(path), None);
+        }
+        Err(PyValueError::new_err(format!(
+            "{}: unknown scene file type, expected .toml or a mesh file ({})",
+            path.display(),
+            import::EXTENSIONS.iter().map(|e| format!(".{e}")).collect::<Vec<_>>().join(", ")
+        )))
+    }
+
+    /// Scene text in the native TOML format; relative mesh paths resolve against
+    /// `base_dir` (default: the current directory).
+    #[staticmethod]
+    #[pyo3(signature = (text, base_dir=None))]
+    fn from_toml(text: &str, base_dir: Option<PathBuf>) -> PyResult<Scene> {
+        let dir = match base_dir {
+            Some(dir) => dir,
+            None => std::env::current_dir().map_err(|e| SceneError::new_err(format!("cannot read the current directory: {e}")))?,
+        };
+        Scene::new(Origin::Toml(SceneFile::parse(&dir.join("<text>.toml"), text).map_err(load_error)?), None)
+    }
+
+    /// A scene from a dict with the structure of a scene file (see
+    /// `docs/scene-format.md`); relative mesh paths resolve against `base_dir`
+    /// (default: the current directory).
+    #[staticmethod]
+    #[pyo3(signature = (scene, base_dir=None))]
+    fn from_dict(py: Python<'_>, scene: &Bound<'_, PyAny>, base_dir: Option<PathBuf>) -> PyResult<Scene> {
+        Scene::from_dict_with(py, scene, base_dir)
+    }
+
+    /// The same scene seen by another camera: `camera` is a dict with the keys
+    /// of a scene file's `[camera]` table.
+    fn with_camera(&self, py: Python<'_>, camera: &Bound<'_, PyAny>) -> PyResult<Scene> {
+        let plain = convert::plain(camera)?;
+        let desc: CameraDesc = convert::from_python(plain.bind(py), "camera")?;
+        let origin = match &self.origin {
+            Origin::Builtin(b) => Origin::Builtin(b),
+            Origin::Toml(file) => Origin::Toml(file.clone()),
+            Origin::Dict { dict, file, base_dir } => {
+                Origin::Dict { dict: dict.clone_ref(py), file: file.clone(), base_dir: base_dir.clone() }
+            }
+            Origin::Mesh(path) => Origin::Mesh(path.clone()),
+        };
+        Scene::new(origin, Some((plain, Located::new(desc))))
+    }
+
+    /// What the scene was made from: `"builtin"`, `"file"`, `"dict"` or `"mesh"`.
+    #[getter]
+    fn kind(&self) -> &'static str {
+        match self.origin {
+            Origin::Builtin(_) => "builtin",
+            Origin::Toml(_) => "file",
+            Origin::Dict { .. } => "dict",
+            Origin::Mesh(_) => "mesh",
+        }
+    }
+
+    /// The built-in name, the file's path, or a copy of the dict.
+    #[getter]
+    fn source(&self, py: Python<'_>) -> PyResult<PyObject> {
+        Ok(match &self.origin {
+            Origin::Builtin(b) => b.name.into_pyobject(py)?.into_any().unbind(),
+            Origin::Toml(file) => file.source.path.clone().into_pyobject(py)?.into_any().unbind(),
+            Origin::Dict { dict, .. } => convert::plain(dict.bind(py))?,
+            Origin::Mesh(path) => path.clone().into_pyobject(py)?.into_any().unbind(),
+        })
+    }
+
+    /// The folder relative mesh paths resolve against (`None` for built-in scenes).
+    #[getter]
+    fn base_dir(&self) -> Option<PathBuf> {
+        match &self.origin {
+            Origin::Builtin(_) => None,
+            Origin::Toml(file) => Some(file.source.path.parent().map(Path::to_path_buf).unwrap_or_default()),
+            Origin::Dict { base_dir, .. } => Some(base_dir.clone()),
+            Origin::Mesh(path) => Some(path.parent().map(Path::to_path_buf).unwrap_or_default()),
+        }
+    }
+
+    /// Mesh files the scene reads, as written (relative to `base_dir` unless absolute).
+    fn mesh_files(&self) -> Vec<String> {
+        match &self.origin {
+            Origin::Builtin(_) => Vec::new(),
+            Origin::Toml(file) | Origin::Dict { file, .. } => {
+                let mut files: Vec<String> = file.description.meshes.values().filter_map(|m| m.value.file.clone()).collect();
+                files.dedup();
+                files
+            }
+            Origin::Mesh(path) => vec![path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default()],
+        }
+    }
+
+    /// The scene file's text (`None` unless the scene came from a `.toml` file or text).
+    #[getter]
+    fn text(&self) -> Option<String> {
+        match &self.origin {
+            Origin::Toml(file) => file.source.text.clone(),
+            _ => None,
+        }
+    }
+
+    /// The replacement camera given to `with_camera`, or `None`.
+    #[getter]
+    fn camera(&self, py: Python<'_>) -> PyResult<Option<PyObject>> {
+        self.camera.as_ref().map(|(dict, _)| convert::plain(dict.bind(py))).transpose()
+    }
+
+    /// The settings a render uses when it does not say: `width`, `height`,
+    /// `spp`, `seed` and `integrator`.
+    fn defaults<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        let Defaults { width, height, spp, seed, integrator } = self.defaults;
+        d.set_item("width", width)?;
+        d.set_item("height", height)?;
+        d.set_item("spp", spp)?;
+        d.set_item("seed", seed)?;
+        d.set_item(
+            "integrator",
+            match integrator {
+                IntegratorKind::Whitted => "whitted",
+                IntegratorKind::Path => "path",
+            },
+        )?;
+        Ok(d)
+    }
+
+    /// Builds the scene now for images of `width x height` (default: the
+    /// scene's size), so that errors show here and the first render starts at once.
+    #[pyo3(signature = (width=None, height=None))]
+    fn build(&self, py: Python<'_>, width: Option<u32>, height: Option<u32>) -> PyResult<()> {
+        self.core(py, self.aspect(width, height)?).map(|_| ())
+    }
+
+    /// Number of objects (placed shapes) in the scene; primitive ids run below it.
+    fn object_count(&self, py: Python<'_>) -> PyResult<usize> {
+        Ok(self.core(py, self.aspect(None, None)?)?.objects.len())
+    }
+
+    /// Nearest hits of rays `origins[i] + t * directions[i] / |directions[i]|`:
+    /// see `lamplight.Scene.intersect` in the type stubs.
+    #[pyo3(signature = (origins, directions, threads=0))]
+    fn intersect<'py>(
+        &self,
+        py: Python<'py>,
+        origins: &Bound<'py, PyAny>,
+        directions: &Bound<'py, PyAny>,
+        threads: usize,
+    ) -> PyResult<Bound<'py, PyTuple>> {
+        let scene = self.core(py, self.aspect(None, None)?)?;
+        crate::intersect::intersect(py, &scene, origins, directions, threads)
+    }
+
+    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(PyObject, Bound<'py, PyTuple>)> {
+        let from_state = py.import("lamplight._lamplight")?.getattr("scene_from_state")?.unbind();
+        let camera = self.camera(py)?;
+        let state = match &self.origin {
+            Origin::Builtin(b) => ("builtin", b.name.into_pyobject(py)?.into_any().unbind(), None, camera),
+            Origin::Toml(file) => {
+                let text = file.source.text.clone().unwrap_or_default();
+                ("file", text.into_pyobject(py)?.into_any().unbind(), Some(file.source.path.clone()), camera)
+            }
+            Origin::Dict { dict, base_dir, .. } => ("dict", dict.clone_ref(py), Some(base_dir.clone()), camera),
+            Origin::Mesh(path) => ("mesh", path.clone().into_pyobject(py)?.into_any().unbind(), None, camera),
+        };
+        Ok((from_state, (state,).into_pyobject(py)?))
+    }
+
+    fn __repr__(&self) -> String {
+        let camera = if self.camera.is_some() { ", camera replaced" } else { "" };
+        match &self.origin {
+            Origin::Builtin(b) => format!("lamplight.Scene(builtin {:?}{camera})", b.name),
+            Origin::Toml(file) => format!("lamplight.Scene(file {:?}{camera})", file.source.path.display().to_string()),
+            Origin::Dict { file, .. } => format!("lamplight.Scene(dict with {} top-level objects{camera})", file.description.objects.len()),
+            Origin::Mesh(path) => format!("lamplight.Scene(mesh {:?}{camera})", path.display().to_string()),
+        }
+    }
+}
+
+impl Scene {
+    /// The settings' defaults.
+    pub fn default_size(&self) -> (u32, u32) {
+        (self.defaults.width, self.defaults.height)
+    }
+
+    fn aspect(&self, width: Option<u32>, height: Option<u32>) -> PyResult<f64> {
+        let (w, h) = (width.unwrap_or(self.defaults.width), height.unwrap_or(self.defaults.height));
+        if w == 0 || h == 0 {
+            return Err(PyValueError::new_err(format!("image size {w}x{h} must be at least 1x1")));
+        }
+        Ok(w as f64 / h as f64)
+    }
+}
+
+/// Rebuilds a pickled [`Scene`] from `(kind, payload, path, camera)`.
+#[pyfunction]
+pub fn scene_from_state(py: Python<'_>, state: &Bound<'_, PyTuple>) -> PyResult<Scene> {
+    let (kind, payload, path, camera): (String, Bound<'_, PyAny>, Option<PathBuf>, Option<Bound<'_, PyAny>>) = state.extract()?;
+    let scene = match kind.as_str() {
+        "builtin" => Scene::builtin(&payload.extract::<String>()?)?,
+        "file" => {
+            let path = path.ok_or_else(|| PyValueError::new_err("a pickled scene file needs its path"))?;
+            Scene::new(Origin::Toml(SceneFile::parse(&path, &payload.extract::<String>()?).map_err(load_error)?), None)?
+        }
+        "dict" => Scene::from_dict_with(py, &payload, path)?,
+        "mesh" => Scene::new(Origin::Mesh(payload.extract()?), None)?,
+        other => return Err(PyValueError::new_err(format!("unknown pickled scene kind {other:?}"))),
+    };
+    match camera {
+        Some(camera) => scene.with_camera(py, &camera),
+        None => Ok(scene),
+    }
+}

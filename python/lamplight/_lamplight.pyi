@@ -1,0 +1,117 @@
+"""Type stubs of the native module ``lamplight._lamplight`` (Rust, PyO3)."""
+
+import os
+from typing import Any, Callable, Dict, List, Optional, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+_Path = Union[str, "os.PathLike[str]"]
+_Float = Union[np.float32, np.float64]
+
+__version__: str
+
+class SceneError(ValueError):
+    """A scene that cannot be read or built: the message names the file and
+    place (``file:line:col``), or for a dict the key path (``objects[2].radius``)."""
+
+class Scene:
+    """A scene from a built-in name, a scene file, a mesh file or a dict.
+
+    It keeps what it was made from and pickles as that; it is built (per image
+    aspect) on first use and the build is kept, so repeated renders and
+    ``intersect`` calls do not rebuild it.
+    """
+
+    def __init__(self, scene: Union[str, "os.PathLike[str]", Dict[str, Any]]) -> None:
+        """A built-in name (no path separator, no extension), a ``.toml`` scene
+        file, a mesh file (``.obj``, ``.ply``, ``.gltf``, ``.glb``) or a dict."""
+    @staticmethod
+    def builtin(name: str) -> "Scene":
+        """The built-in scene ``name`` (see :func:`builtin_names`)."""
+    @staticmethod
+    def from_file(path: _Path) -> "Scene":
+        """A scene file (``.toml``, read now) or a mesh file (read when built)."""
+    @staticmethod
+    def from_toml(text: str, base_dir: Optional[_Path] = None) -> "Scene":
+        """Scene text in the native format; mesh paths relative to ``base_dir`` (default: the current directory)."""
+    @staticmethod
+    def from_dict(scene: Dict[str, Any], base_dir: Optional[_Path] = None) -> "Scene":
+        """A dict with the structure of a scene file (``docs/scene-format.md``);
+        numpy arrays and tuples may stand for lists. Mesh paths relative to
+        ``base_dir`` (default: the current directory)."""
+    def with_camera(self, camera: Dict[str, Any]) -> "Scene":
+        """The same scene seen by ``camera`` (the keys of a ``[camera]`` table)."""
+    @property
+    def kind(self) -> str:
+        """``"builtin"``, ``"file"``, ``"dict"`` or ``"mesh"``."""
+    @property
+    def source(self) -> Any:
+        """The built-in name, the file path, or a copy of the dict."""
+    @property
+    def base_dir(self) -> Optional[str]:
+        """Folder that relative mesh paths resolve against (``None`` for built-ins)."""
+    @property
+    def text(self) -> Optional[str]:
+        """The scene file's text, for scenes from ``.toml`` files or text."""
+    @property
+    def camera(self) -> Optional[Dict[str, Any]]:
+        """The camera given to :meth:`with_camera`, if any."""
+    def mesh_files(self) -> List[str]:
+        """Mesh files the scene reads, as written."""
+    def defaults(self) -> Dict[str, Any]:
+        """``width``, ``height``, ``spp``, ``seed``, ``integrator`` a render uses when not told."""
+    def build(self, width: Optional[int] = None, height: Optional[int] = None) -> None:
+        """Builds now (errors show here), for images of ``width x height``."""
+    def object_count(self) -> int:
+        """Placed shapes in the scene: object ids run from 0 below this."""
+    def intersect(
+        self,
+        origins: npt.NDArray[_Float],
+        directions: npt.NDArray[_Float],
+        threads: int = 0,
+    ) -> Tuple[npt.NDArray[_Float], npt.NDArray[np.int64], npt.NDArray[_Float]]:
+        """Nearest hits of the rays ``origins[i] + t * directions[i] / |directions[i]|``.
+
+        ``origins`` and ``directions`` are ``(N, 3)`` arrays, both float32 or
+        both float64, read in place (any strides). Runs on ``threads`` threads
+        (0: every core) with the GIL released. Returns ``(t, ids, normals)``:
+        ``t`` the distance to the hit (``inf`` on a miss, the input's dtype),
+        ``ids`` the object hit (int64, objects in scene order, ``-1`` on a
+        miss), ``normals`` the unit outward geometric normal ``(N, 3)`` (zero
+        on a miss). Zero or non-finite directions and non-finite origins miss.
+        Raises ``TypeError`` for non-arrays or other dtypes and ``ValueError``
+        for other shapes.
+        """
+
+def builtin_names() -> List[str]:
+    """Names of the built-in scenes, the default first."""
+
+def scene_from_state(state: Tuple[str, Any, Optional[str], Optional[Dict[str, Any]]]) -> Scene:
+    """Rebuilds a pickled :class:`Scene` (used by ``pickle``)."""
+
+def render_array(
+    scene: Scene,
+    width: int,
+    height: int,
+    spp: int = 1,
+    integrator: str = "whitted",
+    threads: int = 0,
+    seed: int = 0,
+    max_depth: Optional[int] = None,
+    window: Optional[Tuple[int, int, int, int]] = None,
+    progress: Optional[Callable[[int, int], Any]] = None,
+    time_limit: Optional[float] = None,
+    filter: str = "box",
+) -> Tuple[npt.NDArray[np.float32], Dict[str, Any]]:
+    """The render under :func:`lamplight.render`: a float32 array ``(h, w, 3)``
+    and a dict of statistics. Releases the GIL; Ctrl-C cancels."""
+
+def write_image(path: _Path, array: npt.NDArray[np.float32], exposure: float = 0.0, tonemap: str = "clamp") -> None:
+    """Writes ``(H, W, 3)`` float32 linear radiance as ``.png``, ``.ppm`` or ``.exr``, atomically."""
+
+def encode_png(array: npt.NDArray[np.float32], exposure: float = 0.0, tonemap: str = "clamp") -> bytes:
+    """PNG bytes of an ``(H, W, 3)`` float32 image (8-bit sRGB)."""
+
+def read_exr(path: _Path) -> npt.NDArray[np.float32]:
+    """An OpenEXR file's R, G, B as float32 ``(H, W, 3)``."""

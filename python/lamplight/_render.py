@@ -1,0 +1,130 @@
+"""``lamplight.render``: a scene of any kind to an :class:`~lamplight.Image`."""
+
+from __future__ import annotations
+
+import os
+import sys
+from typing import Any, Callable, Optional, Tuple, Union
+
+from . import _lamplight
+from ._lamplight import Scene
+from .image import Image
+
+SceneLike = Union[str, "os.PathLike[str]", dict, Scene]
+Progress = Union[None, bool, Callable[[int, int], Any]]
+
+
+def as_scene(scene: SceneLike, base_dir: Optional[Union[str, "os.PathLike[str]"]] = None) -> Scene:
+    """``scene`` as a :class:`Scene`: a Scene as it is; a dict through
+    :meth:`Scene.from_dict` (relative mesh paths against ``base_dir``, default
+    the current directory); a string or path as a built-in name (no separator,
+    no extension) or a scene or mesh file."""
+    if isinstance(scene, Scene):
+        return scene
+    if isinstance(scene, dict):
+        return Scene.from_dict(scene, os.fspath(base_dir) if base_dir is not None else None)
+    if isinstance(scene, (str, os.PathLike)):
+        return Scene(os.fspath(scene))
+    raise TypeError(f"a scene is a built-in name, a file path, a dict or a lamplight.Scene, got {type(scene).__name__}")
+
+
+def load(path: Union[str, "os.PathLike[str]"]) -> Scene:
+    """Reads a scene file (``.toml``) or a mesh file (``.obj``, ``.ply``, ``.gltf``, ``.glb``)."""
+    return Scene.from_file(os.fspath(path))
+
+
+def resolve(scene: Scene, width, height, spp, integrator, seed) -> Tuple[int, int, int, str, int]:
+    """Size, samples, integrator and seed: the arguments, else the scene's own
+    settings. With only a width or only a height the other side keeps the
+    scene's aspect, as on the command line."""
+    d = scene.defaults()
+    for name, value in (("width", width), ("height", height), ("spp", spp), ("seed", seed)):
+        if value is not None and (isinstance(value, bool) or not isinstance(value, int)):
+            raise TypeError(f"{name} must be an int, got {type(value).__name__}")
+        if value is not None and value < (0 if name == "seed" else 1):
+            raise ValueError(f"{name} must be at least {0 if name == 'seed' else 1}, got {value}")
+    if width is not None and height is None:
+        height = max(1, round(width * d["height"] / d["width"]))
+    elif height is not None and width is None:
+        width = max(1, round(height * d["width"] / d["height"]))
+    elif width is None:
+        width, height = d["width"], d["height"]
+    return (
+        width,
+        height,
+        spp if spp is not None else d["spp"],
+        integrator if integrator is not None else d["integrator"],
+        seed if seed is not None else d["seed"],
+    )
+
+
+def _in_notebook() -> bool:
+    return "ipykernel" in sys.modules
+
+
+def progress_reporter(progress: Progress, desc: str = "lamplight", unit: str = "tile"):
+    """(callback, closer) for ``progress``: a callable is called with
+    ``(done, total)``; ``True`` shows a tqdm bar (where tqdm is installed);
+    ``None`` does so only on a terminal or in Jupyter; ``False`` shows nothing."""
+    if progress is False:
+        return None, lambda: None
+    if callable(progress):
+        return progress, lambda: None
+    if progress is None and not (_in_notebook() or (sys.stderr is not None and sys.stderr.isatty())):
+        return None, lambda: None
+    try:
+        from tqdm.auto import tqdm
+    except ImportError:
+        return None, lambda: None
+    bar = tqdm(total=0, desc=desc, unit=unit, leave=False)
+
+    def report(done: int, total: int) -> None:
+        if bar.total != total:
+            bar.total = total
+        bar.n = done
+        bar.refresh()
+
+    return report, bar.close
+
+
+def render(
+    scene: SceneLike,
+    width: Optional[int] = None,
+    height: Optional[int] = None,
+    spp: Optional[int] = None,
+    integrator: Optional[str] = None,
+    threads: int = 0,
+    seed: Optional[int] = None,
+    max_depth: Optional[int] = None,
+    progress: Progress = None,
+    time_limit: Optional[float] = None,
+    filter: str = "box",
+    window: Optional[Tuple[int, int, int, int]] = None,
+    base_dir: Optional[Union[str, "os.PathLike[str]"]] = None,
+) -> Image:
+    """Renders ``scene`` and returns an :class:`Image`: a float32 array
+    ``(height, width, 3)`` of linear radiance, the numbers ``lamplight render``
+    writes to an ``.exr`` file for the same settings.
+
+    ``width``, ``height``, ``spp``, ``integrator`` (``"whitted"`` or ``"path"``)
+    and ``seed`` default to the scene's own settings; ``threads=0`` uses every
+    core (the image does not depend on it). ``progress`` is a callable
+    ``(tiles_done, tiles_total)``, ``True`` for a tqdm bar, ``False`` for none;
+    ``None`` shows a bar on a terminal or in Jupyter when tqdm is installed.
+    Ctrl-C stops the render and raises ``KeyboardInterrupt``. ``window =
+    (x0, y0, w, h)`` renders only those pixels of the full image (exactly the
+    values the full render has there). ``time_limit`` (seconds) and ``filter``
+    (``"box"``, ``"gaussian"``) concern the path tracer.
+    """
+    s = as_scene(scene, base_dir)
+    width, height, spp, integrator, seed = resolve(s, width, height, spp, integrator, seed)
+    callback, close = progress_reporter(progress)
+    try:
+        array, stats = _lamplight.render_array(
+            s, width, height, spp, integrator, threads, seed, max_depth, window, callback, time_limit, filter
+        )
+    finally:
+        close()
+    image = Image(array)
+    image.stats = stats
+    return image

@@ -1,0 +1,67 @@
+"""Rendered images: float32 ``(H, W, 3)`` numpy arrays of linear radiance that
+show themselves in Jupyter and save as PNG, PPM or OpenEXR."""
+
+from __future__ import annotations
+
+import os
+from typing import Union
+
+import numpy as np
+
+from . import _lamplight
+
+PathLike = Union[str, "os.PathLike[str]"]
+
+
+class Image(np.ndarray):
+    """A float32 array ``(H, W, 3)`` of linear radiance (an ``np.ndarray``).
+
+    In Jupyter it displays itself as an sRGB PNG (clamped); :meth:`save` writes
+    ``.png``/``.ppm`` (8-bit sRGB) or ``.exr`` (linear float, exact).
+    ``stats`` holds the render's statistics when it came from a render.
+    """
+
+    stats: dict
+
+    def __new__(cls, array) -> "Image":
+        return np.asarray(array, dtype=np.float32).view(cls)
+
+    def __array_finalize__(self, obj) -> None:
+        self.stats = getattr(obj, "stats", {})
+
+    def _is_image(self) -> bool:
+        return self.ndim == 3 and self.shape[2] == 3 and self.shape[0] > 0 and self.shape[1] > 0 and self.dtype == np.float32
+
+    def _repr_png_(self):
+        if not self._is_image():
+            return None
+        return _lamplight.encode_png(np.ascontiguousarray(self).view(np.ndarray))
+
+    def to_png(self, exposure: float = 0.0, tonemap: str = "clamp") -> bytes:
+        """The image as PNG file bytes, after ``exposure`` (stops) and ``tonemap`` (``"clamp"`` or ``"filmic"``)."""
+        return _lamplight.encode_png(_plain(self), exposure, tonemap)
+
+    def save(self, path: PathLike, exposure: float = 0.0, tonemap: str = "clamp") -> None:
+        """Writes the image to ``path`` (see :func:`save`)."""
+        save(path, self, exposure=exposure, tonemap=tonemap)
+
+
+def _plain(array) -> np.ndarray:
+    a = np.asarray(array)
+    if a.ndim != 3 or a.shape[2] != 3:
+        raise ValueError(f"an image must have shape (H, W, 3), got {a.shape}")
+    return np.ascontiguousarray(a, dtype=np.float32).view(np.ndarray)
+
+
+def save(path: PathLike, image, exposure: float = 0.0, tonemap: str = "clamp") -> None:
+    """Writes ``image`` (an array ``(H, W, 3)`` of linear radiance) to ``path``,
+    in the format of its extension: ``.png`` and ``.ppm`` are 8-bit sRGB after
+    ``exposure`` (stops) and ``tonemap`` (``"clamp"`` or ``"filmic"``), ``.exr``
+    is linear float32, unchanged. The file is written to a temporary name and
+    renamed, so a failed write never leaves a broken image."""
+    _lamplight.write_image(os.fspath(path), _plain(image), exposure, tonemap)
+
+
+def read_exr(path: PathLike) -> Image:
+    """Reads an OpenEXR file's R, G, B channels as an :class:`Image`."""
+    return Image(_lamplight.read_exr(os.fspath(path)))

@@ -1,0 +1,116 @@
+"""Scene.intersect against a brute force in numpy, and its argument checks."""
+
+import numpy as np
+import pytest
+
+import lamplight
+
+SPHERES = [([0.0, 0.0, 0.0], 1.0), ([2.5, 0.5, -1.0], 0.75), ([-2.0, -0.5, 1.0], 0.5)]
+TRIANGLE = np.array([[-3.0, -2.0, -3.0], [3.0, -2.0, -3.0], [0.0, 3.0, -3.5]])
+
+
+def scene():
+    return lamplight.Scene.from_dict(
+        lamplight.scene(
+            camera=lamplight.camera(eye=[0, 0, 8], look_at=[0, 0, 0]),
+            meshes={"tri": lamplight.objects.mesh_data(TRIANGLE, [[0, 1, 2]])},
+            objects=[lamplight.sphere(c, r) for c, r in SPHERES] + [lamplight.mesh("tri")],
+        )
+    )
+
+
+def brute_force(origins, directions):
+    """Nearest t > 0 along unit directions, object id and outward normal."""
+    d = directions / np.linalg.norm(directions, axis=1, keepdims=True)
+    n = len(origins)
+    best_t = np.full(n, np.inf)
+    best_id = np.full(n, -1)
+    best_normal = np.zeros((n, 3))
+    for i, (c, r) in enumerate(SPHERES):
+        oc = origins - np.array(c)
+        b = np.sum(oc * d, axis=1)
+        disc = b * b - (np.sum(oc * oc, axis=1) - r * r)
+        sq = np.sqrt(np.maximum(disc, 0))
+        for t in (-b - sq, -b + sq):
+            hit = (disc >= 0) & (t > 1e-9) & (t < best_t)
+            best_t[hit], best_id[hit] = t[hit], i
+            best_normal[hit] = (origins[hit] + t[hit, None] * d[hit] - np.array(c)) / r
+    # Moller-Trumbore for the triangle.
+    a, b_, c_ = TRIANGLE
+    e1, e2 = b_ - a, c_ - a
+    p = np.cross(d, e2)
+    det = p @ e1
+    inv = 1.0 / np.where(det == 0, np.nan, det)
+    s = origins - a
+    u = np.sum(s * p, axis=1) * inv
+    q = np.cross(s, e1)
+    v = np.sum(d * q, axis=1) * inv
+    t = (q @ e2) * inv
+    hit = (u >= 0) & (v >= 0) & (u + v <= 1) & (t > 1e-9) & (t < best_t)
+    normal = np.cross(e1, e2)
+    best_t[hit], best_id[hit] = t[hit], len(SPHERES)
+    best_normal[hit] = normal / np.linalg.norm(normal)
+    return best_t, best_id, best_normal
+
+
+def rays(n, dtype, seed=1):
+    rng = np.random.default_rng(seed)
+    origins = rng.uniform(-1, 1, (n, 3)) + np.array([0.0, 0.0, 6.0])
+    targets = rng.uniform([-3.5, -2.5, -3.0], [3.5, 2.5, 1.0], (n, 3))
+    return origins.astype(dtype), (targets - origins).astype(dtype)
+
+
+@pytest.mark.parametrize("dtype", [np.float64, np.float32])
+def test_intersect_matches_brute_force(dtype):
+    origins, directions = rays(20_000, dtype)
+    t, ids, normals = scene().intersect(origins, directions)
+    assert t.dtype == dtype and normals.dtype == dtype and ids.dtype == np.int64
+    assert t.shape == (20_000,) and ids.shape == (20_000,) and normals.shape == (20_000, 3)
+    et, eid, enormal = brute_force(origins.astype(np.float64), directions.astype(np.float64))
+    # Rays grazing an edge may go either way within rounding; they are very few.
+    agree = ids == eid
+    assert agree.mean() > 0.999, f"{(~agree).sum()} rays disagree"
+    hit = agree & (eid >= 0)
+    assert hit.sum() > 5_000 and (eid == -1).sum() > 1_000, "both hits and misses are tested"
+    assert set(np.unique(eid[hit])) == {0, 1, 2, 3}
+    tol = 1e-9 if dtype == np.float64 else 1e-4
+    np.testing.assert_allclose(t[hit], et[hit], rtol=tol * 10, atol=tol)
+    np.testing.assert_allclose(normals[hit], enormal[hit], atol=tol * 100)
+    miss = agree & (eid == -1)
+    assert np.all(np.isinf(t[miss])) and np.all(normals[miss] == 0)
+
+
+def test_threads_do_not_change_answers_and_inputs_need_not_be_contiguous():
+    origins, directions = rays(3_000, np.float64, seed=2)
+    s = scene()
+    a = s.intersect(origins, directions, threads=1)
+    b = s.intersect(origins, directions, threads=2)
+    wide_o = np.zeros((3_000, 6))
+    wide_o[:, ::2] = origins
+    c = s.intersect(wide_o[:, ::2], np.asfortranarray(directions))
+    for x, y, z in zip(a, b, c):
+        assert x.tobytes() == y.tobytes() == z.tobytes()
+
+
+def test_degenerate_rays_miss():
+    origins = np.array([[0, 0, 5], [np.nan, 0, 5], [0, 0, 5]], dtype=np.float64)
+    directions = np.array([[0, 0, 0], [0, 0, -1], [0, 0, -1]], dtype=np.float64)
+    t, ids, _ = scene().intersect(origins, directions)
+    assert list(ids) == [-1, -1, 0]
+    assert t[2] == pytest.approx(4.0)
+
+
+@pytest.mark.parametrize(
+    "origins, directions, error, message",
+    [
+        ([[0, 0, 0]], np.zeros((1, 3)), TypeError, "origins must be a numpy array of shape \\(N, 3\\), got list"),
+        (np.zeros((4, 2)), np.zeros((4, 3)), ValueError, "origins must have shape \\(N, 3\\), got \\[4, 2\\]"),
+        (np.zeros(3), np.zeros((1, 3)), ValueError, "origins must have shape \\(N, 3\\)"),
+        (np.zeros((4, 3)), np.zeros((5, 3)), ValueError, "same number of rows, got 4 and 5"),
+        (np.zeros((4, 3), dtype=np.int64), np.zeros((4, 3)), TypeError, "must both be float32 or both float64 arrays"),
+        (np.zeros((4, 3), dtype=np.float32), np.zeros((4, 3)), TypeError, "must both be float32 or both float64 arrays"),
+    ],
+)
+def test_bad_arrays_raise_clear_errors(origins, directions, error, message):
+    with pytest.raises(error, match=message):
+        scene().intersect(origins, directions)

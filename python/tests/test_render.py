@@ -1,0 +1,127 @@
+"""lamplight.render: arrays, the command line's EXR numbers, progress, Ctrl-C, bad arguments."""
+
+import _thread
+import subprocess
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import lamplight
+from conftest import EXAMPLES
+
+
+@pytest.mark.parametrize(
+    "scene, args",
+    [
+        ("spheres", dict(width=64, height=36, spp=2)),
+        ("luxo", dict(width=48, height=27, spp=1, seed=3)),
+        ("cornell-box", dict(width=24, height=24, spp=4, integrator="path")),
+        (str(EXAMPLES / "business-card.toml"), dict(width=40, height=40, spp=1)),
+    ],
+)
+def test_render_equals_the_command_lines_exr(cli, tmp_path, scene, args):
+    out = tmp_path / "out.exr"
+    flags = [f"--{k.replace('_', '-')}={v}" for k, v in args.items()]
+    subprocess.run([cli, "render", scene, "-o", str(out), "--quiet", *flags], check=True)
+    expected = lamplight.read_exr(out)
+    image = lamplight.render(scene, progress=False, **args)
+    assert isinstance(image, lamplight.Image) and isinstance(image, np.ndarray)
+    assert image.shape == (args["height"], args["width"], 3) and image.dtype == np.float32
+    assert image.flags.c_contiguous
+    assert image.tobytes() == expected.tobytes(), f"max difference {np.abs(image - expected).max()}"
+    assert image.max() > 0
+
+
+def test_defaults_come_from_the_scene():
+    image = lamplight.render("business-card", progress=False)
+    assert image.shape == (32, 32, 3)
+    half = lamplight.render("spheres", width=64, progress=False)
+    assert half.shape == (36, 64, 3), "one side keeps the scene's aspect"
+
+
+def test_threads_and_windows_do_not_change_pixels():
+    full = lamplight.render("spheres", width=50, height=30, spp=2, threads=2, progress=False)
+    one = lamplight.render("spheres", width=50, height=30, spp=2, threads=1, progress=False)
+    part = lamplight.render("spheres", width=50, height=30, spp=2, window=(7, 5, 20, 11), progress=False)
+    assert full.tobytes() == one.tobytes()
+    assert part.shape == (11, 20, 3)
+    assert part.tobytes() == np.ascontiguousarray(full[5:16, 7:27]).tobytes()
+
+
+def test_progress_callback_sees_every_tile():
+    calls = []
+    lamplight.render("spheres", width=160, height=90, spp=16, progress=lambda done, total: calls.append((done, total)))
+    assert calls, "the callback was called"
+    assert calls[-1][0] == calls[-1][1] == 60, "160x90 is 10x6 tiles of 16"
+    assert [d for d, _ in calls] == sorted(d for d, _ in calls)
+
+
+def test_a_raising_callback_stops_the_render():
+    def stop(done, total):
+        raise RuntimeError("enough")
+
+    with pytest.raises(RuntimeError, match="enough"):
+        lamplight.render("spheres", width=640, height=360, spp=64, progress=stop)
+
+
+def test_ctrl_c_interrupts_a_long_render():
+    timer = threading.Timer(0.5, _thread.interrupt_main)
+    start = time.monotonic()
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            lamplight.render("spheres", width=1280, height=720, spp=256, progress=False)
+    finally:
+        timer.cancel()
+    assert time.monotonic() - start < 20, "the render stopped soon after Ctrl-C"
+    # The module still works afterwards.
+    assert lamplight.render("business-card", width=8, height=8, progress=False).shape == (8, 8, 3)
+
+
+@pytest.mark.parametrize(
+    "kwargs, error, message",
+    [
+        (dict(spp=0), ValueError, "spp must be at least 1"),
+        (dict(width=0), ValueError, "width must be at least 1"),
+        (dict(width=2.5), TypeError, "width must be an int"),
+        (dict(integrator="photon"), ValueError, "integrator must be"),
+        (dict(max_depth=0), ValueError, "max_depth must be between 1 and 64"),
+        (dict(threads=5000), ValueError, "threads must be at most 1024"),
+        (dict(window=(0, 0, 100, 1)), ValueError, "inside the 32x32 image"),
+        (dict(time_limit=-1.0), ValueError, "time_limit must be a positive"),
+        (dict(filter="lanczos"), ValueError, "filter must be"),
+        (dict(width=1 << 20, height=1 << 20), ValueError, "at most 2\\^28 pixels"),
+    ],
+)
+def test_bad_arguments_raise(kwargs, error, message):
+    with pytest.raises(error, match=message):
+        lamplight.render("business-card", progress=False, **kwargs)
+
+
+def test_images_save_and_display(tmp_path):
+    image = lamplight.render("business-card", progress=False)
+    png = image._repr_png_()
+    assert png.startswith(b"\x89PNG\r\n\x1a\n")
+    image.save(tmp_path / "a.exr")
+    assert lamplight.read_exr(tmp_path / "a.exr").tobytes() == image.tobytes()
+    image.save(tmp_path / "a.png")
+    assert (tmp_path / "a.png").read_bytes() == png
+    lamplight.save(tmp_path / "a.ppm", np.asarray(image))
+    assert (tmp_path / "a.ppm").read_bytes().startswith(b"P6\n32 32\n255\n")
+    with pytest.raises(ValueError, match="unknown image format"):
+        image.save(tmp_path / "a.jpg")
+    with pytest.raises(ValueError, match=r"\(H, W, 3\)"):
+        lamplight.save(tmp_path / "b.png", np.zeros((4, 4)))
+    assert image[:, :, 0]._repr_png_() is None, "a slice that is not an image does not display"
+    assert image.stats["camera_rays"] == 32 * 32
+
+
+def test_progress_true_shows_a_tqdm_bar(capsys):
+    pytest.importorskip("tqdm")
+    lamplight.render("business-card", progress=True)
+    err = capsys.readouterr().err
+    assert "lamplight" in err and "tile" in err, err
+    lamplight.render("business-card", progress=False)
+    assert capsys.readouterr().err == ""
