@@ -3,12 +3,14 @@
 //! [`Scene::first_intersect`] is the lecture's `firstIntersect`: the nearest hit
 //! over all objects, with its normal turned to face the incoming ray.
 
+use std::borrow::Cow;
 use std::sync::Arc;
 
 use crate::accel::{Aabb, Bvh};
+use crate::bsdfs::{bsdf_for, Bsdf};
 use crate::camera::Camera;
 use crate::lights::Light;
-use crate::materials::Material;
+use crate::materials::{Material, Texture};
 use crate::math::{max_abs, Rgb, Vec3};
 use crate::ray::{Ray, OFFSET_SCALE};
 use crate::shapes::Shape;
@@ -50,7 +52,8 @@ pub struct Hit {
 pub struct Scene {
     /// Placed shapes.
     pub objects: Vec<Object>,
-    /// Materials referenced by objects.
+    /// Materials referenced by objects. Read-only once built: [`Scene::bsdf`]
+    /// keeps the path tracer's BSDFs made from them.
     pub materials: Vec<Material>,
     /// Light sources (point, directional).
     pub lights: Vec<Arc<dyn Light>>,
@@ -76,6 +79,9 @@ pub struct Scene {
     /// Some material dims shadow rays without blocking them (transmittance strictly
     /// between 0 and 1), so shadow rays must collect every crossing.
     any_partial_shadow: bool,
+    /// Per material of constant colour: its path-tracing BSDF seen from the back
+    /// (`[0]`) and from the front (`[1]`), built once (see [`Scene::bsdf`]).
+    bsdfs: Vec<Option<[Bsdf; 2]>>,
 }
 
 /// An object as the BVH sees it: its index and whether it stops shadow rays, kept
@@ -179,7 +185,13 @@ impl SceneBuilder {
             }
         }
         let any_partial_shadow = self.materials.iter().any(|m| m.shadow_transmittance != Rgb::ZERO && m.shadow_transmittance != Rgb::ONE);
+        let bsdfs = self
+            .materials
+            .iter()
+            .map(|m| matches!(m.color, Texture::Constant(_)).then(|| [bsdf_for(m, Vec3::ZERO, false), bsdf_for(m, Vec3::ZERO, true)]))
+            .collect();
         Ok(Scene {
+            bsdfs,
             bvh: Bvh::build(&boxes),
             bounded,
             unbounded,
@@ -288,6 +300,18 @@ impl Scene {
             None
         });
         result
+    }
+
+    /// The path tracer's BSDF of material `material` at `point`, for a ray that
+    /// arrived on the front side when `front_face` ([`bsdf_for`]). Materials of one
+    /// colour have it built once with the scene: making it per hit (scaling the
+    /// lobes so they conserve energy) was an eighth of the path tracer's time.
+    #[inline]
+    pub fn bsdf(&self, material: usize, point: Vec3, front_face: bool) -> Cow<'_, Bsdf> {
+        match self.bsdfs.get(material) {
+            Some(Some(both)) => Cow::Borrowed(&both[front_face as usize]),
+            _ => Cow::Owned(bsdf_for(&self.materials[material], point, front_face)),
+        }
     }
 
     /// Bounds of all bounded objects.

@@ -16,7 +16,7 @@
 //! refracted BSDF paths), so nothing is counted twice.
 
 use super::{Integrator, RayCounts};
-use crate::bsdfs::{bsdf_for, Bsdf, Frame};
+use crate::bsdfs::{Bsdf, Frame};
 use crate::lights::{LightSet, Picked};
 use crate::materials::{Reflection, Refraction};
 use crate::math::{Rgb, Vec3};
@@ -125,7 +125,7 @@ impl PathTracer {
             if depth >= self.max_depth {
                 break;
             }
-            let bsdf = bsdf_for(material, hit.point, hit.front_face);
+            let bsdf = scene.bsdf(hit.material, hit.point, hit.front_face);
             if bsdf.is_black() {
                 break;
             }

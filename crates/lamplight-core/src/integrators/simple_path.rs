@@ -3,7 +3,7 @@
 //! light sampling or MIS weights, it is the oracle [`super::PathTracer`] is tested
 //! against. No Russian roulette: paths end at the depth limit.
 
-use crate::bsdfs::{bsdf_for, Frame};
+use crate::bsdfs::Frame;
 use crate::lights::LightSet;
 use crate::math::Rgb;
 use crate::ray::{offset_origin, Ray};
@@ -45,7 +45,7 @@ impl SimplePath {
             if depth >= self.max_depth {
                 break;
             }
-            let bsdf = bsdf_for(material, hit.point, hit.front_face);
+            let bsdf = scene.bsdf(hit.material, hit.point, hit.front_face);
             let frame = Frame::new(hit.normal);
             let wo = frame.to_local(-ray.dir);
             let u_lobe = sampler.get_1d();
