@@ -55,8 +55,9 @@ const BUCKET_SHIFT: u32 = 23 - BUCKET_MANTISSA_BITS;
 /// against the direct formula. For a value in `[boundaries[0], boundaries[254])`,
 /// its exponent and top mantissa bits select a bucket; `bucket_codes` holds the
 /// code at the bucket's lowest value, and since no bucket holds two boundaries
-/// (buckets are at most 2^-8 relative wide; boundaries are at least 0.9 % apart,
-/// checked by a test) one comparison with the next boundary finishes the job.
+/// (a bucket is at most 2^-8 of its values wide, narrower than the gap between
+/// neighbouring boundaries; a test checks every bucket) one comparison with the
+/// next boundary finishes the job.
 #[derive(Debug)]
 pub struct Srgb8 {
     /// 255 boundaries, padded to 256 so a `u8` code indexes it without a check.
