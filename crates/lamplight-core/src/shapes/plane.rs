@@ -138,11 +138,27 @@ impl Shape for Rectangle {
     }
 
     fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
+        let t = self.hit_t(ray, t_min, t_max)?;
+        Some(SurfaceHit::new(t, self.normal))
+    }
+
+    /// Shadow rays skip building the hit record (a floor or a wall is tested by
+    /// most shadow rays of a scene).
+    fn intersect_p(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
+        self.hit_t(ray, t_min, t_max).is_some()
+    }
+}
+
+impl Rectangle {
+    /// The plane's parameter where the point lies inside the parallelogram:
+    /// `(u, v)` in `[0, 1]^2` from the dual basis.
+    #[inline]
+    fn hit_t(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<f64> {
         let t = plane_t(ray, self.corner, self.normal, t_min, t_max)?;
         let local = ray.at(t) - self.corner;
         let u = local.dot(self.dual_u);
         let v = local.dot(self.dual_v);
-        ((0.0..=1.0).contains(&u) && (0.0..=1.0).contains(&v)).then(|| SurfaceHit::new(t, self.normal))
+        ((0.0..=1.0).contains(&u) && (0.0..=1.0).contains(&v)).then_some(t)
     }
 }
 
