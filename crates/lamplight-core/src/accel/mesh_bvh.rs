@@ -301,6 +301,11 @@ impl MeshBvh {
             } else {
                 let node = &self.nodes[current as usize];
                 let (enter, mut mask) = test_node(&ray, node, t_max);
+                if mask != 0 && mask & (mask - 1) == 0 {
+                    // One child entered: nothing to order.
+                    current = node.child[mask.trailing_zeros() as usize];
+                    continue;
+                }
                 if mask != 0 {
                     // Insertion sort, farthest first; continue with the nearest.
                     let mut order = [(0f32, 0u32); WIDTH];
