@@ -25,7 +25,7 @@ use std::mem::MaybeUninit;
 use glam::Vec4;
 
 use super::sah::{self, Tree};
-use super::slab::{SlabRay, WIDEN};
+use super::slab::{farthest_first, SlabRay, WIDEN};
 use super::Aabb;
 use crate::math::Vec3;
 
@@ -213,7 +213,7 @@ impl Bvh {
             } else {
                 let node = &self.nodes[current as usize];
                 let (enter, mask) = ray.test(|r| Vec4::from_array(node.planes[r]), t_max as f32);
-                let mut mask = mask & node.valid as u32;
+                let mask = mask & node.valid as u32;
                 if mask != 0 && mask & (mask - 1) == 0 {
                     // One child entered (the usual case): nothing to order.
                     let slot = mask.trailing_zeros() as usize;
@@ -222,26 +222,13 @@ impl Bvh {
                     continue;
                 }
                 if mask != 0 {
-                    let enter = enter.to_array();
-                    // Push the hit children farthest first, then continue with the nearest.
-                    let mut order = [(0f32, 0usize); 4];
-                    let mut n = 0;
-                    while mask != 0 {
-                        let slot = mask.trailing_zeros() as usize;
-                        mask &= mask - 1;
-                        let mut j = n;
-                        while j > 0 && order[j - 1].0 < enter[slot] {
-                            order[j] = order[j - 1];
-                            j -= 1;
-                        }
-                        order[j] = (enter[slot], slot);
-                        n += 1;
-                    }
+                    // Push the entered children farthest first, then continue with the nearest.
+                    let (order, n) = farthest_first(&enter.to_array(), mask);
                     for &(t, slot) in &order[..n - 1] {
-                        stack[top].write((node.child[slot], t, node.count[slot]));
+                        stack[top].write((node.child[slot as usize], t, node.count[slot as usize]));
                         top += 1;
                     }
-                    let nearest = order[n - 1].1;
+                    let nearest = order[n - 1].1 as usize;
                     current = node.child[nearest];
                     leaf_count = node.count[nearest];
                     continue;

@@ -27,7 +27,7 @@ use std::mem::MaybeUninit;
 
 use glam::{Vec3A, Vec4};
 
-use super::slab::{SlabRay, WIDEN};
+use super::slab::{farthest_first, SlabRay, WIDEN};
 use super::tri4::{ShearRay, Tri4};
 use crate::math::Vec3;
 
@@ -300,32 +300,20 @@ impl MeshBvh {
                 }
             } else {
                 let node = &self.nodes[current as usize];
-                let (enter, mut mask) = test_node(&ray, node, t_max);
+                let (enter, mask) = test_node(&ray, node, t_max);
                 if mask != 0 && mask & (mask - 1) == 0 {
                     // One child entered: nothing to order.
                     current = node.child[mask.trailing_zeros() as usize];
                     continue;
                 }
                 if mask != 0 {
-                    // Insertion sort, farthest first; continue with the nearest.
-                    let mut order = [(0f32, 0u32); WIDTH];
-                    let mut n = 0;
-                    while mask != 0 {
-                        let slot = mask.trailing_zeros() as usize;
-                        mask &= mask - 1;
-                        let mut j = n;
-                        while j > 0 && order[j - 1].0 < enter[slot] {
-                            order[j] = order[j - 1];
-                            j -= 1;
-                        }
-                        order[j] = (enter[slot], node.child[slot]);
-                        n += 1;
-                    }
-                    for &(t, child) in &order[..n - 1] {
-                        stack[top].write((child, t));
+                    // Push the entered children farthest first; continue with the nearest.
+                    let (order, n) = farthest_first(&enter, mask);
+                    for &(t, slot) in &order[..n - 1] {
+                        stack[top].write((node.child[slot as usize], t));
                         top += 1;
                     }
-                    current = order[n - 1].1;
+                    current = node.child[order[n - 1].1 as usize];
                     continue;
                 }
             }

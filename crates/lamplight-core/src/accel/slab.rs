@@ -85,12 +85,41 @@ impl SlabRay {
     }
 }
 
+/// The children whose bits are set in `mask`, as `(entry distance, slot)` sorted
+/// farthest first, and how many there are: traversal pushes all but the last and
+/// continues with the last, the nearest. Insertion sort: a node has at most eight.
+#[inline(always)]
+pub(super) fn farthest_first<const N: usize>(enter: &[f32; N], mut mask: u32) -> ([(f32, u32); N], usize) {
+    let mut order = [(0f32, 0u32); N];
+    let mut n = 0;
+    while mask != 0 {
+        let slot = mask.trailing_zeros();
+        mask &= mask - 1;
+        let t = enter[slot as usize];
+        let mut j = n;
+        while j > 0 && order[j - 1].0 < t {
+            order[j] = order[j - 1];
+            j -= 1;
+        }
+        order[j] = (t, slot);
+        n += 1;
+    }
+    (order, n)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     fn rows(min: [f32; 3], max: [f32; 3]) -> impl Fn(usize) -> Vec4 {
         move |r| Vec4::splat(if r < 3 { min[r] } else { max[r - 3] })
+    }
+
+    #[test]
+    fn entered_children_come_farthest_first() {
+        let (order, n) = farthest_first(&[3.0, 1.0, 7.0, 2.0, 0.5, 9.0, 4.0, 6.0], 0b1010_1101);
+        assert_eq!(n, 5);
+        assert_eq!(order[..n], [(9.0, 5), (7.0, 2), (4.0, 6), (3.0, 0), (2.0, 3)]);
     }
 
     #[test]
