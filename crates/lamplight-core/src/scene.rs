@@ -6,7 +6,7 @@
 use std::borrow::Cow;
 use std::sync::Arc;
 
-use crate::accel::{Aabb, Bvh};
+use crate::accel::{Aabb, Bvh, Costs};
 use crate::bsdfs::{bsdf_for, Bsdf};
 use crate::camera::Camera;
 use crate::lights::Light;
@@ -192,7 +192,7 @@ impl SceneBuilder {
             .collect();
         Ok(Scene {
             bsdfs,
-            bvh: Bvh::build(&boxes),
+            bvh: Bvh::build_with(&boxes, Costs::OBJECTS),
             bounded,
             unbounded,
             any_partial_shadow,
@@ -308,9 +308,20 @@ impl Scene {
     /// lobes so they conserve energy) was an eighth of the path tracer's time.
     #[inline]
     pub fn bsdf(&self, material: usize, point: Vec3, front_face: bool) -> Cow<'_, Bsdf> {
+        match self.prebuilt_bsdf(material, front_face) {
+            Some(bsdf) => Cow::Borrowed(bsdf),
+            None => Cow::Owned(bsdf_for(&self.materials[material], point, front_face)),
+        }
+    }
+
+    /// The BSDF built with the scene for a material of one colour, `None` for a
+    /// textured one. The path tracer's inner loop takes this reference instead of a
+    /// [`Cow`], whose every use tests which variant it holds.
+    #[inline]
+    pub fn prebuilt_bsdf(&self, material: usize, front_face: bool) -> Option<&Bsdf> {
         match self.bsdfs.get(material) {
-            Some(Some(both)) => Cow::Borrowed(&both[front_face as usize]),
-            _ => Cow::Owned(bsdf_for(&self.materials[material], point, front_face)),
+            Some(Some(both)) => Some(&both[front_face as usize]),
+            _ => None,
         }
     }
 

@@ -24,7 +24,7 @@ use std::mem::MaybeUninit;
 
 use glam::Vec4;
 
-use super::sah::{self, Tree};
+use super::sah::{self, Costs, Tree};
 use super::slab::{farthest_first, SlabRay, WIDEN};
 use super::Aabb;
 use crate::math::Vec3;
@@ -91,15 +91,21 @@ fn round_up(x: f64) -> f32 {
 }
 
 impl Bvh {
-    /// Builds the hierarchy over `bounds[i]` for primitive `i`. Every box must be
-    /// finite (unbounded shapes are kept outside the BVH by the scene). Empty input
-    /// gives an empty BVH whose traversal finds nothing.
+    /// Builds the hierarchy over `bounds[i]` for primitive `i`, costed for
+    /// triangles ([`Costs::TRIANGLES`]). Every box must be finite (unbounded shapes
+    /// are kept outside the BVH by the scene). Empty input gives an empty BVH whose
+    /// traversal finds nothing.
     pub fn build(bounds: &[Aabb]) -> Bvh {
+        Bvh::build_with(bounds, Costs::TRIANGLES)
+    }
+
+    /// [`Bvh::build`] with the SAH weighing primitive tests by `costs`.
+    pub fn build_with(bounds: &[Aabb], costs: Costs) -> Bvh {
         assert!(bounds.len() < LEAF as usize, "too many primitives for one BVH");
         if bounds.is_empty() {
             return Bvh::default();
         }
-        let tree = sah::build(bounds);
+        let tree = sah::build(bounds, costs);
         let mut bvh =
             Bvh { nodes: Vec::with_capacity(bounds.len() / 4 + 1), indices: Vec::with_capacity(bounds.len()), bounds: Some(tree.bounds()) };
         match &tree {

@@ -10,3 +10,4 @@ pub mod tri4;
 pub use aabb::Aabb;
 pub use bvh::{Bvh, BvhStats};
 pub use mesh_bvh::{MeshBvh, MeshBvhStats};
+pub use sah::Costs;

@@ -4,19 +4,35 @@
 //! Each split tries [`BINS`] bins per axis over the centroid bounds and keeps the
 //! cheapest by the surface area heuristic, cost
 //! `C_trav + (A_left n_left + A_right n_right) / A_parent`, against the leaf cost
-//! `n`. Subtrees with many primitives are built in parallel (rayon).
+//! `n` (costs in units of one primitive test; [`Costs`] sets `C_trav` and the
+//! smallest leaf). Subtrees with many primitives are built in parallel (rayon).
 
 use super::Aabb;
 use crate::math::Vec3;
 
 /// Number of SAH bins per axis.
 pub const BINS: usize = 16;
-/// Primitives at or below which a node always becomes a leaf.
-const MIN_LEAF: usize = 2;
 /// Largest leaf: above this a node is always split.
 pub const MAX_LEAF: usize = 8;
-/// Cost of one box test relative to one primitive test.
-const TRAVERSAL_COST: f64 = 1.0;
+
+/// What the SAH weighs: the cost of descending into a node against testing primitives.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Costs {
+    /// Cost of one traversal step relative to one primitive test.
+    pub traversal: f64,
+    /// Primitives at or below which a node always becomes a leaf.
+    pub min_leaf: usize,
+}
+
+impl Costs {
+    /// Triangles: a primitive test costs about one 4-wide box test, pairs share a leaf.
+    pub const TRIANGLES: Costs = Costs { traversal: 1.0, min_leaf: 2 };
+    /// A scene's objects (spheres, quadrics, rectangles, meshes behind their own
+    /// BVH): each test costs several 4-wide box tests, so splitting down to single
+    /// objects pays. Halving the traversal cost cut the Cornell box's instructions
+    /// by 9 % (`BENCHMARKS.md`).
+    pub const OBJECTS: Costs = Costs { traversal: 0.5, min_leaf: 1 };
+}
 /// Subtrees larger than this are built on another thread.
 const PARALLEL_THRESHOLD: usize = 4096;
 /// Below this depth splits follow the SAH; deeper ones split at the median by
@@ -58,9 +74,9 @@ struct BuildPrim {
 }
 
 /// Builds the tree over `bounds[i]` for primitive `i`; `bounds` must not be empty.
-pub fn build(bounds: &[Aabb]) -> Tree {
+pub fn build(bounds: &[Aabb], costs: Costs) -> Tree {
     let prims = bounds.iter().enumerate().map(|(i, b)| BuildPrim { bounds: *b, centroid: b.centroid(), index: i as u32 }).collect();
-    build_node(prims, 0)
+    build_node(prims, 0, costs)
 }
 
 fn leaf(prims: Vec<BuildPrim>, bounds: Aabb) -> Tree {
@@ -71,10 +87,10 @@ fn bin_of(value: f64, min: f64, scale: f64) -> usize {
     (((value - min) * scale) as usize).min(BINS - 1)
 }
 
-fn build_node(mut prims: Vec<BuildPrim>, depth: usize) -> Tree {
+fn build_node(mut prims: Vec<BuildPrim>, depth: usize, costs: Costs) -> Tree {
     let bounds = prims.iter().fold(Aabb::EMPTY, |b, p| b.union(p.bounds));
     let n = prims.len();
-    if n <= MIN_LEAF {
+    if n <= costs.min_leaf {
         return leaf(prims, bounds);
     }
     let centroid_bounds = prims.iter().fold(Aabb::EMPTY, |b, p| b.grow(p.centroid));
@@ -112,7 +128,7 @@ fn build_node(mut prims: Vec<BuildPrim>, depth: usize) -> Tree {
                     continue;
                 }
                 let cost =
-                    TRAVERSAL_COST + (acc_box.surface_area() * acc_n as f64 + right_area[split] * right_count[split] as f64) / parent_area;
+                    costs.traversal + (acc_box.surface_area() * acc_n as f64 + right_area[split] * right_count[split] as f64) / parent_area;
                 if best.is_none_or(|(c, _, _)| cost < c) {
                     best = Some((cost, axis, split));
                 }
@@ -143,9 +159,9 @@ fn build_node(mut prims: Vec<BuildPrim>, depth: usize) -> Tree {
         }
     };
     let (left_tree, right_tree) = if n > PARALLEL_THRESHOLD {
-        rayon::join(|| build_node(left, depth + 1), || build_node(right, depth + 1))
+        rayon::join(|| build_node(left, depth + 1, costs), || build_node(right, depth + 1, costs))
     } else {
-        (build_node(left, depth + 1), build_node(right, depth + 1))
+        (build_node(left, depth + 1, costs), build_node(right, depth + 1, costs))
     };
     Tree::Interior { bounds, children: Box::new((left_tree, right_tree)) }
 }

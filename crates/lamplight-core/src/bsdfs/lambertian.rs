@@ -2,9 +2,9 @@
 //! hemisphere (`pdf = cos(theta_i) / pi`), so each sample's weight `f cos / pdf`
 //! is exactly the albedo.
 
-use std::f64::consts::{FRAC_1_PI, PI};
+use std::f64::consts::{FRAC_1_PI, FRAC_PI_4};
 
-use crate::math::{Rgb, Vec3};
+use crate::math::{sin_cos_quarter, Rgb, Vec3};
 
 /// `albedo / pi` when both directions lie above the surface (local `z > 0`), else 0.
 #[inline]
@@ -40,13 +40,42 @@ pub fn concentric_disk(u: (f64, f64)) -> (f64, f64) {
     if a == 0.0 && b == 0.0 {
         return (0.0, 0.0);
     }
-    let (r, theta) = if a.abs() > b.abs() { (a, PI / 4.0 * (b / a)) } else { (b, PI / 2.0 - PI / 4.0 * (a / b)) };
-    (r * theta.cos(), r * theta.sin())
+    // The angle is pi/4 * ratio in the first case and pi/2 - pi/4 * ratio in the
+    // second: both need only the sine and cosine of an angle in [-pi/4, pi/4].
+    if a.abs() > b.abs() {
+        let (sin, cos) = sin_cos_quarter(FRAC_PI_4 * (b / a));
+        (a * cos, a * sin)
+    } else {
+        let (sin, cos) = sin_cos_quarter(FRAC_PI_4 * (a / b));
+        (b * sin, b * cos)
+    }
 }
 
 #[cfg(test)]
 mod tests {
+    use std::f64::consts::PI;
+
     use super::*;
+
+    #[test]
+    fn concentric_map_matches_its_trigonometric_definition() {
+        // Shirley and Chiu's map with libm's sine and cosine of the full angle.
+        let reference = |u: (f64, f64)| {
+            let (a, b) = (2.0 * u.0 - 1.0, 2.0 * u.1 - 1.0);
+            let (r, theta) = if a.abs() > b.abs() { (a, PI / 4.0 * (b / a)) } else { (b, PI / 2.0 - PI / 4.0 * (a / b)) };
+            (r * theta.cos(), r * theta.sin())
+        };
+        let n = 200;
+        for i in 0..=n {
+            for j in 0..=n {
+                let u = (i as f64 / n as f64 * 0.999_999, j as f64 / n as f64 * 0.999_999);
+                let (x, y) = concentric_disk(u);
+                let (rx, ry) = reference(u);
+                assert!((x - rx).abs() < 4e-16 && (y - ry).abs() < 4e-16, "{u:?}: ({x}, {y}) vs ({rx}, {ry})");
+            }
+        }
+        assert_eq!(concentric_disk((0.5, 0.5)), (0.0, 0.0));
+    }
 
     #[test]
     fn samples_follow_the_cosine_density() {

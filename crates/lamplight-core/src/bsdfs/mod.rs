@@ -212,8 +212,30 @@ impl Bsdf {
         self.lobes().iter().any(|l| !l.is_delta())
     }
 
+    /// The albedo when the BSDF is one Lambertian lobe (most surfaces of most
+    /// scenes): [`Bsdf::f`], [`Bsdf::pdf`] and [`Bsdf::sample`] then skip the lobe
+    /// loop, with the same arithmetic and so the same bits.
+    #[inline(always)]
+    fn single_diffuse(&self) -> Option<Rgb> {
+        match self.lobes[0] {
+            Lobe::Diffuse(albedo) if self.count == 1 => Some(albedo),
+            _ => None,
+        }
+    }
+
+    /// True when [`Bsdf::sample`] reads its `u_lobe` (more than one lobe, or glass
+    /// choosing between reflection and refraction).
+    #[inline]
+    pub fn uses_lobe_sample(&self) -> bool {
+        self.single_diffuse().is_none()
+    }
+
     /// Sum of the non-delta lobes' values.
+    #[inline]
     pub fn f(&self, wo: Vec3, wi: Vec3) -> Rgb {
+        if let Some(albedo) = self.single_diffuse() {
+            return lambertian::f(albedo, wo, wi);
+        }
         let mut sum = Rgb::ZERO;
         for lobe in self.lobes() {
             match *lobe {
@@ -229,7 +251,12 @@ impl Bsdf {
 
     /// Solid-angle density with which [`Bsdf::sample`] returns `wi` from a non-delta lobe
     /// (`wi.z < 0`: transmitted).
+    #[inline]
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f64 {
+        if self.single_diffuse().is_some() {
+            // The single lobe's probability is exactly 1.
+            return lambertian::pdf(wo, wi);
+        }
         let mut pdf = 0.0;
         for (lobe, p) in self.lobes().iter().zip(self.probs) {
             match *lobe {
@@ -245,6 +272,15 @@ impl Bsdf {
     /// Samples an incident direction for outgoing `wo` (local, `wo.z > 0`): `u_lobe`
     /// picks the lobe (and, rescaled, the glass branch), `u` the direction.
     pub fn sample(&self, wo: Vec3, u_lobe: f64, u: (f64, f64)) -> Option<BsdfSample> {
+        if let Some(albedo) = self.single_diffuse() {
+            let wi = lambertian::sample(u);
+            let pdf = lambertian::pdf(wo, wi);
+            if !(pdf > 0.0) {
+                return None;
+            }
+            let weight = lambertian::f(albedo, wo, wi) * wi.z / pdf;
+            return Some(BsdfSample { wi, weight, pdf, delta: false, eta: 1.0 });
+        }
         let mut start = 0.0;
         let mut chosen = self.count.checked_sub(1)?;
         for i in 0..self.count {

@@ -16,7 +16,7 @@
 //! refracted BSDF paths), so nothing is counted twice.
 
 use super::{Integrator, RayCounts};
-use crate::bsdfs::{Bsdf, Frame};
+use crate::bsdfs::{bsdf_for, Bsdf, Frame};
 use crate::lights::{LightSet, Picked};
 use crate::materials::{Reflection, Refraction};
 use crate::math::{Rgb, Vec3};
@@ -98,6 +98,7 @@ impl PathTracer {
         let mut prev_pdf = 0.0;
         let mut prev_delta = true;
         let p_pick = self.lights.pick_probability();
+        let single_light = self.lights.count() <= 1;
         for depth in 1..=self.max_depth {
             let Some(hit) = scene.first_intersect(&ray, f64::INFINITY) else {
                 match (depth, self.lights.camera_background, &self.lights.environment) {
@@ -125,22 +126,33 @@ impl PathTracer {
             if depth >= self.max_depth {
                 break;
             }
-            let bsdf = scene.bsdf(hit.material, hit.point, hit.front_face);
+            let textured;
+            let bsdf = match scene.prebuilt_bsdf(hit.material, hit.front_face) {
+                Some(bsdf) => bsdf,
+                None => {
+                    textured = bsdf_for(material, hit.point, hit.front_face);
+                    &textured
+                }
+            };
             if bsdf.is_black() {
                 break;
             }
             let frame = Frame::new(hit.normal);
             let wo = frame.to_local(-ray.dir);
-            // Always draw the light sample's dimensions so that every sample of a pixel
-            // uses dimension k for the same decision.
-            let u_pick = sampler.get_1d();
-            let u_light = sampler.get_2d();
+            // Every vertex owns the same five dimensions, so that every sample of a
+            // pixel uses dimension k for the same decision; values a vertex does not
+            // need are skipped, not computed.
             if bsdf.has_smooth_part() {
-                radiance += beta * self.sample_light(scene, &hit, &bsdf, &frame, wo, u_pick, u_light, counts);
+                let u_pick = if single_light { sampler.skip_value() } else { sampler.get_1d() };
+                let u_light = sampler.get_2d();
+                radiance += beta * self.sample_light(scene, &hit, bsdf, &frame, wo, u_pick, u_light, counts);
+            } else {
+                sampler.skip();
+                sampler.skip();
             }
-            let u_lobe = sampler.get_1d();
+            let u_lobe = if bsdf.uses_lobe_sample() { sampler.get_1d() } else { sampler.skip_value() };
             let u_bsdf = sampler.get_2d();
-            let u_rr = sampler.get_1d();
+            let u_rr = if depth >= self.rr_depth { sampler.get_1d() } else { sampler.skip_value() };
             let Some(s) = bsdf.sample(wo, u_lobe, u_bsdf) else { break };
             let wi = frame.to_world(s.wi);
             // The shading normal may disagree with the geometry: keep the side the

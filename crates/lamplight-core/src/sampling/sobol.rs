@@ -121,14 +121,30 @@ fn to_unit(x: u32) -> f64 {
 #[derive(Clone, Debug)]
 pub struct PixelSampler {
     pixel_seed: u64,
-    index: u32,
+    /// The sample index, bit-reversed once here rather than per dimension.
+    index_reversed: u32,
     dimension: u32,
 }
 
 impl PixelSampler {
     /// Sample `index` of pixel `pixel` under render seed `seed`.
     pub fn new(seed: u64, pixel: u64, index: u32) -> PixelSampler {
-        PixelSampler { pixel_seed: mix(mix(seed ^ 0x5851_F42D_4C95_7F2D) ^ pixel.wrapping_mul(0x9E37_79B9_7F4A_7C15)), index, dimension: 0 }
+        let pixel_seed = mix(mix(seed ^ 0x5851_F42D_4C95_7F2D) ^ pixel.wrapping_mul(0x9E37_79B9_7F4A_7C15));
+        PixelSampler { pixel_seed, index_reversed: index.reverse_bits(), dimension: 0 }
+    }
+
+    /// Passes over the next dimension without computing it: a caller that does not
+    /// need a value keeps every later decision on the dimension it always uses.
+    #[inline]
+    pub fn skip(&mut self) {
+        self.dimension += 1;
+    }
+
+    /// [`PixelSampler::skip`] for a 1D value whose consumer ignores it: returns 0.5.
+    #[inline]
+    pub fn skip_value(&mut self) -> f64 {
+        self.skip();
+        0.5
     }
 
     /// The next dimension's shuffled index and its two value scramble seeds.
@@ -137,7 +153,8 @@ impl PixelSampler {
         let h = mix(self.pixel_seed ^ (self.dimension as u64).wrapping_mul(0xD1B5_4A32_D192_ED03));
         let h2 = mix(h ^ 0x2545_F491_4F6C_DD1D);
         self.dimension += 1;
-        (owen_scramble(self.index, h2 as u32), h as u32, (h >> 32) as u32)
+        // owen_scramble(index, h2) with the index reversed beforehand.
+        (laine_karras(self.index_reversed, h2 as u32).reverse_bits(), h as u32, (h >> 32) as u32)
     }
 
     /// The next dimension as one value in `[0, 1)`.
@@ -161,6 +178,18 @@ impl PixelSampler {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn skipped_dimensions_leave_the_later_ones_unchanged() {
+        for index in [0, 1, 5, 1000] {
+            let mut all = PixelSampler::new(3, 77, index);
+            let mut skipping = all.clone();
+            let (_, _, kept) = (all.get_1d(), all.get_2d(), all.get_2d());
+            skipping.skip();
+            assert_eq!(skipping.skip_value(), 0.5);
+            assert_eq!(skipping.get_2d(), kept);
+        }
+    }
 
     #[test]
     fn folded_forms_equal_the_definitions() {
