@@ -51,8 +51,9 @@ fn axis_rays_into_a_unit_box_hit_at_exact_parameters() {
     assert!(b.intersect(&Ray::new(Vec3::new(1.5, 0.5, -2.0), Vec3::Z), 0.0, INF).is_none());
     assert!(b.intersect(&Ray::new(Vec3::new(0.5, 0.5, 2.0), Vec3::Z), 0.0, INF).is_none(), "box behind the ray");
     // Scaled by 2 along x and moved to x in [1, 5]: the parameter stays the world one.
-    let placed = Cuboid::new(-Vec3::ONE, Vec3::ONE, Mat4::from_translation(Vec3::new(3.0, 0.0, 0.0)) * Mat4::from_scale(Vec3::new(2.0, 1.0, 1.0)))
-        .unwrap();
+    let placed =
+        Cuboid::new(-Vec3::ONE, Vec3::ONE, Mat4::from_translation(Vec3::new(3.0, 0.0, 0.0)) * Mat4::from_scale(Vec3::new(2.0, 1.0, 1.0)))
+            .unwrap();
     let hit = placed.intersect(&Ray::new(Vec3::ZERO, Vec3::X), 0.0, INF).unwrap();
     assert_eq!((hit.t, hit.normal), (1.0, -Vec3::X));
     assert_eq!(placed.intersect(&Ray::new(Vec3::new(3.0, 0.0, 0.0), Vec3::X), 0.0, INF).unwrap().t, 2.0);
@@ -71,7 +72,8 @@ fn matches_the_six_rectangles_of_the_same_box_on_random_rays() {
             // Aim at a point around the box so that most rays hit; every fourth ray
             // starts inside the box, some start on the far side of t_min.
             let local = |rng: &mut Rng| min + (max - min) * Vec3::new(rng.uniform(), rng.uniform(), rng.uniform());
-            let target = m.transform_point3(min + (max - min) * Vec3::new(1.4 * rng.uniform() - 0.2, 1.4 * rng.uniform() - 0.2, rng.uniform()));
+            let target =
+                m.transform_point3(min + (max - min) * Vec3::new(1.4 * rng.uniform() - 0.2, 1.4 * rng.uniform() - 0.2, rng.uniform()));
             let origin = if i % 4 == 0 { m.transform_point3(local(&mut rng)) } else { target + unit_vector(&mut rng) * 6.0 };
             let ray = Ray::new(origin, target - origin);
             let t_min = if i % 4 != 0 && i % 7 == 0 { 2.0 } else { 0.0 };
