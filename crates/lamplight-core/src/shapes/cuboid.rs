@@ -30,10 +30,13 @@ pub struct Cuboid {
     min: Vec3,
     max: Vec3,
     world_from_local: Mat4,
-    /// Linear part of `M^-1`.
+    /// Linear part of `M^-1`: a world point `p` is `local_linear p + c` locally,
+    /// with `c` the translation of `M^-1`.
     local_linear: DMat3,
-    /// Translation of `M^-1`: a world point `p` is `local_linear p + local_offset`.
-    local_offset: Vec3,
+    /// `min - c` and `max - c`: the slab planes seen from the untranslated local
+    /// point `local_linear p`, which saves adding `c` to every ray origin.
+    lo_shift: Vec3,
+    hi_shift: Vec3,
     /// World outward unit normals of the six faces.
     normals: [Vec3; 6],
     /// World areas of the six faces.
@@ -88,7 +91,8 @@ impl Cuboid {
         if !(area.is_finite() && bounds.is_finite()) {
             return Err(Error::invalid("box", "is too large to represent"));
         }
-        Ok(Cuboid { min, max, world_from_local: m, local_linear, local_offset, normals, face_areas, area, bounds })
+        let (lo_shift, hi_shift) = (min - local_offset, max - local_offset);
+        Ok(Cuboid { min, max, world_from_local: m, local_linear, lo_shift, hi_shift, normals, face_areas, area, bounds })
     }
 
     /// The local box's lower corner.
@@ -111,25 +115,68 @@ impl Cuboid {
         self.normals[face]
     }
 
-    /// The hit parameter and the face it lies on: the entry of the box interval
-    /// when it is in `(t_min, t_max)`, else its exit.
+    /// The hit parameter, the entry of the box interval when it is in
+    /// `(t_min, t_max)`, else its exit, and what [`SlabHit::face`] needs.
     #[inline(always)]
-    fn hit(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<(f64, usize)> {
-        let o = self.local_linear * ray.origin + self.local_offset;
+    fn hit(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SlabHit> {
+        let o = self.local_linear * ray.origin;
         let d = self.local_linear * ray.dir;
-        let mut span = Span { enter: f64::NEG_INFINITY, enter_face: 0, exit: f64::INFINITY, exit_face: 0 };
-        span.slab(self.min.x, self.max.x, o.x, d.x, 0);
-        span.slab(self.min.y, self.max.y, o.y, d.y, 2);
-        span.slab(self.min.z, self.max.z, o.z, d.z, 4);
-        let Span { enter, enter_face, exit, exit_face } = span;
+        // A zero component of `d` gives an infinite inverse: the slab bounds are
+        // then +-inf (origin outside or strictly inside the slab) or 0 * inf = NaN
+        // (origin on a slab plane: the ray lies in the closed slab). Near and far
+        // are picked by the sign of the inverse, never by comparing the bounds, and
+        // the comparisons below are false for NaN, so such a bound is ignored.
+        let inv = d.recip();
+        let to_lo = (self.lo_shift - o) * inv;
+        let to_hi = (self.hi_shift - o) * inv;
+        // Going up an axis (inverse > 0, also d = +0) the ray enters through the
+        // min face and leaves through the max face.
+        let pick = |up: bool, a: f64, b: f64| if up { a } else { b };
+        let up = [inv.x >= 0.0, inv.y >= 0.0, inv.z >= 0.0];
+        let near = Vec3::new(pick(up[0], to_lo.x, to_hi.x), pick(up[1], to_lo.y, to_hi.y), pick(up[2], to_lo.z, to_hi.z));
+        let far = Vec3::new(pick(up[0], to_hi.x, to_lo.x), pick(up[1], to_hi.y, to_lo.y), pick(up[2], to_hi.z, to_lo.z));
+        let later = |a: f64, b: f64| if b > a { b } else { a };
+        let earlier = |a: f64, b: f64| if b < a { b } else { a };
+        let enter = later(later(later(f64::NEG_INFINITY, near.x), near.y), near.z);
+        let exit = earlier(earlier(earlier(f64::INFINITY, far.x), far.y), far.z);
         if !(enter <= exit) {
             return None;
         }
-        if enter > t_min {
-            (enter < t_max).then_some((enter, enter_face))
+        let (t, entering) = if enter > t_min {
+            (enter < t_max).then_some((enter, true))?
         } else {
-            (exit > t_min && exit < t_max).then_some((exit, exit_face))
-        }
+            (exit > t_min && exit < t_max).then_some((exit, false))?
+        };
+        Some(SlabHit { t, entering, bound: if entering { near } else { far }, up })
+    }
+}
+
+/// A hit of the slab test, with what is needed to name its face only when asked
+/// (shadow rays never ask).
+struct SlabHit {
+    t: f64,
+    /// Whether `t` is the entry (else the exit) of the box interval.
+    entering: bool,
+    /// The per-axis entries (or exits); the axis whose bound is `t` set it.
+    bound: Vec3,
+    /// Per axis, whether the local direction goes up it.
+    up: [bool; 3],
+}
+
+impl SlabHit {
+    /// Face index (+x, -x, +y, -y, +z, -z): the first axis whose bound is `t` (ties
+    /// at an edge or corner go to x, then y), on the min side (odd index) when
+    /// entering up the axis or leaving down it.
+    #[inline(always)]
+    fn face(&self) -> usize {
+        let axis = if self.bound.x == self.t {
+            0
+        } else if self.bound.y == self.t {
+            1
+        } else {
+            2
+        };
+        2 * axis + usize::from(self.entering == self.up[axis])
     }
 }
 
@@ -139,8 +186,8 @@ impl Shape for Cuboid {
     }
 
     fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
-        let (t, face) = self.hit(ray, t_min, t_max)?;
-        Some(SurfaceHit::new(t, self.normals[face]))
+        let hit = self.hit(ray, t_min, t_max)?;
+        Some(SurfaceHit::new(hit.t, self.normals[hit.face()]))
     }
 
     fn intersect_p(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
@@ -174,42 +221,6 @@ impl Shape for Cuboid {
         local[a] = self.min[a] + (self.max[a] - self.min[a]) * s;
         local[b] = self.min[b] + (self.max[b] - self.min[b]) * v;
         Some((self.world_from_local.transform_point3(local), self.normals[face]))
-    }
-}
-
-/// The parameter interval of a local ray inside the box, narrowed slab by slab,
-/// with the face that set each end.
-struct Span {
-    enter: f64,
-    enter_face: usize,
-    exit: f64,
-    exit_face: usize,
-}
-
-impl Span {
-    /// Narrows the interval by the slab `lo <= o + t d <= hi` of the axis whose
-    /// +face has index `plus_face` (its -face is `plus_face + 1`).
-    #[inline(always)]
-    fn slab(&mut self, lo: f64, hi: f64, o: f64, d: f64, plus_face: usize) {
-        // A zero component gives an infinite inverse: the slab bounds are then
-        // +-inf (origin outside or strictly inside the slab) or 0 * inf = NaN
-        // (origin on a slab plane, so the ray lies in the closed slab). The
-        // comparisons below are false for NaN, so such a bound is ignored.
-        let inv = 1.0 / d;
-        let to_lo = (lo - o) * inv;
-        let to_hi = (hi - o) * inv;
-        // Going up the axis (inv > 0, also d = +0) the ray enters through the
-        // min face and leaves through the max face.
-        let (near, near_face, far, far_face) =
-            if inv >= 0.0 { (to_lo, plus_face + 1, to_hi, plus_face) } else { (to_hi, plus_face, to_lo, plus_face + 1) };
-        if near > self.enter {
-            self.enter = near;
-            self.enter_face = near_face;
-        }
-        if far < self.exit {
-            self.exit = far;
-            self.exit_face = far_face;
-        }
     }
 }
 
