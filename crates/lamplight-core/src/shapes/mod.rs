@@ -13,6 +13,7 @@ use crate::accel::Aabb;
 use crate::math::Vec3;
 use crate::ray::Ray;
 
+mod cuboid;
 mod implicit;
 mod instance;
 mod mesh;
@@ -22,6 +23,7 @@ mod sphere;
 mod torus;
 mod triangle;
 
+pub use cuboid::Cuboid;
 pub use implicit::{GradientFn, Implicit, ImplicitFn};
 pub use instance::Instance;
 pub use mesh::TriangleMesh;

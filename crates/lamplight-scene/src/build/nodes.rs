@@ -333,7 +333,6 @@ fn count(desc: &SceneDescription, node: &Node, memo: &mut HashMap<String, u64>, 
             memo.insert(name.clone(), n);
             n
         }
-        "box" => 6,
         "cylinder" => 3,
         _ => 1,
     }

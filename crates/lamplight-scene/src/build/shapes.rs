@@ -1,10 +1,11 @@
 //! Shape nodes to core shapes, one `match` arm per type, under a world matrix.
 //!
 //! With the identity matrix each shape is made exactly as the built-in scenes
-//! make it. Under a transform: points and edges of planes, rectangles, disks,
-//! boxes and triangles are mapped (a disk and a sphere keep their kind under a
-//! similarity, otherwise become an [`Instance`]); quadrics use
-//! [`Quadric::transformed`]; tori and implicit surfaces become an [`Instance`].
+//! make it. Under a transform: points and edges of planes, rectangles, disks and
+//! triangles are mapped (a disk and a sphere keep their kind under a similarity,
+//! otherwise become an [`Instance`]); a box is one [`Cuboid`] carrying the matrix
+//! (any affine one, shear included); quadrics use [`Quadric::transformed`]; tori
+//! and implicit surfaces become an [`Instance`].
 
 use std::sync::Arc;
 
@@ -107,7 +108,7 @@ pub fn make(n: &Node, m: &Mat4) -> Result<Vec<Arc<dyn Shape>>, String> {
             if !(lo.cmplt(hi).all()) {
                 return Err(format!("min {lo} must be below max {hi} on every axis"));
             }
-            boxed(lo, hi, m, &mut out)?;
+            out.push(Arc::new(Cuboid::new(lo, hi, *m).map_err(core)?));
         }
         "triangle" => {
             let v = req(n.vertices, "vertices")?;
@@ -201,14 +202,6 @@ pub fn instance(shape: Arc<dyn Shape>, m: &Mat4) -> Result<Arc<dyn Shape>, Strin
     } else {
         Ok(Arc::new(Instance::new(shape, *m).map_err(core)?))
     }
-}
-
-/// Six rectangles with outward normals (`edge_u x edge_v` out of the box).
-fn boxed(min: Vec3, max: Vec3, m: &Mat4, out: &mut Vec<Arc<dyn Shape>>) -> Result<(), String> {
-    for face in Rectangle::box_faces(min, max, m).map_err(core)? {
-        out.push(Arc::new(face));
-    }
-    Ok(())
 }
 
 fn implicit(n: &Node) -> Result<Implicit, String> {

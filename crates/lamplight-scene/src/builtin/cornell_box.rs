@@ -45,14 +45,11 @@ pub fn build(aspect: f64) -> Result<lamplight_core::Scene, Error> {
     b.object(rectangle(t(0.0, 0.0, -1.0))?, white)?;
     b.object(rectangle(t(1.0, 0.0, 0.0) * ry(-90.0))?, green)?;
     b.object(rectangle(t(-1.0, 0.0, 0.0) * ry(90.0))?, red)?;
-    for face in Rectangle::box_faces(-Vec3::ONE, Vec3::ONE, &(t(0.335, -0.7, 0.38) * ry(-17.0) * DMat4::from_scale(Vec3::splat(0.3))))? {
-        b.object(face, white)?;
-    }
-    for face in
-        Rectangle::box_faces(-Vec3::ONE, Vec3::ONE, &(t(-0.33, -0.4, -0.28) * ry(18.25) * DMat4::from_scale(Vec3::new(0.3, 0.61, 0.3))))?
-    {
-        b.object(face, white)?;
-    }
+    // Each box is one Cuboid: the cube [-1, 1]^3 placed by T R S, the product the
+    // scene file's group { translate, rotate, scale } composes, bit for bit.
+    let cube = |m: DMat4| Cuboid::new(-Vec3::ONE, Vec3::ONE, m);
+    b.object(cube(t(0.335, -0.7, 0.38) * ry(-17.0) * DMat4::from_scale(Vec3::splat(0.3)))?, white)?;
+    b.object(cube(t(-0.33, -0.4, -0.28) * ry(18.25) * DMat4::from_scale(Vec3::new(0.3, 0.61, 0.3)))?, white)?;
     b.build()
 }
 
@@ -61,17 +58,18 @@ mod tests {
     use super::*;
 
     #[test]
-    fn walls_face_into_the_room_and_cube_faces_face_out() {
+    fn walls_face_into_the_room_and_box_faces_face_out() {
         let scene = build(1.0).unwrap();
-        assert_eq!(scene.objects.len(), 6 + 12);
+        assert_eq!(scene.objects.len(), 6 + 2);
         // Mitsuba's small-box matrix: first row (0.286891, 0, -0.0877115, 0.335).
         let m = DMat4::from_translation(Vec3::new(0.335, -0.7, 0.38))
             * DMat4::from_rotation_y((-17.0f64).to_radians())
             * DMat4::from_scale(Vec3::splat(0.3));
         assert!((m.x_axis.x - 0.286891).abs() < 1e-6 && (m.z_axis.x + 0.0877115).abs() < 1e-6);
-        for face in Rectangle::box_faces(-Vec3::ONE, Vec3::ONE, &DMat4::IDENTITY).unwrap() {
-            let centre = face.corner + (face.edge_u + face.edge_v) * 0.5;
-            assert!((face.normal() - centre).length() < 1e-12, "face at {centre} points {}", face.normal());
+        let cube = Cuboid::new(-Vec3::ONE, Vec3::ONE, m).unwrap();
+        for (face, axis) in [Vec3::X, -Vec3::X, Vec3::Y, -Vec3::Y, Vec3::Z, -Vec3::Z].into_iter().enumerate() {
+            let outward = m.transform_vector3(axis).normalize();
+            assert!((cube.face_normal(face) - outward).length() < 1e-12, "face {face} points {}", cube.face_normal(face));
         }
         let light = rectangle(DMat4::from_translation(Vec3::new(0.0, 0.99, 0.01)) * DMat4::from_rotation_x(90f64.to_radians())).unwrap();
         assert!((light.normal() + Vec3::Y).length() < 1e-12, "the light faces down");

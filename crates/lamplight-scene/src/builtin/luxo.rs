@@ -11,7 +11,7 @@
 //! with apex `A`, unit axis `a` towards the table, focal length `f = 0.1` and depth
 //! `h = 0.25`; the light sits at the focus `A + f a`, inside a small emissive bulb
 //! that casts no shadow. Arms and the lamp base are tubes with disk caps; the cone
-//! is a clipped cone with a base disk; the box is six rectangles, rotated 25 degrees
+//! is a clipped cone with a base disk; the box is one [`Cuboid`], rotated 25 degrees
 //! about +y.
 
 use lamplight_core::math::Mat4;
@@ -95,9 +95,7 @@ pub fn build(aspect: f64) -> Result<Scene, Error> {
     scene.object(Disk::new(cone_base, -Vec3::Y, 0.22)?, red)?;
     let blue = scene.material(Material::plastic(Rgb::new(0.15, 0.30, 0.75), 0.1, 0.7, 0.3, 30.0))?;
     let placement = Mat4::from_translation(Vec3::new(-0.75, 0.0, 0.45)) * Mat4::from_rotation_y(25f64.to_radians());
-    for face in Rectangle::box_faces(Vec3::new(-0.2, 0.0, -0.2), Vec3::new(0.2, 0.4, 0.2), &placement)? {
-        scene.object(face, blue)?;
-    }
+    scene.object(Cuboid::new(Vec3::new(-0.2, 0.0, -0.2), Vec3::new(0.2, 0.4, 0.2), placement)?, blue)?;
     let gold = scene.material(Material::plastic(Rgb::new(0.85, 0.65, 0.15), 0.1, 0.7, 0.4, 50.0))?;
     let (c, half, height) = (Vec3::new(0.05, 0.0, -0.75), 0.22, 0.45);
     let pyramid = TriangleMesh::new(
