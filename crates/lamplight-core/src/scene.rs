@@ -260,6 +260,19 @@ impl Scene {
         // The light is seen where the ray first meets its own object: the ray ends there.
         let own = ignore.and_then(|i| self.objects.get(i));
         let distance = own.and_then(|o| o.shape.intersect(&ray, 0.0, distance)).map_or(distance, |h| h.t);
+        self.transmittance_to(origin, dir, distance, ignore)
+    }
+
+    /// [`Scene::transmittance`] along a segment already known to end where it first
+    /// meets object `own`: a point sampled on the facing side of a convex emitter
+    /// ([`Shape::is_convex`]) is that first meeting, so the search is skipped.
+    pub fn transmittance_to_surface(&self, origin: Vec3, dir: Vec3, distance: f64, own: usize) -> Rgb {
+        self.transmittance_to(origin, dir, distance, Some(own))
+    }
+
+    /// Transmittance over `(0, distance)`, object `ignore` left out.
+    fn transmittance_to(&self, origin: Vec3, dir: Vec3, distance: f64, ignore: Option<usize>) -> Rgb {
+        let ray = Ray { origin, dir };
         let ignore = ignore.map_or(u32::MAX, |i| i as u32);
         let blocks = |prim: &PrimRef| -> bool {
             prim.opaque && prim.object != ignore && self.objects[prim.object as usize].shape.intersect_p(&ray, 0.0, distance)

@@ -191,19 +191,20 @@ impl PathTracer {
     ) -> Rgb {
         let Some(picked) = self.lights.pick(u_pick) else { return Rgb::ZERO };
         let p_pick = self.lights.pick_probability();
-        // (direction, distance, incident radiance, light pdf or None for delta, own object)
-        let (wi, distance, li, light_pdf, own) = match picked {
+        // (direction, distance, incident radiance, light pdf or None for delta, own
+        // object, whether the segment is known to end on the own object's surface)
+        let (wi, distance, li, light_pdf, own, ends_on_own) = match picked {
             Picked::Delta(light) => {
                 let Some(s) = light.illuminate(hit.point) else { return Rgb::ZERO };
-                (s.wi, s.distance, s.radiance, None, light.own_object())
+                (s.wi, s.distance, s.radiance, None, light.own_object(), false)
             }
             Picked::Area(light) => {
                 let Some(s) = light.sample(hit.point, u) else { return Rgb::ZERO };
-                (s.wi, s.distance, s.radiance, Some(s.pdf), Some(light.object))
+                (s.wi, s.distance, s.radiance, Some(s.pdf), Some(light.object), light.convex)
             }
             Picked::Environment(env) => {
                 let Some((d, l, pdf)) = env.sample(u) else { return Rgb::ZERO };
-                (d, f64::INFINITY, l, Some(pdf), None)
+                (d, f64::INFINITY, l, Some(pdf), None, false)
             }
         };
         if li == Rgb::ZERO {
@@ -222,7 +223,11 @@ impl PathTracer {
         let remaining = distance - (origin - hit.point).length();
         let visible = if self.all_opaque {
             // Any hit blocks; the scene's query ends the ray at the light's own object.
-            scene.transmittance(origin, wi, remaining, own) != Rgb::ZERO
+            let transmittance = match own {
+                Some(own) if ends_on_own => scene.transmittance_to_surface(origin, wi, remaining, own),
+                _ => scene.transmittance(origin, wi, remaining, own),
+            };
+            transmittance != Rgb::ZERO
         } else {
             unoccluded(scene, origin, wi, remaining, own)
         };

@@ -23,6 +23,9 @@ pub struct AreaLight {
     /// Emitted radiance on the outward side.
     pub radiance: Rgb,
     area: f64,
+    /// The shape is convex ([`Shape::is_convex`]): a sampled point is where a
+    /// shadow ray towards it first meets the light.
+    pub convex: bool,
     /// The triangles of a mesh emitter (`None`: the shape samples itself).
     triangles: Option<Arc<TriangleSampler>>,
 }
@@ -51,7 +54,8 @@ impl AreaLight {
                 (sampler.area(), Some(Arc::new(sampler)))
             }
         };
-        (area > 0.0 && area.is_finite()).then_some(AreaLight { object, shape, radiance, area, triangles })
+        let convex = triangles.is_none() && shape.is_convex();
+        (area > 0.0 && area.is_finite()).then_some(AreaLight { object, shape, radiance, area, convex, triangles })
     }
 
     /// Surface area.
@@ -94,7 +98,55 @@ impl AreaLight {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::shapes::{Rectangle, Sphere};
+    use crate::math::Mat4;
+    use crate::ray::Ray;
+    use crate::shapes::{Cuboid, Disk, Rectangle, Sphere, Triangle};
+
+    /// What `Shape::is_convex` promises the path tracer: from a point outside, a
+    /// sampled light point whose normal faces it is where the segment first meets
+    /// the shape, so the shadow ray need not search for it.
+    #[test]
+    fn convex_emitters_are_first_met_at_their_sampled_points() {
+        let placed =
+            Mat4::from_translation(Vec3::new(0.3, -0.2, 0.1)) * Mat4::from_rotation_y(0.4) * Mat4::from_scale(Vec3::new(0.5, 1.0, 0.7));
+        let shapes: Vec<Arc<dyn Shape>> = vec![
+            Arc::new(Rectangle::new(Vec3::new(-0.5, 1.0, -0.5), Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 1.0)).unwrap()),
+            Arc::new(Disk::new(Vec3::new(0.0, 0.5, 0.0), Vec3::new(0.2, -1.0, 0.1), 0.6).unwrap()),
+            Arc::new(Triangle::new(Vec3::new(-1.0, 0.0, 0.0), Vec3::new(1.0, 0.2, 0.0), Vec3::new(0.0, 0.1, 1.0)).unwrap()),
+            Arc::new(Sphere::new(Vec3::new(0.1, 0.2, -0.1), 0.8).unwrap()),
+            Arc::new(Cuboid::new(-Vec3::ONE, Vec3::ONE, placed).unwrap()),
+        ];
+        let mut state = 1u32;
+        let mut uniform = || {
+            state = state.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
+            (state >> 8) as f64 / (1u32 << 24) as f64
+        };
+        for shape in shapes {
+            assert!(shape.is_convex());
+            let light = AreaLight::new(0, shape.clone(), Rgb::ONE).unwrap();
+            assert!(light.convex);
+            let mut checked = 0;
+            for _ in 0..4000 {
+                let x = Vec3::new(uniform() - 0.5, uniform() - 0.5, uniform() - 0.5) * 8.0;
+                let inside = Ray::new(x, Vec3::new(0.0, 1.0, 0.0));
+                // Points inside the sphere or box (odd crossings upwards) are not outside.
+                let mut crossings = 0;
+                let mut t = 0.0;
+                while let Some(h) = shape.intersect(&inside, t, f64::INFINITY) {
+                    crossings += 1;
+                    t = h.t * (1.0 + 1e-9) + 1e-9;
+                }
+                if crossings % 2 == 1 {
+                    continue;
+                }
+                let Some(s) = light.sample(x, (uniform(), uniform())) else { continue };
+                let first = shape.intersect(&Ray::new(x, s.wi), 0.0, f64::INFINITY).expect("the sampled point is on the ray");
+                assert!((first.t - s.distance).abs() <= 1e-9 * s.distance, "{shape:?}: first hit {} before {}", first.t, s.distance);
+                checked += 1;
+            }
+            assert!(checked > 500, "{shape:?}: only {checked} samples checked");
+        }
+    }
 
     #[test]
     fn solid_angle_of_a_sphere_from_its_samples() {

@@ -181,6 +181,10 @@ impl SlabHit {
 }
 
 impl Shape for Cuboid {
+    fn is_convex(&self) -> bool {
+        true
+    }
+
     fn bounds(&self) -> Aabb {
         self.bounds
     }

@@ -73,6 +73,15 @@ pub trait Shape: Send + Sync + std::fmt::Debug {
         self.intersect(ray, t_min, t_max).is_some()
     }
 
+    /// True for flat shapes and boundaries of convex solids (rectangles, disks,
+    /// triangles, spheres, boxes): a segment from a point outside to a point of the
+    /// surface whose outward normal faces that point meets the surface nowhere
+    /// else. Light sampling then knows where a shadow ray reaches the light.
+    /// `false` (the default) is always safe.
+    fn is_convex(&self) -> bool {
+        false
+    }
+
     /// Number of primitives inside (1 for analytic shapes, triangles for a mesh);
     /// reported in statistics.
     fn primitive_count(&self) -> usize {

@@ -124,6 +124,10 @@ impl Rectangle {
 }
 
 impl Shape for Rectangle {
+    fn is_convex(&self) -> bool {
+        true
+    }
+
     fn area(&self) -> Option<f64> {
         Some(self.edge_u.cross(self.edge_v).length())
     }
@@ -188,6 +192,10 @@ impl Disk {
 }
 
 impl Shape for Disk {
+    fn is_convex(&self) -> bool {
+        true
+    }
+
     fn area(&self) -> Option<f64> {
         Some(std::f64::consts::PI * self.radius * self.radius)
     }

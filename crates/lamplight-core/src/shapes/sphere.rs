@@ -31,6 +31,10 @@ impl Sphere {
 }
 
 impl Shape for Sphere {
+    fn is_convex(&self) -> bool {
+        true
+    }
+
     fn area(&self) -> Option<f64> {
         Some(4.0 * std::f64::consts::PI * self.radius * self.radius)
     }

@@ -181,6 +181,10 @@ impl Triangle {
 }
 
 impl Shape for Triangle {
+    fn is_convex(&self) -> bool {
+        true
+    }
+
     fn area(&self) -> Option<f64> {
         Some(0.5 * (self.p1 - self.p0).cross(self.p2 - self.p0).length())
     }
