@@ -35,19 +35,24 @@ pub fn sample(u: (f64, f64)) -> Vec3 {
 }
 
 /// Shirley and Chiu's area-preserving map of the unit square onto the unit disk.
+///
+/// Written without branches on the sample (which of `|a|`, `|b|` is larger is a
+/// coin flip that a branch predictor loses half the time): the larger coordinate
+/// is the radius, the angle `pi/4 * minor / major` is measured from its axis.
+#[inline]
 pub fn concentric_disk(u: (f64, f64)) -> (f64, f64) {
     let (a, b) = (2.0 * u.0 - 1.0, 2.0 * u.1 - 1.0);
-    if a == 0.0 && b == 0.0 {
-        return (0.0, 0.0);
-    }
-    // The angle is pi/4 * ratio in the first case and pi/2 - pi/4 * ratio in the
-    // second: both need only the sine and cosine of an angle in [-pi/4, pi/4].
-    if a.abs() > b.abs() {
-        let (sin, cos) = sin_cos_quarter(FRAC_PI_4 * (b / a));
-        (a * cos, a * sin)
+    let a_major = a.abs() > b.abs();
+    let (major, minor) = if a_major { (a, b) } else { (b, a) };
+    // The centre (major = 0) maps to itself; the division would give 0/0 there.
+    let ratio = if major != 0.0 { minor / major } else { 0.0 };
+    let (sin, cos) = sin_cos_quarter(FRAC_PI_4 * ratio);
+    let (along, across) = (major * cos, major * sin);
+    // a major: angle pi/4 * b/a from +x; b major: pi/2 - pi/4 * a/b, i.e. x and y swap.
+    if a_major {
+        (along, across)
     } else {
-        let (sin, cos) = sin_cos_quarter(FRAC_PI_4 * (a / b));
-        (b * sin, b * cos)
+        (across, along)
     }
 }
 

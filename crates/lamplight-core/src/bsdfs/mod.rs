@@ -214,7 +214,7 @@ impl Bsdf {
 
     /// The albedo when the BSDF is one Lambertian lobe (most surfaces of most
     /// scenes): [`Bsdf::f`], [`Bsdf::pdf`] and [`Bsdf::sample`] then skip the lobe
-    /// loop, with the same arithmetic and so the same bits.
+    /// loop (and the sample's weight is the albedo itself, not `f cos / pdf`).
     #[inline(always)]
     fn single_diffuse(&self) -> Option<Rgb> {
         match self.lobes[0] {
@@ -278,8 +278,9 @@ impl Bsdf {
             if !(pdf > 0.0) {
                 return None;
             }
-            let weight = lambertian::f(albedo, wo, wi) * wi.z / pdf;
-            return Some(BsdfSample { wi, weight, pdf, delta: false, eta: 1.0 });
+            // f cos / pdf = (albedo / pi) cos / (cos / pi), both directions above
+            // the surface (pdf > 0): exactly the albedo.
+            return Some(BsdfSample { wi, weight: albedo, pdf, delta: false, eta: 1.0 });
         }
         let mut start = 0.0;
         let mut chosen = self.count.checked_sub(1)?;

@@ -168,7 +168,7 @@ impl PathTracer {
                 if !(u_rr < survive) {
                     break;
                 }
-                beta /= survive;
+                beta *= 1.0 / survive;
             }
             counts.secondary += 1;
             ray = Ray { origin: offset_origin(hit.point, hit.geometric_normal, wi, hit.t, hit.error), dir: wi };
@@ -236,11 +236,12 @@ impl PathTracer {
         }
         let cos = wi_local.z.abs();
         match light_pdf {
-            None => f * li * cos / p_pick,
+            // Scalars first: one division instead of one per channel.
+            None => f * li * (cos / p_pick),
             Some(pdf) => {
                 let pl = p_pick * pdf;
                 let w = power_heuristic(pl, bsdf.pdf(wo, wi_local));
-                f * li * cos * w / pl
+                f * li * (cos * w / pl)
             }
         }
     }
