@@ -31,7 +31,10 @@ pub fn pdf(wo: Vec3, wi: Vec3) -> f64 {
 #[inline]
 pub fn sample(u: (f64, f64)) -> Vec3 {
     let (x, y) = concentric_disk(u);
-    Vec3::new(x, y, (1.0 - x * x - y * y).max(0.0).sqrt())
+    // The disk point's radius is the larger of |2u - 1|: the height is computed
+    // from it directly, alongside the angle rather than after it.
+    let radius = (2.0 * u.0 - 1.0).abs().max((2.0 * u.1 - 1.0).abs());
+    Vec3::new(x, y, (1.0 - radius * radius).max(0.0).sqrt())
 }
 
 /// Shirley and Chiu's area-preserving map of the unit square onto the unit disk.
