@@ -88,13 +88,19 @@ def rmse(a, b):
 
 
 def time_to_rmse(points, target):
-    """Seconds to reach `target` RMSE, interpolating log(time) against log(rmse)."""
+    """Seconds to reach `target` RMSE, interpolating log(time) against log(rmse),
+    and whether the value is extrapolated (from the last two points) because the
+    ladder did not reach the target."""
     pts = sorted(points, key=lambda p: p[0])
     for (t0, e0), (t1, e1) in zip(pts, pts[1:]):
         if e0 >= target >= e1:
             f = (np.log(target) - np.log(e0)) / (np.log(e1) - np.log(e0))
-            return float(np.exp(np.log(t0) + f * (np.log(t1) - np.log(t0))))
-    return float("nan")
+            return float(np.exp(np.log(t0) + f * (np.log(t1) - np.log(t0)))), False
+    if len(pts) >= 2 and pts[-1][1] > target and pts[-2][1] > pts[-1][1]:
+        (t0, e0), (t1, e1) = pts[-2], pts[-1]
+        f = (np.log(target) - np.log(e0)) / (np.log(e1) - np.log(e0))
+        return float(np.exp(np.log(t0) + f * (np.log(t1) - np.log(t0)))), True
+    return float("nan"), False
 
 
 def main():
@@ -182,8 +188,10 @@ def main():
         pts_m.append((t_m, rmse(im, ref_m)))
         print(f"{spp} | {t_l:.3f} | {pts_l[-1][1]:.5f} | {t_m:.3f} | {pts_m[-1][1]:.5f}")
     target = 0.02 * mean
-    print(f"time to RMSE {target:.4f} (2 % of the mean): lamplight {time_to_rmse(pts_l, target):.3f} s, "
-          f"Mitsuba {time_to_rmse(pts_m, target):.3f} s")
+    (t_l, x_l), (t_m, x_m) = time_to_rmse(pts_l, target), time_to_rmse(pts_m, target)
+    mark = lambda x: " (extrapolated)" if x else ""
+    print(f"time to RMSE {target:.4f} (2 % of the mean): lamplight {t_l:.3f} s{mark(x_l)}, "
+          f"Mitsuba {t_m:.3f} s{mark(x_m)}; Mitsuba / lamplight = {t_m / t_l:.2f}")
 
 
 if __name__ == "__main__":
