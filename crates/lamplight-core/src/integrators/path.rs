@@ -142,19 +142,28 @@ impl PathTracer {
             // Every vertex owns the same five dimensions, so that every sample of a
             // pixel uses dimension k for the same decision; values a vertex does not
             // need are skipped, not computed.
-            if bsdf.has_smooth_part() {
+            let smooth = bsdf.has_smooth_part();
+            let light_values = if smooth {
                 let u_pick = if single_light { sampler.skip_value() } else { sampler.get_1d() };
-                let u_light = sampler.get_2d();
-                radiance += beta * self.sample_light(scene, &hit, bsdf, &frame, wo, u_pick, u_light, counts);
+                Some((u_pick, sampler.get_2d()))
             } else {
                 sampler.skip();
                 sampler.skip();
-            }
+                None
+            };
             let u_lobe = if bsdf.uses_lobe_sample() { sampler.get_1d() } else { sampler.skip_value() };
             let u_bsdf = sampler.get_2d();
             let u_rr = if depth >= self.rr_depth { sampler.get_1d() } else { sampler.skip_value() };
-            let Some(s) = bsdf.sample(wo, u_lobe, u_bsdf) else { break };
-            let wi = frame.to_world(s.wi);
+            // The continuation does not depend on the light sample: sampling it first
+            // lets its division and square roots overlap the shadow ray's work.
+            let next = bsdf.sample(wo, u_lobe, u_bsdf).map(|s| {
+                let wi = frame.to_world(s.wi);
+                (s, wi, offset_origin(hit.point, hit.geometric_normal, wi, hit.t, hit.error))
+            });
+            if let Some((u_pick, u_light)) = light_values {
+                radiance += beta * self.sample_light(scene, &hit, bsdf, &frame, wo, u_pick, u_light, counts);
+            }
+            let Some((s, wi, origin)) = next else { break };
             // The shading normal may disagree with the geometry: keep the side the
             // geometric normal says, or light would leak through the surface.
             if (wi.dot(hit.geometric_normal) > 0.0) != (s.wi.z > 0.0) || s.weight == Rgb::ZERO {
@@ -171,7 +180,7 @@ impl PathTracer {
                 beta *= 1.0 / survive;
             }
             counts.secondary += 1;
-            ray = Ray { origin: offset_origin(hit.point, hit.geometric_normal, wi, hit.t, hit.error), dir: wi };
+            ray = Ray { origin, dir: wi };
         }
         radiance
     }
