@@ -100,6 +100,10 @@ impl PathTracer {
         let p_pick = self.lights.pick_probability();
         let single_light = self.lights.count() <= 1;
         for depth in 1..=self.max_depth {
+            // This vertex's light and BSDF points (dimensions 1 and 3 of its five),
+            // drawn before the ray is traced: the hashing needs no hit and overlaps
+            // the intersection's latency. Unused if the path ends here.
+            let (u_light, u_bsdf) = (sampler.peek_2d(1), sampler.peek_2d(3));
             let Some(hit) = scene.first_intersect(&ray, f64::INFINITY) else {
                 match (depth, self.lights.camera_background, &self.lights.environment) {
                     (1, Some(bg), _) => radiance += beta * bg,
@@ -145,14 +149,15 @@ impl PathTracer {
             let smooth = bsdf.has_smooth_part();
             let light_values = if smooth {
                 let u_pick = if single_light { sampler.skip_value() } else { sampler.get_1d() };
-                Some((u_pick, sampler.get_2d()))
+                sampler.skip(); // u_light
+                Some((u_pick, u_light))
             } else {
                 sampler.skip();
                 sampler.skip();
                 None
             };
             let u_lobe = if bsdf.uses_lobe_sample() { sampler.get_1d() } else { sampler.skip_value() };
-            let u_bsdf = sampler.get_2d();
+            sampler.skip(); // u_bsdf
             let u_rr = if depth >= self.rr_depth { sampler.get_1d() } else { sampler.skip_value() };
             // The continuation does not depend on the light sample: sampling it first
             // lets its division and square roots overlap the shadow ray's work.

@@ -150,11 +150,28 @@ impl PixelSampler {
     /// The next dimension's shuffled index and its two value scramble seeds.
     #[inline]
     fn next_dimension(&mut self) -> (u32, u32, u32) {
-        let h = mix(self.pixel_seed ^ (self.dimension as u64).wrapping_mul(0xD1B5_4A32_D192_ED03));
-        let h2 = mix(h ^ 0x2545_F491_4F6C_DD1D);
+        let seeds = self.dimension_seeds(self.dimension);
         self.dimension += 1;
+        seeds
+    }
+
+    /// Dimension `dimension`'s shuffled index and its two value scramble seeds.
+    #[inline]
+    fn dimension_seeds(&self, dimension: u32) -> (u32, u32, u32) {
+        let h = mix(self.pixel_seed ^ (dimension as u64).wrapping_mul(0xD1B5_4A32_D192_ED03));
+        let h2 = mix(h ^ 0x2545_F491_4F6C_DD1D);
         // owen_scramble(index, h2) with the index reversed beforehand.
         (laine_karras(self.index_reversed, h2 as u32).reverse_bits(), h as u32, (h >> 32) as u32)
+    }
+
+    /// The 2D value of the dimension `ahead` places after the next one, without
+    /// moving: what [`PixelSampler::get_2d`] will return there. The path tracer
+    /// computes a vertex's values before its ray is traced, so that the hashing
+    /// overlaps the intersection's latency.
+    #[inline]
+    pub fn peek_2d(&self, ahead: u32) -> (f64, f64) {
+        let (i, s0, s1) = self.dimension_seeds(self.dimension + ahead);
+        (to_unit(laine_karras(i, s0).reverse_bits()), to_unit(laine_karras(sobol1_reversed(i), s1).reverse_bits()))
     }
 
     /// The next dimension as one value in `[0, 1)`.
@@ -168,16 +185,28 @@ impl PixelSampler {
     /// The next dimension as a point in `[0, 1)^2`.
     #[inline]
     pub fn get_2d(&mut self) -> (f64, f64) {
-        let (i, s0, s1) = self.next_dimension();
         // owen_scramble(sobol0(i), s0) and owen_scramble(sobol1(i), s1), with the
         // reversals folded into the index and the table.
-        (to_unit(laine_karras(i, s0).reverse_bits()), to_unit(laine_karras(sobol1_reversed(i), s1).reverse_bits()))
+        let value = self.peek_2d(0);
+        self.dimension += 1;
+        value
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn peeked_values_are_the_ones_drawn_later() {
+        let mut sampler = PixelSampler::new(9, 4321, 37);
+        let ahead = sampler.peek_2d(3);
+        let next = sampler.peek_2d(0);
+        assert_eq!(sampler.get_2d(), next);
+        sampler.get_1d();
+        sampler.skip();
+        assert_eq!(sampler.get_2d(), ahead);
+    }
 
     #[test]
     fn skipped_dimensions_leave_the_later_ones_unchanged() {
