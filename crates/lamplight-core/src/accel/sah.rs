@@ -31,7 +31,7 @@ impl Costs {
     /// BVH): each test costs several 4-wide box tests, so splitting down to single
     /// objects pays. Measured with callgrind: 9 % fewer instructions for the path
     /// tracer on the Cornell box when it was 18 rectangles (it is now stored flat,
-    /// see [`super::bvh`]); for the Whitted renders at 320x180, 133.3M against
+    /// see `accel/bvh.rs`); for the Whitted renders at 320x180, 133.3M against
     /// 140.8M for luxo and 188.3M against 191.7M for spheres.
     pub const OBJECTS: Costs = Costs { traversal: 0.5, min_leaf: 1 };
 }
