@@ -16,7 +16,7 @@ Prints the machine, the load average, the times and the speed-ups of the medians
 
 import argparse
 import os
-import platform
+from machine import cpu_model  # bench/machine.py, beside this script
 import statistics
 import time
 
@@ -24,17 +24,6 @@ import distributed
 
 import lamplight
 import lamplight.dask
-
-
-def cpu_model() -> str:
-    try:
-        with open("/proc/cpuinfo") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or "unknown"
 
 
 def main() -> None:

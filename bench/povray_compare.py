@@ -14,7 +14,7 @@ Needs `povray` (apt-get install povray) and a release build of lamplight
 """
 import argparse
 import os
-import platform
+from machine import cpu_model  # bench/machine.py, beside this script
 import re
 import shutil
 import statistics
@@ -48,17 +48,6 @@ def read_ppm(path):
     if maxval > 255:  # 16-bit big-endian samples: keep the 8-bit value they round to
         pixels = bytes(min(255, round(int.from_bytes(pixels[i:i + 2], "big") * 255 / maxval)) for i in range(0, 2 * width * height * 3, 2))
     return width, height, pixels[: width * height * 3]
-
-
-def cpu_model():
-    try:
-        with open("/proc/cpuinfo") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or "unknown"
 
 
 def main():

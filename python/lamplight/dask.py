@@ -207,7 +207,9 @@ def _options(scene: Scene, width, height, spp, integrator, seed, max_depth, thre
     )
 
 
-def _wait(client, futures, progress, desc: str, unit: str) -> None:
+def _gather(client, futures, progress, desc: str, unit: str) -> list:
+    """The results of ``futures`` in order, reporting each finished one to
+    ``progress``; on any error (Ctrl-C included) the remaining tasks are cancelled."""
     from distributed import as_completed
 
     callback, close = progress_reporter(progress, desc=desc, unit=unit)
@@ -215,6 +217,10 @@ def _wait(client, futures, progress, desc: str, unit: str) -> None:
         for done, _ in enumerate(as_completed(futures), start=1):
             if callback is not None:
                 callback(done, len(futures))
+        return client.gather(futures)
+    except BaseException:
+        client.cancel(futures)
+        raise
     finally:
         close()
 
@@ -258,12 +264,7 @@ def render(
         client.submit(_render_tile, remote, digest, options, w, key=f"lamplight-tile-{token}-{i}", retries=retries)
         for i, w in enumerate(windows)
     ]
-    try:
-        _wait(client, futures, progress, "lamplight (dask)", "tile")
-        parts = client.gather(futures)
-    except BaseException:
-        client.cancel(futures)
-        raise
+    parts = _gather(client, futures, progress, "lamplight (dask)", "tile")
     out = np.empty((options["height"], options["width"], 3), dtype=np.float32)
     for (x0, y0, w, h), part in zip(windows, parts):
         out[y0 : y0 + h, x0 : x0 + w] = part
@@ -325,12 +326,7 @@ def render_frames(
         )
         for i, (_, camera) in enumerate(frames)
     ]
-    try:
-        _wait(client, futures, progress, "lamplight (dask frames)", "frame")
-        parts = client.gather(futures)
-    except BaseException:
-        client.cancel(futures)
-        raise
+    parts = _gather(client, futures, progress, "lamplight (dask frames)", "frame")
     return [Image(p) for p in parts]
 
 
