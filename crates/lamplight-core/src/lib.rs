@@ -35,6 +35,7 @@ pub mod integrators;
 pub mod lights;
 pub mod materials;
 pub mod math;
+pub mod params;
 pub mod progressive;
 pub mod ray;
 pub mod raycast;

@@ -84,6 +84,18 @@ pub fn sin_cos_quarter(x: f64) -> (f64, f64) {
     (x * s, c)
 }
 
+/// The uniform scale of `m`'s linear part when it is a similarity (rotation
+/// times one scale factor), else `None`.
+pub fn similarity_scale(m: &Mat4) -> Option<f64> {
+    let cols = [m.x_axis.truncate(), m.y_axis.truncate(), m.z_axis.truncate()];
+    let s = cols[0].length();
+    let tol = 1e-12 * s;
+    let same_length = cols.iter().all(|c| (c.length() - s).abs() <= tol);
+    let orthogonal =
+        cols[0].dot(cols[1]).abs() <= tol * s && cols[1].dot(cols[2]).abs() <= tol * s && cols[0].dot(cols[2]).abs() <= tol * s;
+    (same_length && orthogonal && s > 0.0).then_some(s)
+}
+
 /// True when every component is finite (no NaN, no infinity).
 #[inline]
 pub fn is_finite(v: Vec3) -> bool {

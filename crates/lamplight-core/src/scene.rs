@@ -154,6 +154,11 @@ impl SceneBuilder {
         self.lights.push(Arc::new(light));
     }
 
+    /// Adds an already shared light.
+    pub fn shared_light(&mut self, light: Arc<dyn Light>) {
+        self.lights.push(light);
+    }
+
     /// Number of objects placed so far (the index the next object gets).
     pub fn object_count(&self) -> usize {
         self.objects.len()

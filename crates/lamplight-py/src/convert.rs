@@ -2,14 +2,15 @@
 //!
 //! A scene dict is first made plain ([`plain`]: numpy arrays and scalars become
 //! lists and numbers, tuples become lists, and the result is a copy the caller
-//! cannot change behind our back), then deserialized by serde straight into the
-//! scene crate's description types, so a dict and a TOML file share one schema
-//! and one builder. Errors name the key path, such as `objects[2].radius`.
+//! cannot change behind our back), then converted to the located [`Table`] that
+//! the TOML reader also produces ([`table`]), so a dict and a TOML file share one
+//! description, one registry and one builder, and their errors the same text.
+//! Errors name the key path, such as `objects[2].radius`.
 
+use lamplight_core::params::{Entry, Item, Loc, Table, Value};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList, PyString, PyTuple};
-use serde::de::DeserializeOwned;
+use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 
 use crate::SceneError;
 
@@ -50,20 +51,64 @@ fn plain_at(obj: &Bound<'_, PyAny>, depth: usize) -> PyResult<PyObject> {
     Ok(obj.clone().unbind())
 }
 
-/// Deserializes the plain Python value `obj` into `T`; an error names the key path.
-pub fn from_python<T: DeserializeOwned>(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<T> {
-    let mut de = pythonize::Depythonizer::from_object(obj);
-    serde_path_to_error::deserialize(&mut de).map_err(|e| {
-        let path = e.path().to_string();
-        let message = e
-            .inner()
-            .to_string()
-            .replace("invalid type: floating point", "invalid type: number")
-            .replace("expected f64", "expected a number");
-        if path == "." || path.is_empty() {
-            SceneError::new_err(format!("{what}: {message}"))
-        } else {
-            SceneError::new_err(format!("{what}: {path}: {message}"))
+/// The plain dict `obj` as a located [`Table`]: every key and value carries its
+/// key path (`objects[2].radius`), which errors print in place of a file's
+/// line and column. `path` is the dict's own path (empty for the top level).
+pub fn table(obj: &Bound<'_, PyAny>, path: &str) -> PyResult<Table> {
+    match value(obj, path)? {
+        Value::Table(t) => Ok(t),
+        other => Err(PyTypeError::new_err(format!("expected a dict, got {}", other.describe()))),
+    }
+}
+
+fn loc(path: &str) -> Loc {
+    if path.is_empty() {
+        Loc::Unknown
+    } else {
+        Loc::Path(path.to_string())
+    }
+}
+
+fn value(obj: &Bound<'_, PyAny>, path: &str) -> PyResult<Value> {
+    if let Ok(dict) = obj.downcast::<PyDict>() {
+        let mut entries = Vec::with_capacity(dict.len());
+        for (k, v) in dict.iter() {
+            let key: String = k.extract().map_err(|_| {
+                PyTypeError::new_err(format!(
+                    "scene dict keys must be strings, got {}",
+                    k.repr().map(|r| r.to_string()).unwrap_or_default()
+                ))
+            })?;
+            let at = if path.is_empty() { key.clone() } else { format!("{path}.{key}") };
+            entries.push(Entry { key_loc: loc(&at), item: Item { value: value(&v, &at)?, loc: loc(&at) }, key });
         }
-    })
+        return Ok(Value::Table(Table { entries, loc: loc(path) }));
+    }
+    if let Ok(list) = obj.downcast::<PyList>() {
+        let mut items = Vec::with_capacity(list.len());
+        for (i, v) in list.iter().enumerate() {
+            let at = format!("{path}[{i}]");
+            items.push(Item { value: value(&v, &at)?, loc: loc(&at) });
+        }
+        return Ok(Value::Array(items));
+    }
+    if let Ok(b) = obj.downcast::<PyBool>() {
+        return Ok(Value::Bool(b.is_true()));
+    }
+    if obj.is_instance_of::<PyInt>() {
+        return obj.extract::<i64>().map(Value::Integer).map_err(|_| {
+            SceneError::new_err(format!(
+                "scene dict: {path}: the integer {} does not fit in 64 bits",
+                obj.repr().map(|r| r.to_string()).unwrap_or_default()
+            ))
+        });
+    }
+    if let Ok(f) = obj.downcast::<PyFloat>() {
+        return Ok(Value::Number(f.value()));
+    }
+    if let Ok(s) = obj.downcast::<PyString>() {
+        return Ok(Value::String(s.to_str()?.to_string()));
+    }
+    let type_name = obj.get_type().name().map(|n| n.to_string()).unwrap_or_default();
+    Err(SceneError::new_err(format!("scene dict: {path}: expected a number, string, boolean, list or dict, got {type_name}")))
 }

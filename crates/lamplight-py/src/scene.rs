@@ -13,7 +13,7 @@ use lamplight_core::integrators::IntegratorKind;
 use lamplight_core::Scene as CoreScene;
 use lamplight_scene::build::{self, imported, SceneFile};
 use lamplight_scene::builtin::{self, Builtin};
-use lamplight_scene::description::{CameraDesc, Located, SceneDescription};
+use lamplight_scene::description::{Node, SceneDescription};
 use lamplight_scene::formats::native::Source as FileSource;
 use lamplight_scene::{import, LoadError};
 use pyo3::exceptions::PyValueError;
@@ -55,7 +55,7 @@ struct Defaults {
 pub struct Scene {
     origin: Origin,
     /// A camera replacing the scene's (`with_camera`): the plain dict and its description.
-    camera: Option<(PyObject, Located<CameraDesc>)>,
+    camera: Option<(PyObject, Node)>,
     defaults: Defaults,
     builds: Mutex<Vec<(u64, Arc<CoreScene>)>>,
 }
@@ -70,13 +70,21 @@ fn load_error(e: LoadError) -> PyErr {
     SceneError::new_err(e.to_string())
 }
 
-/// A dict's errors name no file: "scene dict: message".
+/// A dict's errors name no file: `scene dict: key.path: message`.
 fn dict_error(e: LoadError) -> PyErr {
-    SceneError::new_err(format!("scene dict: {}", e.message))
+    match e.location {
+        lamplight_scene::Location::KeyPath(path) => SceneError::new_err(format!("scene dict: {path}: {}", e.message)),
+        _ => SceneError::new_err(format!("scene dict: {}", e.message)),
+    }
+}
+
+/// A parameter error of a dict (key paths, no file).
+fn dict_param_error(e: lamplight_core::params::ParamError) -> PyErr {
+    dict_error(FileSource::without_text("scene dict").param_error(e))
 }
 
 impl Scene {
-    fn new(origin: Origin, camera: Option<(PyObject, Located<CameraDesc>)>) -> PyResult<Scene> {
+    fn new(origin: Origin, camera: Option<(PyObject, Node)>) -> PyResult<Scene> {
         let defaults = match &origin {
             Origin::Builtin(b) => {
                 Defaults { width: b.default_size.0, height: b.default_size.1, spp: 1, seed: 0, integrator: IntegratorKind::Whitted }
@@ -142,7 +150,7 @@ impl Scene {
             return Err(pyo3::exceptions::PyTypeError::new_err(format!("a scene dict must be a dict, got {}", dict.get_type().name()?)));
         }
         let plain = convert::plain(dict)?;
-        let description: SceneDescription = convert::from_python(plain.bind(py), "scene dict")?;
+        let description = SceneDescription::from_table(convert::table(plain.bind(py), "")?).map_err(dict_param_error)?;
         let base_dir = match base_dir {
             Some(dir) => dir,
             None => std::env::current_dir().map_err(|e| SceneError::new_err(format!("cannot read the current directory: {e}")))?,
@@ -233,7 +241,8 @@ impl Scene {
     /// of a scene file's `[camera]` table.
     fn with_camera(&self, py: Python<'_>, camera: &Bound<'_, PyAny>) -> PyResult<Scene> {
         let plain = convert::plain(camera)?;
-        let desc: CameraDesc = convert::from_python(plain.bind(py), "camera")?;
+        let table = convert::table(plain.bind(py), "camera")?;
+        let desc = Node::from_table(table, "camera", Some("perspective"), false).map_err(dict_param_error)?;
         let origin = match &self.origin {
             Origin::Builtin(b) => Origin::Builtin(b),
             Origin::Toml(file) => Origin::Toml(file.clone()),
@@ -242,7 +251,7 @@ impl Scene {
             }
             Origin::Mesh(path) => Origin::Mesh(path.clone()),
         };
-        Scene::new(origin, Some((plain, Located::new(desc))))
+        Scene::new(origin, Some((plain, desc)))
     }
 
     /// What the scene was made from: `"builtin"`, `"file"`, `"dict"` or `"mesh"`.
@@ -283,7 +292,15 @@ impl Scene {
         match &self.origin {
             Origin::Builtin(_) => Vec::new(),
             Origin::Toml(file) | Origin::Dict { file, .. } => {
-                let mut files: Vec<String> = file.description.meshes.values().filter_map(|m| m.value.file.clone()).collect();
+                let mut files: Vec<String> = file
+                    .description
+                    .meshes
+                    .iter()
+                    .filter_map(|m| match m.value.get("file").map(|e| &e.item.value) {
+                        Some(lamplight_core::params::Value::String(f)) => Some(f.clone()),
+                        _ => None,
+                    })
+                    .collect();
                 files.dedup();
                 files
             }

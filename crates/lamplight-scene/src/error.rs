@@ -21,6 +21,8 @@ pub enum Location {
     JsonPath(String),
     /// A byte offset into a binary file (PLY body, glTF buffer).
     ByteOffset(u64),
+    /// A key path into a Python dict, such as `objects[2].radius`.
+    KeyPath(String),
 }
 
 /// A scene or mesh file could not be loaded.
@@ -57,7 +59,8 @@ impl LoadError {
 }
 
 impl fmt::Display for LoadError {
-    /// `file:line:col: message`, `file: at JSON path: message`, `file: at byte N: message`, or `file: message`.
+    /// `file:line:col: message`, `file: at JSON path: message`, `file: at byte N: message`,
+    /// `scene dict: key.path: message`, or `file: message`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let path = self.path.display();
         match &self.location {
@@ -65,6 +68,7 @@ impl fmt::Display for LoadError {
             Location::LineColumn { line, column } => write!(f, "{path}:{line}:{column}: {}", self.message),
             Location::JsonPath(p) => write!(f, "{path}: at {p}: {}", self.message),
             Location::ByteOffset(o) => write!(f, "{path}: at byte {o}: {}", self.message),
+            Location::KeyPath(p) => write!(f, "{path}: {p}: {}", self.message),
         }
     }
 }

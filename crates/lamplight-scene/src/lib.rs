@@ -2,8 +2,8 @@
 //!
 //! Everything between the outside world and `lamplight-core`: the built-in scenes
 //! by name ([`builtin`]), the image writers ([`image_io`]), the scene file format
-//! ([`description`] types, [`formats::native`] TOML parser, [`build`] to a core
-//! scene) and the mesh importers ([`import`]).
+//! ([`description`] types, [`formats::native`] TOML parser, the [`registry`] of
+//! kinds, [`build`] to a core scene) and the mesh importers ([`import`]).
 #![deny(missing_docs)]
 
 pub mod build;
@@ -16,5 +16,6 @@ pub mod exr_layers;
 pub mod formats;
 pub mod image_io;
 pub mod import;
+pub mod registry;
 
 pub use error::{LoadError, Location};

@@ -31,32 +31,32 @@ fn malformed_inputs_give_their_exact_errors() {
         ("[camera\n".into(), "s.toml:1:8: unclosed table, expected `]`"),
         ("[camera]\neye = [0, 0, 0\n".into(), "s.toml:2:15: unclosed array, expected `]`"),
         ("ambient = 1\n".into(), "s.toml: has no [camera] table, expected one"),
-        (format!("colour = 1\n{CAMERA}"), "s.toml:1:1: unknown field `colour`, expected one of `ambient`, `background`, `render`, `camera`, `materials`, `meshes`, `definitions`, `objects`"),
-        (with_camera("colour = 1\n"), "s.toml:5:1: unknown field `colour`, expected one of `eye`, `look_at`, `up`, `vfov`, `hfov`, `window_center`, `right`, `pixel_offset`, `fit`"),
-        ("[camera]\neye = \"here\"\n".into(), "s.toml:2:7: invalid type: string \"here\", expected an array of length 3"),
-        ("[camera]\neye = [0, 0]\n".into(), "s.toml:2:7: invalid length 2, expected an array of length 3"),
-        (with_camera("[render]\nwidth = -5\n"), "s.toml:6:9: invalid value: integer `-5`, expected a whole number from 0 to 4294967295"),
-        (with_camera("[render]\nmax_depth = 1000\n"), "s.toml:5:1: max_depth must be between 1 and 64, got 1000"),
-        (with_camera("[[objects]]\ntype = \"sphere\"\ncenter = [nan, 0, 0]\nradius = 1\n"), "s.toml:5:1: sphere: center must be finite numbers, got [NaN, 0.0, 0.0]"),
-        (with_camera("[[objects]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = inf\n"), "s.toml:5:1: sphere: radius must be finite numbers, got [inf]"),
-        (with_camera("[[objects]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = -1\n"), "s.toml:5:1: sphere: invalid radius: must be a positive number, got -1"),
-        (with_camera("[[objects]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\n"), "s.toml:5:1: sphere: needs `radius`"),
-        (with_camera("[[objects]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\naxis = [0, 1, 0]\n"), "s.toml:5:1: sphere: unknown key `axis` for this type (valid keys: type, name, material, center, radius)"),
-        (with_camera("[[objects]]\ntype = \"group\"\nchildren = [{ type = \"sphere\", colour = 2 }]\n"), "s.toml:7:32: unknown field `colour`, expected a key of this node type (see docs/scene-format.md)"),
-        (with_camera("[[objects]]\ntype = \"sphere\"\nradius = \"big\"\n"), "s.toml:7:10: invalid type: string \"big\", expected a number"),
-        (with_camera("[[objects]]\ntype = \"blob\"\n"), "s.toml:5:1: blob: unknown node type (expected one of: group, instance, point_light, directional_light, sphere, ellipsoid, cylinder, cone, infinite_cylinder, infinite_cone, paraboloid, hyperboloid, quadric, plane, rectangle, disk, box, triangle, torus, implicit, mesh)"),
-        (with_camera("[[objects]]\ncenter = [0, 0, 0]\n"), "s.toml:5:1: missing field `type`"),
-        (with_camera("[[objects]]\ntype = \"sphere\"\nradius = 1\ncenter = [0, 0, 0]\nmaterial = \"gold\"\n"), "s.toml:5:1: sphere: unknown material \"gold\" (materials: none defined)"),
-        (with_camera("[materials.m]\ncolor = -1\n"), "s.toml:5:1: material \"m\": invalid color: must be finite and non-negative, got [-1, -1, -1]"),
-        (with_camera("[materials.m]\nroughness = 1.5\n"), "s.toml:5:1: material \"m\": invalid roughness: must be between 0 and 1, got 1.5"),
-        (with_camera("[materials.m]\nreflection = { type = \"mirror\" }\n"), "s.toml:6:23: unknown variant `mirror`, expected one of `constant`, `dielectric`, `conductor`"),
+        (format!("colour = 1\n{CAMERA}"), "s.toml:1:1: scene: unknown key 'colour' (the top level takes: ambient, background, render, camera, materials, meshes, definitions, objects)"),
+        (with_camera("colour = 1\n"), "s.toml:5:1: camera: unknown parameter 'colour' (it takes: eye, look_at, up, vfov, hfov, pixel_offset)"),
+        ("[camera]\neye = \"here\"\n".into(), "s.toml:2:7: camera: eye: expected [x, y, z], got a string \"here\""),
+        ("[camera]\neye = [0, 0]\n".into(), "s.toml:2:7: camera: eye: expected [x, y, z], got an array of 2"),
+        (with_camera("[render]\nwidth = -5\n"), "s.toml:6:9: render: width: must be between 0 and 4294967295, got -5"),
+        (with_camera("[render]\nmax_depth = 1000\n"), "s.toml:6:13: render: max_depth: must be between 1 and 64, got 1000"),
+        (with_camera("[[objects]]\ntype = \"sphere\"\ncenter = [nan, 0, 0]\nradius = 1\n"), "s.toml:7:10: sphere: center: must be finite numbers, got [NaN, 0, 0]"),
+        (with_camera("[[objects]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = inf\n"), "s.toml:8:10: sphere: radius: must be a finite number, got inf"),
+        (with_camera("[[objects]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = -1\n"), "s.toml:8:10: sphere: invalid radius: must be a positive number, got -1"),
+        (with_camera("[[objects]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\n"), "s.toml:5:1: sphere: needs `radius` (a number)"),
+        (with_camera("[[objects]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\naxis = [0, 1, 0]\n"), "s.toml:9:1: sphere: unknown parameter 'axis' (it takes: center, radius, material)"),
+        (with_camera("[[objects]]\ntype = \"group\"\nchildren = [{ type = \"sphere\", colour = 2 }]\n"), "s.toml:7:32: sphere: unknown parameter 'colour' (it takes: center, radius, material)"),
+        (with_camera("[[objects]]\ntype = \"sphere\"\nradius = \"big\"\n"), "s.toml:7:10: sphere: radius: expected a number, got a string \"big\""),
+        (with_camera("[[objects]]\ntype = \"blob\"\n"), "s.toml:6:8: blob: unknown node type (node types: group, instance, mesh, point_light, directional_light, sphere, ellipsoid, cylinder, cone, infinite_cylinder, infinite_cone, paraboloid, hyperboloid, quadric, plane, rectangle, disk, box, triangle, torus, implicit)"),
+        (with_camera("[[objects]]\ncenter = [0, 0, 0]\n"), "s.toml:5:1: objects[0]: needs `type` (a string naming what the node is)"),
+        (with_camera("[[objects]]\ntype = \"sphere\"\nradius = 1\ncenter = [0, 0, 0]\nmaterial = \"gold\"\n"), "s.toml:9:12: sphere: material: unknown material \"gold\" (materials: none defined)"),
+        (with_camera("[materials.m]\ncolor = -1\n"), "s.toml:6:9: material \"m\": invalid color: must be finite and non-negative, got [-1, -1, -1]"),
+        (with_camera("[materials.m]\nroughness = 1.5\n"), "s.toml:6:13: material \"m\": invalid roughness: must be between 0 and 1, got 1.5"),
+        (with_camera("[materials.m]\nreflection = { type = \"mirror\" }\n"), "s.toml:6:23: material \"m\": reflection: type: unknown value \"mirror\", expected \"constant\", \"dielectric\" or \"conductor\""),
         (with_camera("[definitions.a]\ntype = \"instance\"\nof = \"a\"\n[[objects]]\ntype = \"instance\"\nof = \"a\"\n"), "s.toml:5:1: instance: cyclic instance: a -> a"),
-        (with_camera("[[objects]]\ntype = \"instance\"\nof = \"nothing\"\n"), "s.toml:5:1: instance: unknown definition \"nothing\" (definitions: none defined)"),
+        (with_camera("[[objects]]\ntype = \"instance\"\nof = \"nothing\"\n"), "s.toml:7:6: instance: of: unknown definition \"nothing\" (definitions: none defined)"),
         (with_camera("[meshes.m]\nfile = \"missing.obj\"\n[[objects]]\ntype = \"mesh\"\nmesh = \"m\"\n"), "s.toml:5:1: mesh \"m\": file \"missing.obj\" not found (looked for missing.obj)"),
         (huge, "s.toml:5:1: mesh \"m\": invalid indices: face 0 refers to vertex 1, but there are only 1 vertices"),
-        (with_camera("[[objects]]\ntype = \"implicit\"\nexpression = \"x*x + y*y + z*z - w\"\nmin = [-1, -1, -1]\nmax = [1, 1, 1]\nlipschitz = 4\n"), "s.toml:5:1: implicit: expression, at character 19: unknown name 'w' (variables: x, y, z; constants: pi, e; functions: sin, cos, tan, sqrt, abs, exp, ln, min, max, pow)"),
-        (with_camera("[[objects]]\ntype = \"group\"\nscale = 0\n"), "s.toml:5:1: group: scale must not be 0 (it would flatten the geometry)"),
-        (with_camera("[[objects]]\ntype = \"point_light\"\nposition = [0, 0, 0]\nintensity = 1\nown_object = \"bulb\"\n"), "s.toml:5:1: point_light: own_object \"bulb\" names no shape"),
+        (with_camera("[[objects]]\ntype = \"implicit\"\nexpression = \"x*x + y*y + z*z - w\"\nmin = [-1, -1, -1]\nmax = [1, 1, 1]\nlipschitz = 4\n"), "s.toml:7:14: implicit: expression: at character 19: unknown name 'w' (variables: x, y, z; constants: pi, e; functions: sin, cos, tan, sqrt, abs, exp, ln, min, max, pow)"),
+        (with_camera("[[objects]]\ntype = \"group\"\nscale = 0\n"), "s.toml:7:9: group: scale: must not be 0 (it would flatten the geometry)"),
+        (with_camera("[[objects]]\ntype = \"point_light\"\nposition = [0, 0, 0]\nintensity = 1\nown_object = \"bulb\"\n"), "s.toml:9:14: point_light: own_object: \"bulb\" names no shape"),
         ("[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 5]\nvfov = 40\n".into(), "s.toml:1:1: camera: invalid camera: eye and lookat coincide"),
     ];
     let mut failures = Vec::new();
@@ -102,4 +102,88 @@ fn exponential_instancing_is_stopped() {
     text += "[definitions.d30]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\n";
     let err = error(&text);
     assert_eq!(err, "s.toml:5:1: instance: expands to more than 4194304 objects (is a definition instanced exponentially?)");
+}
+
+/// `name` with a letter added in the middle: a typo the suggestion must undo.
+fn mistyped(name: &str) -> String {
+    let mid = name.len().div_ceil(2);
+    format!("{}q{}", &name[..mid], &name[mid..])
+}
+
+#[test]
+fn every_registered_kind_reports_a_mistyped_parameter_at_its_key() {
+    use lamplight_scene::registry;
+    // (label in the message, scene text, the line and column of the mistyped key, the key)
+    let mut cases: Vec<(String, String, (usize, usize), &str)> = Vec::new();
+    let node_kinds = registry::SHAPES
+        .iter()
+        .map(|k| (k.name, k.params))
+        .chain(registry::LIGHTS.iter().map(|k| (k.name, k.params)))
+        .chain(registry::STRUCTURAL.iter().map(|s| (s.name, s.params)));
+    for (name, params) in node_kinds {
+        let key = params[0].name;
+        cases.push((name.into(), with_camera(&format!("[[objects]]\ntype = \"{name}\"\n{} = 1\n", mistyped(key))), (7, 1), key));
+    }
+    for k in registry::MATERIALS {
+        let key = k.params[0].name;
+        let text = with_camera(&format!("[materials.m]\ntype = \"{}\"\n{} = 1\n", k.name, mistyped(key)));
+        cases.push(("material \"m\"".into(), text, (7, 1), key));
+    }
+    for k in registry::TEXTURES {
+        let key = k.params[0].name;
+        let text = with_camera(&format!("[materials.m]\ncolor = {{ type = \"{}\", {} = 1 }}\n", k.name, mistyped(key)));
+        let column = "color = { type = \"\", ".len() + k.name.len() + 1;
+        cases.push(("material \"m\": color".into(), text, (6, column), key));
+    }
+    for (name, _, params) in lamplight_scene::build::camera::KINDS {
+        let key = params[1].name;
+        let text = format!("[camera]\ntype = \"{name}\"\n{} = 1\n", mistyped(key));
+        cases.push(("camera".into(), text, (3, 1), key));
+    }
+    let key = lamplight_scene::build::RENDER_PARAMS[2].name;
+    cases.push(("render".into(), with_camera(&format!("[render]\n{} = 1\n", mistyped(key))), (6, 1), key));
+    assert!(cases.len() > 20, "every kind is covered: {}", cases.len());
+    let mut failures = Vec::new();
+    for (label, text, (line, column), key) in &cases {
+        let expected = format!("s.toml:{line}:{column}: {label}: unknown parameter '{}' (did you mean '{key}'?)", mistyped(key));
+        let got = error(text);
+        if got != expected {
+            failures.push(format!("  expected: {expected}\n  got:      {got}"));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+#[test]
+fn wrong_types_say_what_was_expected_at_the_key() {
+    let cases: Vec<(String, &str)> = vec![
+        (with_camera("[[objects]]\ntype = \"group\"\nrotate = \"left\"\n"), "s.toml:7:10: group: rotate: expected a table { axis = [x, y, z], degrees = N } or { x = N, y = N, z = N }, or [x, y, z] degrees, got a string \"left\""),
+        (with_camera("[[objects]]\ntype = \"group\"\nrotate = { axis = [0, 1, 0], degree = 3 }\n"), "s.toml:7:30: group: rotate: unknown parameter 'degree' (did you mean 'degrees'?)"),
+        (with_camera("[[objects]]\ntype = \"box\"\nmin = [0, 0, 0]\nmax = 1\n"), "s.toml:8:7: box: max: expected [x, y, z], got a number 1"),
+        (with_camera("[[objects]]\ntype = \"cylinder\"\nfrom = [0, 0, 0]\nto = [0, 1, 0]\nradius = 1\ncaps = 1\n"), "s.toml:10:8: cylinder: caps: expected true or false, got a number 1"),
+        (with_camera("[[objects]]\ntype = \"point_light\"\nposition = [0, 0, 0]\nintensity = [1, 2]\n"), "s.toml:8:13: point_light: intensity: expected a number or [r, g, b], got an array of 2"),
+        (with_camera("[materials.m]\ncolor = { type = \"checkers\" }\n"), "s.toml:6:18: material \"m\": color: type: unknown texture \"checkers\" (did you mean 'checker'? textures: checker)"),
+        (with_camera("[materials.m]\ntype = \"phongg\"\n"), "s.toml:6:8: material \"m\": unknown material type \"phongg\" (did you mean 'phong'? material types: phong)"),
+        (with_camera("[[objects]]\ntype = \"spher\"\n"), "s.toml:6:8: spher: unknown node type (did you mean 'sphere'?)"),
+        (with_camera("[[objects]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nchildren = []\n"), "s.toml:5:1: sphere: takes no `children` (only a group does)"),
+    ];
+    let mut failures = Vec::new();
+    for (text, expected) in &cases {
+        let got = error(text);
+        if got != *expected {
+            failures.push(format!("input:\n{text}\n  expected: {expected}\n  got:      {got}"));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n\n"));
+}
+
+#[test]
+fn rotate_takes_an_array_of_degrees() {
+    let text = with_camera(
+        "[[objects]]\ntype = \"group\"\nrotate = [0, 25, 0]\nchildren = [{ type = \"sphere\", center = [1, 0, 0], radius = 0.5 }]\n",
+    );
+    let scene = SceneFile::parse(Path::new("s.toml"), &text).unwrap().build(8, 8).unwrap();
+    let expected = lamplight_core::math::Mat4::from_rotation_y(25f64.to_radians()).transform_point3(lamplight_core::math::Vec3::X);
+    let centre = scene.objects[0].shape.bounds().centroid();
+    assert!((centre - expected).length() < 1e-12, "{centre} vs {expected}");
 }

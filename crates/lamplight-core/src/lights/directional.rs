@@ -1,8 +1,26 @@
 //! Directional light: the same radiance from the same direction everywhere.
 
-use super::{Light, LightSample};
+use std::sync::Arc;
+
+use super::{Light, LightKind, LightSample};
 use crate::math::{Rgb, Vec3};
+use crate::params::{Kind, Param, ParamType as T};
 use crate::Error;
+
+/// `directional_light`.
+pub const KIND: LightKind = Kind {
+    name: "directional_light",
+    summary: "light from infinitely far",
+    params: &[
+        Param::new("direction", T::Vector, "", "", "the way the light travels"),
+        Param::new("radiance", T::Color, "", "", "incident radiance"),
+    ],
+    build: |p, ctx| {
+        let direction = ctx.world.transform_vector3(p.required_vec3("direction")?);
+        let radiance = p.color("radiance")?.ok_or_else(|| p.error("needs `radiance` (a colour)"))?;
+        Ok(Arc::new(DirectionalLight::new(direction, radiance).map_err(|e| p.core_error(e))?))
+    },
+};
 
 /// Light arriving along `direction` (the way the light travels) with constant radiance.
 #[derive(Clone, Debug, PartialEq)]

@@ -2,15 +2,20 @@
 //!
 //! The ambient light `La` is not a [`Light`]: it is a property of the scene
 //! ([`crate::scene::Scene::ambient`]) that every surface reflects through `ka`.
-//! To add a light: a new file here with `impl Light`, and a `mod`/`pub use` line.
+//! To add a light: a new file here with `impl Light` and its scene kind (a
+//! [`LightKind`]: name, parameter table, builder), a `mod` line, and one line in
+//! the scene crate's registry.
 
-use crate::math::{Rgb, Vec3};
+use std::sync::Arc;
+
+use crate::math::{Mat4, Rgb, Vec3};
+use crate::params::{Kind, ParamResult, Params};
 
 pub mod area;
-mod directional;
+pub mod directional;
 pub mod environment;
 pub mod mesh;
-mod point;
+pub mod point;
 mod set;
 
 pub use area::AreaLight;
@@ -43,3 +48,16 @@ pub trait Light: Send + Sync + std::fmt::Debug {
         None
     }
 }
+
+/// What a light kind's builder may use besides its parameters.
+pub struct LightContext<'a> {
+    /// World from the light's own frame (the transforms of the nodes above it).
+    pub world: Mat4,
+    /// The index of the one scene object called `name`, or a message saying why not.
+    pub object: &'a dyn Fn(&str) -> Result<usize, String>,
+}
+
+/// Builds a light kind's light from its parameters.
+pub type LightBuild = fn(&mut Params<'_>, &LightContext<'_>) -> ParamResult<Arc<dyn Light>>;
+/// A light kind of the scene format.
+pub type LightKind = Kind<LightBuild>;

@@ -1,8 +1,36 @@
 //! Point light: radiance from one position, falling off with the squared distance.
 
-use super::{Light, LightSample};
+use std::sync::Arc;
+
+use super::{Light, LightKind, LightSample};
 use crate::math::{Rgb, Vec3};
+use crate::params::{Kind, Param, ParamType as T};
 use crate::Error;
+
+/// `point_light`.
+pub const KIND: LightKind = Kind {
+    name: "point_light",
+    summary: "a point light",
+    params: &[
+        Param::new("position", T::Point, "", "", "position"),
+        Param::new("intensity", T::Color, "", "radiance at unit distance", "intensity I: the light arriving at distance d is I / d^2"),
+        Param::new("falloff", T::String, "\"inverse_square\"", "", "`\"inverse_square\"` or `\"none\"` (constant, as in Heckbert's card)"),
+        Param::new("own_object", T::String, "none", "", "the one shape (its bulb) that does not shadow it"),
+    ],
+    build: |p, ctx| {
+        let position = ctx.world.transform_point3(p.required_vec3("position")?);
+        let intensity = p.color("intensity")?.ok_or_else(|| p.error("needs `intensity` (a colour)"))?;
+        let mut light = PointLight::new(position, intensity).map_err(|e| p.core_error(e))?;
+        light.falloff = match p.choice("falloff", &["inverse_square", "none"])? {
+            "inverse_square" => Falloff::InverseSquare,
+            _ => Falloff::None,
+        };
+        if let Some(name) = p.string("own_object")? {
+            light.own_object = Some((ctx.object)(name).map_err(|m| p.key_error("own_object", m))?);
+        }
+        Ok(Arc::new(light))
+    },
+};
 
 /// How a point light's intensity decreases with distance `d`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -12,11 +12,18 @@
 
 mod fresnel;
 mod metals;
-mod texture;
+pub mod phong;
+pub mod texture;
 
 pub use fresnel::{fresnel_conductor, fresnel_conductor_channel, fresnel_dielectric};
 pub use metals::Metal;
-pub use texture::Texture;
+pub use texture::{Texture, TextureKind, Textures};
+
+/// Builds a material kind's material from its parameters, reading texturable
+/// parameters through the registered texture kinds.
+pub type MaterialBuild = fn(&mut crate::params::Params<'_>, &Textures<'_>) -> crate::params::ParamResult<Material>;
+/// A material kind of the scene format.
+pub type MaterialKind = crate::params::Kind<MaterialBuild>;
 
 use crate::math::Rgb;
 

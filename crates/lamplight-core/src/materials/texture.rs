@@ -1,6 +1,70 @@
 //! Colour sources evaluated at a hit point: constant or procedural checker.
+//!
+//! A texturable parameter takes a colour (a constant) or a texture table
+//! `{ type = KIND, ... }` of a registered [`TextureKind`]; [`Textures::read`]
+//! tells them apart.
 
 use crate::math::{Rgb, Vec3};
+use crate::params::{Item, Kind, Param, ParamResult, ParamType as T, Params, Value};
+
+/// Builds a texture kind's texture from its parameters.
+pub type TextureBuild = fn(&mut Params<'_>) -> ParamResult<Texture>;
+/// A texture kind of the scene format.
+pub type TextureKind = Kind<TextureBuild>;
+
+/// `checker`: the 3D checker.
+pub const CHECKER: TextureKind = Kind {
+    name: "checker",
+    summary: "a 3D checker of cubes (POV-Ray's `checker`)",
+    params: &[
+        Param::new("size", T::Number, "", "scene units, > 0", "cube edge length"),
+        Param::new("even", T::Color, "", "", "colour of cells whose index sum is even"),
+        Param::new("odd", T::Color, "", "", "colour of the other cells"),
+        Param::new("offset", T::Vector, "[0, 0, 0]", "scene units", "added to the point before the cells are counted"),
+    ],
+    build: |p| {
+        let size = p.required_number("size")?;
+        let even = p.color("even")?.ok_or_else(|| p.error("needs `even` (a colour)"))?;
+        let odd = p.color("odd")?.ok_or_else(|| p.error("needs `odd` (a colour)"))?;
+        let offset = p.vec3("offset")?.unwrap_or(Vec3::ZERO);
+        Ok(Texture::Checker { size, even, odd, offset })
+    },
+};
+
+/// The texture kinds a scene may use, for reading texturable parameters.
+#[derive(Clone, Copy, Debug)]
+pub struct Textures<'a> {
+    /// The registered kinds.
+    pub kinds: &'a [&'a TextureKind],
+}
+
+impl Textures<'_> {
+    /// The texture of parameter `key`: a colour is a [`Texture::Constant`], a table
+    /// is built by the kind its `type` names.
+    pub fn read(&self, p: &mut Params<'_>, key: &str) -> ParamResult<Option<Texture>> {
+        match p.item(key) {
+            None => Ok(None),
+            Some(Item { value: Value::Table(_), .. }) => {
+                let mut table = p.table(key)?.expect("the key holds a table");
+                let names: Vec<&str> = self.kinds.iter().map(|k| k.name).collect();
+                let Some(kind_name) = table.string("type")? else {
+                    return Err(table.error(format!("needs `type` (a texture: {})", names.join(", "))));
+                };
+                let Some(kind) = self.kinds.iter().find(|k| k.name == kind_name) else {
+                    let hint = crate::params::suggestion(kind_name, names.iter().copied())
+                        .map(|s| format!("did you mean '{s}'? "))
+                        .unwrap_or_default();
+                    return Err(table.key_error("type", format!("unknown texture \"{kind_name}\" ({hint}textures: {})", names.join(", "))));
+                };
+                table.check_keys(kind.params, &["type"])?;
+                let texture = (kind.build)(&mut table)?;
+                table.finish()?;
+                Ok(Some(texture))
+            }
+            Some(_) => Ok(p.color(key)?.map(Texture::Constant)),
+        }
+    }
+}
 
 /// A colour that may vary over space.
 #[derive(Clone, Debug, PartialEq)]

@@ -15,13 +15,33 @@
 //! face with normal `+-x` is `|M e_y x M e_z| (max_y - min_y)(max_z - min_z)` (and
 //! likewise), which is what area sampling draws faces by.
 
+use std::sync::Arc;
+
 use glam::DMat3;
 
-use super::{Shape, SurfaceHit};
+use super::{Shape, ShapeKind, SurfaceHit};
 use crate::accel::Aabb;
 use crate::math::{Mat4, Vec3};
+use crate::params::{Kind, Param, ParamType as T};
 use crate::ray::Ray;
 use crate::Error;
+
+/// `box`: one solid shape that keeps the whole affine matrix (shear included).
+pub const KIND: ShapeKind = Kind {
+    name: "box",
+    summary: "the box `[min, max]` as one solid; under a transform it keeps the exact matrix (rotated, scaled, sheared)",
+    params: &[
+        Param::new("min", T::Point, "", "", "low corner"),
+        Param::new("max", T::Point, "", "", "high corner, above `min` on every axis"),
+    ],
+    build: |p, m| {
+        let (lo, hi) = (p.required_vec3("min")?, p.required_vec3("max")?);
+        if !(lo.cmplt(hi).all()) {
+            return Err(p.error(format!("min {lo} must be below max {hi} on every axis")));
+        }
+        Ok(vec![Arc::new(Cuboid::new(lo, hi, *m).map_err(|e| p.core_error(e))?)])
+    },
+};
 
 /// The box `[min, max]` placed by an affine `world_from_local` matrix; its faces
 /// are numbered +x, -x, +y, -y, +z, -z (the order of [`super::Rectangle::box_faces`]).

@@ -31,6 +31,15 @@ pub struct Instance {
     bounds: Aabb,
 }
 
+/// `shape` under `m`: itself for the identity, else an [`Instance`].
+pub fn placed(shape: Arc<dyn Shape>, m: &Mat4) -> Result<Arc<dyn Shape>, Error> {
+    if *m == Mat4::IDENTITY {
+        Ok(shape)
+    } else {
+        Ok(Arc::new(Instance::new(shape, *m)?))
+    }
+}
+
 impl Instance {
     /// Places `shape` by `world_from_object`, which must be finite, affine (last row
     /// `0 0 0 1`) and invertible.

@@ -6,26 +6,35 @@
 //! all shapes through the BVH and turns the normal to face the ray.
 //!
 //! To add a shape: a new file here with the struct, its constructor (which
-//! validates its parameters and returns [`crate::Error`]), `impl Shape`, and its
-//! tests; then one `mod` + `pub use` line below.
+//! validates its parameters and returns [`crate::Error`]), `impl Shape`, its
+//! scene kind (a [`ShapeKind`]: name, parameter table, builder) and its tests;
+//! then one `mod` line below and one line in the scene crate's registry.
+
+use std::sync::Arc;
 
 use crate::accel::Aabb;
-use crate::math::Vec3;
+use crate::math::{Mat4, Vec3};
+use crate::params::{Kind, ParamResult, Params};
 use crate::ray::Ray;
 
-mod cuboid;
+/// Builds a shape kind's shapes from its parameters, placed by the world matrix.
+pub type ShapeBuild = fn(&mut Params<'_>, &Mat4) -> ParamResult<Vec<Arc<dyn Shape>>>;
+/// A shape kind of the scene format.
+pub type ShapeKind = Kind<ShapeBuild>;
+
+pub mod cuboid;
 mod implicit;
 mod instance;
 mod mesh;
-mod plane;
-mod quadric;
-mod sphere;
-mod torus;
-mod triangle;
+pub mod plane;
+pub mod quadric;
+pub mod sphere;
+pub mod torus;
+pub mod triangle;
 
 pub use cuboid::Cuboid;
 pub use implicit::{GradientFn, Implicit, ImplicitFn};
-pub use instance::Instance;
+pub use instance::{placed, Instance};
 pub use mesh::TriangleMesh;
 pub use plane::{Disk, Plane, Rectangle};
 pub use quadric::{Clip, Quadric, Sheets};

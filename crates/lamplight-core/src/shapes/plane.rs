@@ -5,11 +5,62 @@
 //! They are infinitely thin, with the same material on both sides; `normal` is the
 //! side called outward.
 
-use super::{Shape, SurfaceHit};
+use std::sync::Arc;
+
+use super::{placed, Shape, ShapeKind, SurfaceHit};
 use crate::accel::Aabb;
-use crate::math::Vec3;
+use crate::math::{similarity_scale, Mat4, Vec3};
+use crate::params::{Kind, Param, ParamType as T};
 use crate::ray::Ray;
 use crate::Error;
+
+/// `plane`: maps its point and its normal (by the inverse transpose).
+pub const PLANE_KIND: ShapeKind = Kind {
+    name: "plane",
+    summary: "an infinite plane; `normal` is the outward side",
+    params: &[Param::new("point", T::Point, "", "", "a point on the plane"), Param::new("normal", T::Vector, "", "", "outward normal")],
+    build: |p, m| {
+        let (point, normal) = (p.required_vec3("point")?, p.required_vec3("normal")?);
+        let normal = if *m == Mat4::IDENTITY { normal } else { m.inverse().transpose().transform_vector3(normal) };
+        Ok(vec![Arc::new(Plane::new(m.transform_point3(point), normal).map_err(|e| p.core_error(e))?)])
+    },
+};
+
+/// `rectangle`: maps its corner and edges.
+pub const RECTANGLE_KIND: ShapeKind = Kind {
+    name: "rectangle",
+    summary: "a parallelogram; outward normal `edge_u x edge_v`",
+    params: &[
+        Param::new("corner", T::Point, "", "", "a corner"),
+        Param::new("edge_u", T::Vector, "", "", "first edge from the corner"),
+        Param::new("edge_v", T::Vector, "", "", "second edge from the corner"),
+    ],
+    build: |p, m| {
+        let (c, u, v) = (p.required_vec3("corner")?, p.required_vec3("edge_u")?, p.required_vec3("edge_v")?);
+        let r = Rectangle::new(m.transform_point3(c), m.transform_vector3(u), m.transform_vector3(v));
+        Ok(vec![Arc::new(r.map_err(|e| p.core_error(e))?)])
+    },
+};
+
+/// `disk`: stays a disk under a similarity, else becomes an instance.
+pub const DISK_KIND: ShapeKind = Kind {
+    name: "disk",
+    summary: "a disk",
+    params: &[
+        Param::new("center", T::Point, "", "", "centre"),
+        Param::new("normal", T::Vector, "", "", "outward normal"),
+        Param::new("radius", T::Number, "", "scene units", "radius"),
+    ],
+    build: |p, m| {
+        let (c, n, r) = (p.required_vec3("center")?, p.required_vec3("normal")?, p.required_number("radius")?);
+        let shape: Result<Arc<dyn Shape>, Error> = match (*m == Mat4::IDENTITY, similarity_scale(m)) {
+            (true, _) => Disk::new(c, n, r).map(|d| Arc::new(d) as Arc<dyn Shape>),
+            (false, Some(s)) => Disk::new(m.transform_point3(c), m.transform_vector3(n), r * s).map(|d| Arc::new(d) as Arc<dyn Shape>),
+            (false, None) => Disk::new(c, n, r).and_then(|d| placed(Arc::new(d), m)),
+        };
+        Ok(vec![shape.map_err(|e| p.core_error(e))?])
+    },
+};
 
 /// Ray parameter of the hit with the plane through `point` with unit `normal`,
 /// `None` when the ray is parallel to it or the hit is outside `(t_min, t_max)`.

@@ -23,6 +23,7 @@
 
 mod clip;
 mod form;
+pub mod kinds;
 mod named;
 
 pub use clip::Clip;

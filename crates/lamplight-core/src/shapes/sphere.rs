@@ -1,10 +1,44 @@
 //! Sphere: `|r - c|^2 = R^2`.
+//!
+//! | parameter | type | default | meaning |
+//! |-----------|------|---------|---------|
+//! | `center` | point | required | centre |
+//! | `radius` | number | required | radius, > 0 |
+//!
+//! Under a rotation, translation and uniform scale it stays a sphere; under any
+//! other affine transform it becomes the ellipsoid quadric it maps to.
 
-use super::{Shape, SurfaceHit};
+use std::sync::Arc;
+
+use super::{Quadric, Shape, ShapeKind, SurfaceHit};
 use crate::accel::Aabb;
-use crate::math::Vec3;
+use crate::math::{similarity_scale, Mat4, Vec3};
+use crate::params::{Kind, Param, ParamResult, ParamType, Params};
 use crate::ray::Ray;
 use crate::Error;
+
+/// The `sphere` kind.
+pub const KIND: ShapeKind = Kind {
+    name: "sphere",
+    summary: "a sphere",
+    params: &[
+        Param::new("center", ParamType::Point, "", "scene units", "centre"),
+        Param::new("radius", ParamType::Number, "", "scene units, > 0", "radius"),
+    ],
+    build,
+};
+
+fn build(p: &mut Params<'_>, m: &Mat4) -> ParamResult<Vec<Arc<dyn Shape>>> {
+    let (c, r) = (p.required_vec3("center")?, p.required_number("radius")?);
+    let shape: Arc<dyn Shape> = if *m == Mat4::IDENTITY {
+        Arc::new(Sphere::new(c, r).map_err(|e| p.core_error(e))?)
+    } else if let Some(s) = similarity_scale(m) {
+        Arc::new(Sphere::new(m.transform_point3(c), r * s).map_err(|e| p.core_error(e))?)
+    } else {
+        Arc::new(Quadric::ellipsoid(c, Vec3::splat(r)).and_then(|q| q.transformed(*m)).map_err(|e| p.core_error(e))?)
+    };
+    Ok(vec![shape])
+}
 
 /// A sphere with centre `center` and radius `radius > 0`.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -26,11 +26,32 @@ mod polynomial;
 
 use polynomial::{roots_in, Poly};
 
-use super::{Shape, SurfaceHit};
+use std::sync::Arc;
+
+use super::{placed, Shape, ShapeKind, SurfaceHit};
 use crate::accel::Aabb;
 use crate::math::{orthonormal_basis, Vec3};
+use crate::params::{Kind, Param, ParamType as T};
 use crate::ray::Ray;
 use crate::Error;
+
+/// `torus`: placed as an instance under a transform.
+pub const KIND: ShapeKind = Kind {
+    name: "torus",
+    summary: "a ring torus",
+    params: &[
+        Param::new("center", T::Point, "", "", "centre"),
+        Param::new("axis", T::Vector, "", "", "axis through the hole"),
+        Param::new("major_radius", T::Number, "", "scene units", "ring radius R (axis to tube centre)"),
+        Param::new("minor_radius", T::Number, "", "scene units, < R", "tube radius r"),
+    ],
+    build: |p, m| {
+        let (c, axis) = (p.required_vec3("center")?, p.required_vec3("axis")?);
+        let (major, minor) = (p.required_number("major_radius")?, p.required_number("minor_radius")?);
+        let torus = Torus::new(c, axis, major, minor).map_err(|e| p.core_error(e))?;
+        Ok(vec![placed(Arc::new(torus), m).map_err(|e| p.core_error(e))?])
+    },
+};
 
 /// A ring torus around `axis` through `center`.
 #[derive(Clone, Copy, Debug, PartialEq)]

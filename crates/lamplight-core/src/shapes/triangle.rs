@@ -26,11 +26,27 @@
 //! `normalize((p1 - p0) x (p2 - p0))`, so counter-clockwise vertices (seen from
 //! outside) face outward.
 
-use super::{Shape, SurfaceHit};
+use std::sync::Arc;
+
+use super::{Shape, ShapeKind, SurfaceHit};
 use crate::accel::Aabb;
 use crate::math::Vec3;
+use crate::params::{Kind, Param, ParamType as T};
 use crate::ray::Ray;
 use crate::Error;
+
+/// `triangle`: maps its three vertices.
+pub const KIND: ShapeKind = Kind {
+    name: "triangle",
+    summary: "a triangle; outward normal by the right-hand rule",
+    params: &[Param::new("vertices", T::Array, "", "3 points", "the corners, counter-clockwise seen from outside")],
+    build: |p, m| {
+        let v = p.vec3_list("vertices")?.ok_or_else(|| p.error("needs `vertices` (3 points)"))?;
+        let [a, b, c] = <[Vec3; 3]>::try_from(v).map_err(|v| p.key_error("vertices", format!("expected 3 points, got {}", v.len())))?;
+        let [a, b, c] = [a, b, c].map(|v| m.transform_point3(v));
+        Ok(vec![Arc::new(Triangle::new(a, b, c).map_err(|e| p.core_error(e))?)])
+    },
+};
 
 /// A ray prepared for [`intersect_triangle`]: the axis permutation and shear that
 /// map its direction to `+z`. Computed once per ray and reused for every triangle

@@ -65,7 +65,7 @@ pub fn build(path: &Path, imported: &Imported, aspect: f64) -> Result<Scene, Loa
             Some(m) => builder.material(m.clone()).map_err(fail)?,
             None => default_material,
         };
-        let shape = super::shapes::instance(meshes[placed.mesh].clone(), &placed.transform).map_err(|m| LoadError::file(path, m))?;
+        let shape = lamplight_core::shapes::placed(meshes[placed.mesh].clone(), &placed.transform).map_err(fail)?;
         builder.shared_object(shape, material).map_err(fail)?;
     }
     let emits = imported.instances.iter().any(|p| p.material.as_ref().is_some_and(|m| m.emission.max_element() > 0.0));

@@ -1,24 +1,26 @@
-//! A [`SceneDescription`] to a core [`Scene`]: defaults, the camera, materials,
-//! and the node tree (the private `nodes` and `shapes` modules), with every error a [`LoadError`] at the place
-//! of the entry it concerns.
+//! A [`SceneDescription`] to a core [`Scene`]: settings, the camera, materials
+//! and the node tree, every kind found through [`crate::registry`] and every
+//! error a [`LoadError`] at the place of the key it concerns.
 
-use std::collections::BTreeMap;
 use std::path::Path;
 
-use lamplight_core::camera::{Camera, Fov};
 use lamplight_core::integrators::IntegratorKind;
-use lamplight_core::materials::{Material, Metal, Reflection, Refraction, Texture};
-use lamplight_core::math::{Rgb, Vec3};
+use lamplight_core::math::Rgb;
+use lamplight_core::params::{Param, ParamType as T, Params, Table};
 use lamplight_core::{Scene, SceneBuilder};
 
-use crate::description::{CameraDesc, Located, MaterialDesc, ReflectionDesc, RefractionDesc, SceneDescription, Triple};
+use crate::description::SceneDescription;
 use crate::error::LoadError;
 use crate::formats::native::{self, Source};
 
+pub mod camera;
+pub mod implicit;
 pub mod imported;
+mod materials;
 mod nodes;
-mod shapes;
 mod transform;
+
+pub use nodes::{MAX_NESTING, MAX_OBJECTS, MESH_PARAMS};
 
 /// Image and integrator settings with every default resolved.
 #[derive(Clone, Debug, PartialEq)]
@@ -43,6 +45,31 @@ pub struct Settings {
 pub const MAX_DEPTH_LIMIT: u32 = 64;
 /// Most pixels in an image (the renderer's limit).
 pub const MAX_PIXELS: u64 = 1 << 28;
+/// Most samples per pixel.
+pub const MAX_SPP: u32 = 1 << 20;
+
+/// The keys of `[render]`.
+pub const RENDER_PARAMS: &[Param] = &[
+    Param::new("width", T::Integer, "640", "pixels, >= 1", "image width (`--width`)"),
+    Param::new("height", T::Integer, "360", "pixels, >= 1; width x height <= 2^28", "image height (`--height`)"),
+    Param::new("spp", T::Integer, "1", "1 to 2^20", "samples per pixel (`--spp`)"),
+    Param::new("max_depth", T::Integer, "5", "1 to 64, camera ray = 1", "ray depth limit (`--max-depth`)"),
+    Param::new("min_weight", T::Number, "0", ">= 0", "secondary rays of weight <= this are not traced"),
+    Param::new("seed", T::Integer, "0", ">= 0", "seed of the per-sample random numbers (`--seed`)"),
+    Param::new(
+        "integrator",
+        T::String,
+        "\"whitted\"",
+        "",
+        "`\"whitted\"` (the lecture's recursive ray tracer) or `\"path\"` (path tracing with NEE and MIS) (`--integrator`)",
+    ),
+];
+
+/// The top-level values.
+pub const SCENE_PARAMS: &[Param] = &[
+    Param::new("ambient", T::Color, "0", "radiance", "ambient radiance `La`; each surface reflects `ka * C * La`"),
+    Param::new("background", T::Color, "0", "radiance", "radiance of rays that hit nothing"),
+];
 
 /// A scene file read and parsed, ready to build at any image size.
 #[derive(Clone, Debug)]
@@ -79,167 +106,65 @@ impl SceneFile {
 
 /// The description's settings with defaults filled in, checked.
 pub fn settings(desc: &SceneDescription, source: &Source) -> Result<Settings, LoadError> {
-    let default = Located::new(Default::default());
-    let render = desc.render.as_ref().unwrap_or(&default);
-    let err = |m: String| source.error(render.span.as_ref(), m);
-    let r = &render.value;
-    let s = Settings {
-        width: r.width.unwrap_or(640),
-        height: r.height.unwrap_or(360),
-        spp: r.spp.unwrap_or(1),
-        max_depth: r.max_depth.unwrap_or(5),
-        min_weight: r.min_weight.unwrap_or(0.0),
-        seed: r.seed.unwrap_or(0),
-        integrator: match r.integrator.as_deref().unwrap_or("whitted") {
+    let empty = Table::default();
+    let table = desc.render.as_ref().unwrap_or(&empty);
+    let mut p = Params::new("render", table);
+    let read = |p: &mut Params<'_>| -> lamplight_core::params::ParamResult<Settings> {
+        p.check_keys(RENDER_PARAMS, &[])?;
+        let whole = |p: &mut Params<'_>, key: &str, max: u64, default: u64| -> lamplight_core::params::ParamResult<u64> {
+            Ok(p.integer(key, 0..=max as i64)?.map_or(default, |v| v as u64))
+        };
+        let width = whole(p, "width", u32::MAX as u64, 640)? as u32;
+        let height = whole(p, "height", u32::MAX as u64, 360)? as u32;
+        if width == 0 || height == 0 || width as u64 * height as u64 > MAX_PIXELS {
+            return Err(p.error(format!("image size {width}x{height} must be at least 1x1 and at most {MAX_PIXELS} pixels")));
+        }
+        let spp = p.integer("spp", 1..=MAX_SPP as i64)?.unwrap_or(1) as u32;
+        let max_depth = p.integer("max_depth", 1..=MAX_DEPTH_LIMIT as i64)?.unwrap_or(5) as u32;
+        let min_weight = p.number_or("min_weight", 0.0)?;
+        if min_weight < 0.0 {
+            return Err(p.key_error("min_weight", format!("must be a non-negative number, got {min_weight}")));
+        }
+        let seed = whole(p, "seed", i64::MAX as u64, 0)?;
+        let integrator = match p.choice("integrator", &["whitted", "path"])? {
             "whitted" => IntegratorKind::Whitted,
-            "path" => IntegratorKind::Path,
-            other => return Err(err(format!("unknown integrator \"{other}\", expected \"whitted\" or \"path\""))),
-        },
+            _ => IntegratorKind::Path,
+        };
+        Ok(Settings { width, height, spp, max_depth, min_weight, seed, integrator })
     };
-    if s.width == 0 || s.height == 0 || s.width as u64 * s.height as u64 > MAX_PIXELS {
-        return Err(err(format!("image size {}x{} must be at least 1x1 and at most {MAX_PIXELS} pixels", s.width, s.height)));
-    }
-    if s.spp == 0 || s.spp > 1 << 20 {
-        return Err(err(format!("spp must be between 1 and {}, got {}", 1 << 20, s.spp)));
-    }
-    if !(1..=MAX_DEPTH_LIMIT).contains(&s.max_depth) {
-        return Err(err(format!("max_depth must be between 1 and {MAX_DEPTH_LIMIT}, got {}", s.max_depth)));
-    }
-    if !(s.min_weight.is_finite() && s.min_weight >= 0.0) {
-        return Err(err(format!("min_weight must be a non-negative number, got {}", s.min_weight)));
-    }
-    Ok(s)
+    let settings = read(&mut p).map_err(|e| source.param_error(e))?;
+    p.finish().map_err(|e| source.param_error(e))?;
+    Ok(settings)
 }
 
 /// Builds the core scene for an image of aspect `width / height`.
 pub fn build(desc: &SceneDescription, source: &Source, aspect: f64) -> Result<Scene, LoadError> {
     let settings = settings(desc, source)?;
-    let camera_desc = desc.camera.as_ref().ok_or_else(|| LoadError::file(&source.path, "has no [camera] table, expected one"))?;
-    let camera = camera(&camera_desc.value, aspect).map_err(|m| source.error(camera_desc.span.as_ref(), format!("camera: {m}")))?;
+    let camera_node = desc.camera.as_ref().ok_or_else(|| LoadError::file(&source.path, "has no [camera] table, expected one"))?;
+    let camera = camera::camera(camera_node, aspect).map_err(|e| source.param_error(e))?;
     let mut builder = SceneBuilder::new(camera);
-    builder.ambient = color(desc.ambient, 0.0);
-    builder.background = color(desc.background, 0.0);
+    let (ambient, background) = globals(&desc.globals).map_err(|e| source.param_error(e))?;
+    builder.ambient = ambient;
+    builder.background = background;
     builder.max_depth = settings.max_depth;
     builder.min_weight = settings.min_weight;
-    for (key, c) in [("ambient", builder.ambient), ("background", builder.background)] {
-        if !(c.is_finite() && c.min_element() >= 0.0) {
-            return Err(LoadError::file(&source.path, format!("{key} must be finite and non-negative, got {c}")));
-        }
-    }
-    let mut materials = BTreeMap::new();
-    for (name, m) in &desc.materials {
-        let material = material(&m.value).map_err(|e| source.error(m.span.as_ref(), format!("material \"{name}\": {e}")))?;
-        let index = builder.material(material).map_err(|e| source.error(m.span.as_ref(), format!("material \"{name}\": {e}")))?;
-        materials.insert(name.clone(), index);
-    }
+    let materials = materials::add_all(desc, source, &mut builder)?;
     nodes::add_all(desc, source, &mut builder, materials)?;
     builder.build().map_err(|e| LoadError::file(&source.path, e.to_string()))
 }
 
-fn color(t: Option<Triple>, default: f64) -> Rgb {
-    t.map_or(Rgb::splat(default), |t| Rgb::from_array(t.0))
-}
-
-fn vec3(a: [f64; 3]) -> Vec3 {
-    Vec3::from_array(a)
-}
-
-fn camera(c: &CameraDesc, aspect: f64) -> Result<Camera, String> {
-    let eye = vec3(c.eye.ok_or("needs eye = [x, y, z]")?);
-    if let Some(center) = c.window_center {
-        if c.look_at.is_some() || c.vfov.is_some() || c.hfov.is_some() {
-            return Err("the window form (window_center, right, up) takes no look_at, vfov or hfov".into());
+fn globals(table: &Table) -> lamplight_core::params::ParamResult<(Rgb, Rgb)> {
+    let mut p = Params::new("scene", table);
+    p.check_keys(SCENE_PARAMS, &[])?;
+    let mut colour = |key: &str| -> lamplight_core::params::ParamResult<Rgb> {
+        let c = p.color_or(key, Rgb::ZERO)?;
+        if c.min_element() < 0.0 {
+            return Err(p.key_error(key, format!("must be non-negative, got {c}")));
         }
-        let mut right = vec3(c.right.ok_or("the window form needs right = [x, y, z]")?);
-        let mut up = vec3(c.up.ok_or("the window form needs up = [x, y, z]")?);
-        match c.fit.as_deref().unwrap_or("none") {
-            "none" => {}
-            "width" => up /= aspect,
-            "height" => right *= aspect,
-            other => return Err(format!("unknown fit \"{other}\", expected \"none\", \"width\" or \"height\"")),
-        }
-        let pixel_offset = c.pixel_offset.unwrap_or(0.5);
-        let camera = Camera { eye, lookat: vec3(center), right, up, pixel_offset };
-        let finite = [camera.eye, camera.lookat, camera.right, camera.up].iter().all(|v| v.is_finite());
-        if !finite || !(0.0..=1.0).contains(&pixel_offset) {
-            return Err("vectors must be finite and pixel_offset between 0 and 1".into());
-        }
-        if right.cross(up).length_squared() == 0.0 {
-            return Err("right and up must be non-zero and not parallel".into());
-        }
-        return Ok(camera);
-    }
-    if c.right.is_some() || c.fit.is_some() {
-        return Err("right and fit belong to the window form (with window_center)".into());
-    }
-    let target = vec3(c.look_at.ok_or("needs look_at = [x, y, z] (or the window form with window_center)")?);
-    let sky = vec3(c.up.unwrap_or([0.0, 1.0, 0.0]));
-    let fov = match (c.vfov, c.hfov) {
-        (Some(v), None) => Fov::VerticalDeg(v),
-        (None, Some(h)) => Fov::HorizontalDeg(h),
-        (None, None) => return Err("needs vfov or hfov (degrees)".into()),
-        (Some(_), Some(_)) => return Err("takes vfov or hfov, not both".into()),
+        Ok(c)
     };
-    let mut camera = Camera::look_at(eye, target, sky, fov, aspect).map_err(|e| e.to_string())?;
-    if let Some(offset) = c.pixel_offset {
-        if !(0.0..=1.0).contains(&offset) {
-            return Err(format!("pixel_offset must be between 0 and 1, got {offset}"));
-        }
-        camera.pixel_offset = offset;
-    }
-    Ok(camera)
-}
-
-fn material(m: &MaterialDesc) -> Result<Material, String> {
-    let d = Material::default();
-    let rgb = |t: Option<Triple>, default: Rgb| t.map_or(default, |t| Rgb::from_array(t.0));
-    let color = match (&m.color, &m.checker) {
-        (Some(_), Some(_)) => return Err("takes color or checker, not both".into()),
-        (_, Some(c)) => Texture::Checker {
-            size: c.size,
-            even: Rgb::from_array(c.even.0),
-            odd: Rgb::from_array(c.odd.0),
-            offset: vec3(c.offset.unwrap_or([0.0; 3])),
-        },
-        (c, None) => match c {
-            Some(c) => Texture::Constant(Rgb::from_array(c.0)),
-            None => d.color.clone(),
-        },
-    };
-    let reflection = match &m.reflection {
-        None => Reflection::None,
-        Some(ReflectionDesc::Constant { weight }) => Reflection::Constant(Rgb::from_array(weight.0)),
-        Some(ReflectionDesc::Dielectric { ior, min, max }) => {
-            Reflection::Dielectric { ior: *ior, min: min.unwrap_or(0.0), max: max.unwrap_or(1.0) }
-        }
-        Some(ReflectionDesc::Conductor { metal, eta, k }) => match (metal, eta, k) {
-            (Some(name), None, None) => {
-                let metal = Metal::from_name(name)
-                    .ok_or_else(|| format!("unknown metal \"{name}\", expected \"gold\", \"silver\", \"copper\" or \"aluminium\""))?;
-                let (eta, k) = metal.eta_k();
-                Reflection::Conductor { eta, k }
-            }
-            (None, Some(eta), Some(k)) => Reflection::Conductor { eta: Rgb::from_array(eta.0), k: Rgb::from_array(k.0) },
-            _ => return Err("conductor reflection takes either metal or both eta and k".into()),
-        },
-    };
-    let refraction = match &m.refraction {
-        None => Refraction::None,
-        Some(RefractionDesc::Fresnel { ior }) => Refraction::Fresnel { ior: *ior },
-        Some(RefractionDesc::Constant { ior, weight }) => Refraction::Constant { ior: *ior, weight: Rgb::from_array(weight.0) },
-    };
-    let material = Material {
-        color,
-        ka: rgb(m.ka, d.ka),
-        kd: rgb(m.kd, d.kd),
-        ks: rgb(m.ks, d.ks),
-        shininess: m.shininess.unwrap_or(d.shininess),
-        emission: rgb(m.emission, d.emission),
-        reflection,
-        refraction,
-        shadow_transmittance: rgb(m.shadow_transmittance, d.shadow_transmittance),
-        roughness: m.roughness.unwrap_or(d.roughness),
-    };
-    material.validate().map_err(|e| e.to_string())?;
-    Ok(material)
+    let ambient = colour("ambient")?;
+    let background = colour("background")?;
+    p.finish()?;
+    Ok((ambient, background))
 }

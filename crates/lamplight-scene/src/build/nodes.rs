@@ -1,38 +1,35 @@
 //! The node tree: groups and instances compose transforms and pass a default
-//! material down; shapes, meshes and lights are added to the builder.
+//! material down; shapes and lights are made by their kinds in the registry;
+//! meshes place mesh assets.
 //!
 //! Limits keep a hostile file from costing unbounded time or memory: nesting at
 //! most [`MAX_NESTING`] deep, an instance may not (directly or not) place itself
 //! (reported with the chain of names), and at most [`MAX_OBJECTS`] objects in
 //! all, which also stops exponential instancing (a definition placing another
-//! twice, 40 levels deep). Each mesh asset is loaded once and shared.
+//! twice, 40 levels deep). Each mesh asset is loaded once and shared. Lights are
+//! made after every shape, so that a light may name any shape as its own.
 
 use std::collections::{BTreeMap, HashMap};
-use std::ops::Range;
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use lamplight_core::lights::{DirectionalLight, Falloff, PointLight};
+use lamplight_core::lights::LightContext;
 use lamplight_core::materials::Material;
 use lamplight_core::math::Mat4;
-use lamplight_core::shapes::{Shape, TriangleMesh};
+use lamplight_core::params::{ParamError, ParamResult, Params};
+use lamplight_core::shapes::{placed, Shape, TriangleMesh};
 use lamplight_core::SceneBuilder;
 
-use super::shapes::{self, SHAPE_KEYS};
-use super::transform::{self, finite};
-use super::vec3;
-use crate::description::{Located, MeshDesc, Node, SceneDescription};
+use super::transform;
+use crate::description::{Node, SceneDescription};
 use crate::error::{LoadError, Location};
 use crate::formats::native::Source;
-use crate::import;
+use crate::{import, registry};
 
 /// Deepest nesting of groups and instances.
 pub const MAX_NESTING: usize = 64;
 /// Most objects one scene may have.
 pub const MAX_OBJECTS: usize = 1 << 22;
-
-const COMMON: &[&str] = &["name", "material"];
-const TRANSFORM: &[&str] = &["translate", "rotate", "scale", "matrix"];
 
 /// A loaded mesh asset: its parts (mesh, placement in the asset, imported material).
 type Asset = Arc<Vec<(Arc<TriangleMesh>, Mat4, Option<usize>)>>;
@@ -46,7 +43,7 @@ struct Ctx<'a> {
     assets: HashMap<String, Asset>,
     files: HashMap<PathBuf, Asset>,
     names: HashMap<String, Vec<usize>>,
-    lights: Vec<(PointLight, String, Option<Range<usize>>)>,
+    lights: Vec<(&'a Node, Mat4)>,
     stack: Vec<String>,
 }
 
@@ -73,117 +70,117 @@ pub(super) fn add_all(
     // after allocating millions of objects.
     let mut counts = HashMap::new();
     for node in &desc.objects {
-        let planned = count(desc, &node.value, &mut counts, 0);
+        let planned = count(desc, node, &mut counts, 0);
         if planned > MAX_OBJECTS as u64 {
-            let message =
-                format!("{}: expands to more than {MAX_OBJECTS} objects (is a definition instanced exponentially?)", node.value.kind);
-            return Err(source.error(node.span.as_ref(), message));
+            let message = format!("{}: expands to more than {MAX_OBJECTS} objects (is a definition instanced exponentially?)", node.label);
+            return Err(source.error(&node.params.loc, message));
         }
     }
     for node in &desc.objects {
         ctx.node(node, Mat4::IDENTITY, None, 0)?;
     }
-    for (mut light, name, span) in std::mem::take(&mut ctx.lights) {
-        let objects = ctx.names.get(&name).map(Vec::as_slice).unwrap_or_default();
-        match objects {
-            [one] => light.own_object = Some(*one),
-            [] => return Err(source.error(span.as_ref(), format!("point_light: own_object \"{name}\" names no shape"))),
-            _ => {
-                return Err(source
-                    .error(span.as_ref(), format!("point_light: own_object \"{name}\" names {} objects, expected one", objects.len())))
+    for (node, world) in std::mem::take(&mut ctx.lights) {
+        let kind = registry::light(&node.kind).expect("only light kinds are deferred");
+        let names = &ctx.names;
+        let object = |name: &str| -> Result<usize, String> {
+            match names.get(name).map(Vec::as_slice).unwrap_or_default() {
+                [one] => Ok(*one),
+                [] => Err(format!("\"{name}\" names no shape")),
+                many => Err(format!("\"{name}\" names {} objects, expected one", many.len())),
             }
-        }
-        ctx.builder.light(light);
+        };
+        let mut p = Params::new(node.label.clone(), &node.params);
+        let light = p
+            .check_keys(kind.params, &[])
+            .and_then(|()| (kind.build)(&mut p, &LightContext { world, object: &object }))
+            .and_then(|l| p.finish().map(|()| l))
+            .map_err(|e| source.param_error(e))?;
+        ctx.builder.shared_light(light);
     }
     Ok(())
 }
 
-impl Ctx<'_> {
-    fn node(&mut self, located: &Located<Node>, parent: Mat4, material: Option<usize>, depth: usize) -> Result<(), LoadError> {
-        let n = &located.value;
-        let span = located.span.as_ref();
-        let err = |m: String| self.source.error(span, format!("{}: {m}", n.kind));
-        self.check_keys(n).map_err(err)?;
+impl<'a> Ctx<'a> {
+    fn fail(&self, e: ParamError) -> LoadError {
+        self.source.param_error(e)
+    }
+
+    fn node(&mut self, n: &'a Node, parent: Mat4, material: Option<usize>, depth: usize) -> Result<(), LoadError> {
+        let at_node = |m: String| ParamError { loc: n.params.loc.clone(), message: format!("{}: {m}", n.label) };
         if depth >= MAX_NESTING {
-            return Err(err(format!("nodes are nested more than {MAX_NESTING} deep")));
+            return Err(self.fail(at_node(format!("nodes are nested more than {MAX_NESTING} deep"))));
         }
-        let material = match &n.material {
-            Some(name) => Some(self.material(name).map_err(err)?),
+        let m = parent * transform::local(&n.label, &n.transform).map_err(|e| self.fail(e))?;
+        if n.children.is_some() && n.kind != "group" {
+            return Err(self.fail(at_node("takes no `children` (only a group does)".into())));
+        }
+        if registry::light(&n.kind).is_some() {
+            self.lights.push((n, m));
+            return Ok(());
+        }
+        let mut p = Params::new(n.label.clone(), &n.params);
+        match n.kind.as_str() {
+            "group" | "instance" | "mesh" => {
+                let own = registry::STRUCTURAL.iter().find(|s| s.name == n.kind).expect("structural").params;
+                p.check_keys(own, &[]).map_err(|e| self.fail(e))?;
+            }
+            kind => match registry::shape(kind) {
+                Some(k) => p.check_keys(k.params, &["material"]).map_err(|e| self.fail(e))?,
+                None => return Err(self.fail(unknown_type(n))),
+            },
+        }
+        let material = match p.string("material").map_err(|e| self.fail(e))? {
+            Some(name) => Some(self.material(name).map_err(|m| self.fail(p.key_error("material", m)))?),
             None => material,
         };
         match n.kind.as_str() {
-            "group" | "instance" => {
-                let m = parent * transform::local(n).map_err(err)?;
-                if n.kind == "group" {
-                    for child in n.children.iter().flatten() {
-                        self.node(child, m, material, depth + 1)?;
-                    }
-                    return Ok(());
+            "group" => {
+                for child in n.children.iter().flatten() {
+                    self.node(child, m, material, depth + 1)?;
                 }
-                let of = n.of.as_ref().ok_or_else(|| err("needs `of`, the name of a definition".into()))?;
-                let Some(def) = self.desc.definitions.get(of) else {
-                    let known: Vec<_> = self.desc.definitions.keys().map(String::as_str).collect();
-                    return Err(err(format!("unknown definition \"{of}\" (definitions: {})", list(&known))));
+            }
+            "instance" => {
+                let of = p.required_string("of").map_err(|e| self.fail(e))?;
+                let Some(def) = self.desc.definition(of) else {
+                    let known: Vec<_> = self.desc.definitions.iter().map(|d| d.name.as_str()).collect();
+                    return Err(self.fail(p.key_error("of", format!("unknown definition \"{of}\" (definitions: {})", list(&known)))));
                 };
-                if self.stack.contains(of) {
-                    let chain: Vec<_> = self.stack.iter().chain([of]).map(String::as_str).collect();
-                    return Err(err(format!("cyclic instance: {}", chain.join(" -> "))));
+                if self.stack.iter().any(|s| s == of) {
+                    let chain: Vec<_> = self.stack.iter().map(String::as_str).chain([of]).collect();
+                    return Err(self.fail(p.error(format!("cyclic instance: {}", chain.join(" -> ")))));
                 }
-                self.stack.push(of.clone());
-                self.node(def, m, material, depth + 1)?;
+                self.stack.push(of.to_string());
+                self.node(&def.value, m, material, depth + 1)?;
                 self.stack.pop();
-                Ok(())
-            }
-            "point_light" => {
-                let position = vec3(req_finite(n.position, "position").map_err(err)?);
-                let intensity = n.intensity.ok_or_else(|| err("needs `intensity`".into()))?;
-                let mut light = PointLight::new(parent.transform_point3(position), vec3(intensity.0)).map_err(|e| err(e.to_string()))?;
-                light.falloff = match n.falloff.as_deref().unwrap_or("inverse_square") {
-                    "inverse_square" => Falloff::InverseSquare,
-                    "none" => Falloff::None,
-                    other => return Err(err(format!("unknown falloff \"{other}\", expected \"inverse_square\" or \"none\""))),
-                };
-                match &n.own_object {
-                    Some(name) => self.lights.push((light, name.clone(), located.span.clone())),
-                    None => self.builder.light(light),
-                }
-                Ok(())
-            }
-            "directional_light" => {
-                let direction = parent.transform_vector3(vec3(req_finite(n.direction, "direction").map_err(err)?));
-                let radiance = n.radiance.ok_or_else(|| err("needs `radiance`".into()))?;
-                let light = DirectionalLight::new(direction, vec3(radiance.0)).map_err(|e| err(e.to_string()))?;
-                self.builder.light(light);
-                Ok(())
             }
             "mesh" => {
-                let name = n.mesh.as_ref().ok_or_else(|| err("needs `mesh`, the name of a [meshes] entry".into()))?;
+                let name = p.required_string("mesh").map_err(|e| self.fail(e))?;
                 let asset = self.asset(name).map_err(|e| match e {
-                    Ok(message) => err(message),
+                    Ok(message) => self.fail(p.key_error("mesh", message)),
                     Err(load) => load,
                 })?;
                 for (mesh, placement, imported) in asset.iter() {
-                    let shape = shapes::instance(mesh.clone(), &(parent * *placement)).map_err(err)?;
+                    let shape = placed(mesh.clone(), &(m * *placement)).map_err(|e| self.fail(p.core_error(e)))?;
                     let material = match (material, *imported) {
                         (Some(m), _) | (None, Some(m)) => m,
-                        (None, None) => self.default_material().map_err(err)?,
+                        (None, None) => self.default_material().map_err(|e| self.fail(p.error(e)))?,
                     };
-                    self.place(shape, material, n).map_err(err)?;
+                    self.place(shape, material, n).map_err(|e| self.fail(p.error(e)))?;
                 }
-                Ok(())
             }
-            _ => {
-                let made = shapes::make(n, &parent).map_err(err)?;
+            kind => {
+                let k = registry::shape(kind).expect("checked above");
+                let made = (k.build)(&mut p, &m).map_err(|e| self.fail(e))?;
                 let material = match material {
                     Some(m) => m,
-                    None => self.default_material().map_err(err)?,
+                    None => self.default_material().map_err(|e| self.fail(p.error(e)))?,
                 };
                 for shape in made {
-                    self.place(shape, material, n).map_err(err)?;
+                    self.place(shape, material, n).map_err(|e| self.fail(p.error(e)))?;
                 }
-                Ok(())
             }
         }
+        p.finish().map_err(|e| self.fail(e))
     }
 
     fn place(&mut self, shape: Arc<dyn Shape>, material: usize, n: &Node) -> Result<(), String> {
@@ -193,32 +190,6 @@ impl Ctx<'_> {
         let index = self.builder.shared_object(shape, material).map_err(|e| e.to_string())?;
         if let Some(name) = &n.name {
             self.names.entry(name.clone()).or_default().push(index);
-        }
-        Ok(())
-    }
-
-    fn check_keys(&self, n: &Node) -> Result<(), String> {
-        let own: &[&str] = match n.kind.as_str() {
-            "group" => &["children"],
-            "instance" => &["of"],
-            "point_light" => &["position", "intensity", "falloff", "own_object"],
-            "directional_light" => &["direction", "radiance"],
-            kind => match SHAPE_KEYS.iter().find(|(k, _)| *k == kind) {
-                Some((_, keys)) => keys,
-                None => {
-                    let mut kinds = vec!["group", "instance", "point_light", "directional_light"];
-                    kinds.extend(SHAPE_KEYS.iter().map(|(k, _)| *k));
-                    return Err(format!("unknown node type (expected one of: {})", kinds.join(", ")));
-                }
-            },
-        };
-        let transform: &[&str] = if matches!(n.kind.as_str(), "group" | "instance") { TRANSFORM } else { &[] };
-        let common: &[&str] = if n.kind.ends_with("_light") { &[] } else { COMMON };
-        let valid: Vec<&str> = common.iter().chain(transform).chain(own).copied().collect();
-        for key in n.present_keys() {
-            if !valid.contains(&key) {
-                return Err(format!("unknown key `{key}` for this type (valid keys: type, {})", valid.join(", ")));
-            }
         }
         Ok(())
     }
@@ -245,21 +216,26 @@ impl Ctx<'_> {
         if let Some(asset) = self.assets.get(name) {
             return Ok(asset.clone());
         }
-        let Some(desc) = self.desc.meshes.get(name) else {
-            let known: Vec<_> = self.desc.meshes.keys().map(String::as_str).collect();
+        let Some(desc) = self.desc.mesh(name) else {
+            let known: Vec<_> = self.desc.meshes.iter().map(|m| m.name.as_str()).collect();
             return Err(Ok(format!("unknown mesh \"{name}\" (meshes: {})", list(&known))));
         };
-        let at = |m: String| self.source.error(desc.span.as_ref(), format!("mesh \"{name}\": {m}"));
-        let asset = match (&desc.value.file, &desc.value.positions) {
-            (Some(file), None) if desc.value.indices.is_none() && desc.value.normals.is_none() => {
+        let label = format!("mesh \"{name}\"");
+        let mut p = Params::new(label, &desc.value);
+        p.check_keys(MESH_PARAMS, &[]).map_err(|e| Err(self.fail(e)))?;
+        let at = |m: String| self.source.error(&desc.value.loc, format!("mesh \"{name}\": {m}"));
+        let asset = match (p.has("file"), p.has("positions")) {
+            (true, false) if !p.has("indices") && !p.has("normals") => {
+                let file = p.required_string("file").map_err(|e| Err(self.fail(e)))?;
                 self.file_asset(file).map_err(|e| match e {
                     Ok(m) => Err(at(m)),
                     Err(load) => Err(load),
                 })?
             }
-            (None, Some(_)) => inline(&desc.value).map_err(|m| Err(at(m)))?,
+            (false, true) => inline(&mut p).map_err(|e| Err(self.fail(e)))?,
             _ => return Err(Err(at("needs either `file` or `positions` and `indices`".into()))),
         };
+        p.finish().map_err(|e| Err(self.fail(e)))?;
         self.assets.insert(name.to_string(), asset.clone());
         Ok(asset)
     }
@@ -310,6 +286,17 @@ impl Ctx<'_> {
     }
 }
 
+/// The keys of `[meshes.NAME]`.
+pub const MESH_PARAMS: &[lamplight_core::params::Param] = {
+    use lamplight_core::params::{Param, ParamType as T};
+    &[
+        Param::new("file", T::String, "", "", "an OBJ, PLY or glTF file, relative to the scene file's folder"),
+        Param::new("positions", T::Array, "", "", "inline vertex positions, `[x, y, z]` each"),
+        Param::new("indices", T::Array, "", "", "inline triangles, `[i, j, k]` vertex indices from 0"),
+        Param::new("normals", T::Array, "none", "", "inline per-vertex normals"),
+    ]
+};
+
 /// An upper bound of the objects `node` adds (saturating; definitions memoized;
 /// cycles and over-deep nesting count 0 here and are reported by the traversal).
 fn count(desc: &SceneDescription, node: &Node, memo: &mut HashMap<String, u64>, depth: usize) -> u64 {
@@ -317,50 +304,71 @@ fn count(desc: &SceneDescription, node: &Node, memo: &mut HashMap<String, u64>, 
         return 0;
     }
     match node.kind.as_str() {
-        "group" => node.children.iter().flatten().fold(0u64, |sum, c| sum.saturating_add(count(desc, &c.value, memo, depth + 1))),
+        "group" => node.children.iter().flatten().fold(0u64, |sum, c| sum.saturating_add(count(desc, c, memo, depth + 1))),
         "instance" => {
-            let Some(name) = &node.of else { return 0 };
-            if let Some(n) = memo.get(name) {
+            let Some(name) = node.params.get("of").and_then(|e| match &e.item.value {
+                lamplight_core::params::Value::String(s) => Some(s.clone()),
+                _ => None,
+            }) else {
+                return 0;
+            };
+            if let Some(n) = memo.get(&name) {
                 return *n;
             }
-            let n = match desc.definitions.get(name) {
+            let n = match desc.definition(&name) {
                 Some(def) => {
                     memo.insert(name.clone(), 0); // a cycle back here counts 0
                     count(desc, &def.value, memo, depth + 1)
                 }
                 None => 0,
             };
-            memo.insert(name.clone(), n);
+            memo.insert(name, n);
             n
         }
-        "cylinder" => 3,
         _ => 1,
     }
 }
 
-fn inline(desc: &MeshDesc) -> Result<Asset, String> {
-    let positions = desc.positions.clone().unwrap_or_default();
-    let indices = desc.indices.clone().ok_or("inline mesh needs `indices`")?;
-    for p in &positions {
-        finite("positions", p)?;
-    }
-    let normals = match &desc.normals {
-        Some(n) => {
-            for v in n {
-                finite("normals", v)?;
-            }
-            Some(n.iter().map(|v| vec3(*v)).collect())
-        }
-        None => None,
-    };
-    let mesh = TriangleMesh::new(positions.into_iter().map(vec3).collect(), indices, normals).map_err(|e| e.to_string())?;
+fn inline(p: &mut Params<'_>) -> ParamResult<Asset> {
+    let positions = p.vec3_list("positions")?.unwrap_or_default();
+    let indices = indices(p)?.ok_or_else(|| p.error("inline mesh needs `indices`"))?;
+    let normals = p.vec3_list("normals")?;
+    let mesh = TriangleMesh::new(positions, indices, normals).map_err(|e| p.error(e))?;
     Ok(Arc::new(vec![(Arc::new(mesh), Mat4::IDENTITY, None)]))
 }
 
-fn req_finite(v: Option<[f64; 3]>, key: &str) -> Result<[f64; 3], String> {
-    let v = v.ok_or_else(|| format!("needs `{key}`"))?;
-    finite(key, &v)?;
-    Ok(v)
+/// `indices`: triangles of vertex indices, each below 2^32.
+fn indices(p: &mut Params<'_>) -> ParamResult<Option<Vec<[u32; 3]>>> {
+    use lamplight_core::params::Value;
+    let Some(item) = p.item("indices") else { return Ok(None) };
+    let bad = || p.key_error("indices", "expected an array of [i, j, k] (whole numbers from 0 to 4294967295)");
+    let Value::Array(faces) = &item.value else { return Err(bad()) };
+    faces
+        .iter()
+        .map(|face| match &face.value {
+            Value::Array(v) if v.len() == 3 => {
+                let mut out = [0u32; 3];
+                for (o, i) in out.iter_mut().zip(v) {
+                    *o = match i.value {
+                        Value::Integer(i) if (0..=u32::MAX as i64).contains(&i) => i as u32,
+                        _ => return Err(bad()),
+                    };
+                }
+                Ok(out)
+            }
+            _ => Err(bad()),
+        })
+        .collect::<ParamResult<Vec<_>>>()
+        .map(Some)
+}
+
+fn unknown_type(n: &Node) -> ParamError {
+    let types = registry::node_types();
+    let hint = match lamplight_core::params::suggestion(&n.kind, types.iter().copied()) {
+        Some(s) => format!("did you mean '{s}'?"),
+        None => format!("node types: {}", types.join(", ")),
+    };
+    ParamError { loc: n.kind_loc.clone(), message: format!("{}: unknown node type ({hint})", n.kind) }
 }
 
 fn list(names: &[&str]) -> String {

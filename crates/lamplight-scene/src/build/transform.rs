@@ -7,130 +7,154 @@
 //! matrix the built-in scenes compute.
 
 use lamplight_core::math::{Mat4, Vec3};
+use lamplight_core::params::{Item, ParamResult, Params, Table, Value};
 
-use crate::description::{Node, Rotate};
+/// What `rotate` must be.
+const ROTATE_FORMS: &str = "expected a table { axis = [x, y, z], degrees = N } or { x = N, y = N, z = N }, or [x, y, z] degrees";
 
-/// The node's own transform, or a message naming the bad key.
-pub fn local(node: &Node) -> Result<Mat4, String> {
+/// The node's own transform from its transform keys (read for `label`).
+pub fn local(label: &str, table: &Table) -> ParamResult<Mat4> {
+    let mut p = Params::new(label, table);
     let mut m = Mat4::IDENTITY;
-    if let Some(t) = node.translate {
-        finite("translate", &t)?;
-        m = Mat4::from_translation(Vec3::from_array(t));
+    if let Some(t) = p.vec3("translate")? {
+        m = Mat4::from_translation(t);
     }
-    if let Some(r) = &node.rotate {
-        m *= rotation(r)?;
+    if p.has("rotate") {
+        m *= rotation(&mut p)?;
     }
-    if let Some(s) = node.scale {
-        finite("scale", &s.0)?;
-        if s.0.contains(&0.0) {
-            return Err("scale must not be 0 (it would flatten the geometry)".into());
+    if let Some(s) = p.color("scale")? {
+        if s.to_array().contains(&0.0) {
+            return Err(p.key_error("scale", "must not be 0 (it would flatten the geometry)"));
         }
-        m *= Mat4::from_scale(Vec3::from_array(s.0));
+        m *= Mat4::from_scale(s);
     }
-    if let Some(rows) = node.matrix {
-        for row in &rows {
-            finite("matrix", row)?;
+    if let Some(x) = p.matrix("matrix")? {
+        if x.row(3) != glam::DVec4::new(0.0, 0.0, 0.0, 1.0) {
+            return Err(p.key_error("matrix", "must be affine: its last row must be [0, 0, 0, 1]"));
         }
-        if rows[3] != [0.0, 0.0, 0.0, 1.0] {
-            return Err("matrix must be affine: its last row must be [0, 0, 0, 1]".into());
-        }
-        let x = Mat4::from_cols_array_2d(&rows).transpose();
         if x.determinant() == 0.0 {
-            return Err("matrix is singular".into());
+            return Err(p.key_error("matrix", "is singular"));
         }
         m *= x;
     }
+    p.finish()?;
     Ok(m)
 }
 
-fn rotation(r: &Rotate) -> Result<Mat4, String> {
-    match (r.axis, r.degrees) {
-        (Some(axis), Some(deg)) => {
-            if r.x.is_some() || r.y.is_some() || r.z.is_some() {
-                return Err("rotate takes either axis and degrees or x, y, z, not both".into());
+fn rotation(p: &mut Params<'_>) -> ParamResult<Mat4> {
+    let item = p.item("rotate").expect("present");
+    let xyz = |x: f64, y: f64, z: f64| {
+        let mut m = Mat4::IDENTITY;
+        // x first: the matrix applied first stands rightmost.
+        for (deg, make) in [(z, Mat4::from_rotation_z as fn(f64) -> Mat4), (y, Mat4::from_rotation_y), (x, Mat4::from_rotation_x)] {
+            if deg != 0.0 {
+                m *= make(deg.to_radians());
             }
-            finite("rotate axis", &axis)?;
-            finite("rotate degrees", &[deg])?;
-            let axis = Vec3::from_array(axis).try_normalize().ok_or("rotate axis must not be zero")?;
-            let rad = deg.to_radians();
-            Ok(if axis == Vec3::X {
-                Mat4::from_rotation_x(rad)
-            } else if axis == Vec3::Y {
-                Mat4::from_rotation_y(rad)
-            } else if axis == Vec3::Z {
-                Mat4::from_rotation_z(rad)
-            } else {
-                Mat4::from_axis_angle(axis, rad)
-            })
         }
-        (None, None) => {
-            let (x, y, z) = (r.x.unwrap_or(0.0), r.y.unwrap_or(0.0), r.z.unwrap_or(0.0));
-            finite("rotate", &[x, y, z])?;
-            let mut m = Mat4::IDENTITY;
-            // x first: the matrix applied first stands rightmost.
-            for (deg, make) in [(z, Mat4::from_rotation_z as fn(f64) -> Mat4), (y, Mat4::from_rotation_y), (x, Mat4::from_rotation_x)] {
-                if deg != 0.0 {
-                    m *= make(deg.to_radians());
+        m
+    };
+    match &item.value {
+        Value::Array(_) => {
+            let one = lamplight_core::params::Table {
+                entries: vec![lamplight_core::params::Entry { key: "rotate".into(), key_loc: item.loc.clone(), item: item.clone() }],
+                loc: item.loc.clone(),
+            };
+            let mut q = Params::new(p.label().to_string(), &one);
+            let v = q.vec3("rotate").map_err(|_| p.key_error("rotate", ROTATE_FORMS))?.expect("present");
+            Ok(xyz(v.x, v.y, v.z))
+        }
+        Value::Table(_) => {
+            let mut r = p.table("rotate")?.expect("present");
+            r.check_keys(&ROTATE_KEYS, &[])?;
+            let out = match (r.vec3("axis")?, r.number("degrees")?) {
+                (Some(axis), Some(deg)) => {
+                    if r.has("x") || r.has("y") || r.has("z") {
+                        return Err(r.error("takes either axis and degrees or x, y, z, not both"));
+                    }
+                    let axis = axis.try_normalize().ok_or_else(|| r.key_error("axis", "must not be zero"))?;
+                    let rad = deg.to_radians();
+                    if axis == Vec3::X {
+                        Mat4::from_rotation_x(rad)
+                    } else if axis == Vec3::Y {
+                        Mat4::from_rotation_y(rad)
+                    } else if axis == Vec3::Z {
+                        Mat4::from_rotation_z(rad)
+                    } else {
+                        Mat4::from_axis_angle(axis, rad)
+                    }
                 }
-            }
-            Ok(m)
+                (None, None) => {
+                    let (x, y, z) = (r.number_or("x", 0.0)?, r.number_or("y", 0.0)?, r.number_or("z", 0.0)?);
+                    xyz(x, y, z)
+                }
+                _ => return Err(r.error("needs both axis and degrees")),
+            };
+            r.finish()?;
+            Ok(out)
         }
-        _ => Err("rotate needs both axis and degrees".into()),
+        _ => Err(bad_rotate(p, item)),
     }
 }
 
-/// Fails with "KEY must be finite" when a number is NaN or infinite.
-pub fn finite(key: &str, values: &[f64]) -> Result<(), String> {
-    if values.iter().all(|v| v.is_finite()) {
-        Ok(())
-    } else {
-        Err(format!("{key} must be finite numbers, got {values:?}"))
-    }
-}
+const ROTATE_KEYS: [lamplight_core::params::Param; 5] = {
+    use lamplight_core::params::{Param, ParamType as T};
+    [
+        Param::new("axis", T::Vector, "", "", "rotation axis"),
+        Param::new("degrees", T::Number, "", "degrees", "angle, counter-clockwise looking down the axis"),
+        Param::new("x", T::Number, "0", "degrees", "about x"),
+        Param::new("y", T::Number, "0", "degrees", "about y"),
+        Param::new("z", T::Number, "0", "degrees", "about z"),
+    ]
+};
 
-/// The uniform scale of `m`'s linear part when it is a similarity (rotation times
-/// one scale factor), else `None`.
-pub fn similarity_scale(m: &Mat4) -> Option<f64> {
-    let cols = [m.x_axis.truncate(), m.y_axis.truncate(), m.z_axis.truncate()];
-    let s = cols[0].length();
-    let tol = 1e-12 * s;
-    let same_length = cols.iter().all(|c| (c.length() - s).abs() <= tol);
-    let orthogonal =
-        cols[0].dot(cols[1]).abs() <= tol * s && cols[1].dot(cols[2]).abs() <= tol * s && cols[0].dot(cols[2]).abs() <= tol * s;
-    (same_length && orthogonal && s > 0.0).then_some(s)
+fn bad_rotate(p: &Params<'_>, item: &Item) -> lamplight_core::params::ParamError {
+    p.key_error("rotate", format!("{ROTATE_FORMS}, got {}", item.value.describe()))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::description::Triple;
+    use lamplight_core::params::{Entry, Loc};
+
+    fn table(entries: Vec<(&str, Value)>) -> Table {
+        Table {
+            entries: entries
+                .into_iter()
+                .map(|(k, v)| Entry { key: k.into(), key_loc: Loc::Unknown, item: Item { value: v, loc: Loc::Unknown } })
+                .collect(),
+            loc: Loc::Unknown,
+        }
+    }
+
+    fn nums(v: &[f64]) -> Value {
+        Value::Array(v.iter().map(|x| Item { value: Value::Number(*x), loc: Loc::Unknown }).collect())
+    }
 
     #[test]
     fn order_is_translate_rotate_scale_matrix() {
-        let node = Node {
-            translate: Some([1.0, 0.0, 0.0]),
-            rotate: Some(Rotate { z: Some(90.0), ..Rotate::default() }),
-            scale: Some(Triple([2.0, 2.0, 2.0])),
-            ..Node::default()
-        };
-        let m = local(&node).unwrap();
+        let t = table(vec![
+            ("translate", nums(&[1.0, 0.0, 0.0])),
+            ("rotate", Value::Table(table(vec![("z", Value::Number(90.0))]))),
+            ("scale", Value::Number(2.0)),
+        ]);
+        let m = local("group", &t).unwrap();
         // (1,0,0) -> scaled (2,0,0) -> rotated (0,2,0) -> translated (1,2,0).
         assert!((m.transform_point3(Vec3::X) - Vec3::new(1.0, 2.0, 0.0)).length() < 1e-15);
-        assert_eq!(similarity_scale(&m), Some(2.0));
-        let y25 =
-            Node { rotate: Some(Rotate { axis: Some([0.0, 1.0, 0.0]), degrees: Some(25.0), ..Rotate::default() }), ..Node::default() };
-        assert_eq!(local(&y25).unwrap(), Mat4::from_rotation_y(25f64.to_radians()));
-        let squash = Node { scale: Some(Triple([1.0, 2.0, 1.0])), ..Node::default() };
-        assert_eq!(similarity_scale(&local(&squash).unwrap()), None);
+        let y25 = table(vec![("rotate", Value::Table(table(vec![("axis", nums(&[0.0, 1.0, 0.0])), ("degrees", Value::Number(25.0))])))]);
+        assert_eq!(local("group", &y25).unwrap(), Mat4::from_rotation_y(25f64.to_radians()));
+        let array = table(vec![("rotate", nums(&[0.0, 25.0, 0.0]))]);
+        assert_eq!(local("group", &array).unwrap(), Mat4::from_rotation_y(25f64.to_radians()));
     }
 
     #[test]
     fn bad_transforms_are_messages() {
-        let nan = Node { translate: Some([f64::NAN, 0.0, 0.0]), ..Node::default() };
-        assert!(local(&nan).unwrap_err().starts_with("translate must be finite"));
-        let zero = Node { scale: Some(Triple([0.0; 3])), ..Node::default() };
-        assert!(local(&zero).is_err());
-        let half = Node { rotate: Some(Rotate { degrees: Some(3.0), ..Rotate::default() }), ..Node::default() };
-        assert_eq!(local(&half).unwrap_err(), "rotate needs both axis and degrees");
+        let nan = table(vec![("translate", nums(&[f64::NAN, 0.0, 0.0]))]);
+        assert_eq!(local("group", &nan).unwrap_err().message, "group: translate: must be finite numbers, got [NaN, 0, 0]");
+        let zero = table(vec![("scale", Value::Number(0.0))]);
+        assert_eq!(local("group", &zero).unwrap_err().message, "group: scale: must not be 0 (it would flatten the geometry)");
+        let half = table(vec![("rotate", Value::Table(table(vec![("degrees", Value::Number(3.0))])))]);
+        assert_eq!(local("group", &half).unwrap_err().message, "group: rotate: needs both axis and degrees");
+        let word = table(vec![("rotate", Value::String("left".into()))]);
+        assert_eq!(local("group", &word).unwrap_err().message, format!("group: rotate: {ROTATE_FORMS}, got a string \"left\""));
     }
 }

@@ -1,12 +1,17 @@
 //! The native scene format: TOML text to a [`SceneDescription`].
 //!
 //! Reading checks the file before parsing (a directory, a missing file, an empty
-//! file, more than [`MAX_FILE_BYTES`], not UTF-8), and every TOML or schema error
-//! becomes one [`LoadError`] at `file:line:col`. The [`Source`] kept beside the
-//! description converts byte spans to lines and columns for errors found later.
+//! file, more than [`MAX_FILE_BYTES`], not UTF-8). The text is parsed into
+//! `toml`'s spanned document tree and converted to the generic [`Table`] of
+//! [`lamplight_core::params`], every key and value keeping its byte span; the
+//! [`Source`] kept beside the description turns spans into lines and columns
+//! for errors found later, while the scene is built.
 
 use std::ops::Range;
 use std::path::{Path, PathBuf};
+
+use lamplight_core::params::{Entry, Item, Loc, ParamError, Table, Value};
+use toml::de::{DeTable, DeValue};
 
 use crate::description::SceneDescription;
 use crate::error::{LoadError, Location};
@@ -31,7 +36,7 @@ impl Source {
     }
 
     /// The location of byte span `span`: its start as `line:col`, or the whole file.
-    pub fn locate(&self, span: Option<&Range<usize>>) -> Location {
+    pub fn locate_span(&self, span: Option<&Range<usize>>) -> Location {
         match (span, &self.text) {
             (Some(span), Some(text)) => {
                 let (line, column) = line_column(text, span.start);
@@ -41,9 +46,23 @@ impl Source {
         }
     }
 
-    /// An error at `span`.
-    pub fn error(&self, span: Option<&Range<usize>>, message: impl Into<String>) -> LoadError {
-        LoadError { path: self.path.clone(), location: self.locate(span), message: message.into() }
+    /// The location `loc` names: a line and column, a key path, or the whole file.
+    pub fn locate(&self, loc: &Loc) -> Location {
+        match loc {
+            Loc::Span(span) => self.locate_span(Some(span)),
+            Loc::Path(path) => Location::KeyPath(path.clone()),
+            Loc::Unknown => Location::File,
+        }
+    }
+
+    /// An error at `loc`.
+    pub fn error(&self, loc: &Loc, message: impl Into<String>) -> LoadError {
+        LoadError { path: self.path.clone(), location: self.locate(loc), message: message.into() }
+    }
+
+    /// A parameter error as a [`LoadError`] of this source.
+    pub fn param_error(&self, e: ParamError) -> LoadError {
+        self.error(&e.loc, e.message)
     }
 }
 
@@ -84,35 +103,75 @@ pub fn parse(path: &Path, text: String) -> Result<(SceneDescription, Source), Lo
     if text.trim().is_empty() {
         return Err(LoadError::file(path, "is empty, expected a scene (at least a [camera] table)"));
     }
-    match toml::from_str::<SceneDescription>(&text) {
-        Ok(description) => Ok((description, Source { path: path.to_path_buf(), text: Some(text) })),
-        Err(e) => {
-            let source = Source { path: path.to_path_buf(), text: Some(text) };
-            Err(source.error(e.span().as_ref(), tidy(e.message())))
+    let source = Source { path: path.to_path_buf(), text: None };
+    let table = match DeTable::parse(&text) {
+        Ok(doc) => {
+            let span = doc.span();
+            table(doc.into_inner(), span)
         }
+        Err(e) => {
+            let source = Source { text: Some(text.clone()), ..source };
+            return Err(source.error(&e.span().map_or(Loc::Unknown, Loc::Span), tidy(e.message())));
+        }
+    };
+    let source = Source { text: Some(text), ..source };
+    match table.and_then(SceneDescription::from_table) {
+        Ok(description) => Ok((description, source)),
+        Err(e) => Err(source.param_error(e)),
     }
 }
 
-/// serde's messages, made one line and in the file's terms.
-fn tidy(message: &str) -> String {
-    let mut one_line = message.trim().replace('\n', "; ");
-    // A node's key list (every key of every node type) is too long to help;
-    // the builder lists the keys of the node's own type when `type` is known.
-    if one_line.starts_with("unknown field") && one_line.contains("`own_object`") {
-        if let Some(cut) = one_line.find(", expected one of") {
-            one_line.truncate(cut);
-            one_line.push_str(", expected a key of this node type (see docs/scene-format.md)");
-        }
+/// The document tree as a [`Table`]. Tables of `[header]` sections span their
+/// header line; inline tables span their braces.
+fn table(de: DeTable<'_>, span: Range<usize>) -> Result<Table, ParamError> {
+    let mut entries = Vec::with_capacity(de.len());
+    for (key, value) in de {
+        let key_loc = Loc::Span(key.span());
+        let value_span = value.span();
+        entries.push(Entry { key: key.into_inner().into_owned(), key_loc, item: item(value.into_inner(), value_span)? });
     }
-    one_line
-        .replace("a spanned value", "a table")
-        .replace("$__serde_spanned_private_Spanned", "table")
-        .replace("invalid type: floating point", "invalid type: number")
-        .replace("invalid type: integer", "invalid type: number")
-        .replace("expected f64", "expected a number")
-        .replace("expected u32", "expected a whole number from 0 to 4294967295")
-        .replace("expected u64", "expected a non-negative whole number")
-        .replace("expected u8", "expected a whole number from 0 to 255")
+    Ok(Table { entries, loc: Loc::Span(span) })
+}
+
+fn item(value: DeValue<'_>, span: Range<usize>) -> Result<Item, ParamError> {
+    let loc = Loc::Span(span.clone());
+    let value = match value {
+        DeValue::String(s) => Value::String(s.into_owned()),
+        DeValue::Boolean(b) => Value::Bool(b),
+        DeValue::Integer(i) => match i64::from_str_radix(i.as_str(), i.radix()) {
+            Ok(v) => Value::Integer(v),
+            Err(_) => return Err(ParamError { loc, message: format!("integer {i} does not fit in 64 bits") }),
+        },
+        DeValue::Float(f) => match parse_float(f.as_str()) {
+            Some(v) => Value::Number(v),
+            None => return Err(ParamError { loc, message: format!("cannot read the number {}", f.as_str()) }),
+        },
+        DeValue::Datetime(_) => return Err(ParamError { loc, message: "a date or time is not a scene value".into() }),
+        DeValue::Array(a) => {
+            let mut items = Vec::new();
+            for v in a {
+                let s = v.span();
+                items.push(item(v.into_inner(), s)?);
+            }
+            Value::Array(items)
+        }
+        DeValue::Table(t) => Value::Table(table(t, span)?),
+    };
+    Ok(Item { value, loc })
+}
+
+/// TOML's float syntax as Rust reads it (`inf`, `nan` and their signs included).
+fn parse_float(text: &str) -> Option<f64> {
+    let text = text.replace('_', "");
+    match text.trim_start_matches(['+', '-']) {
+        "nan" => Some(f64::NAN),
+        _ => text.parse().ok(),
+    }
+}
+
+/// The TOML parser's messages, made one line.
+fn tidy(message: &str) -> String {
+    message.trim().replace('\n', "; ")
 }
 
 fn io_message(e: &std::io::Error) -> String {

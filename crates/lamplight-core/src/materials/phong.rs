@@ -1,0 +1,117 @@
+//! `phong`: the lecture's material as a scene kind (the default material type).
+//!
+//! `L = Ke + ka C La + sum_l Lin_l (kd C (N.L)+ + ks ((H.N)+)^shininess) + R L(refl) + T L(refr)`,
+//! with `C` the colour (or texture) and `R`, `T` the weights of `reflection` and
+//! `refraction`:
+//!
+//! | `reflection` | meaning |
+//! |--------------|---------|
+//! | `{ type = "constant", weight = COLOUR }` | constant mirror weight |
+//! | `{ type = "dielectric", ior = N, min = 0, max = 1 }` | dielectric Fresnel `F` at index `ior`, rescaled to `min + (max - min) F` |
+//! | `{ type = "conductor", metal = "gold" }` | conductor Fresnel of `"gold"`, `"silver"`, `"copper"`, `"aluminium"` |
+//! | `{ type = "conductor", eta = COLOUR, k = COLOUR }` | conductor Fresnel with complex index `eta + i k` |
+//!
+//! | `refraction` | meaning |
+//! |--------------|---------|
+//! | `{ type = "fresnel", ior = N }` | refraction weighted `1 - F` |
+//! | `{ type = "constant", ior = N, weight = COLOUR }` | refraction with a constant weight |
+
+use super::{Material, MaterialKind, Metal, Reflection, Refraction};
+use crate::params::{Kind, Param, ParamResult, ParamType as T, Params};
+
+/// `phong`.
+pub const KIND: MaterialKind = Kind {
+    name: "phong",
+    summary: "the lecture's model: ambient, diffuse and Blinn terms, emission, mirror reflection and refraction",
+    params: &[
+        Param::new("color", T::Texture, "0.5", "", "surface colour `C`"),
+        Param::new(
+            "checker",
+            T::Table,
+            "none",
+            "",
+            "a 3D checker instead of `color`: `{ size, even, odd, offset }`, as the `checker` texture",
+        ),
+        Param::new("ka", T::Color, "0.1", "", "ambient factor"),
+        Param::new("kd", T::Color, "0.9", "", "diffuse factor"),
+        Param::new("ks", T::Color, "0", "", "Blinn highlight factor (not multiplied by `C`)"),
+        Param::new("shininess", T::Number, "1", ">= 0", "Blinn exponent"),
+        Param::new("emission", T::Color, "0", "radiance", "emitted radiance; in the path tracer an emitting shape is an area light"),
+        Param::new("reflection", T::Table, "none", "", "mirror reflection (see below)"),
+        Param::new("refraction", T::Table, "none", "", "refraction (see below)"),
+        Param::new(
+            "shadow_transmittance",
+            T::Color,
+            "0",
+            "",
+            "fraction of light a shadow ray keeps crossing this surface (clear glass: 1)",
+        ),
+        Param::new("roughness", T::Number, "0", "0 to 1", "GGX roughness of Fresnel glass and conductors in the path tracer"),
+    ],
+    build,
+};
+
+fn build(p: &mut Params<'_>, textures: &super::Textures<'_>) -> ParamResult<Material> {
+    let d = Material::default();
+    let color = match (p.has("color"), p.has("checker")) {
+        (true, true) => return Err(p.error("takes color or checker, not both")),
+        (false, true) => {
+            let mut checker = p.table("checker")?.expect("present");
+            checker.check_keys(super::texture::CHECKER.params, &[])?;
+            let texture = (super::texture::CHECKER.build)(&mut checker)?;
+            checker.finish()?;
+            texture
+        }
+        _ => textures.read(p, "color")?.unwrap_or(d.color.clone()),
+    };
+    let material = Material {
+        color,
+        ka: p.color_or("ka", d.ka)?,
+        kd: p.color_or("kd", d.kd)?,
+        ks: p.color_or("ks", d.ks)?,
+        shininess: p.number_or("shininess", d.shininess)?,
+        emission: p.color_or("emission", d.emission)?,
+        reflection: reflection(p)?,
+        refraction: refraction(p)?,
+        shadow_transmittance: p.color_or("shadow_transmittance", d.shadow_transmittance)?,
+        roughness: p.number_or("roughness", d.roughness)?,
+    };
+    material.validate().map_err(|e| p.core_error(e))?;
+    Ok(material)
+}
+
+fn reflection(p: &mut Params<'_>) -> ParamResult<Reflection> {
+    let Some(mut r) = p.table("reflection")? else { return Ok(Reflection::None) };
+    let out = match r.required_choice("type", &["constant", "dielectric", "conductor"])? {
+        "constant" => Reflection::Constant(r.color("weight")?.ok_or_else(|| r.error("needs `weight` (a colour)"))?),
+        "dielectric" => {
+            Reflection::Dielectric { ior: r.required_number("ior")?, min: r.number_or("min", 0.0)?, max: r.number_or("max", 1.0)? }
+        }
+        _ => match (r.string("metal")?, r.color("eta")?, r.color("k")?) {
+            (Some(name), None, None) => {
+                let metal = Metal::from_name(name).ok_or_else(|| {
+                    r.key_error("metal", format!("unknown metal \"{name}\", expected \"gold\", \"silver\", \"copper\" or \"aluminium\""))
+                })?;
+                let (eta, k) = metal.eta_k();
+                Reflection::Conductor { eta, k }
+            }
+            (None, Some(eta), Some(k)) => Reflection::Conductor { eta, k },
+            _ => return Err(r.error("takes either metal or both eta and k")),
+        },
+    };
+    r.finish()?;
+    Ok(out)
+}
+
+fn refraction(p: &mut Params<'_>) -> ParamResult<Refraction> {
+    let Some(mut r) = p.table("refraction")? else { return Ok(Refraction::None) };
+    let out = match r.required_choice("type", &["fresnel", "constant"])? {
+        "fresnel" => Refraction::Fresnel { ior: r.required_number("ior")? },
+        _ => Refraction::Constant {
+            ior: r.required_number("ior")?,
+            weight: r.color("weight")?.ok_or_else(|| r.error("needs `weight` (a colour)"))?,
+        },
+    };
+    r.finish()?;
+    Ok(out)
+}

@@ -1,0 +1,136 @@
+//! The registry of kinds: every shape, light, material and texture a scene may
+//! name by `type`, each listed once, with its parameter table and builder.
+//!
+//! A kind is one file (its struct, its `KIND` with the parameter table, its
+//! tests) and one line here. The builder ([`crate::build`]) finds kinds only
+//! through these lists, the reference in `docs/scene-format.md` is generated
+//! from them ([`reference`]), and the error tests feed every kind a mistyped key.
+//! Kinds that need this crate (an implicit surface's expression parser) live in
+//! `build/`; the structural node types (`group`, `instance`, `mesh`) are the
+//! builder's own and are documented by [`STRUCTURAL`].
+
+use lamplight_core::lights::{self, LightKind};
+use lamplight_core::materials::{self, MaterialKind, TextureKind};
+use lamplight_core::params::{Param, ParamType as T};
+use lamplight_core::shapes::{self, quadric::kinds as quadrics, ShapeKind};
+
+use crate::build::implicit;
+
+/// Shape kinds.
+pub static SHAPES: &[&ShapeKind] = &[
+    &shapes::sphere::KIND,
+    &quadrics::ELLIPSOID,
+    &quadrics::CYLINDER,
+    &quadrics::CONE,
+    &quadrics::INFINITE_CYLINDER,
+    &quadrics::INFINITE_CONE,
+    &quadrics::PARABOLOID,
+    &quadrics::HYPERBOLOID,
+    &quadrics::QUADRIC,
+    &shapes::plane::PLANE_KIND,
+    &shapes::plane::RECTANGLE_KIND,
+    &shapes::plane::DISK_KIND,
+    &shapes::cuboid::KIND,
+    &shapes::triangle::KIND,
+    &shapes::torus::KIND,
+    &implicit::KIND,
+];
+
+/// Light kinds.
+pub static LIGHTS: &[&LightKind] = &[&lights::point::KIND, &lights::directional::KIND];
+
+/// Material kinds; the first is the default `type`.
+pub static MATERIALS: &[&MaterialKind] = &[&materials::phong::KIND];
+
+/// Texture kinds.
+pub static TEXTURES: &[&TextureKind] = &[&materials::texture::CHECKER];
+
+/// A node type the builder handles itself.
+#[derive(Debug)]
+pub struct Structural {
+    /// The `type`.
+    pub name: &'static str,
+    /// One line for the reference.
+    pub summary: &'static str,
+    /// Its own keys.
+    pub params: &'static [Param],
+}
+
+/// The structural node types.
+pub static STRUCTURAL: &[Structural] = &[
+    Structural {
+        name: "group",
+        summary: "everything in `children` moves with the group",
+        params: &[
+            Param::new("children", T::Array, "[]", "", "the nodes in the group"),
+            Param::new("material", T::String, "inherited", "", "default material of everything below"),
+        ],
+    },
+    Structural {
+        name: "instance",
+        summary: "places `[definitions.NAME]`",
+        params: &[
+            Param::new("of", T::String, "", "", "the definition's name"),
+            Param::new("material", T::String, "inherited", "", "default material of everything below"),
+        ],
+    },
+    Structural {
+        name: "mesh",
+        summary: "a triangle mesh asset",
+        params: &[
+            Param::new("mesh", T::String, "", "", "name of a `[meshes]` entry"),
+            Param::new("material", T::String, "inherited, else the file's", "", "material name"),
+        ],
+    },
+];
+
+/// The keys every shape node takes besides its kind's.
+pub const SHAPE_COMMON: &[Param] = &[Param::new(
+    "material",
+    T::String,
+    "inherited, else grey",
+    "",
+    "material name; default: the nearest enclosing group's or instance's, else a mid-grey diffuse material",
+)];
+
+/// The keys every node of the tree takes.
+pub const NODE_COMMON: &[Param] = &[
+    Param::new("type", T::String, "", "", "what the node is"),
+    Param::new("name", T::String, "none", "", "a name (shapes: referenced by a light's `own_object`)"),
+    Param::new("translate", T::Vector, "none", "scene units", "translation"),
+    Param::new(
+        "rotate",
+        T::Table,
+        "none",
+        "degrees",
+        "`{ axis = VECTOR, degrees = N }`, `{ x = N, y = N, z = N }` or `[x, y, z]` (degrees about x, then y, then z)",
+    ),
+    Param::new("scale", T::Color, "none", "non-zero", "a factor or `[sx, sy, sz]`"),
+    Param::new("matrix", T::Matrix, "none", "affine", "4 rows of 4 numbers, last row `[0, 0, 0, 1]`; points are column vectors"),
+];
+
+/// The names of every node type, structural ones first (for messages).
+pub fn node_types() -> Vec<&'static str> {
+    let mut names: Vec<&str> = STRUCTURAL.iter().map(|s| s.name).collect();
+    names.extend(LIGHTS.iter().map(|k| k.name));
+    names.extend(SHAPES.iter().map(|k| k.name));
+    names
+}
+
+/// The shape kind called `name`.
+pub fn shape(name: &str) -> Option<&'static ShapeKind> {
+    SHAPES.iter().copied().find(|k| k.name == name)
+}
+
+/// The light kind called `name`.
+pub fn light(name: &str) -> Option<&'static LightKind> {
+    LIGHTS.iter().copied().find(|k| k.name == name)
+}
+
+/// The material kind called `name`.
+pub fn material(name: &str) -> Option<&'static MaterialKind> {
+    MATERIALS.iter().copied().find(|k| k.name == name)
+}
+
+mod reference;
+pub use reference::reference;
