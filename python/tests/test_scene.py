@@ -67,7 +67,7 @@ def test_numpy_arrays_and_tuples_are_accepted():
     "change, message",
     [
         (lambda d: d["objects"].__setitem__(1, {"type": "sphere", "center": [0, 0, 0], "radius": "big"}), "objects[1].radius"),
-        (lambda d: d["camera"].__setitem__("colour", 1), "unknown field `colour`"),
+        (lambda d: d["camera"].__setitem__("colour", 1), "scene dict: camera.colour: camera: unknown parameter 'colour'"),
         (lambda d: d.__setitem__("render", {"spp": -1}), "render.spp"),
         (lambda d: d["objects"].__setitem__(0, {"type": "sphere", "center": [0, 0, 0], "radius": -1}), "invalid radius"),
         (lambda d: d["objects"].__setitem__(0, {"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "gold"}), "unknown material"),
@@ -83,6 +83,21 @@ def test_bad_dicts_raise_scene_errors_naming_the_problem(change, message):
     with pytest.raises(lamplight.SceneError, match=message.replace("[", r"\[").replace("]", r"\]")):
         lamplight.Scene.from_dict(d).build()
     assert issubclass(lamplight.SceneError, ValueError)
+
+
+def test_dict_errors_are_the_file_errors_with_the_key_path(tmp_path):
+    # The same mistake in a dict and in a TOML file gives the same message;
+    # only the place differs (the key path instead of line:column).
+    d = lamplight.scene(camera=lamplight.camera(eye=[0, 0, 5], look_at=[0, 0, 0]), objects=[{"type": "sphere", "center": [0, 0, 0], "radious": 1}])
+    with pytest.raises(lamplight.SceneError) as from_dict:
+        lamplight.Scene.from_dict(d).build()
+    text = '[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\nvfov = 40\n[[objects]]\ntype = "sphere"\ncenter = [0, 0, 0]\nradious = 1\n'
+    (tmp_path / "s.toml").write_text(text)
+    with pytest.raises(lamplight.SceneError) as from_file:
+        lamplight.Scene(str(tmp_path / "s.toml")).build()
+    message = "sphere: unknown parameter 'radious' (did you mean 'radius'?)"
+    assert str(from_dict.value) == f"scene dict: objects[0].radious: {message}"
+    assert str(from_file.value) == f"{tmp_path / 's.toml'}:8:1: {message}"
 
 
 def test_scene_arguments_of_the_wrong_kind():

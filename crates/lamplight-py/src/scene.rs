@@ -243,6 +243,8 @@ impl Scene {
         let plain = convert::plain(camera)?;
         let table = convert::table(plain.bind(py), "camera")?;
         let desc = Node::from_table(table, "camera", Some("perspective"), false).map_err(dict_param_error)?;
+        // Checked now, so that a bad camera fails here rather than at the first render.
+        lamplight_scene::build::camera::camera(&desc, 1.0).map_err(dict_param_error)?;
         let origin = match &self.origin {
             Origin::Builtin(b) => Origin::Builtin(b),
             Origin::Toml(file) => Origin::Toml(file.clone()),
