@@ -37,7 +37,7 @@ pub static SHAPES: &[&ShapeKind] = &[
 ];
 
 /// Light kinds.
-pub static LIGHTS: &[&LightKind] = &[&lights::point::KIND, &lights::directional::KIND];
+pub static LIGHTS: &[&LightKind] = &[&lights::point::KIND, &lights::directional::KIND, &lights::spot::KIND];
 
 /// Material kinds; the first is the default `type`.
 pub static MATERIALS: &[&MaterialKind] = &[&materials::phong::KIND];

@@ -17,6 +17,7 @@ pub mod environment;
 pub mod mesh;
 pub mod point;
 mod set;
+pub mod spot;
 
 pub use area::AreaLight;
 pub use directional::DirectionalLight;
@@ -24,6 +25,7 @@ pub use environment::{EnvMap, Environment};
 pub use mesh::TriangleSampler;
 pub use point::{Falloff, PointLight};
 pub use set::{LightSet, Picked};
+pub use spot::{SpotLight, SpotProfile};
 
 /// What a light delivers to one point.
 #[derive(Clone, Copy, Debug, PartialEq)]
