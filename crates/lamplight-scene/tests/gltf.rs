@@ -54,7 +54,7 @@ fn scene_json(uri: Option<&str>, position_count: usize, extra_nodes: &str) -> St
   "extensions": {{"KHR_lights_punctual": {{"lights": [
     {{"type": "point", "color": [1, 1, 1], "intensity": 20}},
     {{"type": "directional", "intensity": 2}},
-    {{"type": "spot", "intensity": 3, "spot": {{}}}}
+    {{"type": "spot", "intensity": 3, "spot": {{"innerConeAngle": 0.25, "outerConeAngle": 0.5}}}}
   ]}}}},
   "accessors": [
     {{"bufferView": 0, "componentType": 5126, "count": {position_count}, "type": "VEC3", "min": [0,0,0], "max": [1,1,0]}},
@@ -123,14 +123,14 @@ fn check_scene(imported: &import::Imported) {
         ImportedLight::Directional(d) => assert_eq!((d.direction, d.radiance), (-Vec3::Z, Rgb::splat(2.0))),
         other => panic!("expected a directional light, got {other:?}"),
     }
-    assert!(matches!(imported.lights[2], ImportedLight::Point(_)), "spot -> point");
-    assert_eq!(
-        imported.warnings,
-        vec![
-            "glTF primitives of mode Lines ignored: only triangles (mode 4) are read".to_string(),
-            "glTF spot lights read as point lights (no spot light in lamplight yet)".to_string(),
-        ]
-    );
+    match &imported.lights[2] {
+        ImportedLight::Spot(s) => {
+            assert_eq!((s.intensity, s.axis, s.profile), (Rgb::splat(3.0), -Vec3::Z, lamplight_core::lights::SpotProfile::Gltf));
+            assert!((s.cos_inner - 0.25f64.cos()).abs() < 1e-7 && (s.cos_outer - 0.5f64.cos()).abs() < 1e-7);
+        }
+        other => panic!("expected a spot light, got {other:?}"),
+    }
+    assert_eq!(imported.warnings, vec!["glTF primitives of mode Lines ignored: only triangles (mode 4) are read".to_string(),]);
 }
 
 #[test]

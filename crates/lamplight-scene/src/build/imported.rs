@@ -79,6 +79,7 @@ pub fn build(path: &Path, imported: &Imported, aspect: f64) -> Result<Scene, Loa
         match light {
             ImportedLight::Point(l) => builder.light(l.clone()),
             ImportedLight::Directional(l) => builder.light(l.clone()),
+            ImportedLight::Spot(l) => builder.light(l.clone()),
         }
     }
     builder.build().map_err(fail)

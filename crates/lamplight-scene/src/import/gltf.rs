@@ -5,8 +5,8 @@
 //! every root node) with `matrix` or TRS transforms, triangle primitives (mode
 //! 4, indexed or not) as meshes, perspective cameras and `KHR_lights_punctual`
 //! lights; materials map as in [`super::gltf_material`]. The camera looks down
-//! its node's -Z with +Y up; a directional light shines along -Z. A spot light
-//! has no lamplight counterpart yet: it becomes a point light (warning). Light
+//! its node's -Z with +Y up; a directional light and a spot light shine along
+//! -Z, the spot light with the spec's cone profile ([`SpotProfile::Gltf`]). Light
 //! intensities (candela, lux) are taken as lamplight intensity/radiance as is.
 //!
 //! The `gltf` crate parses and validates the JSON (`Gltf::from_slice`, so a bad
@@ -25,7 +25,7 @@ use base64::engine::{general_purpose::GeneralPurpose, DecodePaddingMode, General
 use base64::Engine;
 use gltf::accessor::{DataType, Dimensions};
 use gltf::khr_lights_punctual::Kind;
-use lamplight_core::lights::{DirectionalLight, PointLight};
+use lamplight_core::lights::{DirectionalLight, PointLight, SpotLight, SpotProfile};
 use lamplight_core::materials::Material;
 use lamplight_core::math::{Mat4, Rgb, Vec3};
 
@@ -171,15 +171,14 @@ impl Reader<'_> {
             let at = format!("extensions.KHR_lights_punctual.lights[{}]", light.index());
             let power = Rgb::from_array(light.color().map(f64::from)) * f64::from(light.intensity());
             if light.range().is_some() {
-                self.warnings.once("glTF light range ignored: point lights fall off with the squared distance".to_string());
+                self.warnings.once("glTF light range ignored: point and spot lights fall off with the squared distance".to_string());
             }
             let made = match light.kind() {
                 Kind::Directional => DirectionalLight::new(forward, power).map(ImportedLight::Directional),
-                kind => {
-                    if matches!(kind, Kind::Spot { .. }) {
-                        self.warnings.once("glTF spot lights read as point lights (no spot light in lamplight yet)".to_string());
-                    }
-                    PointLight::new(origin, power).map(ImportedLight::Point)
+                Kind::Point => PointLight::new(origin, power).map(ImportedLight::Point),
+                Kind::Spot { inner_cone_angle, outer_cone_angle } => {
+                    let (inner, outer) = (f64::from(inner_cone_angle).to_degrees(), f64::from(outer_cone_angle).to_degrees());
+                    SpotLight::new(origin, forward, power, inner, outer, SpotProfile::Gltf).map(ImportedLight::Spot)
                 }
             };
             out.lights.push(made.map_err(|e| LoadError::json(self.path, at, e.to_string()))?);

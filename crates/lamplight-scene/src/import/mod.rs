@@ -10,7 +10,7 @@
 
 use std::path::Path;
 
-use lamplight_core::lights::{DirectionalLight, PointLight};
+use lamplight_core::lights::{DirectionalLight, PointLight, SpotLight};
 use lamplight_core::materials::Material;
 use lamplight_core::math::{Mat4, Vec3};
 
@@ -67,6 +67,8 @@ pub enum ImportedLight {
     Point(PointLight),
     /// Directional light.
     Directional(DirectionalLight),
+    /// Spot light (the glTF cone profile).
+    Spot(SpotLight),
 }
 
 /// Everything an importer read from one file.
