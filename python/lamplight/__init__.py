@@ -16,7 +16,7 @@ cluster. The tutorial is ``docs/python.md``.
 from __future__ import annotations
 
 from . import dask, objects
-from ._lamplight import Scene, SceneError, __version__, builtin_names
+from ._lamplight import Scene, SceneError, __version__, builtin_names, kinds
 from ._render import as_scene, load, render
 from .image import Image, read_exr, save
 from .objects import (
@@ -28,6 +28,7 @@ from .objects import (
     instance,
     material,
     mesh,
+    node,
     plane,
     point_light,
     rectangle,
@@ -44,6 +45,7 @@ __all__ = [
     "as_scene",
     "box",
     "builtin_names",
+    "kinds",
     "camera",
     "dask",
     "directional_light",
@@ -53,6 +55,7 @@ __all__ = [
     "load",
     "material",
     "mesh",
+    "node",
     "objects",
     "plane",
     "point_light",

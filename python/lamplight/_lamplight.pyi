@@ -87,6 +87,11 @@ class Scene:
 def builtin_names() -> List[str]:
     """Names of the built-in scenes, the default first."""
 
+def kinds() -> List[Dict[str, Any]]:
+    """Every registered kind: ``role`` (shape, light, node, material, texture,
+    camera), ``name``, ``summary`` and ``params`` (``name``, ``type``,
+    ``default`` (None when required), ``unit``, ``doc``)."""
+
 def scene_from_state(state: Tuple[str, Any, Optional[str], Optional[Dict[str, Any]]]) -> Scene:
     """Rebuilds a pickled :class:`Scene` (used by ``pickle``)."""
 

@@ -172,6 +172,36 @@ def group(
     )
 
 
+def node(type: str, **params: Any) -> Dict[str, Any]:  # noqa: A002
+    """A node of any registered kind (``lamplight.kinds()``): ``type`` and its
+    parameters as keywords, for example
+    ``node("spot_light", position=[0, 4, 0], look_at=[0, 0, 0], intensity=50)``."""
+    return _node(type, **params)
+
+
+def _constructor(kind: Dict[str, Any]):
+    def make(**params: Any) -> Dict[str, Any]:
+        return _node(kind["name"], **params)
+
+    rows = "\n".join(
+        f"    {p['name']} ({p['type']}{'' if p['default'] is None else ', default ' + p['default']}): {p['doc']}" for p in kind["params"]
+    )
+    make.__name__ = make.__qualname__ = kind["name"]
+    make.__doc__ = f"A {kind['name']} node: {kind['summary']}.\n\nKeyword parameters:\n{rows}"
+    return make
+
+
+def __getattr__(name: str):
+    """Constructors for registered node kinds without a hand-written one here
+    (``lamplight.objects.spot_light(position=..., ...)``), made from the registry."""
+    from . import _lamplight
+
+    for kind in _lamplight.kinds():
+        if kind["name"] == name and kind["role"] in ("shape", "light", "node"):
+            return _constructor(kind)
+    raise AttributeError(f"module 'lamplight.objects' has no attribute {name!r}")
+
+
 def instance(
     of: str,
     translate: Optional[Vec] = None,
@@ -194,6 +224,7 @@ __all__: List[str] = [
     "mesh",
     "mesh_data",
     "mesh_file",
+    "node",
     "plane",
     "point_light",
     "rectangle",

@@ -156,3 +156,25 @@ def test_with_camera_moves_the_view():
     assert small(moved).tobytes() != small(scene).tobytes()
     with pytest.raises(lamplight.SceneError, match="camera"):
         scene.with_camera({"eye": [0, 1, 2], "lookat": [0, 0, 0]})
+
+
+def test_every_registered_node_kind_has_a_constructor():
+    kinds = lamplight.kinds()
+    names = {k["name"] for k in kinds if k["role"] in ("shape", "light", "node")}
+    assert {"sphere", "spot_light", "group", "implicit"} <= names
+    for name in names:
+        make = getattr(lamplight.objects, name)
+        assert make.__name__ == name
+    sphere = next(k for k in kinds if k["name"] == "sphere")
+    assert [p["name"] for p in sphere["params"]] == ["center", "radius", "material"]
+    assert sphere["params"][1]["default"] is None, "radius is required"
+    spot = lamplight.objects.spot_light(position=[0, 3, 0], look_at=[0, 0, 0], intensity=40, outer_angle=30)
+    assert spot == {"type": "spot_light", "position": [0, 3, 0], "look_at": [0, 0, 0], "intensity": 40, "outer_angle": 30}
+    s = lamplight.scene(
+        camera=lamplight.camera(eye=[0, 3, 0.01], look_at=[0, 0, 0], vfov=60),
+        objects=[lamplight.rectangle([-5, 0, -5], [0, 0, 10], [10, 0, 0]), spot],
+    )
+    image = lamplight.render(s, width=32, height=32, progress=False)
+    assert image[16, 16].sum() > 0 and image[0, 0].sum() == 0, "lit inside the cone, dark outside"
+    with pytest.raises(AttributeError):
+        lamplight.objects.no_such_kind

@@ -12,6 +12,7 @@ use pyo3::prelude::*;
 pub mod convert;
 pub mod image;
 pub mod intersect;
+pub mod kinds;
 pub mod render;
 pub mod scene;
 
@@ -24,6 +25,7 @@ fn _lamplight(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scene::builtin_names, m)?)?;
     m.add_function(wrap_pyfunction!(scene::scene_from_state, m)?)?;
     m.add_function(wrap_pyfunction!(render::render_array, m)?)?;
+    m.add_function(wrap_pyfunction!(kinds::kinds, m)?)?;
     m.add_function(wrap_pyfunction!(image::write_image, m)?)?;
     m.add_function(wrap_pyfunction!(image::encode_png, m)?)?;
     m.add_function(wrap_pyfunction!(image::read_exr, m)?)?;
