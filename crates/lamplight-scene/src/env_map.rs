@@ -5,7 +5,6 @@
 //! `c = m 2^(e - 136)` (Greg Ward's format; the `image` crate decodes it),
 //! so each channel keeps about `1/256` of the pixel's brightest channel.
 
-use std::fs::File;
 use std::io::BufReader;
 use std::path::Path;
 
@@ -32,7 +31,8 @@ pub fn read_environment(path: &Path) -> Result<Image, ImageError> {
 /// Reads a Radiance RGBE (`.hdr`) file as linear RGB.
 pub fn read_hdr(path: &Path) -> Result<Image, ImageError> {
     let read_error = |reason: String| ImageError::Read { path: path.to_path_buf(), reason };
-    let file = File::open(path).map_err(|e| read_error(e.to_string()))?;
+    let (file, _) =
+        crate::input::open_regular(path, crate::image_io::MAX_IMAGE_FILE_BYTES).map_err(|r| read_error(crate::image_io::refusal(&r)))?;
     let decoded = image::ImageReader::with_format(BufReader::new(file), image::ImageFormat::Hdr)
         .decode()
         .map_err(|e| read_error(format!("not a valid Radiance .hdr file: {e}")))?;
@@ -70,7 +70,7 @@ mod tests {
         write_image(&exr, &image).unwrap();
         let hdr = dir.path().join("sky.HDR");
         let pixels: Vec<image::Rgb<f32>> = image.pixels.iter().map(|p| image::Rgb(*p)).collect();
-        let file = std::io::BufWriter::new(File::create(&hdr).unwrap());
+        let file = std::io::BufWriter::new(std::fs::File::create(&hdr).unwrap());
         image::codecs::hdr::HdrEncoder::new(file).encode(&pixels, w as usize, h as usize).unwrap();
 
         let a = read_environment(&exr).unwrap();

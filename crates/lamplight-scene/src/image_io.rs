@@ -222,16 +222,39 @@ pub fn read_png_srgb8(path: &Path) -> Result<(u32, u32, Vec<u8>), ImageError> {
 /// Reads the first RGB(A) layer of an OpenEXR file as linear float RGB (alpha is dropped).
 pub fn read_exr(path: &Path) -> Result<Image, ImageError> {
     let read_error = |reason: String| ImageError::Read { path: path.to_path_buf(), reason };
-    let exr = exr::prelude::read_first_rgba_layer_from_file(
-        path,
-        |size, _| Image::new(size.width() as u32, size.height() as u32),
-        |image: &mut Image, at, (r, g, b, _a): (f32, f32, f32, f32)| {
-            let width = image.width as usize;
-            image.pixels[at.y() * width + at.x()] = [r, g, b];
-        },
-    )
-    .map_err(|e| read_error(e.to_string()))?;
+    use exr::prelude::{ReadChannels, ReadLayers};
+    let (file, _) = crate::input::open_regular(path, MAX_IMAGE_FILE_BYTES).map_err(|r| read_error(refusal(&r)))?;
+    let exr = exr::prelude::read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .rgba_channels(
+            |size: exr::math::Vec2<usize>, _: &exr::prelude::RgbaChannels| Image::new(size.width() as u32, size.height() as u32),
+            |image: &mut Image, at: exr::math::Vec2<usize>, (r, g, b, _a): (f32, f32, f32, f32)| {
+                let width = image.width as usize;
+                image.pixels[at.y() * width + at.x()] = [r, g, b];
+            },
+        )
+        .first_valid_layer()
+        .all_attributes()
+        .from_buffered(std::io::BufReader::new(file))
+        .map_err(|e| read_error(e.to_string()))?;
     Ok(exr.layer_data.channel_data.pixels)
+}
+
+/// Largest image file read (an environment map or a texture), in bytes.
+pub const MAX_IMAGE_FILE_BYTES: u64 = 1 << 30;
+
+/// Why an input image was not read, in words.
+pub(crate) fn refusal(r: &crate::input::Refusal) -> String {
+    use crate::input::Refusal;
+    match r {
+        Refusal::NotFound => "no such file".to_string(),
+        Refusal::PermissionDenied => "permission denied".to_string(),
+        Refusal::Directory => "is a directory, expected an image file".to_string(),
+        Refusal::NotRegular => "is not a regular file (a pipe or a device), expected an image file".to_string(),
+        Refusal::TooLarge { len, max } => format!("is {len} bytes, larger than the {max} bytes an image file may have"),
+        Refusal::Io(e) => e.clone(),
+    }
 }
 
 #[cfg(test)]

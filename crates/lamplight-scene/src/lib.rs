@@ -16,6 +16,7 @@ pub mod exr_layers;
 pub mod formats;
 pub mod image_io;
 pub mod import;
+pub mod input;
 pub mod registry;
 
 pub use error::{LoadError, Location};

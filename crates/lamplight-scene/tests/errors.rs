@@ -44,7 +44,6 @@ fn malformed_inputs_give_their_exact_errors() {
         (with_camera("[[objects]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\naxis = [0, 1, 0]\n"), "s.toml:9:1: sphere: unknown parameter 'axis' (it takes: center, radius, material)"),
         (with_camera("[[objects]]\ntype = \"group\"\nchildren = [{ type = \"sphere\", colour = 2 }]\n"), "s.toml:7:32: sphere: unknown parameter 'colour' (it takes: center, radius, material)"),
         (with_camera("[[objects]]\ntype = \"sphere\"\nradius = \"big\"\n"), "s.toml:7:10: sphere: radius: expected a number, got a string \"big\""),
-        (with_camera("[[objects]]\ntype = \"blob\"\n"), "s.toml:6:8: blob: unknown node type (node types: group, instance, mesh, point_light, directional_light, sphere, ellipsoid, cylinder, cone, infinite_cylinder, infinite_cone, paraboloid, hyperboloid, quadric, plane, rectangle, disk, box, triangle, torus, implicit)"),
         (with_camera("[[objects]]\ncenter = [0, 0, 0]\n"), "s.toml:5:1: objects[0]: needs `type` (a string naming what the node is)"),
         (with_camera("[[objects]]\ntype = \"sphere\"\nradius = 1\ncenter = [0, 0, 0]\nmaterial = \"gold\"\n"), "s.toml:9:12: sphere: material: unknown material \"gold\" (materials: none defined)"),
         (with_camera("[materials.m]\ncolor = -1\n"), "s.toml:6:9: material \"m\": invalid color: must be finite and non-negative, got [-1, -1, -1]"),
@@ -59,6 +58,9 @@ fn malformed_inputs_give_their_exact_errors() {
         (with_camera("[[objects]]\ntype = \"point_light\"\nposition = [0, 0, 0]\nintensity = 1\nown_object = \"bulb\"\n"), "s.toml:9:14: point_light: own_object: \"bulb\" names no shape"),
         ("[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 5]\nvfov = 40\n".into(), "s.toml:1:1: camera: invalid camera: eye and lookat coincide"),
     ];
+    // The list of node types comes from the registry, so a new kind changes no test.
+    let blob = format!("s.toml:6:8: blob: unknown node type (node types: {})", lamplight_scene::registry::node_types().join(", "));
+    let cases: Vec<(String, &str)> = cases.into_iter().chain([(with_camera("[[objects]]\ntype = \"blob\"\n"), blob.as_str())]).collect();
     let mut failures = Vec::new();
     for (text, expected) in &cases {
         let got = error(text);
@@ -82,6 +84,19 @@ fn file_level_problems_name_the_file() {
     let binary = dir.path().join("bin.toml");
     std::fs::write(&binary, b"[camera]\n\xff\xfe").unwrap();
     assert_eq!(SceneFile::read(&binary).unwrap_err().to_string(), format!("{}:2:1: invalid UTF-8, expected a text file", binary.display()));
+    // A link to a device and a FIFO would be read forever or block: refused at once.
+    #[cfg(unix)]
+    {
+        let zero = dir.path().join("z.toml");
+        std::os::unix::fs::symlink("/dev/zero", &zero).unwrap();
+        let expected = format!("{}: is not a regular file (a pipe or a device), expected a scene file", zero.display());
+        assert_eq!(SceneFile::read(&zero).unwrap_err().to_string(), expected);
+        let fifo = dir.path().join("f.toml");
+        if std::process::Command::new("mkfifo").arg(&fifo).status().is_ok_and(|s| s.success()) {
+            let expected = format!("{}: is not a regular file (a pipe or a device), expected a scene file", fifo.display());
+            assert_eq!(SceneFile::read(&fifo).unwrap_err().to_string(), expected);
+        }
+    }
     // A file larger than any scene needs is refused before it is read.
     let large = dir.path().join("large.toml");
     let file = std::fs::File::create(&large).unwrap();

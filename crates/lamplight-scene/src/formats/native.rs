@@ -15,6 +15,7 @@ use toml::de::{DeTable, DeValue};
 
 use crate::description::SceneDescription;
 use crate::error::{LoadError, Location};
+use crate::input::{self, Refusal};
 
 /// Largest scene file read, in bytes. Mesh data belongs in mesh files; this
 /// bounds the memory a malformed or hostile file can make the parser use.
@@ -80,17 +81,19 @@ pub fn line_column(text: &str, offset: usize) -> (usize, usize) {
 
 /// Reads and parses the scene file at `path`.
 pub fn read(path: &Path) -> Result<(SceneDescription, Source), LoadError> {
-    let meta = std::fs::metadata(path).map_err(|e| LoadError::file(path, io_message(&e)))?;
-    if meta.is_dir() {
-        return Err(LoadError::file(path, "is a directory, expected a scene file"));
-    }
-    if meta.len() > MAX_FILE_BYTES {
-        return Err(LoadError::file(
+    let bytes = input::read_regular(path, MAX_FILE_BYTES).map_err(|r| {
+        LoadError::file(
             path,
-            format!("is {} bytes, larger than the {MAX_FILE_BYTES} bytes a scene file may have", meta.len()),
-        ));
-    }
-    let bytes = std::fs::read(path).map_err(|e| LoadError::file(path, io_message(&e)))?;
+            match r {
+                Refusal::NotFound => "no such file".to_string(),
+                Refusal::PermissionDenied => "permission denied".to_string(),
+                Refusal::Directory => "is a directory, expected a scene file".to_string(),
+                Refusal::NotRegular => "is not a regular file (a pipe or a device), expected a scene file".to_string(),
+                Refusal::TooLarge { len, max } => format!("is {len} bytes, larger than the {max} bytes a scene file may have"),
+                Refusal::Io(e) => format!("cannot read: {e}"),
+            },
+        )
+    })?;
     let text = String::from_utf8(bytes).map_err(|e| {
         let (line, column) = line_column(&String::from_utf8_lossy(e.as_bytes()), e.utf8_error().valid_up_to());
         LoadError::at(path, line, column, "invalid UTF-8, expected a text file")
@@ -172,14 +175,6 @@ fn parse_float(text: &str) -> Option<f64> {
 /// The TOML parser's messages, made one line.
 fn tidy(message: &str) -> String {
     message.trim().replace('\n', "; ")
-}
-
-fn io_message(e: &std::io::Error) -> String {
-    match e.kind() {
-        std::io::ErrorKind::NotFound => "no such file".to_string(),
-        std::io::ErrorKind::PermissionDenied => "permission denied".to_string(),
-        _ => format!("cannot read: {e}"),
-    }
 }
 
 #[cfg(test)]

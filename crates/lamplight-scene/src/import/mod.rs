@@ -147,24 +147,26 @@ impl Imported {
     }
 }
 
-/// Reads a whole file, naming a missing file, a directory or an unreadable one.
-pub(crate) fn read_file(path: &Path) -> Result<Vec<u8>, LoadError> {
-    let meta = std::fs::metadata(path).map_err(|e| io_error(path, &e))?;
-    if meta.is_dir() {
-        return Err(LoadError::file(path, "is a directory, expected a file"));
-    }
-    // Devices and pipes (`/dev/zero`, `/dev/stdin`) could never end or block forever.
-    if !meta.is_file() {
-        return Err(LoadError::file(path, "is not a regular file"));
-    }
-    std::fs::read(path).map_err(|e| io_error(path, &e))
-}
+/// Largest mesh file read, in bytes (a 1 GiB mesh is some 40 million triangles).
+pub const MAX_MESH_BYTES: u64 = 1 << 30;
 
-fn io_error(path: &Path, e: &std::io::Error) -> LoadError {
-    match e.kind() {
-        std::io::ErrorKind::NotFound => LoadError::file(path, "file not found"),
-        _ => LoadError::file(path, format!("cannot read the file: {e}")),
-    }
+/// Reads a whole file, naming a missing file, a directory, a pipe or device, or
+/// an unreadable one.
+pub(crate) fn read_file(path: &Path) -> Result<Vec<u8>, LoadError> {
+    crate::input::read_regular(path, MAX_MESH_BYTES).map_err(|r| {
+        use crate::input::Refusal;
+        LoadError::file(
+            path,
+            match r {
+                Refusal::NotFound => "file not found".to_string(),
+                Refusal::Directory => "is a directory, expected a file".to_string(),
+                Refusal::NotRegular => "is not a regular file".to_string(),
+                Refusal::TooLarge { len, max } => format!("is {len} bytes, larger than the {max} bytes a mesh file may have"),
+                Refusal::PermissionDenied => "cannot read the file: permission denied".to_string(),
+                Refusal::Io(e) => format!("cannot read the file: {e}"),
+            },
+        )
+    })
 }
 
 /// Whitespace-separated words of a line with their 1-based character columns.
