@@ -97,23 +97,44 @@ def scene_from_state(state: Tuple[str, Any, Optional[str], Optional[Dict[str, An
 
 def render_array(
     scene: Scene,
-    width: int,
-    height: int,
-    spp: int = 1,
-    integrator: str = "whitted",
+    width: Optional[int] = None,
+    height: Optional[int] = None,
+    spp: Optional[int] = None,
+    integrator: Optional[str] = None,
     threads: int = 0,
-    seed: int = 0,
+    seed: Optional[int] = None,
     max_depth: Optional[int] = None,
     window: Optional[Tuple[int, int, int, int]] = None,
     progress: Optional[Callable[[int, int], Any]] = None,
     time_limit: Optional[float] = None,
-    filter: str = "box",
-) -> Tuple[npt.NDArray[np.float32], Dict[str, Any]]:
-    """The render under :func:`lamplight.render`: a float32 array ``(h, w, 3)``
-    and a dict of statistics. Releases the GIL; Ctrl-C cancels."""
+    filter: Optional[str] = None,
+    environment: Optional[str] = None,
+    exr_layers: Optional[List[str]] = None,
+) -> Tuple[npt.NDArray[np.float32], Dict[str, Any], Dict[str, npt.NDArray[np.float32]]]:
+    """The render under :func:`lamplight.render`: a float32 array ``(h, w, 3)``,
+    a dict of statistics and a dict of the extra layers asked for. Settings left
+    ``None`` come from the scene, then the defaults (the command line's request
+    layer). Releases the GIL; Ctrl-C cancels."""
 
-def write_image(path: _Path, array: npt.NDArray[np.float32], exposure: float = 0.0, tonemap: str = "clamp") -> None:
-    """Writes ``(H, W, 3)`` float32 linear radiance as ``.png``, ``.ppm`` or ``.exr``, atomically."""
+def resolve_settings(
+    scene: Scene,
+    width: Optional[int] = None,
+    height: Optional[int] = None,
+    spp: Optional[int] = None,
+    integrator: Optional[str] = None,
+    seed: Optional[int] = None,
+) -> Tuple[int, int, int, str, int]:
+    """``(width, height, spp, integrator, seed)`` a render with these arguments would use."""
+
+def write_image(
+    path: _Path,
+    array: npt.NDArray[np.float32],
+    exposure: float = 0.0,
+    tonemap: str = "clamp",
+    layers: Optional[Dict[str, npt.NDArray[np.float32]]] = None,
+) -> None:
+    """Writes ``(H, W, 3)`` float32 linear radiance as ``.png``, ``.ppm`` or ``.exr``
+    (with extra ``layers`` for ``.exr``), atomically."""
 
 def encode_png(array: npt.NDArray[np.float32], exposure: float = 0.0, tonemap: str = "clamp") -> bytes:
     """PNG bytes of an ``(H, W, 3)`` float32 image (8-bit sRGB)."""

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import os
 import sys
-from typing import Any, Callable, Optional, Tuple, Union
+from typing import Any, Callable, Optional, Sequence, Tuple, Union
 
 from . import _lamplight
 from ._lamplight import Scene
@@ -35,27 +35,20 @@ def load(path: Union[str, "os.PathLike[str]"]) -> Scene:
 
 def resolve(scene: Scene, width, height, spp, integrator, seed) -> Tuple[int, int, int, str, int]:
     """Size, samples, integrator and seed: the arguments, else the scene's own
-    settings. With only a width or only a height the other side keeps the
-    scene's aspect, as on the command line."""
-    d = scene.defaults()
-    for name, value in (("width", width), ("height", height), ("spp", spp), ("seed", seed)):
+    settings, else the defaults, resolved by the same request layer as the
+    command line (with only a width or only a height the other side keeps the
+    scene's aspect)."""
+    _check_ints(width=width, height=height, spp=spp, seed=seed)
+    return _lamplight.resolve_settings(scene, width, height, spp, integrator, seed)
+
+
+def _check_ints(**values) -> None:
+    """Python's own types first, so that ``width=2.5`` says what it is."""
+    for name, value in values.items():
         if value is not None and (isinstance(value, bool) or not isinstance(value, int)):
             raise TypeError(f"{name} must be an int, got {type(value).__name__}")
-        if value is not None and value < (0 if name == "seed" else 1):
+        if value is not None and value < 0:
             raise ValueError(f"{name} must be at least {0 if name == 'seed' else 1}, got {value}")
-    if width is not None and height is None:
-        height = max(1, round(width * d["height"] / d["width"]))
-    elif height is not None and width is None:
-        width = max(1, round(height * d["width"] / d["height"]))
-    elif width is None:
-        width, height = d["width"], d["height"]
-    return (
-        width,
-        height,
-        spp if spp is not None else d["spp"],
-        integrator if integrator is not None else d["integrator"],
-        seed if seed is not None else d["seed"],
-    )
 
 
 def _in_notebook() -> bool:
@@ -98,14 +91,17 @@ def render(
     max_depth: Optional[int] = None,
     progress: Progress = None,
     time_limit: Optional[float] = None,
-    filter: str = "box",
+    filter: Optional[str] = None,
     window: Optional[Tuple[int, int, int, int]] = None,
     base_dir: Optional[Union[str, "os.PathLike[str]"]] = None,
+    environment: Optional[Union[str, "os.PathLike[str]"]] = None,
+    exr_layers: Optional[Sequence[str]] = None,
 ) -> Image:
     """Renders ``scene`` and returns an :class:`Image`: a float32 array
     ``(height, width, 3)`` of linear radiance, the numbers ``lamplight render``
     writes to an ``.exr`` file for the same settings.
 
+    Every option of ``lamplight render`` is here, resolved by the same code:
     ``width``, ``height``, ``spp``, ``integrator`` (``"whitted"`` or ``"path"``)
     and ``seed`` default to the scene's own settings; ``threads=0`` uses every
     core (the image does not depend on it). ``progress`` is a callable
@@ -113,18 +109,35 @@ def render(
     ``None`` shows a bar on a terminal or in Jupyter when tqdm is installed.
     Ctrl-C stops the render and raises ``KeyboardInterrupt``. ``window =
     (x0, y0, w, h)`` renders only those pixels of the full image (exactly the
-    values the full render has there). ``time_limit`` (seconds) and ``filter``
-    (``"box"``, ``"gaussian"``) concern the path tracer.
+    values the full render has there). ``time_limit`` (seconds), ``filter``
+    (``"box"``, ``"gaussian"``), ``environment`` (an ``.exr`` or ``.hdr``
+    equirectangular map lighting the scene) and ``exr_layers`` (``"variance"``,
+    ``"samples"``: kept in ``image.layers`` and written by ``image.save`` to an
+    ``.exr`` file) concern the path tracer.
     """
     s = as_scene(scene, base_dir)
-    width, height, spp, integrator, seed = resolve(s, width, height, spp, integrator, seed)
+    _check_ints(width=width, height=height, spp=spp, seed=seed, max_depth=max_depth, threads=threads)
     callback, close = progress_reporter(progress)
     try:
-        array, stats = _lamplight.render_array(
-            s, width, height, spp, integrator, threads, seed, max_depth, window, callback, time_limit, filter
+        array, stats, layers = _lamplight.render_array(
+            s,
+            width,
+            height,
+            spp,
+            integrator,
+            threads,
+            seed,
+            max_depth,
+            window,
+            callback,
+            time_limit,
+            filter,
+            os.fspath(environment) if environment is not None else None,
+            list(exr_layers) if exr_layers is not None else None,
         )
     finally:
         close()
     image = Image(array)
     image.stats = stats
+    image.layers = layers
     return image

@@ -179,7 +179,7 @@ def _worker_scene(payload: Union[Scene, _Shipped], digest: str) -> Scene:
 def _render_tile(payload, digest: str, options: Dict[str, Any], window: Tuple[int, int, int, int]) -> np.ndarray:
     from ._lamplight import render_array
 
-    array, _ = render_array(_worker_scene(payload, digest), window=window, progress=None, **options)
+    array, _, _ = render_array(_worker_scene(payload, digest), window=window, progress=None, **options)
     return array
 
 
@@ -189,7 +189,7 @@ def _render_frame(payload, digest: str, camera: Optional[dict], options: Dict[st
     scene = _worker_scene(payload, digest)
     if camera is not None:
         scene = scene.with_camera(camera)
-    array, _ = render_array(scene, progress=None, **options)
+    array, _, _ = render_array(scene, progress=None, **options)
     return array
 
 

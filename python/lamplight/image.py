@@ -18,16 +18,21 @@ class Image(np.ndarray):
 
     In Jupyter it displays itself as an sRGB PNG (clamped); :meth:`save` writes
     ``.png``/``.ppm`` (8-bit sRGB) or ``.exr`` (linear float, exact).
-    ``stats`` holds the render's statistics when it came from a render.
+    ``stats`` holds the render's statistics when it came from a render, and
+    ``layers`` the extra layers it asked for (``exr_layers``): ``"variance"``
+    ``(H, W, 3)`` and ``"samples"`` ``(H, W)``, which :meth:`save` writes beside
+    the image into an ``.exr`` file.
     """
 
     stats: dict
+    layers: dict
 
     def __new__(cls, array) -> "Image":
         return np.asarray(array, dtype=np.float32).view(cls)
 
     def __array_finalize__(self, obj) -> None:
         self.stats = getattr(obj, "stats", {})
+        self.layers = getattr(obj, "layers", {})
 
     def _is_image(self) -> bool:
         return self.ndim == 3 and self.shape[2] == 3 and self.shape[0] > 0 and self.shape[1] > 0 and self.dtype == np.float32
@@ -42,8 +47,11 @@ class Image(np.ndarray):
         return _lamplight.encode_png(_plain(self), exposure, tonemap)
 
     def save(self, path: PathLike, exposure: float = 0.0, tonemap: str = "clamp") -> None:
-        """Writes the image to ``path`` (see :func:`save`)."""
-        save(path, self, exposure=exposure, tonemap=tonemap)
+        """Writes the image to ``path`` (see :func:`save`), with its ``layers``
+        when ``path`` is an ``.exr`` file."""
+        exr = os.fspath(path).lower().endswith(".exr")
+        layers = {k: np.ascontiguousarray(v, dtype=np.float32) for k, v in self.layers.items()} if exr and self.layers else None
+        _lamplight.write_image(os.fspath(path), _plain(self), exposure, tonemap, layers)
 
 
 def _plain(array) -> np.ndarray:

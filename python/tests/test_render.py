@@ -83,7 +83,7 @@ def test_ctrl_c_interrupts_a_long_render():
 @pytest.mark.parametrize(
     "kwargs, error, message",
     [
-        (dict(spp=0), ValueError, "spp must be at least 1"),
+        (dict(spp=0), ValueError, "spp must be between 1 and 1048576, got 0"),
         (dict(width=0), ValueError, "width must be at least 1"),
         (dict(width=2.5), TypeError, "width must be an int"),
         (dict(integrator="photon"), ValueError, "integrator must be"),
@@ -92,7 +92,7 @@ def test_ctrl_c_interrupts_a_long_render():
         (dict(window=(0, 0, 100, 1)), ValueError, "inside the 32x32 image"),
         (dict(time_limit=-1.0), ValueError, "time_limit must be a positive"),
         (dict(filter="lanczos"), ValueError, "filter must be"),
-        (dict(width=1 << 20, height=1 << 20), ValueError, "at most 2\\^28 pixels"),
+        (dict(width=1 << 20, height=1 << 20), ValueError, "image 1048576x1048576 is too large \\(at most 268435456 pixels\\)"),
     ],
 )
 def test_bad_arguments_raise(kwargs, error, message):
@@ -125,3 +125,32 @@ def test_progress_true_shows_a_tqdm_bar(capsys):
     assert "lamplight" in err and "tile" in err, err
     lamplight.render("business-card", progress=False)
     assert capsys.readouterr().err == ""
+
+
+def test_environment_and_exr_layers_equal_the_command_line(cli, tmp_path):
+    # A sky brighter upwards, as an .exr map both front ends read.
+    sky = np.zeros((8, 16, 3), dtype=np.float32)
+    sky[:4] = [1.0, 0.9, 0.8]
+    sky[4:] = [0.1, 0.1, 0.1]
+    lamplight.save(tmp_path / "sky.exr", sky)
+    args = dict(width=16, height=16, spp=4, integrator="path")
+    out = tmp_path / "cli.exr"
+    flags = [f"--{k.replace('_', '-')}={v}" for k, v in args.items()]
+    subprocess.run(
+        [cli, "render", "cornell-box", "-o", str(out), "--quiet", "--environment", str(tmp_path / "sky.exr"), "--exr-layers", "variance,samples", *flags],
+        check=True,
+    )
+    image = lamplight.render("cornell-box", progress=False, environment=tmp_path / "sky.exr", exr_layers=["variance", "samples"], **args)
+    assert image.tobytes() == lamplight.read_exr(out).tobytes()
+    plain = lamplight.render("cornell-box", progress=False, **args)
+    assert image.tobytes() != plain.tobytes(), "the environment lights the scene"
+    assert set(image.layers) == {"variance", "samples"}
+    assert image.layers["variance"].shape == (16, 16, 3) and image.layers["variance"].max() > 0
+    assert (image.layers["samples"] == 4).all()
+    # Saved, the layers are the command line's file's layers.
+    image.save(tmp_path / "py.exr")
+    assert (tmp_path / "py.exr").read_bytes() == out.read_bytes()
+    with pytest.raises(ValueError, match='exr_layers needs integrator="path"'):
+        lamplight.render("spheres", width=8, height=8, exr_layers=["samples"], progress=False)
+    with pytest.raises(ValueError, match="unknown layer 'depth'"):
+        lamplight.render("cornell-box", width=8, height=8, integrator="path", exr_layers=["depth"], progress=False)

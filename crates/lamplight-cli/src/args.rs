@@ -1,33 +1,18 @@
 //! Command-line arguments in two stages (ripgrep's lowargs/hiargs split): clap
-//! parses the raw flags into [`Cli`], then [`RenderArgs::validate`] checks them
-//! and resolves defaults into a [`RenderJob`] that says exactly what to do.
-//! Every rejection is a [`UsageError`] with a one-line message (exit code 2).
+//! parses the raw flags into [`Cli`], then [`RenderArgs::validate`] hands them to
+//! the scene crate's request layer (`lamplight_scene::request`, shared with
+//! Python), which resolves defaults and limits into a [`RenderJob`]. Every
+//! rejection is a [`UsageError`] with a one-line message (exit code 2).
 
 use std::fmt;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
 use lamplight_core::film::tonemap::ToneMap;
-use lamplight_core::film::Filter;
 use lamplight_core::integrators::IntegratorKind;
-use lamplight_core::RenderOptions;
-use lamplight_scene::build::SceneFile;
-use lamplight_scene::builtin::{self, Builtin};
+use lamplight_scene::builtin;
 use lamplight_scene::image_io::Format;
-use lamplight_scene::import;
-
-/// Deepest allowed `--max-depth`. Whitted tracing may spawn a reflected and a
-/// refracted ray at every hit, so a camera ray's work grows as `2^depth`: 64 levels
-/// already allow more rays than any render could trace, and a larger value can
-/// only be a typo (such as 1000 for 10), which would otherwise look like a hang.
-pub const MAX_DEPTH_LIMIT: u32 = 64;
-
-/// Most allowed `--threads`: far above any machine's cores; more threads would only
-/// cost memory and scheduling, and huge counts make the thread pool fail.
-pub const MAX_THREADS: usize = 1024;
-
-/// Most pixels in an image: the core renderer's limit (`2^28`, e.g. 16384x16384).
-pub const MAX_PIXELS: u64 = 1 << 28;
+use lamplight_scene::request::{Display, Job, Layer, Naming, Request, RequestError, SceneRequest};
 
 /// The `lamplight` command line.
 #[derive(Debug, Parser)]
@@ -87,13 +72,13 @@ pub struct RenderArgs {
     /// How light is computed: `whitted` (the lecture's ray tracer) or `path` (path tracing with NEE and MIS)
     /// [default: the file's, else whitted].
     #[arg(long, value_name = "NAME")]
-    pub integrator: Option<IntegratorKind>,
+    pub integrator: Option<String>,
     /// Path tracer: stop after the last complete pass before this many seconds.
     #[arg(long, value_name = "SECONDS")]
     pub time_limit: Option<f64>,
     /// Path tracer: pixel reconstruction filter, `box` or `gaussian` (sigma 0.5 pixel).
     #[arg(long, value_name = "NAME", default_value = "box")]
-    pub filter: Filter,
+    pub filter: String,
     /// Exposure in stops for .png/.ppm output (the image is scaled by 2^EV).
     #[arg(long, value_name = "EV", default_value_t = 0.0, allow_negative_numbers = true)]
     pub exposure: f64,
@@ -121,40 +106,23 @@ pub enum ExrLayer {
     Samples,
 }
 
-/// Where the scene comes from.
-#[derive(Debug)]
-pub enum SceneSource {
-    /// A built-in scene.
-    Builtin(&'static Builtin),
-    /// A native scene file, parsed.
-    File(Box<SceneFile>),
-    /// A mesh file for an importer.
-    Mesh(PathBuf),
-}
-
 /// A render request, checked and with every default resolved.
 #[derive(Debug)]
 pub struct RenderJob {
     /// The scene.
-    pub scene: SceneSource,
-    /// Its name in messages.
-    pub name: String,
+    pub scene: SceneRequest,
     /// Where the image goes.
     pub output: PathBuf,
-    /// Size, samples, depth, threads and seed.
-    pub options: RenderOptions,
+    /// Size, samples, depth, threads, seed, environment and layers.
+    pub job: Job,
     /// Whether to stay silent.
     pub quiet: bool,
-    /// Exposure in stops for display formats.
-    pub exposure: f64,
-    /// Tone map for display formats.
-    pub tonemap: ToneMap,
-    /// An environment map replacing the scene's sky.
-    pub environment: Option<PathBuf>,
+    /// Exposure and tone map for display formats.
+    pub display: Display,
     /// Where the path tracer's variance image goes.
     pub variance_output: Option<PathBuf>,
-    /// Extra layers of the .exr output (path tracer), each at most once.
-    pub exr_layers: Vec<ExrLayer>,
+    /// Whether the output file itself holds the variance layer (`--exr-layers variance`).
+    pub variance_in_output: bool,
 }
 
 /// Bad input from the user: the program exits with code 2.
@@ -169,151 +137,68 @@ impl fmt::Display for UsageError {
 
 impl std::error::Error for UsageError {}
 
+impl From<RequestError> for UsageError {
+    fn from(e: RequestError) -> UsageError {
+        UsageError(e.0)
+    }
+}
+
 fn usage(message: impl Into<String>) -> UsageError {
     UsageError(message.into())
 }
 
 impl RenderArgs {
-    /// Checks the flags, reads a scene file, and resolves the defaults: flags
-    /// override the file's settings, which override the program's defaults.
+    /// Checks the flags, reads a scene file, and resolves the defaults through
+    /// the scene crate's request layer (shared with Python): flags override the
+    /// file's settings, which override the program's defaults.
     pub fn validate(self) -> Result<RenderJob, UsageError> {
-        let (scene, name, defaults) = resolve_scene(&self.scene)?;
-        let (width, height) = image_size(self.width, self.height, defaults.size)?;
-        let spp = self.spp.unwrap_or(defaults.spp);
-        if spp == 0 {
-            return Err(usage("--spp must be at least 1"));
-        }
-        if let Some(depth) = self.max_depth {
-            if !(1..=MAX_DEPTH_LIMIT).contains(&depth) {
-                return Err(usage(format!("--max-depth must be between 1 and {MAX_DEPTH_LIMIT}, got {depth} (work grows as 2^depth)")));
-            }
-        }
-        if self.threads > MAX_THREADS {
-            return Err(usage(format!("--threads must be at most {MAX_THREADS} (0 uses all cores), got {}", self.threads)));
-        }
-        let time_limit = match self.time_limit {
-            None => None,
-            Some(t) if t.is_finite() && t > 0.0 && t < 1e9 => Some(std::time::Duration::from_secs_f64(t)),
-            Some(t) => return Err(usage(format!("--time-limit must be a positive number of seconds, got {t}"))),
-        };
+        let scene = SceneRequest::resolve(&self.scene)?;
         if !self.exposure.is_finite() {
             return Err(usage("--exposure must be a finite number"));
         }
-        let integrator = self.integrator.unwrap_or(defaults.integrator);
+        let request = Request {
+            width: self.width,
+            height: self.height,
+            spp: self.spp,
+            max_depth: self.max_depth,
+            threads: Some(self.threads),
+            seed: self.seed,
+            integrator: self.integrator,
+            time_limit: self.time_limit,
+            filter: Some(self.filter),
+            window: None,
+            environment: self.environment,
+            layers: self
+                .exr_layers
+                .iter()
+                .map(|l| match l {
+                    ExrLayer::Variance => Layer::Variance,
+                    ExrLayer::Samples => Layer::Samples,
+                })
+                .collect(),
+        };
+        let mut job = request.resolve(&scene.defaults, Naming::Flags)?;
+        let output = self.output.unwrap_or_else(|| PathBuf::from(format!("{}.png", scene.name)));
+        let format = Format::from_path(&output).map_err(|e| usage(e.to_string()))?;
+        if !job.layers.is_empty() && format != Format::Exr {
+            return Err(usage("--exr-layers needs an .exr output file"));
+        }
         let variance_output = self.variance_output;
+        let variance_in_output = job.layers.contains(&Layer::Variance);
         if let Some(path) = &variance_output {
-            if integrator != IntegratorKind::Path {
+            if job.options.integrator != IntegratorKind::Path {
                 return Err(usage("--variance-output needs --integrator path"));
             }
             if Format::from_path(path).map_err(|e| usage(e.to_string()))? != Format::Exr {
                 return Err(usage("--variance-output must be an .exr file"));
             }
-        }
-        let output = self.output.unwrap_or_else(|| PathBuf::from(format!("{name}.png")));
-        let format = Format::from_path(&output).map_err(|e| usage(e.to_string()))?;
-        let mut exr_layers = self.exr_layers;
-        exr_layers.dedup();
-        if !exr_layers.is_empty() {
-            if integrator != IntegratorKind::Path {
-                return Err(usage("--exr-layers needs --integrator path"));
-            }
-            if format != Format::Exr {
-                return Err(usage("--exr-layers needs an .exr output file"));
+            if !job.layers.contains(&Layer::Variance) {
+                job.layers.push(Layer::Variance);
             }
         }
-        let options = RenderOptions {
-            width,
-            height,
-            spp,
-            max_depth: self.max_depth,
-            threads: self.threads,
-            seed: self.seed.unwrap_or(defaults.seed),
-            integrator,
-            time_limit,
-            filter: self.filter,
-            window: None,
-        };
-        Ok(RenderJob {
-            scene,
-            name,
-            output,
-            options,
-            quiet: self.quiet,
-            exposure: self.exposure,
-            tonemap: self.tonemap,
-            environment: self.environment,
-            variance_output,
-            exr_layers,
-        })
+        let display = Display { exposure: self.exposure, tonemap: self.tonemap };
+        Ok(RenderJob { scene, output, job, quiet: self.quiet, display, variance_output, variance_in_output })
     }
-}
-
-/// Size, samples, seed and integrator a scene asks for when no flag is given.
-struct Defaults {
-    size: (u32, u32),
-    spp: u32,
-    seed: u64,
-    integrator: IntegratorKind,
-}
-
-/// The scene `arg` names: a built-in name (no path separator, no extension), a
-/// `.toml` scene file (read and parsed here, so that a bad file stops before any
-/// work), or a mesh file.
-fn resolve_scene(arg: &str) -> Result<(SceneSource, String, Defaults), UsageError> {
-    let path = Path::new(arg);
-    let has_separator = arg.contains('/') || arg.contains(std::path::MAIN_SEPARATOR);
-    let extension = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
-    if !has_separator && extension.is_none() {
-        let b = builtin::find(arg).ok_or_else(|| usage(format!("unknown scene '{arg}' (built-in scenes: {})", builtin::names())))?;
-        return Ok((
-            SceneSource::Builtin(b),
-            b.name.to_string(),
-            Defaults { size: b.default_size, spp: 1, seed: 0, integrator: IntegratorKind::Whitted },
-        ));
-    }
-    let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "scene".into());
-    match extension.as_deref() {
-        Some("toml") => {
-            let file = SceneFile::read(path).map_err(|e| usage(e.to_string()))?;
-            let s = file.settings().map_err(|e| usage(e.to_string()))?;
-            Ok((
-                SceneSource::File(Box::new(file)),
-                stem,
-                Defaults { size: (s.width, s.height), spp: s.spp, seed: s.seed, integrator: s.integrator },
-            ))
-        }
-        Some(ext) if import::EXTENSIONS.contains(&ext) => Ok((
-            SceneSource::Mesh(path.to_path_buf()),
-            stem,
-            Defaults { size: (640, 360), spp: 1, seed: 0, integrator: IntegratorKind::Whitted },
-        )),
-        _ => Err(usage(format!(
-            "{arg}: unknown scene file type, expected .toml or a mesh file ({})",
-            import::EXTENSIONS.iter().map(|e| format!(".{e}")).collect::<Vec<_>>().join(", ")
-        ))),
-    }
-}
-
-/// The image size from the flags: both given, one given (the other follows the
-/// default aspect, rounded, at least 1), or the default.
-fn image_size(width: Option<u32>, height: Option<u32>, default: (u32, u32)) -> Result<(u32, u32), UsageError> {
-    for (flag, value) in [("--width", width), ("--height", height)] {
-        if value == Some(0) {
-            return Err(usage(format!("{flag} must be at least 1")));
-        }
-    }
-    let (dw, dh) = (default.0 as f64, default.1 as f64);
-    let scaled = |v: u32, ratio: f64| ((v as f64 * ratio).round().max(1.0)).min(u32::MAX as f64) as u32;
-    let (w, h) = match (width, height) {
-        (Some(w), Some(h)) => (w, h),
-        (Some(w), None) => (w, scaled(w, dh / dw)),
-        (None, Some(h)) => (scaled(h, dw / dh), h),
-        (None, None) => default,
-    };
-    if w as u64 * h as u64 > MAX_PIXELS {
-        return Err(usage(format!("image {w}x{h} is too large (at most {MAX_PIXELS} pixels)")));
-    }
-    Ok((w, h))
 }
 
 #[cfg(test)]
@@ -332,20 +217,11 @@ mod tests {
     fn defaults_come_from_the_first_builtin() {
         let job = parse(&[]).unwrap();
         let first = &builtin::BUILTINS[0];
-        assert!(matches!(job.scene, SceneSource::Builtin(b) if b.name == first.name));
+        assert!(matches!(job.scene.spec, lamplight_scene::request::SceneSpec::Builtin(b) if b.name == first.name));
         assert_eq!(job.output, PathBuf::from(format!("{}.png", first.name)));
-        assert_eq!((job.options.width, job.options.height), first.default_size);
-        assert_eq!((job.options.spp, job.options.max_depth, job.options.threads, job.options.seed), (1, None, 0, 0));
+        assert_eq!((job.job.options.width, job.job.options.height), first.default_size);
+        assert_eq!((job.job.options.spp, job.job.options.max_depth, job.job.options.threads, job.job.options.seed), (1, None, 0, 0));
         assert!(!job.quiet);
-    }
-
-    #[test]
-    fn one_side_keeps_the_default_aspect() {
-        assert_eq!(image_size(Some(640), None, (1280, 720)).unwrap(), (640, 360));
-        assert_eq!(image_size(None, Some(36), (1280, 720)).unwrap(), (64, 36));
-        assert_eq!(image_size(Some(1), None, (1280, 720)).unwrap(), (1, 1), "never rounds to 0");
-        assert_eq!(image_size(Some(7), Some(3), (1280, 720)).unwrap(), (7, 3));
-        assert_eq!(image_size(None, None, (32, 32)).unwrap(), (32, 32));
     }
 
     #[test]
@@ -353,9 +229,9 @@ mod tests {
         let job =
             parse(&["spheres", "-o", "x.EXR", "--width", "64", "--spp", "4", "--max-depth", "64", "--threads", "3", "--seed", "9", "-q"])
                 .unwrap();
-        assert_eq!(job.name, "spheres");
+        assert_eq!(job.scene.name, "spheres");
         assert_eq!(job.output, PathBuf::from("x.EXR"));
-        let o = &job.options;
+        let o = &job.job.options;
         assert_eq!((o.width, o.height, o.spp, o.max_depth, o.threads, o.seed), (64, 36, 4, Some(64), 3, 9));
         assert!(job.quiet);
     }
@@ -376,12 +252,12 @@ mod tests {
             "-1.5",
         ])
         .unwrap();
-        assert_eq!(job.options.integrator, IntegratorKind::Path);
-        assert_eq!(job.options.time_limit, Some(std::time::Duration::from_millis(2500)));
-        assert_eq!(job.options.filter, Filter::Gaussian { sigma: 0.5 });
-        assert_eq!((job.exposure, job.tonemap), (-1.5, ToneMap::Filmic));
-        assert_eq!(parse(&[]).unwrap().options.integrator, IntegratorKind::Whitted, "whitted stays the default");
-        assert!(Cli::try_parse_from(["lamplight", "render", "--integrator", "photon"]).is_err());
+        assert_eq!(job.job.options.integrator, IntegratorKind::Path);
+        assert_eq!(job.job.options.time_limit, Some(std::time::Duration::from_millis(2500)));
+        assert_eq!(job.job.options.filter, lamplight_core::film::Filter::Gaussian { sigma: 0.5 });
+        assert_eq!((job.display.exposure, job.display.tonemap), (-1.5, ToneMap::Filmic));
+        assert_eq!(parse(&[]).unwrap().job.options.integrator, IntegratorKind::Whitted, "whitted stays the default");
+        assert_eq!(parse(&["--integrator", "photon"]).unwrap_err().0, "--integrator must be \"whitted\" or \"path\", got \"photon\"");
     }
 
     #[test]
@@ -391,7 +267,8 @@ mod tests {
             (&["--time-limit", "0"], "--time-limit must be a positive number of seconds, got 0"),
             (&["--width", "0"], "--width must be at least 1"),
             (&["--height", "0"], "--height must be at least 1"),
-            (&["--spp", "0"], "--spp must be at least 1"),
+            (&["--spp", "0"], "--spp must be between 1 and 1048576, got 0"),
+            (&["--spp", "4294967295"], "--spp must be between 1 and 1048576, got 4294967295"),
             (&["--max-depth", "0"], "--max-depth must be between 1 and 64, got 0 (work grows as 2^depth)"),
             (&["--max-depth", "65"], "--max-depth must be between 1 and 64, got 65 (work grows as 2^depth)"),
             (&["--threads", "1025"], "--threads must be at most 1024 (0 uses all cores), got 1025"),

@@ -23,13 +23,11 @@ use std::time::{Duration, Instant};
 use anyhow::Context;
 use clap::Parser;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use lamplight_core::film::tonemap::ToneMap;
-use lamplight_core::{render, RenderControl, RenderStats};
-use lamplight_scene::build::imported;
-use lamplight_scene::exr_layers::{write_exr_with_layers, ExtraLayer};
+use lamplight_core::{RenderControl, RenderStats};
+use lamplight_scene::request::{self, Layer};
 use lamplight_scene::{builtin, image_io};
 
-use crate::args::{Cli, Command, ExrLayer, RenderJob, SceneSource, UsageError};
+use crate::args::{Cli, Command, RenderJob, UsageError};
 
 fn main() -> ExitCode {
     match run() {
@@ -68,25 +66,15 @@ fn list_command() -> anyhow::Result<()> {
 }
 
 fn render_command(job: RenderJob) -> anyhow::Result<()> {
-    let RenderJob { scene, name, output, options, quiet, exposure, tonemap, environment, variance_output, exr_layers } = job;
+    let RenderJob { scene, output, job, quiet, display, variance_output, variance_in_output } = job;
     // Fail before a long render, not after it, when the file cannot be written.
     image_io::check_writable(&output)?;
 
     let build_start = Instant::now();
-    let aspect = options.width as f64 / options.height as f64;
-    // File errors are the user's input: exit code 2, one line naming file and place.
-    let mut scene = match scene {
-        SceneSource::Builtin(b) => (b.build)(aspect).with_context(|| format!("cannot build scene '{}'", b.name))?,
-        SceneSource::File(file) => file.build(options.width, options.height).map_err(|e| UsageError(e.to_string()))?,
-        SceneSource::Mesh(path) => imported::load(&path, aspect).map_err(|e| UsageError(e.to_string()))?,
-    };
-    if let Some(path) = &environment {
-        let map = lamplight_scene::env_map::read_environment(path)?;
-        let pixels = map.pixels.iter().map(|p| lamplight_core::math::Rgb::new(p[0] as f64, p[1] as f64, p[2] as f64)).collect();
-        let env = lamplight_core::lights::EnvMap::new(map.width as usize, map.height as usize, pixels)
-            .with_context(|| format!("cannot use '{}' as an environment map", path.display()))?;
-        scene.environment = Some(std::sync::Arc::new(lamplight_core::lights::Environment::Map(env)));
-    }
+    let (width, height) = (job.options.width, job.options.height);
+    // Scene errors are the user's input: exit code 2, one line naming file and place.
+    let mut built = scene.build(width, height).map_err(|e| UsageError(e.0))?;
+    job.prepare(&mut built).map_err(|e| UsageError(e.0))?;
     let build_time = build_start.elapsed();
 
     let bar = progress_bar(quiet);
@@ -97,45 +85,23 @@ fn render_command(job: RenderJob) -> anyhow::Result<()> {
         }
     };
     let control = RenderControl { progress: &progress, cancel: None };
-    // The variance file and the extra EXR layers need the path tracer's per-pixel sums.
-    let mut variance = None;
-    let mut samples = 0;
-    let rendered = if variance_output.is_some() || !exr_layers.is_empty() {
-        lamplight_core::render_path(&scene, &options, &control).map(|(acc, stats)| {
-            variance = Some(acc.variance(options.width, options.height));
-            samples = acc.samples;
-            (acc.mean(options.width, options.height), stats)
-        })
-    } else {
-        render(&scene, &options, &control)
-    };
+    let rendered = job.run(&built, &control);
     if let Some(bar) = &bar {
         bar.finish_and_clear();
     }
-    let (image, stats) = rendered.with_context(|| format!("cannot render scene '{name}'"))?;
-    // EXR keeps linear radiance; display formats get the exposure and tone map.
-    let image = match image_io::Format::from_path(&output) {
-        Ok(image_io::Format::Exr) => image,
-        _ if exposure == 0.0 && tonemap == ToneMap::Clamp => image,
-        _ => lamplight_core::film::tonemap::apply(&image, exposure, tonemap),
-    };
-    if exr_layers.is_empty() {
-        image_io::write_image(&output, &image)?;
-    } else {
-        let layers: Vec<ExtraLayer> = exr_layers
-            .iter()
-            .map(|layer| match layer {
-                ExrLayer::Variance => ExtraLayer::rgb("variance", variance.as_ref().expect("the path tracer ran")),
-                ExrLayer::Samples => ExtraLayer::single("samples", vec![samples as f32; image.pixels.len()]),
-            })
-            .collect();
-        write_exr_with_layers(&output, &image, &layers)?;
+    let mut rendered = rendered.with_context(|| format!("cannot render scene '{}'", scene.name))?;
+    if let Some(path) = &variance_output {
+        let variance = rendered.layers.iter().find(|(l, _)| *l == Layer::Variance).map(|(_, image)| image.clone());
+        image_io::write_image(path, &variance.expect("validate asks for the variance layer"))?;
+        // Written to its own file only, unless --exr-layers asked for it too.
+        if !variance_in_output {
+            rendered.layers.retain(|(l, _)| *l != Layer::Variance);
+        }
     }
-    if let (Some(path), Some(variance)) = (&variance_output, &variance) {
-        image_io::write_image(path, variance)?;
-    }
+    request::write(&output, &rendered, display)?;
 
-    let summary = Summary { scene: &name, width: options.width, height: options.height, spp: stats.samples_per_pixel, build_time, stats };
+    let stats = rendered.stats;
+    let summary = Summary { scene: &scene.name, width, height, spp: stats.samples_per_pixel, build_time, stats };
     if !quiet {
         eprintln!("{} -> {}", summary, output.display());
     } else if stats.nonfinite_samples > 0 {

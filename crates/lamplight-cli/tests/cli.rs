@@ -121,7 +121,8 @@ fn bad_input_exits_with_2() {
     let dir = dir.path();
     fails(dir, &["render", "foo"], 2, "unknown scene 'foo' (built-in scenes: luxo, business-card, cornell-box, spheres)");
     fails(dir, &["render", "--width", "0"], 2, "--width must be at least 1");
-    fails(dir, &["render", "--spp", "0"], 2, "--spp must be at least 1");
+    fails(dir, &["render", "--spp", "0"], 2, "--spp must be between 1 and 1048576, got 0");
+    fails(dir, &["render", "--spp", "4294967295"], 2, "--spp must be between 1 and 1048576, got 4294967295");
     fails(dir, &["render", "--max-depth", "65"], 2, "--max-depth must be between 1 and 64");
     fails(dir, &["render", "--threads", "100000"], 2, "--threads must be at most 1024");
     fails(dir, &["render", "-o", "x.jpg"], 2, "unknown image format \"jpg\" (supported: .png, .ppm, .exr)");
@@ -282,6 +283,7 @@ fn radiance_hdr_files_light_the_scene_like_the_same_exr() {
     ok(d, &[&base[..], &["--environment", "sky.hdr", "-o", "b.exr"]].concat());
     assert_eq!(read_exr(&d.join("a.exr")).unwrap().pixels, read_exr(&d.join("b.exr")).unwrap().pixels);
     std::fs::write(d.join("bad.hdr"), b"#?RADIANCE\nnot really").unwrap();
-    let message = fails(d, &[&base[..], &["--environment", "bad.hdr", "-o", "c.exr"]].concat(), 1, "bad.hdr");
+    // A bad input file is the user's input: exit code 2, as for a bad scene file.
+    let message = fails(d, &[&base[..], &["--environment", "bad.hdr", "-o", "c.exr"]].concat(), 2, "bad.hdr");
     assert!(message.contains("not a valid Radiance .hdr file"), "{message}");
 }

@@ -7,6 +7,7 @@ use std::path::PathBuf;
 use image::ImageEncoder;
 use lamplight_core::film::tonemap::{self, ToneMap};
 use lamplight_core::film::Image;
+use lamplight_scene::exr_layers::ExtraLayer;
 use lamplight_scene::image_io::{self, Format};
 use numpy::{PyArray1, PyArray3, PyArrayMethods, PyReadonlyArray3, PyUntypedArrayMethods};
 use pyo3::exceptions::{PyOSError, PyValueError};
@@ -38,16 +39,51 @@ fn display(image: Image, exposure: f64, tonemap: &str) -> PyResult<Image> {
 }
 
 /// Writes `array` to `path` by its extension (`.png`, `.ppm`: 8-bit sRGB after
-/// `exposure` and `tonemap`; `.exr`: linear float, unchanged), atomically.
+/// `exposure` and `tonemap`; `.exr`: linear float, unchanged, with the extra
+/// `layers` of a render, `{"variance": (H, W, 3), "samples": (H, W)}`, beside
+/// the image as `lamplight render --exr-layers` writes them), atomically.
 #[pyfunction]
-#[pyo3(signature = (path, array, exposure=0.0, tonemap="clamp"))]
-pub fn write_image(py: Python<'_>, path: PathBuf, array: PyReadonlyArray3<'_, f32>, exposure: f64, tonemap: &str) -> PyResult<()> {
+#[pyo3(signature = (path, array, exposure=0.0, tonemap="clamp", layers=None))]
+pub fn write_image(
+    py: Python<'_>,
+    path: PathBuf,
+    array: PyReadonlyArray3<'_, f32>,
+    exposure: f64,
+    tonemap: &str,
+    layers: Option<Bound<'_, pyo3::types::PyDict>>,
+) -> PyResult<()> {
     let format = Format::from_path(&path).map_err(|e| PyValueError::new_err(e.to_string()))?;
     let mut image = to_image(&array)?;
+    let mut extra = Vec::new();
+    for (name, value) in layers.iter().flat_map(|d| d.iter()) {
+        let name: String = name.extract()?;
+        let layer = match name.as_str() {
+            "variance" => ExtraLayer::rgb("variance", &to_image(&value.extract::<PyReadonlyArray3<'_, f32>>()?)?),
+            "samples" => {
+                let samples: numpy::PyReadonlyArray2<'_, f32> = value.extract()?;
+                ExtraLayer::single("samples", samples.as_array().iter().copied().collect())
+            }
+            other => return Err(PyValueError::new_err(format!("unknown layer '{other}' (variance, samples)"))),
+        };
+        if layer.channels.iter().any(|(_, v)| v.len() != image.pixels.len()) {
+            return Err(PyValueError::new_err(format!("layer '{name}' does not have the image's {}x{} pixels", image.width, image.height)));
+        }
+        extra.push(layer);
+    }
     if format != Format::Exr {
+        if !extra.is_empty() {
+            return Err(PyValueError::new_err(format!("{}: only .exr files hold extra layers", path.display())));
+        }
         image = display(image, exposure, tonemap)?;
     }
-    py.allow_threads(|| image_io::write_image(&path, &image)).map_err(|e| PyOSError::new_err(e.to_string()))
+    let written = py.allow_threads(|| {
+        if extra.is_empty() {
+            image_io::write_image(&path, &image)
+        } else {
+            lamplight_scene::exr_layers::write_exr_with_layers(&path, &image, &extra)
+        }
+    });
+    written.map_err(|e| PyOSError::new_err(e.to_string()))
 }
 
 /// PNG file bytes of `array` (8-bit sRGB after `exposure` and `tonemap`).

@@ -1,5 +1,7 @@
 //! `render_array`: a render of a [`Scene`] as a float32 numpy array `(H, W, 3)`
-//! of linear radiance, the numbers the command line writes to EXR.
+//! of linear radiance, the numbers the command line writes to EXR. The request
+//! (defaults, precedence, limits, environment map, extra layers) is resolved by
+//! the scene crate's request layer, as for the command line.
 //!
 //! The render runs on its own thread with the GIL released. The calling thread
 //! wakes every 100 ms to pass progress to a Python callback and to let Python
@@ -11,81 +13,77 @@ use std::sync::mpsc::{self, RecvTimeoutError};
 use std::sync::Arc;
 use std::time::Duration;
 
-use lamplight_core::film::{Filter, Image};
-use lamplight_core::integrators::IntegratorKind;
-use lamplight_core::{PixelWindow, RenderControl, RenderOptions, RenderStats};
+use std::path::PathBuf;
+
+use lamplight_core::film::Image;
+use lamplight_core::RenderControl;
+use lamplight_scene::request::{self, Layer, Naming, Request};
 use numpy::{PyArray1, PyArray3, PyArrayMethods};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
+use pyo3::types::PyDict;
 
 use crate::scene::Scene;
 
 /// How often the waiting thread looks at signals and progress.
 const POLL: Duration = Duration::from_millis(100);
-/// Most samples per pixel (as in scene files).
-const MAX_SPP: u32 = 1 << 20;
-/// Deepest recursion (as on the command line).
-const MAX_DEPTH: u32 = 64;
-/// Most worker threads (as on the command line).
-const MAX_THREADS: usize = 1024;
 
-type Rendered = Result<(Image, RenderStats), lamplight_core::Error>;
+type Rendered = Result<request::Rendered, lamplight_core::Error>;
 
-/// Renders `scene` at `width x height` (or only the pixel `window = (x0, y0, w, h)`
-/// of that image) and returns a float32 array `(h, w, 3)` of linear radiance and
-/// a dict of statistics. `progress(done, total)` is called from this thread.
+/// The image array, the statistics and the extra layers.
+type RenderArrays<'py> = (Bound<'py, PyArray3<f32>>, Bound<'py, PyDict>, Bound<'py, PyDict>);
+
+/// Renders `scene` and returns a float32 array `(h, w, 3)` of linear radiance
+/// (of the pixel `window = (x0, y0, w, h)` when given), a dict of statistics and
+/// a dict of the extra layers asked for (`exr_layers`: `"variance"` `(h, w, 3)`,
+/// `"samples"` `(h, w)`). Every setting left `None` comes from the scene, then the
+/// defaults, through the same request layer as the command line.
+/// `progress(done, total)` is called from this thread.
 #[pyfunction]
-#[pyo3(signature = (scene, width, height, spp=1, integrator="whitted", threads=0, seed=0, max_depth=None, window=None, progress=None, time_limit=None, filter="box"))]
+#[pyo3(signature = (scene, width=None, height=None, spp=None, integrator=None, threads=0, seed=None, max_depth=None, window=None, progress=None, time_limit=None, filter=None, environment=None, exr_layers=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn render_array<'py>(
     py: Python<'py>,
     scene: &Scene,
-    width: u32,
-    height: u32,
-    spp: u32,
-    integrator: &str,
+    width: Option<u32>,
+    height: Option<u32>,
+    spp: Option<u32>,
+    integrator: Option<String>,
     threads: usize,
-    seed: u64,
+    seed: Option<u64>,
     max_depth: Option<u32>,
     window: Option<(u32, u32, u32, u32)>,
     progress: Option<Bound<'py, PyAny>>,
     time_limit: Option<f64>,
-    filter: &str,
-) -> PyResult<(Bound<'py, PyArray3<f32>>, Bound<'py, pyo3::types::PyDict>)> {
-    if width == 0 || height == 0 || width as u64 * height as u64 > 1 << 28 {
-        return Err(PyValueError::new_err(format!("image size {width}x{height} must be at least 1x1 and at most 2^28 pixels")));
-    }
-    if !(1..=MAX_SPP).contains(&spp) {
-        return Err(PyValueError::new_err(format!("spp must be between 1 and {MAX_SPP}, got {spp}")));
-    }
-    if let Some(depth) = max_depth {
-        if !(1..=MAX_DEPTH).contains(&depth) {
-            return Err(PyValueError::new_err(format!("max_depth must be between 1 and {MAX_DEPTH}, got {depth}")));
-        }
-    }
-    if threads > MAX_THREADS {
-        return Err(PyValueError::new_err(format!("threads must be at most {MAX_THREADS} (0 uses all cores), got {threads}")));
-    }
-    let integrator: IntegratorKind =
-        integrator.parse().map_err(|_| PyValueError::new_err(format!("integrator must be \"whitted\" or \"path\", got {integrator:?}")))?;
-    let filter: Filter =
-        filter.parse().map_err(|_| PyValueError::new_err(format!("filter must be \"box\" or \"gaussian\", got {filter:?}")))?;
-    let time_limit = match time_limit {
-        None => None,
-        Some(t) if t.is_finite() && t > 0.0 && t < 1e9 => Some(Duration::from_secs_f64(t)),
-        Some(t) => return Err(PyValueError::new_err(format!("time_limit must be a positive number of seconds, got {t}"))),
+    filter: Option<String>,
+    environment: Option<PathBuf>,
+    exr_layers: Option<Vec<String>>,
+) -> PyResult<RenderArrays<'py>> {
+    let layers =
+        exr_layers.unwrap_or_default().iter().map(|l| l.parse::<Layer>().map_err(PyValueError::new_err)).collect::<PyResult<Vec<_>>>()?;
+    let request = Request {
+        width,
+        height,
+        spp,
+        max_depth,
+        threads: Some(threads),
+        seed,
+        integrator,
+        time_limit,
+        filter,
+        window,
+        environment,
+        layers,
     };
-    let window = window.map(|(x0, y0, w, h)| PixelWindow { x0, y0, width: w, height: h });
-    if let Some(w) = window {
-        if w.width == 0 || w.height == 0 || w.x0 as u64 + w.width as u64 > width as u64 || w.y0 as u64 + w.height as u64 > height as u64 {
-            return Err(PyValueError::new_err(format!(
-                "window (x0={}, y0={}, width={}, height={}) must be non-empty and inside the {width}x{height} image",
-                w.x0, w.y0, w.width, w.height
-            )));
-        }
-    }
-    let options = RenderOptions { width, height, spp, max_depth, threads, seed, integrator, time_limit, filter, window };
-    let core = scene.core(py, width as f64 / height as f64)?;
+    let job = request.resolve(scene.settings(), Naming::Keywords).map_err(|e| PyValueError::new_err(e.0))?;
+    let aspect = job.options.width as f64 / job.options.height as f64;
+    let core = if job.environment.is_some() {
+        let mut fresh = scene.fresh_core(py, aspect)?;
+        job.prepare(&mut fresh).map_err(|e| PyValueError::new_err(e.0))?;
+        Arc::new(fresh)
+    } else {
+        scene.core(py, aspect)?
+    };
 
     let cancel = Arc::new(AtomicBool::new(false));
     let done = Arc::new(AtomicU64::new(0));
@@ -102,7 +100,7 @@ pub fn render_array<'py>(
                 };
                 let control = RenderControl { progress: &report, cancel: Some(&cancel) };
                 // The receiver may be gone (an error already raised): nothing to tell then.
-                let _ = tx.send(lamplight_core::render(&core, &options, &control));
+                let _ = tx.send(job.run(&core, &control));
             })
             .map_err(|e| PyRuntimeError::new_err(format!("cannot start the render thread: {e}")))?;
     }
@@ -143,14 +141,13 @@ pub fn render_array<'py>(
             break result;
         }
     };
-    let (image, stats) = result.map_err(|e| match e {
+    let rendered = result.map_err(|e| match e {
         lamplight_core::Error::Render(m) => PyRuntimeError::new_err(m),
         other => PyValueError::new_err(other.to_string()),
     })?;
-    let (w, h) = (image.width as usize, image.height as usize);
-    let flat: Vec<f32> = image.pixels.into_iter().flatten().collect();
-    let array = PyArray1::from_vec(py, flat).reshape([h, w, 3])?;
-    let info = pyo3::types::PyDict::new(py);
+    let stats = rendered.stats;
+    let array = to_array(py, &rendered.image)?;
+    let info = PyDict::new(py);
     info.set_item("seconds", stats.elapsed.as_secs_f64())?;
     info.set_item("threads", stats.threads)?;
     info.set_item("samples_per_pixel", stats.samples_per_pixel)?;
@@ -158,5 +155,44 @@ pub fn render_array<'py>(
     info.set_item("secondary_rays", stats.rays.secondary)?;
     info.set_item("shadow_rays", stats.rays.shadow)?;
     info.set_item("nonfinite_samples", stats.nonfinite_samples)?;
-    Ok((array, info))
+    let layers = PyDict::new(py);
+    for (layer, image) in &rendered.layers {
+        match layer {
+            Layer::Variance => layers.set_item("variance", to_array(py, image)?)?,
+            Layer::Samples => {
+                let (w, h) = (image.width as usize, image.height as usize);
+                let flat: Vec<f32> = image.pixels.iter().map(|p| p[0]).collect();
+                layers.set_item("samples", PyArray1::from_vec(py, flat).reshape([h, w])?)?
+            }
+        }
+    }
+    Ok((array, info, layers))
+}
+
+/// The settings a render of `scene` would use: `(width, height, spp,
+/// integrator, seed)`, each the argument, else the scene's, else the default,
+/// through the request layer (so Dask splits exactly the image a local render makes).
+#[pyfunction]
+#[pyo3(signature = (scene, width=None, height=None, spp=None, integrator=None, seed=None))]
+pub fn resolve_settings(
+    scene: &Scene,
+    width: Option<u32>,
+    height: Option<u32>,
+    spp: Option<u32>,
+    integrator: Option<String>,
+    seed: Option<u64>,
+) -> PyResult<(u32, u32, u32, &'static str, u64)> {
+    let request = Request { width, height, spp, integrator, seed, ..Request::default() };
+    let o = request.resolve(scene.settings(), Naming::Keywords).map_err(|e| PyValueError::new_err(e.0))?.options;
+    let name = match o.integrator {
+        lamplight_core::integrators::IntegratorKind::Whitted => "whitted",
+        lamplight_core::integrators::IntegratorKind::Path => "path",
+    };
+    Ok((o.width, o.height, o.spp, name, o.seed))
+}
+
+fn to_array<'py>(py: Python<'py>, image: &Image) -> PyResult<Bound<'py, PyArray3<f32>>> {
+    let (w, h) = (image.width as usize, image.height as usize);
+    let flat: Vec<f32> = image.pixels.iter().flatten().copied().collect();
+    PyArray1::from_vec(py, flat).reshape([h, w, 3])
 }

@@ -15,6 +15,7 @@ use lamplight_scene::build::{self, imported, SceneFile};
 use lamplight_scene::builtin::{self, Builtin};
 use lamplight_scene::description::{Node, SceneDescription};
 use lamplight_scene::formats::native::Source as FileSource;
+use lamplight_scene::request::{Defaults, SceneRequest, PROGRAM_DEFAULTS};
 use lamplight_scene::{import, LoadError};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -37,16 +38,6 @@ enum Origin {
     Dict { dict: PyObject, file: SceneFile, base_dir: PathBuf },
     /// A mesh file for the importers.
     Mesh(PathBuf),
-}
-
-/// Image and sampling settings a scene asks for when a render does not say.
-#[derive(Clone, Copy, Debug)]
-struct Defaults {
-    width: u32,
-    height: u32,
-    spp: u32,
-    seed: u64,
-    integrator: IntegratorKind,
 }
 
 /// A scene: made from a built-in name, a scene or mesh file, or a dict, and
@@ -86,14 +77,12 @@ fn dict_param_error(e: lamplight_core::params::ParamError) -> PyErr {
 impl Scene {
     fn new(origin: Origin, camera: Option<(PyObject, Node)>) -> PyResult<Scene> {
         let defaults = match &origin {
-            Origin::Builtin(b) => {
-                Defaults { width: b.default_size.0, height: b.default_size.1, spp: 1, seed: 0, integrator: IntegratorKind::Whitted }
-            }
+            Origin::Builtin(b) => SceneRequest::builtin(b).defaults,
             Origin::Toml(file) | Origin::Dict { file, .. } => {
                 let s = file.settings().map_err(|e| if matches!(origin, Origin::Dict { .. }) { dict_error(e) } else { load_error(e) })?;
-                Defaults { width: s.width, height: s.height, spp: s.spp, seed: s.seed, integrator: s.integrator }
+                Defaults { size: (s.width, s.height), spp: s.spp, seed: s.seed, integrator: s.integrator }
             }
-            Origin::Mesh(_) => Defaults { width: 640, height: 360, spp: 1, seed: 0, integrator: IntegratorKind::Whitted },
+            Origin::Mesh(_) => PROGRAM_DEFAULTS,
         };
         Ok(Scene { origin, camera, defaults, builds: Mutex::new(Vec::new()) })
     }
@@ -329,7 +318,7 @@ impl Scene {
     /// `spp`, `seed` and `integrator`.
     fn defaults<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let d = PyDict::new(py);
-        let Defaults { width, height, spp, seed, integrator } = self.defaults;
+        let Defaults { size: (width, height), spp, seed, integrator } = self.defaults;
         d.set_item("width", width)?;
         d.set_item("height", height)?;
         d.set_item("spp", spp)?;
@@ -397,13 +386,19 @@ impl Scene {
 }
 
 impl Scene {
-    /// The settings' defaults.
-    pub fn default_size(&self) -> (u32, u32) {
-        (self.defaults.width, self.defaults.height)
+    /// The settings a render uses when it does not say.
+    pub fn settings(&self) -> &Defaults {
+        &self.defaults
+    }
+
+    /// A fresh core scene for images of aspect `aspect`, not cached (a render
+    /// that changes it, such as one with its own environment map, takes this).
+    pub fn fresh_core(&self, py: Python<'_>, aspect: f64) -> PyResult<CoreScene> {
+        py.allow_threads(|| self.build_core(aspect))
     }
 
     fn aspect(&self, width: Option<u32>, height: Option<u32>) -> PyResult<f64> {
-        let (w, h) = (width.unwrap_or(self.defaults.width), height.unwrap_or(self.defaults.height));
+        let (w, h) = (width.unwrap_or(self.defaults.size.0), height.unwrap_or(self.defaults.size.1));
         if w == 0 || h == 0 {
             return Err(PyValueError::new_err(format!("image size {w}x{h} must be at least 1x1")));
         }

@@ -18,5 +18,6 @@ pub mod image_io;
 pub mod import;
 pub mod input;
 pub mod registry;
+pub mod request;
 
 pub use error::{LoadError, Location};

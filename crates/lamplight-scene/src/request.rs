@@ -1,0 +1,458 @@
+//! A render request, resolved in one place for the command line and Python.
+//!
+//! A front end fills a [`Request`] with what the user gave (every field
+//! optional) and names the scene ([`SceneRequest::resolve`]: a built-in name, a
+//! scene file of any format, a mesh file, or an already parsed file or dict).
+//! [`Request::resolve`] then applies the precedence (the request over the
+//! scene's own settings over the defaults) and the limits ([`limits`]), and
+//! [`Job::run`] renders, with the environment map and the extra layers, so
+//! that everything the binary can do reaches Python too. Messages name the
+//! option as the front end spells it ([`Naming`]: `--max-depth` or `max_depth`).
+
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+use lamplight_core::film::tonemap::ToneMap;
+use lamplight_core::film::{Filter, Image};
+use lamplight_core::integrators::IntegratorKind;
+use lamplight_core::{PixelWindow, RenderControl, RenderOptions, RenderStats, Scene};
+
+use crate::build::{imported, SceneFile};
+use crate::builtin::{self, Builtin};
+use crate::image_io::Format;
+use crate::import;
+
+/// The limits every front end enforces, in one place.
+pub mod limits {
+    /// Deepest ray depth. Whitted tracing may spawn a reflected and a refracted
+    /// ray at every hit, so a camera ray's work grows as `2^depth`: 64 levels
+    /// already allow more rays than any render could trace.
+    pub const MAX_DEPTH: u32 = crate::build::MAX_DEPTH_LIMIT;
+    /// Most pixels in an image (`2^28`, e.g. 16384x16384).
+    pub const MAX_PIXELS: u64 = crate::build::MAX_PIXELS;
+    /// Most samples per pixel.
+    pub const MAX_SPP: u32 = crate::build::MAX_SPP;
+    /// Most worker threads: far above any machine's cores; more would only cost
+    /// memory, and huge counts make the thread pool fail.
+    pub const MAX_THREADS: usize = 1024;
+    /// Longest time limit, seconds (about 31 years: beyond it is a typo).
+    pub const MAX_TIME_LIMIT: f64 = 1e9;
+}
+
+/// How the front end spells its options, for messages.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Naming {
+    /// Command-line flags: `--max-depth`.
+    Flags,
+    /// Python keywords: `max_depth`.
+    Keywords,
+}
+
+impl Naming {
+    /// `key` (a keyword such as `max_depth`) as this front end spells it.
+    pub fn name(self, key: &str) -> String {
+        match self {
+            Naming::Flags => format!("--{}", key.replace('_', "-")),
+            Naming::Keywords => key.to_string(),
+        }
+    }
+}
+
+/// A request that cannot be carried out: bad input, one line (exit code 2).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct RequestError(pub String);
+
+impl std::fmt::Display for RequestError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for RequestError {}
+
+fn bad(message: impl Into<String>) -> RequestError {
+    RequestError(message.into())
+}
+
+/// Where a scene comes from.
+#[derive(Clone, Debug)]
+pub enum SceneSpec {
+    /// A built-in scene.
+    Builtin(&'static Builtin),
+    /// A scene file or dict, parsed.
+    File(Box<SceneFile>),
+    /// A mesh file for an importer.
+    Mesh(PathBuf),
+}
+
+/// What a scene asks for when the request does not say.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Defaults {
+    /// Image size.
+    pub size: (u32, u32),
+    /// Samples per pixel.
+    pub spp: u32,
+    /// Seed.
+    pub seed: u64,
+    /// Integrator.
+    pub integrator: IntegratorKind,
+}
+
+/// The program's own settings, for scenes without any.
+pub const PROGRAM_DEFAULTS: Defaults = Defaults { size: (640, 360), spp: 1, seed: 0, integrator: IntegratorKind::Whitted };
+
+/// A scene named and read, with its own settings.
+#[derive(Clone, Debug)]
+pub struct SceneRequest {
+    /// The scene.
+    pub spec: SceneSpec,
+    /// Its name in messages and default output names.
+    pub name: String,
+    /// Its settings.
+    pub defaults: Defaults,
+}
+
+impl SceneRequest {
+    /// The scene `arg` names: a built-in name (no path separator, no extension),
+    /// a `.toml` scene file (read and parsed now, so that a bad file stops before
+    /// any work), or a mesh file (read when built).
+    pub fn resolve(arg: &str) -> Result<SceneRequest, RequestError> {
+        let path = Path::new(arg);
+        let has_separator = arg.contains('/') || arg.contains(std::path::MAIN_SEPARATOR);
+        let extension = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+        if !has_separator && extension.is_none() {
+            let b = builtin::find(arg).ok_or_else(|| bad(format!("unknown scene '{arg}' (built-in scenes: {})", builtin::names())))?;
+            return Ok(SceneRequest::builtin(b));
+        }
+        let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "scene".into());
+        match extension.as_deref() {
+            Some("toml") => {
+                let file = SceneFile::read(path).map_err(|e| bad(e.to_string()))?;
+                SceneRequest::file(file, stem)
+            }
+            Some(ext) if import::EXTENSIONS.contains(&ext) => {
+                Ok(SceneRequest { spec: SceneSpec::Mesh(path.to_path_buf()), name: stem, defaults: PROGRAM_DEFAULTS })
+            }
+            _ => Err(bad(format!(
+                "{arg}: unknown scene file type, expected .toml or a mesh file ({})",
+                import::EXTENSIONS.iter().map(|e| format!(".{e}")).collect::<Vec<_>>().join(", ")
+            ))),
+        }
+    }
+
+    /// A built-in scene.
+    pub fn builtin(b: &'static Builtin) -> SceneRequest {
+        SceneRequest {
+            spec: SceneSpec::Builtin(b),
+            name: b.name.to_string(),
+            defaults: Defaults { size: b.default_size, ..PROGRAM_DEFAULTS },
+        }
+    }
+
+    /// A parsed scene file or dict; its `[render]` settings are checked now.
+    pub fn file(file: SceneFile, name: String) -> Result<SceneRequest, RequestError> {
+        let s = file.settings().map_err(|e| bad(e.to_string()))?;
+        let defaults = Defaults { size: (s.width, s.height), spp: s.spp, seed: s.seed, integrator: s.integrator };
+        Ok(SceneRequest { spec: SceneSpec::File(Box::new(file)), name, defaults })
+    }
+
+    /// Builds the scene for an image of `width x height`.
+    pub fn build(&self, width: u32, height: u32) -> Result<Scene, RequestError> {
+        let aspect = width as f64 / height as f64;
+        match &self.spec {
+            SceneSpec::Builtin(b) => (b.build)(aspect).map_err(|e| bad(format!("cannot build scene '{}': {e}", b.name))),
+            SceneSpec::File(file) => file.build(width, height).map_err(|e| bad(e.to_string())),
+            SceneSpec::Mesh(path) => imported::load(path, aspect).map_err(|e| bad(e.to_string())),
+        }
+    }
+}
+
+/// An extra layer of the `.exr` output.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Layer {
+    /// Variance of each pixel's mean, per channel (`variance.R/G/B`).
+    Variance,
+    /// Samples taken per pixel (`samples.Y`).
+    Samples,
+}
+
+impl std::str::FromStr for Layer {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Layer, String> {
+        match s {
+            "variance" => Ok(Layer::Variance),
+            "samples" => Ok(Layer::Samples),
+            _ => Err(format!("unknown layer '{s}' (variance, samples)")),
+        }
+    }
+}
+
+/// What the user asked for; `None` leaves a setting to the scene or the default.
+#[derive(Clone, Debug, Default)]
+pub struct Request {
+    /// Image width; with only one side given the other keeps the scene's aspect.
+    pub width: Option<u32>,
+    /// Image height.
+    pub height: Option<u32>,
+    /// Samples per pixel.
+    pub spp: Option<u32>,
+    /// Depth limit.
+    pub max_depth: Option<u32>,
+    /// Worker threads (0: every core).
+    pub threads: Option<usize>,
+    /// Seed.
+    pub seed: Option<u64>,
+    /// Integrator name.
+    pub integrator: Option<String>,
+    /// Stop after the last complete pass before this many seconds.
+    pub time_limit: Option<f64>,
+    /// Pixel filter name (`box`, `gaussian`).
+    pub filter: Option<String>,
+    /// Render only `(x0, y0, width, height)` of the image.
+    pub window: Option<(u32, u32, u32, u32)>,
+    /// An environment map (`.exr`, `.hdr`) lighting the scene.
+    pub environment: Option<PathBuf>,
+    /// Extra layers (variance, samples).
+    pub layers: Vec<Layer>,
+}
+
+/// A request checked and with every default resolved.
+#[derive(Clone, Debug)]
+pub struct Job {
+    /// What the renderer is told.
+    pub options: RenderOptions,
+    /// The environment map to light the scene with.
+    pub environment: Option<PathBuf>,
+    /// Extra layers, each at most once, in the order asked.
+    pub layers: Vec<Layer>,
+}
+
+impl Request {
+    /// Applies the precedence and the limits; messages spell options by `naming`.
+    pub fn resolve(&self, defaults: &Defaults, naming: Naming) -> Result<Job, RequestError> {
+        let n = |k: &str| naming.name(k);
+        let d = defaults;
+        let (width, height) = image_size(self.width, self.height, d.size, naming)?;
+        let spp = self.spp.unwrap_or(d.spp);
+        if !(1..=limits::MAX_SPP).contains(&spp) {
+            return Err(bad(format!("{} must be between 1 and {}, got {spp}", n("spp"), limits::MAX_SPP)));
+        }
+        if let Some(depth) = self.max_depth {
+            if !(1..=limits::MAX_DEPTH).contains(&depth) {
+                return Err(bad(format!(
+                    "{} must be between 1 and {}, got {depth} (work grows as 2^depth)",
+                    n("max_depth"),
+                    limits::MAX_DEPTH
+                )));
+            }
+        }
+        let threads = self.threads.unwrap_or(0);
+        if threads > limits::MAX_THREADS {
+            return Err(bad(format!("{} must be at most {} (0 uses all cores), got {threads}", n("threads"), limits::MAX_THREADS)));
+        }
+        let time_limit = match self.time_limit {
+            None => None,
+            Some(t) if t.is_finite() && t > 0.0 && t < limits::MAX_TIME_LIMIT => Some(Duration::from_secs_f64(t)),
+            Some(t) => return Err(bad(format!("{} must be a positive number of seconds, got {t}", n("time_limit")))),
+        };
+        let integrator = match &self.integrator {
+            None => d.integrator,
+            Some(name) => name.parse().map_err(|_| bad(format!("{} must be \"whitted\" or \"path\", got {name:?}", n("integrator"))))?,
+        };
+        let filter: Filter = match &self.filter {
+            None => Filter::Box,
+            Some(name) => name.parse().map_err(|_| bad(format!("{} must be \"box\" or \"gaussian\", got {name:?}", n("filter"))))?,
+        };
+        let window = self.window.map(|(x0, y0, w, h)| PixelWindow { x0, y0, width: w, height: h });
+        if let Some(w) = window {
+            if w.width == 0 || w.height == 0 || w.x0 as u64 + w.width as u64 > width as u64 || w.y0 as u64 + w.height as u64 > height as u64
+            {
+                return Err(bad(format!(
+                    "{} (x0={}, y0={}, width={}, height={}) must be non-empty and inside the {width}x{height} image",
+                    n("window"),
+                    w.x0,
+                    w.y0,
+                    w.width,
+                    w.height
+                )));
+            }
+        }
+        let mut layers = Vec::new();
+        for layer in &self.layers {
+            if !layers.contains(layer) {
+                layers.push(*layer);
+            }
+        }
+        let path_integrator = match naming {
+            Naming::Flags => "--integrator path",
+            Naming::Keywords => "integrator=\"path\"",
+        };
+        if !layers.is_empty() && integrator != IntegratorKind::Path {
+            return Err(bad(format!("{} needs {path_integrator}", n("exr_layers"))));
+        }
+        let seed = self.seed.unwrap_or(d.seed);
+        let options =
+            RenderOptions { width, height, spp, max_depth: self.max_depth, threads, seed, integrator, time_limit, filter, window };
+        Ok(Job { options, environment: self.environment.clone(), layers })
+    }
+}
+
+/// The image size: both sides given, one given (the other follows the default
+/// aspect, rounded, at least 1), or the default.
+pub fn image_size(width: Option<u32>, height: Option<u32>, default: (u32, u32), naming: Naming) -> Result<(u32, u32), RequestError> {
+    for (key, value) in [("width", width), ("height", height)] {
+        if value == Some(0) {
+            return Err(bad(format!("{} must be at least 1", naming.name(key))));
+        }
+    }
+    let (dw, dh) = (default.0 as f64, default.1 as f64);
+    let scaled = |v: u32, ratio: f64| ((v as f64 * ratio).round().max(1.0)).min(u32::MAX as f64) as u32;
+    let (w, h) = match (width, height) {
+        (Some(w), Some(h)) => (w, h),
+        (Some(w), None) => (w, scaled(w, dh / dw)),
+        (None, Some(h)) => (scaled(h, dw / dh), h),
+        (None, None) => default,
+    };
+    if w as u64 * h as u64 > limits::MAX_PIXELS {
+        return Err(bad(format!("image {w}x{h} is too large (at most {} pixels)", limits::MAX_PIXELS)));
+    }
+    Ok((w, h))
+}
+
+/// A finished render: the image, the extra layers asked for and the statistics.
+#[derive(Clone, Debug)]
+pub struct Rendered {
+    /// Linear radiance (of the window, when one was asked for).
+    pub image: Image,
+    /// The layers asked for, in order, as `(layer, image)`; `samples` is one channel repeated.
+    pub layers: Vec<(Layer, Image)>,
+    /// Figures about the render.
+    pub stats: RenderStats,
+}
+
+impl Job {
+    /// Lights `scene` with the job's environment map, if any.
+    pub fn prepare(&self, scene: &mut Scene) -> Result<(), RequestError> {
+        let Some(path) = &self.environment else { return Ok(()) };
+        let map = crate::env_map::read_environment(path).map_err(|e| bad(e.to_string()))?;
+        let pixels = map.pixels.iter().map(|p| lamplight_core::math::Rgb::new(p[0] as f64, p[1] as f64, p[2] as f64)).collect();
+        let env = lamplight_core::lights::EnvMap::new(map.width as usize, map.height as usize, pixels)
+            .map_err(|e| bad(format!("cannot use '{}' as an environment map: {e}", path.display())))?;
+        scene.environment = Some(std::sync::Arc::new(lamplight_core::lights::Environment::Map(env)));
+        Ok(())
+    }
+
+    /// Renders `scene` (prepared) with the job's options.
+    pub fn run(&self, scene: &Scene, control: &RenderControl) -> Result<Rendered, lamplight_core::Error> {
+        let o = &self.options;
+        let w = o.pixel_window();
+        if self.layers.is_empty() {
+            let (image, stats) = lamplight_core::render(scene, o, control)?;
+            return Ok(Rendered { image, layers: Vec::new(), stats });
+        }
+        let (acc, stats) = lamplight_core::render_path(scene, o, control)?;
+        let layers = self
+            .layers
+            .iter()
+            .map(|layer| match layer {
+                Layer::Variance => (Layer::Variance, acc.variance(w.width, w.height)),
+                Layer::Samples => {
+                    let mut image = Image::new(w.width, w.height);
+                    image.pixels.iter_mut().for_each(|p| *p = [acc.samples as f32; 3]);
+                    (Layer::Samples, image)
+                }
+            })
+            .collect();
+        Ok(Rendered { image: acc.mean(w.width, w.height), layers, stats })
+    }
+}
+
+/// How an image file is written: the display transform of `.png`/`.ppm`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Display {
+    /// Exposure in stops (the image is scaled by `2^EV`).
+    pub exposure: f64,
+    /// Tone map.
+    pub tonemap: ToneMap,
+}
+
+/// Writes `rendered` to `path` (the format by extension): EXR keeps linear
+/// radiance and the extra layers; display formats get the exposure and tone map
+/// and cannot hold layers.
+pub fn write(path: &Path, rendered: &Rendered, display: Display) -> Result<(), crate::image_io::ImageError> {
+    let format = Format::from_path(path)?;
+    if format == Format::Exr {
+        if rendered.layers.is_empty() {
+            return crate::image_io::write_image(path, &rendered.image);
+        }
+        let layers: Vec<crate::exr_layers::ExtraLayer> = rendered
+            .layers
+            .iter()
+            .map(|(layer, image)| match layer {
+                Layer::Variance => crate::exr_layers::ExtraLayer::rgb("variance", image),
+                Layer::Samples => crate::exr_layers::ExtraLayer::single("samples", image.pixels.iter().map(|p| p[0]).collect()),
+            })
+            .collect();
+        return crate::exr_layers::write_exr_with_layers(path, &rendered.image, &layers);
+    }
+    let image = if display.exposure == 0.0 && display.tonemap == ToneMap::Clamp {
+        rendered.image.clone()
+    } else {
+        lamplight_core::film::tonemap::apply(&rendered.image, display.exposure, display.tonemap)
+    };
+    crate::image_io::write_image(path, &image)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn luxo() -> SceneRequest {
+        SceneRequest::resolve("luxo").unwrap()
+    }
+
+    #[test]
+    fn one_side_keeps_the_default_aspect() {
+        let n = Naming::Flags;
+        assert_eq!(image_size(Some(640), None, (1280, 720), n).unwrap(), (640, 360));
+        assert_eq!(image_size(None, Some(36), (1280, 720), n).unwrap(), (64, 36));
+        assert_eq!(image_size(Some(1), None, (1280, 720), n).unwrap(), (1, 1), "never rounds to 0");
+        assert_eq!(image_size(Some(7), Some(3), (1280, 720), n).unwrap(), (7, 3));
+    }
+
+    #[test]
+    fn limits_are_the_same_for_every_front_end_and_spelled_its_way() {
+        let r = Request { spp: Some(u32::MAX), ..Request::default() };
+        assert_eq!(r.resolve(&luxo().defaults, Naming::Flags).unwrap_err().0, "--spp must be between 1 and 1048576, got 4294967295");
+        assert_eq!(r.resolve(&luxo().defaults, Naming::Keywords).unwrap_err().0, "spp must be between 1 and 1048576, got 4294967295");
+        let r = Request { threads: Some(100_000), ..Request::default() };
+        assert_eq!(
+            r.resolve(&luxo().defaults, Naming::Keywords).unwrap_err().0,
+            "threads must be at most 1024 (0 uses all cores), got 100000"
+        );
+        let r = Request { max_depth: Some(65), ..Request::default() };
+        assert_eq!(
+            r.resolve(&luxo().defaults, Naming::Flags).unwrap_err().0,
+            "--max-depth must be between 1 and 64, got 65 (work grows as 2^depth)"
+        );
+        let r = Request { layers: vec![Layer::Variance], ..Request::default() };
+        assert_eq!(r.resolve(&luxo().defaults, Naming::Keywords).unwrap_err().0, "exr_layers needs integrator=\"path\"");
+    }
+
+    #[test]
+    fn the_request_wins_over_the_scene_which_wins_over_the_defaults() {
+        let text = "[render]\nwidth = 100\nheight = 50\nspp = 8\nseed = 3\nintegrator = \"path\"\n[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\nvfov = 40\n";
+        let file = SceneFile::parse(Path::new("s.toml"), text).unwrap();
+        let scene = SceneRequest::file(file, "s".into()).unwrap();
+        let job = Request::default().resolve(&scene.defaults, Naming::Flags).unwrap();
+        let o = &job.options;
+        assert_eq!((o.width, o.height, o.spp, o.seed, o.integrator), (100, 50, 8, 3, IntegratorKind::Path));
+        let job = Request { width: Some(40), spp: Some(2), integrator: Some("whitted".into()), ..Request::default() }
+            .resolve(&scene.defaults, Naming::Flags)
+            .unwrap();
+        let o = &job.options;
+        assert_eq!((o.width, o.height, o.spp, o.seed, o.integrator), (40, 20, 2, 3, IntegratorKind::Whitted));
+        let o = Request::default().resolve(&luxo().defaults, Naming::Flags).unwrap().options;
+        assert_eq!((o.width, o.height, o.spp, o.seed, o.integrator), (1280, 720, 1, 0, IntegratorKind::Whitted));
+    }
+}
