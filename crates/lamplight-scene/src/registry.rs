@@ -4,7 +4,7 @@
 //! A kind is one file (its struct, its `KIND` with the parameter table, its
 //! tests) and one line here. The builder ([`crate::build`]) finds kinds only
 //! through these lists, the reference in `docs/scene-format.md` is generated
-//! from them ([`reference`]), and the error tests feed every kind a mistyped key.
+//! from them ([`reference()`]), and the error tests feed every kind a mistyped key.
 //! Kinds that need this crate (an implicit surface's expression parser) live in
 //! `build/`; the structural node types (`group`, `instance`, `mesh`) are the
 //! builder's own and are documented by [`STRUCTURAL`].

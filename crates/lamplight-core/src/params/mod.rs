@@ -14,94 +14,14 @@
 //! them.
 
 use std::fmt;
-use std::ops::Range;
 
 use crate::math::{Mat4, Rgb, Vec3};
 
-/// Where a value or key came from.
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
-pub enum Loc {
-    /// Nowhere known (made in code).
-    #[default]
-    Unknown,
-    /// A byte range of the source text.
-    Span(Range<usize>),
-    /// A key path such as `objects[2].radius` (a Python dict).
-    Path(String),
-}
+mod table;
+#[cfg(test)]
+mod tests;
 
-/// A plain value: what TOML and Python dicts have in common.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Value {
-    /// `true` or `false`.
-    Bool(bool),
-    /// A whole number.
-    Integer(i64),
-    /// A floating-point number.
-    Number(f64),
-    /// A string.
-    String(String),
-    /// An array of located values.
-    Array(Vec<Item>),
-    /// A table.
-    Table(Table),
-}
-
-/// A value and where it came from.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Item {
-    /// The value.
-    pub value: Value,
-    /// Where it came from.
-    pub loc: Loc,
-}
-
-/// One key of a table.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Entry {
-    /// The key.
-    pub key: String,
-    /// Where the key is written.
-    pub key_loc: Loc,
-    /// Its value.
-    pub item: Item,
-}
-
-/// A table: keys in the order they were written, and the table's own place.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct Table {
-    /// The entries, in source order.
-    pub entries: Vec<Entry>,
-    /// Where the table starts.
-    pub loc: Loc,
-}
-
-impl Table {
-    /// The entry for `key`.
-    pub fn get(&self, key: &str) -> Option<&Entry> {
-        self.entries.iter().find(|e| e.key == key)
-    }
-
-    /// Removes and returns the entry for `key`.
-    pub fn remove(&mut self, key: &str) -> Option<Entry> {
-        let i = self.entries.iter().position(|e| e.key == key)?;
-        Some(self.entries.remove(i))
-    }
-}
-
-impl Value {
-    /// What the value is, for messages: `a number`, `a string "x"`, `an array of 2`.
-    pub fn describe(&self) -> String {
-        match self {
-            Value::Bool(b) => format!("a boolean {b}"),
-            Value::Integer(i) => format!("a number {i}"),
-            Value::Number(x) => format!("a number {x}"),
-            Value::String(s) => format!("a string {s:?}"),
-            Value::Array(a) => format!("an array of {}", a.len()),
-            Value::Table(_) => "a table".to_string(),
-        }
-    }
-}
+pub use table::{Entry, Item, Loc, Table, Value};
 
 /// A parameter's type, as the reference documentation names it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -563,86 +483,5 @@ pub fn one_of(items: &[String]) -> String {
         [] => String::new(),
         [one] => one.clone(),
         [rest @ .., last] => format!("{} or {last}", rest.join(", ")),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn entry(key: &str, value: Value, at: usize) -> Entry {
-        Entry { key: key.into(), key_loc: Loc::Span(at..at + key.len()), item: Item { value, loc: Loc::Span(at + 10..at + 11) } }
-    }
-
-    fn num(x: f64) -> Item {
-        Item { value: Value::Number(x), loc: Loc::Unknown }
-    }
-
-    const SPHERE: &[Param] = &[
-        Param::new("center", ParamType::Point, "[0, 0, 0]", "", "centre"),
-        Param::new("radius", ParamType::Number, "1", "scene units", "radius"),
-    ];
-
-    #[test]
-    fn typed_reads_check_and_mark() {
-        let t = Table {
-            entries: vec![
-                entry("center", Value::Array(vec![num(1.0), num(2.0), num(3.0)]), 0),
-                entry("radius", Value::String("big".into()), 20),
-            ],
-            loc: Loc::Span(0..1),
-        };
-        let mut p = Params::new("sphere", &t);
-        assert_eq!(p.vec3("center").unwrap(), Some(Vec3::new(1.0, 2.0, 3.0)));
-        let e = p.number("radius").unwrap_err();
-        assert_eq!(e.message, "sphere: radius: expected a number, got a string \"big\"");
-        assert_eq!(e.loc, Loc::Span(30..31), "at the value");
-        assert_eq!(p.number("missing").unwrap(), None);
-        assert_eq!(p.required_number("missing").unwrap_err().message, "sphere: needs `missing` (a number)");
-        p.finish().unwrap();
-    }
-
-    #[test]
-    fn unknown_keys_get_a_suggestion_at_the_key() {
-        let t = Table { entries: vec![entry("radious", Value::Integer(1), 40)], loc: Loc::Unknown };
-        let e = Params::new("sphere", &t).check_keys(SPHERE, &["material"]).unwrap_err();
-        assert_eq!(e.message, "sphere: unknown parameter 'radious' (did you mean 'radius'?)");
-        assert_eq!(e.loc, Loc::Span(40..47));
-        let t = Table { entries: vec![entry("zzz", Value::Integer(1), 0)], loc: Loc::Unknown };
-        let e = Params::new("sphere", &t).check_keys(SPHERE, &[]).unwrap_err();
-        assert_eq!(e.message, "sphere: unknown parameter 'zzz' (it takes: center, radius)");
-    }
-
-    #[test]
-    fn unread_keys_are_reported() {
-        let t = Table { entries: vec![entry("radius", Value::Integer(1), 0)], loc: Loc::Unknown };
-        let e = Params::new("disk", &t).finish().unwrap_err();
-        assert_eq!(e.message, "disk: 'radius' has no effect with the other parameters given");
-    }
-
-    #[test]
-    fn colours_and_non_finite_numbers() {
-        let t = Table {
-            entries: vec![
-                entry("a", Value::Integer(2), 0),
-                entry("b", Value::Array(vec![num(0.1), num(0.2), num(0.3)]), 1),
-                entry("c", Value::Number(f64::NAN), 2),
-                entry("d", Value::Array(vec![num(f64::INFINITY), num(0.0), num(0.0)]), 3),
-            ],
-            loc: Loc::Unknown,
-        };
-        let mut p = Params::new("m", &t);
-        assert_eq!(p.color("a").unwrap(), Some(Rgb::splat(2.0)));
-        assert_eq!(p.color("b").unwrap(), Some(Rgb::new(0.1, 0.2, 0.3)));
-        assert_eq!(p.number("c").unwrap_err().message, "m: c: must be a finite number, got NaN");
-        assert_eq!(p.vec3("d").unwrap_err().message, "m: d: must be finite numbers, got [inf, 0, 0]");
-    }
-
-    #[test]
-    fn suggestions_are_only_for_near_misses() {
-        assert_eq!(suggestion("radious", ["radius", "center"]), Some("radius"));
-        assert_eq!(suggestion("centre", ["radius", "center"]), Some("center"));
-        assert_eq!(suggestion("colour", ["color", "kd"]), Some("color"));
-        assert_eq!(suggestion("qq", ["radius", "center"]), None);
     }
 }
