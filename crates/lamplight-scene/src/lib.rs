@@ -3,9 +3,11 @@
 //! Everything between the outside world and `lamplight-core`: the built-in scenes
 //! by name ([`builtin`]), the image writers ([`image_io`]), the scene file format
 //! ([`description`] types, [`formats::native`] TOML parser, [`build`] to a core
-//! scene) and the mesh importers ([`import`]).
+//! scene), the mesh importers ([`import`]), and the atomic writes every written
+//! file goes through ([`atomic`]).
 #![deny(missing_docs)]
 
+pub mod atomic;
 pub mod build;
 pub mod builtin;
 pub mod description;
