@@ -3,8 +3,8 @@
 //! Everything between the outside world and `lamplight-core`: the built-in scenes
 //! by name ([`builtin`]), the image writers ([`image_io`]), the scene file format
 //! ([`description`] types, [`formats::native`] TOML parser, [`build`] to a core
-//! scene), the mesh importers ([`import`]), and the atomic writes every written
-//! file goes through ([`atomic`]).
+//! scene), the mesh importers ([`import`]), NumPy `.npy` arrays ([`npy`]), and
+//! the atomic writes every written file goes through ([`atomic`]).
 #![deny(missing_docs)]
 
 pub mod atomic;
@@ -18,5 +18,6 @@ pub mod exr_layers;
 pub mod formats;
 pub mod image_io;
 pub mod import;
+pub mod npy;
 
 pub use error::{LoadError, Location};
