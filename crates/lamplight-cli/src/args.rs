@@ -22,9 +22,10 @@ use lamplight_scene::import;
 /// only be a typo (such as 1000 for 10), which would otherwise look like a hang.
 pub const MAX_DEPTH_LIMIT: u32 = 64;
 
-/// Most allowed `--threads`: far above any machine's cores; more threads would only
-/// cost memory and scheduling, and huge counts make the thread pool fail.
-pub const MAX_THREADS: usize = 1024;
+/// Most allowed `--threads` (`render` and `raycast`): far above any machine's
+/// cores; more threads would only cost memory and scheduling, and huge counts make
+/// the thread pool fail. The batch API's limit, so that both agree.
+pub const MAX_THREADS: usize = lamplight_core::batch::MAX_THREADS;
 
 /// Most pixels in an image: the core renderer's limit (`2^28`, e.g. 16384x16384).
 pub const MAX_PIXELS: u64 = 1 << 28;
@@ -50,7 +51,7 @@ pub enum Command {
     Render(RenderArgs),
     /// List the built-in scenes.
     List,
-    /// Cast a batch of rays (.npy arrays) against a mesh: nearest-hit distances and triangle indices.
+    /// Cast a batch of rays (.npy arrays) against a mesh: nearest-hit distances (along unit directions) and triangle indices.
     Raycast(crate::raycast::RaycastArgs),
 }
 

@@ -27,6 +27,7 @@
 #![deny(missing_docs)]
 
 pub mod accel;
+pub mod batch;
 pub mod bsdfs;
 pub mod camera;
 mod error;
@@ -37,7 +38,6 @@ pub mod materials;
 pub mod math;
 pub mod progressive;
 pub mod ray;
-pub mod raycast;
 mod render;
 pub mod sampling;
 pub mod scene;
