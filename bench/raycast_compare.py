@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """Side by side: `lamplight raycast` against native Embree 3 (bench/embree/harness.c)
 on the anchor ray sets, in the same run, and a check that lamplight agrees with
-Embree's answers.
+Embree's answers (lamplight's `t` is the distance to the hit, Embree's the
+parameter along the direction as given: equal for unit directions, and compared
+as distances here).
 
     python3 bench/gen_rays.py                       # once: rays into $ANCHOR_RAYS
     bench/embree/build.sh                           # once: the Embree harness
@@ -57,8 +59,13 @@ def lamplight(mesh, rays, threads, runs, out, any_hit=False):
             "mrays_per_cpu_s": num(r"([\d.]+) Mrays per CPU-second")}
 
 
-def agreement(out, ref_t, ref_p, any_hit):
+def agreement(out, ref_t, ref_p, any_hit, directions):
+    """lamplight's `t` is the distance `s |d|`; Embree's is the parameter `s`
+    along the direction as given. The anchor directions are unit to float32
+    rounding, so the two differ by about 1e-7; Embree's is scaled by |d| (in
+    float64) so that both are distances and only the casting differs."""
     t = np.load(out / "t.npy")
+    ref_t = ref_t * np.linalg.norm(directions.astype(np.float64), axis=1)
     hit, ref_hit = np.isfinite(t), np.isfinite(ref_t)
     res = {"hit_mismatch": int((hit != ref_hit).sum())}
     if not any_hit:
@@ -99,7 +106,7 @@ def main():
                     row[f"embree_all_{threads}t"] = {r["mode"]: (r["mrays_wall"], r["mrays_per_cpu_s"]) for r in results}
                     row[f"lamplight_{threads}t"] = ours
                     if threads == 1:
-                        row["agreement"] = agreement(tmp, ref_t, ref_p, any_hit)
+                        row["agreement"] = agreement(tmp, ref_t, ref_p, any_hit, np.load(files(mesh, rays)[3]))
                 rows.append(row)
                 e1, l1, e2, l2 = row["embree_1t"], row["lamplight_1t"], row["embree_2t"], row["lamplight_2t"]
                 print(f"{mesh} {kind}: embree 1t {e1['mode']} {e1['mrays_wall']:.2f} ({e1['mrays_per_cpu_s']:.2f}/cpu-s), "

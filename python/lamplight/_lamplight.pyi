@@ -70,18 +70,30 @@ class Scene:
         origins: npt.NDArray[_Float],
         directions: npt.NDArray[_Float],
         threads: int = 0,
-    ) -> Tuple[npt.NDArray[_Float], npt.NDArray[np.int64], npt.NDArray[_Float]]:
-        """Nearest hits of the rays ``origins[i] + t * directions[i] / |directions[i]|``.
+    ) -> Tuple[npt.NDArray[_Float], npt.NDArray[np.int64], npt.NDArray[np.int64], npt.NDArray[_Float]]:
+        """Nearest hits of the rays ``origins[i] + s * directions[i]``, ``s > 0``.
 
         ``origins`` and ``directions`` are ``(N, 3)`` arrays, both float32 or
-        both float64, read in place (any strides). Runs on ``threads`` threads
-        (0: every core) with the GIL released. Returns ``(t, ids, normals)``:
-        ``t`` the distance to the hit (``inf`` on a miss, the input's dtype),
-        ``ids`` the object hit (int64, objects in scene order, ``-1`` on a
-        miss), ``normals`` the unit outward geometric normal ``(N, 3)`` (zero
-        on a miss). Zero or non-finite directions and non-finite origins miss.
-        Raises ``TypeError`` for non-arrays or other dtypes and ``ValueError``
-        for other shapes.
+        both float64, read in place (any strides); directions need not be unit.
+        Runs on ``threads`` threads (0: every core, at most 1024) with the GIL
+        released; the answers do not depend on it. Returns
+        ``(t, ids, prims, normals)``:
+
+        - ``t``: the distance ``s * |directions[i]|`` from the origin to the
+          hit (Embree's ``t`` when the direction is unit), ``inf`` on a miss,
+          the input's dtype;
+        - ``ids``: the object hit (int64, objects in scene order, ``-1`` on a
+          miss);
+        - ``prims``: the triangle hit within a mesh object (int64, the mesh's
+          face order), ``-1`` on a miss and for shapes that are not meshes;
+        - ``normals``: the unit outward geometric normal ``(N, 3)``, zero on a
+          miss.
+
+        The same numbers as ``lamplight raycast`` gives for a scene of one mesh
+        (its ``T``, ``--objects`` and ``--prims``, to float32 rounding). Zero or
+        non-finite directions and non-finite origins miss. Raises ``TypeError``
+        for non-arrays or other dtypes and ``ValueError`` for other shapes or
+        thread counts.
         """
 
 def builtin_names() -> List[str]:

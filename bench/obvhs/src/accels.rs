@@ -6,7 +6,7 @@
 use std::time::{Duration, Instant};
 
 use glam::{UVec2, Vec3A};
-use lamplight_core::raycast::MeshAccel;
+use lamplight_core::batch::MeshAccel;
 use obvhs::bvh2::builder::build_bvh2_from_tris;
 use obvhs::bvh2::node::Bvh2Node;
 use obvhs::bvh2::Bvh2;
@@ -157,11 +157,12 @@ impl Accel {
     }
 
     /// Casts the batch on the current rayon pool (chunks of 1024 rays, as
-    /// `MeshAccel::cast`): nearest `t` (`inf` for a miss) and input triangle index
-    /// (`-1`). Each arm is monomorphised, so the per-ray query inlines.
+    /// `lamplight_core::batch::cast`): nearest ray parameter `t` along the
+    /// direction as given (`inf` for a miss; every structure here in the same
+    /// unit) and input triangle index (`-1`). Each arm is monomorphised, so the per-ray query inlines.
     pub fn cast(&self, origins: &[[f32; 3]], dirs: &[[f32; 3]], t_out: &mut [f32], prim_out: &mut [i64]) {
         match self {
-            Accel::Lamplight(a) => closest_batch(origins, dirs, t_out, prim_out, |o, d| a.cast_one(o, d, f32::INFINITY)),
+            Accel::Lamplight(a) => closest_batch(origins, dirs, t_out, prim_out, |o, d| a.nearest_param(o, d, f32::INFINITY)),
             Accel::Cw(b, t) => closest_batch(origins, dirs, t_out, prim_out, |o, d| {
                 let mut hit = RayHit::none();
                 b.ray_traverse(ray(o, d), &mut hit, |r, id| t[id].intersect(r))
@@ -178,7 +179,7 @@ impl Accel {
     /// The any-hit query for the batch (stops at the first hit), current rayon pool.
     pub fn occluded(&self, origins: &[[f32; 3]], dirs: &[[f32; 3]], hit_out: &mut [bool]) {
         match self {
-            Accel::Lamplight(a) => occluded_batch(origins, dirs, hit_out, |o, d| a.occluded_one(o, d, f32::INFINITY)),
+            Accel::Lamplight(a) => occluded_batch(origins, dirs, hit_out, |o, d| a.occluded_param(o, d, f32::INFINITY)),
             Accel::Cw(b, t) => occluded_batch(origins, dirs, hit_out, |o, d| !b.ray_traverse_miss(ray(o, d), |r, id| t[id].intersect(r))),
             Accel::B2(b, t) => occluded_batch(origins, dirs, hit_out, |o, d| !b.ray_traverse_miss(ray(o, d), |r, id| t[id].intersect(r))),
         }
@@ -214,7 +215,7 @@ impl Accel {
     }
 }
 
-/// Rays per rayon work item, as in `MeshAccel::cast`.
+/// Rays per rayon work item, as in `lamplight_core::batch::cast`.
 const CHUNK: usize = 1024;
 
 fn closest_batch(

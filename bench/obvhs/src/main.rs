@@ -14,7 +14,6 @@
 //! rays leaking through shared edges and vertices of a closed sheet.
 
 mod accels;
-mod npy;
 mod probe;
 
 use std::path::{Path, PathBuf};
@@ -22,6 +21,7 @@ use std::time::Instant;
 
 use accels::{Accel, Kind};
 use glam::Vec3A;
+use lamplight_scene::npy;
 use obvhs::ray::Ray;
 use obvhs::rt_triangle::RtTriangle;
 
@@ -188,9 +188,9 @@ fn main() {
 
     for mesh in &args.meshes {
         let f = |name: &str| args.rays.join(format!("{mesh}_{name}.npy"));
-        let read = |p: &Path| npy::read_f32(p).unwrap_or_else(|e| panic!("{e}"));
+        let read = |p: &Path| npy::read_rows3_f32(p).unwrap_or_else(|e| panic!("{e}"));
         let positions = read(&f("vertices"));
-        let indices = npy::read_u32(&f("indices")).unwrap_or_else(|e| panic!("{e}"));
+        let indices = npy::read_rows3_u32(&f("indices")).unwrap_or_else(|e| panic!("{e}"));
         println!("\n## {mesh}: {} triangles (load {})", indices.len(), load());
 
         // Builds, interleaved; the structure cast below is the last one built on the first pool.

@@ -35,7 +35,7 @@ pub enum Command {
     Render(RenderArgs),
     /// List the built-in scenes.
     List,
-    /// Cast a batch of rays (.npy arrays) against a mesh: nearest-hit distances and triangle indices.
+    /// Cast a batch of rays (.npy arrays) against a mesh: distances to the nearest hits and triangle indices.
     Raycast(crate::raycast::RaycastArgs),
 }
 

@@ -13,7 +13,6 @@
 //! while running (such as an unwritable output file).
 
 mod args;
-mod npy;
 mod raycast;
 
 use std::io::{self, IsTerminal, Write};

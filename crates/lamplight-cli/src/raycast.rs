@@ -1,33 +1,48 @@
 //! `lamplight raycast`: batch ray casting against one mesh, rays and answers as
-//! NumPy `.npy` arrays ([`crate::npy`]).
+//! NumPy `.npy` arrays ([`lamplight_scene::npy`]), through the batch API of
+//! [`lamplight_core::batch`] that Python's `Scene.intersect` uses too.
 //!
 //! ```text
 //! lamplight raycast (--mesh FILE | --vertices V.npy --indices I.npy)
 //!                   --origins O.npy --directions D.npy -o T.npy [--prims P.npy]
-//!                   [--threads N] [--any-hit] [--repeat K]
+//!                   [--objects OBJ.npy] [--threads N] [--any-hit] [--repeat K]
 //! ```
 //!
-//! `O` and `D` are `(N, 3)` float32 (or float64) arrays; `T` gets the nearest hit
-//! distance along each (not necessarily unit) direction, `+inf` for a miss, and
-//! `P` the int64 triangle index, `-1` for a miss. Triangles are numbered in the
-//! file's face order (`lamplight_scene::import::load_mesh`: a multi-mesh file's
-//! instances merged in order, in world space).
-//! With `--any-hit` only occlusion is asked: `T` is 0 for a ray that hits anything
+//! `O` and `D` are `(N, 3)` float32 (or float64, rounded) arrays; ray `i` is
+//! `O[i] + s D[i]`, `s > 0`, and `D[i]` need not be unit. Answers, as
+//! [`lamplight_core::batch`] defines them:
+//!
+//! - `T`, float32 `(N,)`: the **distance** from `O[i]` to the nearest hit,
+//!   `s |D[i]|` (equal to Embree's `tfar` for unit directions), `+inf` for a miss;
+//! - `P`, int64 `(N,)`: the index of the triangle hit, `-1` for a miss;
+//! - `OBJ`, int64 `(N,)`: the object hit, always `0` here (the mesh is one
+//!   object), `-1` for a miss: the same ids as `Scene.intersect` gives for a
+//!   scene holding only this mesh.
+//!
+//! Triangles are numbered in the file's face order (`lamplight_scene::import::load_mesh`:
+//! a multi-mesh file's instances merged in order, in world space). With
+//! `--any-hit` only occlusion is asked: `T` is 0 for a ray that hits anything
 //! and `+inf` for one that does not. Prints the build time, memory, casting time
-//! and Mrays/s (casting only; with `--repeat K` the median of K casts).
+//! and Mrays/s (casting only; with `--repeat K` the median of K casts). The
+//! answers do not depend on `--threads`. Bad input exits with code 2.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::Context;
 use clap::Args;
-use lamplight_core::raycast::MeshAccel;
+use lamplight_core::batch::{self, Hits, MeshAccel, RaySlices};
+use lamplight_scene::npy::{self, NpyError};
+
+use lamplight_scene::request::limits::MAX_THREADS;
 
 use crate::args::UsageError;
-use crate::npy;
 
 /// `lamplight raycast` flags.
 #[derive(Debug, Args)]
+#[command(after_help = "Units: ray i is O[i] + s D[i] with s > 0 and D[i] of any non-zero length; T[i] is the distance \
+                        s |D[i]| to the nearest hit (Embree's t when D[i] is unit), +inf for a miss. The same numbers \
+                        as Python's Scene.intersect.")]
 pub struct RaycastArgs {
     /// Mesh file (any format `lamplight_scene::import` reads).
     #[arg(long, value_name = "FILE", conflicts_with_all = ["vertices", "indices"])]
@@ -38,37 +53,66 @@ pub struct RaycastArgs {
     /// Triangles, an (F, 3) integer .npy of vertex indices.
     #[arg(long, value_name = "I.npy", requires = "vertices")]
     pub indices: Option<PathBuf>,
-    /// Ray origins, (N, 3) float32.
+    /// Ray origins, (N, 3) float32 or float64.
     #[arg(long, value_name = "O.npy")]
     pub origins: PathBuf,
-    /// Ray directions, (N, 3) float32 (need not be unit length).
+    /// Ray directions, (N, 3) float32 or float64, any non-zero length.
     #[arg(long, value_name = "D.npy")]
     pub directions: PathBuf,
-    /// Output: hit distances, (N,) float32, +inf for a miss.
+    /// Output: distance from the origin to the nearest hit, (N,) float32, +inf for a miss.
     #[arg(short, long, value_name = "T.npy")]
     pub output: PathBuf,
     /// Output: triangle indices, (N,) int64, -1 for a miss.
     #[arg(long, value_name = "P.npy")]
     pub prims: Option<PathBuf>,
-    /// Worker threads for build and casting (default: all cores).
+    /// Output: object ids, (N,) int64: 0 (the mesh) for a hit, -1 for a miss.
+    #[arg(long, value_name = "OBJ.npy")]
+    pub objects: Option<PathBuf>,
+    /// Worker threads for build and casting, at most 1024; 0 uses all cores. The answers do not depend on it.
     #[arg(long, value_name = "N", default_value_t = 0)]
     pub threads: usize,
     /// Only test occlusion (shadow rays): T is 0 for a hit, +inf for a miss.
-    #[arg(long, conflicts_with = "prims")]
+    #[arg(long, conflicts_with_all = ["prims", "objects"])]
     pub any_hit: bool,
     /// Cast the batch K times and report the median time.
     #[arg(long, value_name = "K", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..))]
     pub repeat: u32,
 }
 
+/// A reading error is the user's input (exit code 2); a writing error is not.
+fn npy_error(e: NpyError) -> anyhow::Error {
+    match e {
+        NpyError::Read { .. } => UsageError(e.to_string()).into(),
+        _ => e.into(),
+    }
+}
+
+/// Fails before the work when an output's directory does not accept files.
+fn check_writable(path: &Path) -> anyhow::Result<()> {
+    lamplight_scene::atomic::check_writable(path).with_context(|| format!("cannot write {}", path.display()))
+}
+
 /// Reads the mesh and the rays, casts, writes the answers.
 pub fn raycast_command(args: RaycastArgs) -> anyhow::Result<()> {
-    let (positions, indices) = load_mesh(&args)?;
-    let origins = npy::read_rows3(&args.origins)?.to_f32(&args.origins)?;
-    let directions = npy::read_rows3(&args.directions)?.to_f32(&args.directions)?;
-    if origins.len() != directions.len() {
-        return Err(UsageError(format!("{} origins but {} directions", origins.len(), directions.len())).into());
+    if args.threads > MAX_THREADS {
+        return Err(UsageError(format!("--threads must be at most {MAX_THREADS} (0 uses all cores), got {}", args.threads)).into());
     }
+    for path in [Some(&args.output), args.prims.as_ref(), args.objects.as_ref()].into_iter().flatten() {
+        check_writable(path)?;
+    }
+    let (positions, indices) = load_mesh(&args)?;
+    let origins = npy::read_rows3_f32(&args.origins).map_err(npy_error)?;
+    let directions = npy::read_rows3_f32(&args.directions).map_err(npy_error)?;
+    if origins.len() != directions.len() {
+        let (o, d) = (args.origins.display(), args.directions.display());
+        return Err(UsageError(format!(
+            "{} origins but {} directions: {o} and {d} must have the same number of rows",
+            origins.len(),
+            directions.len()
+        ))
+        .into());
+    }
+    let rays = RaySlices::new(&origins, &directions)?;
     let pool = rayon::ThreadPoolBuilder::new().num_threads(args.threads).build().context("cannot start the thread pool")?;
     let threads = pool.current_num_threads();
 
@@ -90,17 +134,18 @@ pub fn raycast_command(args: RaycastArgs) -> anyhow::Result<()> {
     let n = origins.len();
     let mut t = vec![0f32; n];
     let mut prims = args.prims.as_ref().map(|_| vec![0i64; n]);
+    let mut objects = args.objects.as_ref().map(|_| vec![0i64; n]);
     let mut hits = vec![false; n];
-    let unbounded = if args.any_hit { vec![f32::INFINITY; n] } else { Vec::new() };
     let (mut times, mut cpu_times) = (Vec::new(), Vec::new());
     for _ in 0..args.repeat {
         let cpu_start = cpu_seconds();
         let start = Instant::now();
         pool.install(|| {
             if args.any_hit {
-                accel.occluded(&origins, &directions, &unbounded, &mut hits, 0)
+                batch::occluded(&accel, &rays, None, &mut hits, 0)
             } else {
-                accel.cast(&origins, &directions, &mut t, prims.as_deref_mut(), 0)
+                let out = Hits { t: &mut t, object: objects.as_deref_mut(), primitive: prims.as_deref_mut(), normal: None };
+                batch::cast(&accel, &rays, out, 0)
             }
         })?;
         times.push(start.elapsed().as_secs_f64());
@@ -126,8 +171,10 @@ pub fn raycast_command(args: RaycastArgs) -> anyhow::Result<()> {
         t = hits.iter().map(|&h| if h { 0.0 } else { f32::INFINITY }).collect();
     }
     npy::write_f32(&args.output, &t)?;
-    if let (Some(path), Some(prims)) = (&args.prims, &prims) {
-        npy::write_i64(path, prims)?;
+    for (path, ids) in [(&args.prims, &prims), (&args.objects, &objects)] {
+        if let (Some(path), Some(ids)) = (path, ids) {
+            npy::write_i64(path, ids)?;
+        }
     }
     Ok(())
 }
@@ -153,7 +200,7 @@ fn load_mesh(args: &RaycastArgs) -> anyhow::Result<Mesh> {
             let mesh = lamplight_scene::import::load_mesh(path).map_err(|e| UsageError(e.to_string()))?;
             Ok((mesh.positions.iter().map(|p| [p.x as f32, p.y as f32, p.z as f32]).collect(), mesh.indices))
         }
-        (None, Some(v), Some(i)) => Ok((npy::read_rows3(v)?.to_f32(v)?, npy::read_rows3(i)?.to_u32(i)?)),
+        (None, Some(v), Some(i)) => Ok((npy::read_rows3_f32(v).map_err(npy_error)?, npy::read_rows3_u32(i).map_err(npy_error)?)),
         _ => Err(UsageError("give --mesh FILE, or --vertices V.npy with --indices I.npy".into()).into()),
     }
 }

@@ -27,6 +27,7 @@
 #![deny(missing_docs)]
 
 pub mod accel;
+pub mod batch;
 pub mod bsdfs;
 pub mod camera;
 mod error;
@@ -38,7 +39,6 @@ pub mod math;
 pub mod params;
 pub mod progressive;
 pub mod ray;
-pub mod raycast;
 mod render;
 pub mod sampling;
 pub mod scene;

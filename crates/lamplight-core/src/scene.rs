@@ -45,6 +45,8 @@ pub struct Hit {
     pub material: usize,
     /// The shape's absolute error bound for the point (see [`crate::shapes::SurfaceHit::error`]).
     pub error: f64,
+    /// Triangle index within a mesh object (see [`crate::shapes::SurfaceHit::primitive`]).
+    pub primitive: Option<u32>,
 }
 
 /// Everything the integrators need; immutable and shared across threads.
@@ -248,6 +250,7 @@ impl Scene {
             object,
             material: self.objects[object].material,
             error: h.error,
+            primitive: h.primitive,
         })
     }
 

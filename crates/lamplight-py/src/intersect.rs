@@ -1,29 +1,44 @@
-//! `Scene.intersect`: nearest hits of a batch of rays given as numpy arrays.
+//! `Scene.intersect`: nearest hits of a batch of rays given as numpy arrays,
+//! through the batch API of `lamplight_core::batch` (the one `lamplight raycast`
+//! uses, with the same meaning of every number).
 //!
 //! Origins and directions are `(N, 3)` arrays of float32 or float64 (the same
 //! for both), read in place (no copy, any strides). The rays are traced on a
-//! rayon pool with the GIL released. Directions are normalized, so `t` is the
-//! distance from the origin to the hit. Answers: `t` (the input's float type,
-//! `+inf` on a miss), the id of the object hit (int64, `-1` on a miss; objects
-//! are numbered in scene order) and its unit outward geometric normal (`(N, 3)`,
-//! zero on a miss). A ray with a zero or non-finite direction or a non-finite
-//! origin misses.
+//! rayon pool with the GIL released. Answers, for ray `o + s d` (`d` of any
+//! non-zero length): `t`, the distance `s |d|` from the origin to the nearest hit
+//! (the input's float type, `+inf` on a miss); the id of the object hit (int64,
+//! objects in scene order, `-1` on a miss); the index of the triangle hit within
+//! a mesh object (int64, the mesh's face order; `-1` on a miss and for other
+//! shapes); and the unit outward geometric normal (`(N, 3)`, zero on a miss). A
+//! ray with a zero or non-finite direction or a non-finite origin misses.
 
-use lamplight_core::math::Vec3;
-use lamplight_core::ray::Ray;
+use lamplight_core::batch::{self, Float, Hits, Rays, MAX_THREADS};
 use lamplight_core::Scene as CoreScene;
 use numpy::ndarray::ArrayView2;
 use numpy::{Element, PyArray1, PyArray2, PyArrayMethods, PyUntypedArray, PyUntypedArrayMethods};
 use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
-use rayon::prelude::*;
 
-/// Rays per rayon work item.
-const CHUNK: usize = 1024;
+/// Two `(N, 3)` numpy arrays read in place as rays.
+struct ArrayRays<'a, T> {
+    origins: ArrayView2<'a, T>,
+    directions: ArrayView2<'a, T>,
+}
 
-/// One ray's answer: distance, object id, outward normal.
-type Answer = (f64, i64, [f64; 3]);
+impl<T: Float> Rays for ArrayRays<'_, T> {
+    type Scalar = T;
+
+    fn len(&self) -> usize {
+        self.origins.nrows()
+    }
+
+    #[inline]
+    fn get(&self, i: usize) -> ([T; 3], [T; 3]) {
+        let (o, d) = (&self.origins, &self.directions);
+        (std::array::from_fn(|k| o[[i, k]]), std::array::from_fn(|k| d[[i, k]]))
+    }
+}
 
 /// Checks that `obj` is an `(N, 3)` numpy array and returns N.
 fn rows(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<usize> {
@@ -42,7 +57,8 @@ fn dtype_name(obj: &Bound<'_, PyAny>) -> String {
     obj.downcast::<PyUntypedArray>().ok().and_then(|a| a.dtype().str().ok().map(|s| s.to_string())).unwrap_or_default()
 }
 
-/// Traces every ray in a pool of `threads` (0: one per core).
+/// Traces every ray in a pool of `threads` (0: one per core); returns
+/// `(t, ids, prims, normals)`.
 pub fn intersect<'py>(
     py: Python<'py>,
     scene: &CoreScene,
@@ -55,8 +71,8 @@ pub fn intersect<'py>(
     if n != m {
         return Err(PyValueError::new_err(format!("origins and directions must have the same number of rows, got {n} and {m}")));
     }
-    if threads > 1024 {
-        return Err(PyValueError::new_err(format!("threads must be at most 1024 (0 uses all cores), got {threads}")));
+    if threads > MAX_THREADS {
+        return Err(PyValueError::new_err(format!("threads must be at most {MAX_THREADS} (0 uses all cores), got {threads}")));
     }
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
@@ -64,15 +80,13 @@ pub fn intersect<'py>(
         .map_err(|e| PyRuntimeError::new_err(format!("cannot start worker threads: {e}")))?;
     if let (Ok(o), Ok(d)) = (origins.downcast::<PyArray2<f64>>(), directions.downcast::<PyArray2<f64>>()) {
         let (o, d) = (o.readonly(), d.readonly());
-        let (o, d) = (o.as_array(), d.as_array());
-        let answers = py.allow_threads(|| pool.install(|| trace(scene, o, d, |v| v)));
-        return answer(py, answers, |t| t);
+        let rays = ArrayRays { origins: o.as_array(), directions: d.as_array() };
+        return answer(py, &pool, scene, &rays);
     }
     if let (Ok(o), Ok(d)) = (origins.downcast::<PyArray2<f32>>(), directions.downcast::<PyArray2<f32>>()) {
         let (o, d) = (o.readonly(), d.readonly());
-        let (o, d) = (o.as_array(), d.as_array());
-        let answers = py.allow_threads(|| pool.install(|| trace(scene, o, d, f64::from)));
-        return answer(py, answers, |t| t as f32);
+        let rays = ArrayRays { origins: o.as_array(), directions: d.as_array() };
+        return answer(py, &pool, scene, &rays);
     }
     Err(PyTypeError::new_err(format!(
         "origins and directions must both be float32 or both float64 arrays, got {} and {}",
@@ -81,42 +95,24 @@ pub fn intersect<'py>(
     )))
 }
 
-fn trace<T: Copy + Send + Sync>(scene: &CoreScene, o: ArrayView2<'_, T>, d: ArrayView2<'_, T>, to_f64: fn(T) -> f64) -> Vec<Answer> {
-    (0..o.nrows())
-        .into_par_iter()
-        .with_min_len(CHUNK)
-        .map(|i| {
-            let origin = Vec3::new(to_f64(o[[i, 0]]), to_f64(o[[i, 1]]), to_f64(o[[i, 2]]));
-            let dir = Vec3::new(to_f64(d[[i, 0]]), to_f64(d[[i, 1]]), to_f64(d[[i, 2]]));
-            let length = dir.length();
-            if !(origin.is_finite() && length.is_finite() && length > 0.0) {
-                return (f64::INFINITY, -1, [0.0; 3]);
-            }
-            let ray = Ray { origin, dir: dir / length };
-            match scene.first_intersect(&ray, f64::INFINITY) {
-                Some(hit) => {
-                    // The scene turns normals to face the ray; give the shape's outward one.
-                    let outward = if hit.front_face { hit.geometric_normal } else { -hit.geometric_normal };
-                    (hit.t, hit.object as i64, outward.to_array())
-                }
-                None => (f64::INFINITY, -1, [0.0; 3]),
-            }
-        })
-        .collect()
-}
-
-fn answer<'py, T: Element>(py: Python<'py>, answers: Vec<Answer>, from_f64: fn(f64) -> T) -> PyResult<Bound<'py, PyTuple>> {
-    let n = answers.len();
-    let mut t = Vec::with_capacity(n);
-    let mut ids = Vec::with_capacity(n);
-    let mut normals = Vec::with_capacity(n * 3);
-    for (distance, id, normal) in answers {
-        t.push(from_f64(distance));
-        ids.push(id);
-        normals.extend(normal.map(from_f64));
-    }
+/// Casts `rays` with the GIL released and wraps the answers as numpy arrays.
+fn answer<'py, T: Float + Element>(
+    py: Python<'py>,
+    pool: &rayon::ThreadPool,
+    scene: &CoreScene,
+    rays: &ArrayRays<'_, T>,
+) -> PyResult<Bound<'py, PyTuple>> {
+    let n = rays.len();
+    let (mut t, mut ids, mut prims) = (vec![T::from_f64(0.0); n], vec![0i64; n], vec![0i64; n]);
+    let mut normals = vec![[T::from_f64(0.0); 3]; n];
+    py.allow_threads(|| {
+        let out = Hits { t: &mut t, object: Some(&mut ids), primitive: Some(&mut prims), normal: Some(&mut normals) };
+        pool.install(|| batch::cast(scene, rays, out, 0))
+    })
+    .map_err(|e| PyValueError::new_err(e.to_string()))?;
     let t = PyArray1::from_vec(py, t);
     let ids = PyArray1::from_vec(py, ids);
-    let normals = PyArray1::from_vec(py, normals).reshape([n, 3])?;
-    PyTuple::new(py, [t.into_any(), ids.into_any(), normals.into_any()])
+    let prims = PyArray1::from_vec(py, prims);
+    let normals = PyArray1::from_vec(py, normals.into_flattened()).reshape([n, 3])?;
+    PyTuple::new(py, [t.into_any(), ids.into_any(), prims.into_any(), normals.into_any()])
 }

@@ -345,8 +345,8 @@ impl Scene {
         Ok(self.core(py, self.aspect(None, None)?)?.objects.len())
     }
 
-    /// Nearest hits of rays `origins[i] + t * directions[i] / |directions[i]|`:
-    /// see `lamplight.Scene.intersect` in the type stubs.
+    /// Nearest hits of rays `origins[i] + s * directions[i]`, `t = s |directions[i]|`
+    /// the distance: see `lamplight.Scene.intersect` in the type stubs.
     #[pyo3(signature = (origins, directions, threads=0))]
     fn intersect<'py>(
         &self,

@@ -8,16 +8,15 @@
 //! | `.ppm`    | binary PPM (`P6`, maxval 255), the same bytes as the PNG's pixels |
 //! | `.exr`    | OpenEXR, linear 32-bit float R, G, B, ZIP-compressed (lossless) |
 //!
-//! Writes are atomic: the file is encoded in memory, written to a temporary file
-//! `.<name>.tmp-<pid>-<n>` beside the target, flushed to disk, and renamed over
-//! the target. A failed write removes the temporary file and leaves an existing
-//! target as it was; a crash can leave at most a stray temporary file, never a
-//! truncated image.
+//! Writes are atomic ([`crate::atomic`]): the file is encoded in memory, written
+//! to a temporary file `.<name>.<random>.tmp` beside the target, synced, and
+//! renamed over the target. A failed write removes the temporary file and leaves
+//! an existing target as it was; a crash can leave at most a stray temporary
+//! file, never a truncated image.
 
-use std::fs::{self, File, OpenOptions};
-use std::io::{self, BufReader, Cursor, Write};
+use std::fs::File;
+use std::io::{self, BufReader, Cursor};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicU64, Ordering};
 
 use image::ImageEncoder;
 use lamplight_core::film::Image;
@@ -101,11 +100,7 @@ pub fn write_image(path: &Path, image: &Image) -> Result<(), ImageError> {
 /// The target itself is not touched.
 pub fn check_writable(path: &Path) -> Result<(), ImageError> {
     Format::from_path(path)?;
-    let (file, temp) = create_temp(path)?;
-    drop(file);
-    // Removal failing would only leave an empty stray file; the check itself passed.
-    let _ = fs::remove_file(temp);
-    Ok(())
+    crate::atomic::check_writable(path).map_err(|io| ImageError::Write { path: path.to_path_buf(), io })
 }
 
 /// The file's bytes for `image` in `format`.
@@ -146,54 +141,14 @@ fn encode(format: Format, image: &Image) -> Result<Vec<u8>, String> {
     }
 }
 
-/// Writes `bytes` to a temporary file beside `path`, syncs it and renames it over
-/// `path`; on failure the temporary file is removed.
+/// Writes `bytes` to `path` atomically ([`crate::atomic::write`]).
 pub(crate) fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), ImageError> {
-    let (mut file, temp) = create_temp(path)?;
-    let written = file.write_all(bytes).and_then(|()| file.sync_all());
-    drop(file);
-    if let Err(io) = written.and_then(|()| fs::rename(&temp, path)) {
-        let _ = fs::remove_file(&temp);
-        return Err(ImageError::Write { path: path.to_path_buf(), io });
-    }
-    // The directory is not synced: the rename is atomic, so after a crash the
-    // name holds either the old file or the new one, each complete; syncing the
-    // directory as well would cost 5-10 ms per image for durability of the name
-    // alone, more than a tenth of a small render's whole run.
-    Ok(())
-}
-
-/// Creates a new, empty temporary file in `path`'s directory: `.<name>.tmp-<pid>-<n>`,
-/// with `n` counting within the process so that concurrent writers never share one.
-fn create_temp(path: &Path) -> Result<(File, PathBuf), ImageError> {
-    static COUNTER: AtomicU64 = AtomicU64::new(0);
-    let write_error = |io| ImageError::Write { path: path.to_path_buf(), io };
-    let name = path.file_name().ok_or_else(|| write_error(io::Error::new(io::ErrorKind::InvalidInput, "not a file name")))?;
-    let dir = parent_dir(path);
-    loop {
-        let n = COUNTER.fetch_add(1, Ordering::Relaxed);
-        let temp = dir.join(format!(".{}.tmp-{}-{n}", name.to_string_lossy(), std::process::id()));
-        // `create_new` never follows or reuses an existing file, so a leftover from a
-        // crashed process with the same id is skipped rather than clobbered.
-        match OpenOptions::new().write(true).create_new(true).open(&temp) {
-            Ok(file) => return Ok((file, temp)),
-            Err(e) if e.kind() == io::ErrorKind::AlreadyExists && n < 1000 => continue,
-            Err(e) => return Err(write_error(e)),
-        }
-    }
-}
-
-/// The directory that holds `path` (`.` for a bare file name).
-fn parent_dir(path: &Path) -> &Path {
-    match path.parent() {
-        Some(dir) if !dir.as_os_str().is_empty() => dir,
-        _ => Path::new("."),
-    }
+    crate::atomic::write(path, bytes).map_err(|io| ImageError::Write { path: path.to_path_buf(), io })
 }
 
 /// An I/O error as a short lower-case phrase: "permission denied" rather than
 /// "Permission denied (os error 13)".
-fn describe(error: &io::Error) -> String {
+pub(crate) fn describe(error: &io::Error) -> String {
     let text = error.to_string();
     let text = match error.raw_os_error() {
         Some(code) => text.strip_suffix(&format!(" (os error {code})")).unwrap_or(&text).to_string(),
@@ -251,7 +206,7 @@ pub(crate) fn refusal(r: &crate::input::Refusal) -> String {
         Refusal::NotFound => "no such file".to_string(),
         Refusal::PermissionDenied => "permission denied".to_string(),
         Refusal::Directory => "is a directory, expected an image file".to_string(),
-        Refusal::NotRegular => "is not a regular file (a pipe or a device), expected an image file".to_string(),
+        Refusal::NotRegular(kind) => format!("is {kind}, expected an image file"),
         Refusal::TooLarge { len, max } => format!("is {len} bytes, larger than the {max} bytes an image file may have"),
         Refusal::Io(e) => e.clone(),
     }
@@ -260,6 +215,7 @@ pub(crate) fn refusal(r: &crate::input::Refusal) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::fs;
 
     /// A scratch directory, removed on drop.
     struct Scratch(PathBuf, #[allow(dead_code)] tempfile::TempDir);

@@ -21,8 +21,8 @@ pub enum Refusal {
     PermissionDenied,
     /// A directory.
     Directory,
-    /// A FIFO, socket or device.
-    NotRegular,
+    /// A FIFO, socket or device: `a FIFO`, `a device`, `a socket`.
+    NotRegular(&'static str),
     /// Larger than the cap.
     TooLarge {
         /// Its size in bytes (at least what was read).
@@ -52,7 +52,7 @@ pub fn open_regular(path: &Path, max: u64) -> Result<(File, u64), Refusal> {
         return Err(Refusal::Directory);
     }
     if !meta.is_file() {
-        return Err(Refusal::NotRegular);
+        return Err(Refusal::NotRegular(kind_of(meta.file_type())));
     }
     if meta.len() > max {
         return Err(Refusal::TooLarge { len: meta.len(), max });
@@ -61,9 +61,28 @@ pub fn open_regular(path: &Path, max: u64) -> Result<(File, u64), Refusal> {
     // The path may have been replaced between the two calls: check what was opened.
     let opened = file.metadata().map_err(|e| Refusal::io(&e))?;
     if !opened.is_file() {
-        return Err(Refusal::NotRegular);
+        return Err(Refusal::NotRegular(kind_of(opened.file_type())));
     }
     Ok((file, opened.len()))
+}
+
+/// What a file that is not a regular file is, in words.
+fn kind_of(file_type: std::fs::FileType) -> &'static str {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if file_type.is_fifo() {
+            return "a FIFO";
+        }
+        if file_type.is_char_device() || file_type.is_block_device() {
+            return "a device";
+        }
+        if file_type.is_socket() {
+            return "a socket";
+        }
+    }
+    let _ = file_type;
+    "not a regular file"
 }
 
 /// The whole of `path` when it is a regular file of at most `max` bytes.
@@ -90,16 +109,16 @@ mod tests {
         assert_eq!(read_regular(&file, 9).unwrap_err(), Refusal::TooLarge { len: 10, max: 9 });
         assert_eq!(read_regular(dir.path(), 10).unwrap_err(), Refusal::Directory);
         assert_eq!(read_regular(&dir.path().join("none"), 10).unwrap_err(), Refusal::NotFound);
-        assert_eq!(read_regular(Path::new("/dev/zero"), 10).unwrap_err(), Refusal::NotRegular);
+        assert_eq!(read_regular(Path::new("/dev/zero"), 10).unwrap_err(), Refusal::NotRegular("a device"));
         #[cfg(unix)]
         {
             let link = dir.path().join("z.toml");
             std::os::unix::fs::symlink("/dev/zero", &link).unwrap();
-            assert_eq!(read_regular(&link, 1 << 20).unwrap_err(), Refusal::NotRegular, "a link to a device");
+            assert_eq!(read_regular(&link, 1 << 20).unwrap_err(), Refusal::NotRegular("a device"), "a link to a device");
             let fifo = dir.path().join("f.toml");
             if std::process::Command::new("mkfifo").arg(&fifo).status().is_ok_and(|s| s.success()) {
                 // Returns at once: a FIFO is refused before it is opened.
-                assert_eq!(read_regular(&fifo, 1 << 20).unwrap_err(), Refusal::NotRegular);
+                assert_eq!(read_regular(&fifo, 1 << 20).unwrap_err(), Refusal::NotRegular("a FIFO"));
             }
         }
     }

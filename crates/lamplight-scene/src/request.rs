@@ -33,8 +33,9 @@ pub mod limits {
     /// Most samples per pixel.
     pub const MAX_SPP: u32 = crate::build::MAX_SPP;
     /// Most worker threads: far above any machine's cores; more would only cost
-    /// memory, and huge counts make the thread pool fail.
-    pub const MAX_THREADS: usize = 1024;
+    /// memory, and huge counts make the thread pool fail (the batch-ray API's
+    /// limit too, so `render` and `raycast` agree).
+    pub const MAX_THREADS: usize = lamplight_core::batch::MAX_THREADS;
     /// Longest time limit, seconds (about 31 years: beyond it is a typo).
     pub const MAX_TIME_LIMIT: f64 = 1e9;
 }

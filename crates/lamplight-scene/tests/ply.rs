@@ -195,7 +195,7 @@ fn missing_files_and_directories_are_named() {
         // Devices would never end: the guard is checked through a link to /dev/zero named like a mesh.
         let link = dir.path().join("zero.ply");
         if std::os::unix::fs::symlink("/dev/zero", &link).is_ok() {
-            assert_eq!(import::load(&link).unwrap_err().to_string(), format!("{}: is not a regular file", link.display()));
+            assert_eq!(import::load(&link).unwrap_err().to_string(), format!("{}: is a device, expected a mesh file", link.display()));
         }
     }
 }

@@ -9,7 +9,9 @@
 //! ray casting fast; see `BENCHMARKS.md` ("Batch ray casting vs Embree").
 //!
 //! Build: top-down binned SAH on the triangles' `f32` boxes, in place on one index
-//! array (subtrees over 4096 triangles on other threads, rayon). A leaf of `n`
+//! array (subtrees over 4096 triangles on other threads, rayon). This is not the
+//! renderer's builder (`sah.rs`): the leaf cost and the precision differ, see
+//! [`super`] for why there are two. A leaf of `n`
 //! triangles costs `ceil(n / 4)` packet tests, so the SAH cost of a split is
 //! `C_node + (A_l ceil(n_l/4) + A_r ceil(n_r/4)) / A`, against `ceil(n / 4)` for a
 //! leaf; leaves hold at most [`MAX_LEAF`] triangles. Below depth [`SAH_DEPTH`]

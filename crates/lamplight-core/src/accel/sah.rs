@@ -1,5 +1,9 @@
 //! Top-down binned SAH construction of a binary tree (Wald 2007), the first stage
-//! of the BVH build; [`super::bvh`] then collapses it into 4-wide nodes.
+//! of the BVH build; [`super::bvh`] then collapses it into 4-wide nodes. This is
+//! the builder of both levels of the renderer's BVH: the scene's objects
+//! ([`Costs::OBJECTS`]) and each triangle mesh's triangles ([`Costs::TRIANGLES`]).
+//! The batch ray-casting BVH (`mesh_bvh.rs`) has its own; the module
+//! documentation of [`super`] says why.
 //!
 //! Each split tries [`BINS`] bins per axis over the centroid bounds and keeps the
 //! cheapest by the surface area heuristic, cost
@@ -29,10 +33,8 @@ impl Costs {
     pub const TRIANGLES: Costs = Costs { traversal: 1.0, min_leaf: 2 };
     /// A scene's objects (spheres, quadrics, rectangles, meshes behind their own
     /// BVH): each test costs several 4-wide box tests, so splitting down to single
-    /// objects pays. Measured with callgrind: 9 % fewer instructions for the path
-    /// tracer on the Cornell box when it was 18 rectangles (it is now stored flat,
-    /// see `accel/bvh.rs`); for the Whitted renders at 320x180, 133.3M against
-    /// 140.8M for luxo and 188.3M against 191.7M for spheres.
+    /// objects pays (fewer instructions per render than [`Costs::TRIANGLES`] on
+    /// the built-in scenes; `BENCHMARKS.md`).
     pub const OBJECTS: Costs = Costs { traversal: 0.5, min_leaf: 1 };
 }
 /// Subtrees larger than this are built on another thread.

@@ -194,7 +194,7 @@ impl Implicit {
     /// The hit at `t` with the normal from the gradient there.
     fn surface_hit(&self, ray: &Ray, t: f64, error: f64) -> SurfaceHit {
         let normal = self.gradient(ray.at(t)).try_normalize().unwrap_or(-ray.dir);
-        SurfaceHit { t, normal, shading_normal: normal, error }
+        SurfaceHit { t, normal, shading_normal: normal, error, primitive: None }
     }
 
     /// Close to the surface at `t` (value `v`) by the Lipschitz bound and approaching

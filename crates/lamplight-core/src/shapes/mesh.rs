@@ -176,7 +176,7 @@ impl TriangleMesh {
                 }
             }
         };
-        SurfaceHit { t: hit.t, normal, shading_normal, error: 0.0 }
+        SurfaceHit { t: hit.t, normal, shading_normal, error: 0.0, primitive: Some(face) }
     }
 }
 

@@ -57,13 +57,17 @@ pub struct SurfaceHit {
     /// iterative (0 for closed-form shapes, whose error is covered by the relative
     /// offset in [`crate::ray::offset_origin`]).
     pub error: f64,
+    /// Index of the triangle hit within a triangle mesh, in its face order (kept
+    /// through an [`Instance`]); `None` for every other shape. Batch ray queries
+    /// report it ([`crate::batch`]).
+    pub primitive: Option<u32>,
 }
 
 impl SurfaceHit {
     /// A hit with one normal used for both geometry and shading.
     #[inline]
     pub fn new(t: f64, normal: Vec3) -> SurfaceHit {
-        SurfaceHit { t, normal, shading_normal: normal, error: 0.0 }
+        SurfaceHit { t, normal, shading_normal: normal, error: 0.0, primitive: None }
     }
 }
 

@@ -186,7 +186,7 @@ impl Shape for Torus {
             roots_in(&poly, 0.0, exit - enter).as_slice().iter().map(|&u| (u, enter + u)).find(|&(_, t)| t > t_min && t < t_max)?;
         let p = start + d * u;
         let normal = self.world_from_local(self.normal_local(p)).normalize();
-        Some(SurfaceHit { t, normal, shading_normal: normal, error: self.distance_local(p).abs() })
+        Some(SurfaceHit { t, normal, shading_normal: normal, error: self.distance_local(p).abs(), primitive: None })
     }
 }
 

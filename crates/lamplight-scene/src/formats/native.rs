@@ -88,7 +88,7 @@ pub fn read(path: &Path) -> Result<(SceneDescription, Source), LoadError> {
                 Refusal::NotFound => "no such file".to_string(),
                 Refusal::PermissionDenied => "permission denied".to_string(),
                 Refusal::Directory => "is a directory, expected a scene file".to_string(),
-                Refusal::NotRegular => "is not a regular file (a pipe or a device), expected a scene file".to_string(),
+                Refusal::NotRegular(kind) => format!("is {kind}, expected a scene file"),
                 Refusal::TooLarge { len, max } => format!("is {len} bytes, larger than the {max} bytes a scene file may have"),
                 Refusal::Io(e) => format!("cannot read: {e}"),
             },

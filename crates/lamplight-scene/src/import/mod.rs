@@ -160,7 +160,7 @@ pub(crate) fn read_file(path: &Path) -> Result<Vec<u8>, LoadError> {
             match r {
                 Refusal::NotFound => "file not found".to_string(),
                 Refusal::Directory => "is a directory, expected a file".to_string(),
-                Refusal::NotRegular => "is not a regular file".to_string(),
+                Refusal::NotRegular(kind) => format!("is {kind}, expected a mesh file"),
                 Refusal::TooLarge { len, max } => format!("is {len} bytes, larger than the {max} bytes a mesh file may have"),
                 Refusal::PermissionDenied => "cannot read the file: permission denied".to_string(),
                 Refusal::Io(e) => format!("cannot read the file: {e}"),

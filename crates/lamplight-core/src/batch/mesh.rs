@@ -1,25 +1,24 @@
-//! Batch ray casting against one triangle mesh: the Embree-style entry point.
+//! One triangle mesh prepared for batch ray casting: the Embree-style target.
 //!
 //! [`MeshAccel`] builds the `f32` ray-casting BVH ([`crate::accel::MeshBvh`]) over
-//! a mesh given as positions and triangle indices, and answers batches of rays
-//! `origin + t dir` (the direction need not be unit; `t` is measured along it):
-//! [`MeshAccel::cast`] finds the nearest hit `t` in `(0, inf)` and the index of the
-//! triangle hit, [`MeshAccel::occluded`] only whether there is one (shadow rays).
-//! A batch is split into chunks run on a rayon pool of the requested size; every
-//! ray is independent, so the answers do not depend on the thread count.
+//! a mesh given as positions and triangle indices. As a [`BatchTarget`] it is one
+//! object (number 0) whose primitives are its triangles, answered in the units of
+//! [`crate::batch`]: distance `t = s |d|`, triangle index in input order. `f64`
+//! rays are rounded to `f32` first.
+//!
+//! The single-ray kernels [`MeshAccel::nearest_param`] and
+//! [`MeshAccel::occluded_param`] work in the ray *parameter* `s` of
+//! `origin + s dir` along the direction as given (Embree's `tfar`), without the
+//! conversion to a distance; benchmarks use them to compare structures.
 //!
 //! Triangles are tested with the watertight `f32` kernel of
 //! [`crate::accel::tri4`]: a ray through a shared edge or vertex of a closed mesh
-//! always hits one of the triangles around it. A ray with a zero or non-finite
-//! direction, or a non-finite origin, hits nothing.
+//! always hits one of the triangles around it. The ray is tested as given (not
+//! normalized first), so that rays exactly through vertices stay exact.
 
-use rayon::prelude::*;
-
+use super::{BatchRay, BatchTarget, Float, RayHit};
 use crate::accel::{MeshBvh, MeshBvhStats};
 use crate::Error;
-
-/// Rays per work item: large enough to amortise scheduling, small enough to balance.
-const CHUNK: usize = 1024;
 
 /// A triangle mesh prepared for batch ray casting.
 #[derive(Clone, Debug)]
@@ -42,10 +41,10 @@ pub struct AccelMemory {
 
 impl MeshAccel {
     /// Builds the structure over the triangles `indices[i]` of `positions`.
-    /// Triangle `i` keeps index `i` in the answers. Positions must be finite and
-    /// indices in range ([`Error::InvalidParameter`] otherwise); degenerate
-    /// triangles are kept and never hit. Uses the current rayon pool (wrap in
-    /// `ThreadPool::install` to choose the thread count).
+    /// Triangle `i` keeps index `i` in the answers. Positions must be finite,
+    /// indices in range and fewer than 2^28 triangles ([`Error::InvalidParameter`]
+    /// otherwise); degenerate triangles are kept and never hit. Uses the current
+    /// rayon pool (wrap in `ThreadPool::install` to choose the thread count).
     pub fn new(positions: &[[f32; 3]], indices: &[[u32; 3]]) -> Result<MeshAccel, Error> {
         if let Some(i) = positions.iter().position(|p| !p.iter().all(|v| v.is_finite())) {
             return Err(Error::invalid("positions", format!("vertex {i} is not finite: {:?}", positions[i])));
@@ -77,110 +76,43 @@ impl MeshAccel {
         AccelMemory { triangles: self.triangles, bvh, bytes_per_triangle: bvh.bytes as f64 / self.triangles.max(1) as f64 }
     }
 
-    /// Nearest hit of one ray: `(t, triangle)` with `t` in `(0, t_max)`.
+    /// Nearest hit of one ray `origin + s dir`: `(s, triangle)` with the
+    /// parameter `s` in `(0, s_max)`, measured along `dir` as given (not a
+    /// distance unless `dir` is unit). A zero or non-finite ray hits nothing.
     #[inline]
-    pub fn cast_one(&self, origin: [f32; 3], dir: [f32; 3], t_max: f32) -> Option<(f32, u32)> {
-        self.bvh.closest(origin, dir, t_max)
+    pub fn nearest_param(&self, origin: [f32; 3], dir: [f32; 3], s_max: f32) -> Option<(f32, u32)> {
+        self.bvh.closest(origin, dir, s_max)
     }
 
-    /// Whether one ray hits anything with `t` in `(0, t_max)`.
+    /// Whether one ray `origin + s dir` hits anything with `s` in `(0, s_max)`.
     #[inline]
-    pub fn occluded_one(&self, origin: [f32; 3], dir: [f32; 3], t_max: f32) -> bool {
-        self.bvh.occluded(origin, dir, t_max)
-    }
-
-    /// Casts the rays `origins[i] + t directions[i]`: writes the nearest hit
-    /// distance `t` (in units of the direction; `+inf` for a miss) to `t_out[i]`
-    /// and, if given, the triangle index (`-1` for a miss) to `prim_out[i]`.
-    /// `threads` is the worker count (0: rayon's default). All slices must have
-    /// the same length.
-    pub fn cast(
-        &self,
-        origins: &[[f32; 3]],
-        directions: &[[f32; 3]],
-        t_out: &mut [f32],
-        prim_out: Option<&mut [i64]>,
-        threads: usize,
-    ) -> Result<(), Error> {
-        check_lengths(origins, directions, t_out.len(), prim_out.as_ref().map(|p| p.len()))?;
-        run(threads, || match prim_out {
-            Some(prim) => {
-                origins
-                    .par_chunks(CHUNK)
-                    .zip(directions.par_chunks(CHUNK))
-                    .zip(t_out.par_chunks_mut(CHUNK))
-                    .zip(prim.par_chunks_mut(CHUNK))
-                    .for_each(|(((o, d), t), p)| {
-                        for i in 0..o.len() {
-                            (t[i], p[i]) = match self.bvh.closest(o[i], d[i], f32::INFINITY) {
-                                Some((hit, tri)) => (hit, i64::from(tri)),
-                                None => (f32::INFINITY, -1),
-                            };
-                        }
-                    });
-            }
-            None => {
-                origins.par_chunks(CHUNK).zip(directions.par_chunks(CHUNK)).zip(t_out.par_chunks_mut(CHUNK)).for_each(|((o, d), t)| {
-                    for i in 0..o.len() {
-                        t[i] = self.bvh.closest(o[i], d[i], f32::INFINITY).map_or(f32::INFINITY, |h| h.0);
-                    }
-                });
-            }
-        })
-    }
-
-    /// The any-hit query for a batch: `hit_out[i]` is true when ray `i` hits a
-    /// triangle with `t` in `(0, t_max[i])` (`t_max` of `inf` for unbounded rays).
-    pub fn occluded(
-        &self,
-        origins: &[[f32; 3]],
-        directions: &[[f32; 3]],
-        t_max: &[f32],
-        hit_out: &mut [bool],
-        threads: usize,
-    ) -> Result<(), Error> {
-        check_lengths(origins, directions, t_max.len(), Some(hit_out.len()))?;
-        run(threads, || {
-            origins
-                .par_chunks(CHUNK)
-                .zip(directions.par_chunks(CHUNK))
-                .zip(t_max.par_chunks(CHUNK))
-                .zip(hit_out.par_chunks_mut(CHUNK))
-                .for_each(|(((o, d), tm), h)| {
-                    for i in 0..o.len() {
-                        h[i] = self.bvh.occluded(o[i], d[i], tm[i]);
-                    }
-                });
-        })
+    pub fn occluded_param(&self, origin: [f32; 3], dir: [f32; 3], s_max: f32) -> bool {
+        self.bvh.occluded(origin, dir, s_max)
     }
 }
 
-fn check_lengths(origins: &[[f32; 3]], directions: &[[f32; 3]], out: usize, second: Option<usize>) -> Result<(), Error> {
-    let n = origins.len();
-    if directions.len() != n || out != n || second.is_some_and(|m| m != n) {
-        return Err(Error::invalid(
-            "rays",
-            format!("{n} origins, {} directions, {out} and {second:?} outputs: lengths must agree", directions.len()),
-        ));
-    }
-    Ok(())
-}
+impl BatchTarget for MeshAccel {
+    const NORMALS: bool = false;
 
-/// Runs `work` on a pool of `threads` workers (0: the current/global pool).
-fn run(threads: usize, work: impl FnOnce() + Send) -> Result<(), Error> {
-    if threads == 0 {
-        work();
-        return Ok(());
+    /// `t = s |d|` computed in `f64` from the kernel's `f32` parameter `s`.
+    #[inline]
+    fn nearest<T: Float>(&self, ray: &BatchRay<T>) -> Option<RayHit> {
+        let (s, triangle) = self.bvh.closest(ray.origin.map(T::to_f32), ray.dir.map(T::to_f32), f32::INFINITY)?;
+        Some(RayHit { t: f64::from(s) * ray.length(), object: 0, primitive: Some(triangle), normal: None })
     }
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().map_err(|e| Error::Render(format!("thread pool: {e}")))?;
-    pool.install(work);
-    Ok(())
+
+    /// Asks the kernel for `s < t_max / |d|` (rounded to `f32`).
+    #[inline]
+    fn occluded<T: Float>(&self, ray: &BatchRay<T>, t_max: f64) -> bool {
+        self.bvh.occluded(ray.origin.map(T::to_f32), ray.dir.map(T::to_f32), (t_max / ray.length()) as f32)
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::accel::tri4::{intersect_one, ShearRay};
+    use crate::batch::{self, Hits, RaySlices};
     use crate::math::Vec3;
     use crate::ray::Ray;
     use crate::sampling::Rng;
@@ -239,13 +171,25 @@ mod tests {
             .fold(f64::INFINITY, f64::min)
     }
 
+    /// `|d|` in `f64`, the batch API's factor from parameter to distance.
+    fn length(d: [f32; 3]) -> f64 {
+        Vec3::new(d[0].into(), d[1].into(), d[2].into()).length()
+    }
+
+    /// Casts through the batch API: distances, objects, triangles.
+    fn cast(accel: &MeshAccel, origins: &[[f32; 3]], dirs: &[[f32; 3]], threads: usize) -> (Vec<f32>, Vec<i64>, Vec<i64>) {
+        let n = origins.len();
+        let (mut t, mut object, mut prim) = (vec![0.0; n], vec![0; n], vec![0; n]);
+        let out = Hits { t: &mut t, object: Some(&mut object), primitive: Some(&mut prim), normal: None };
+        batch::cast(accel, &RaySlices::new(origins, dirs).unwrap(), out, threads).unwrap();
+        (t, object, prim)
+    }
+
     fn check_batch(v: &[[f32; 3]], f: &[[u32; 3]], origins: &[[f32; 3]], dirs: &[[f32; 3]], all_hit: bool) {
         let accel = MeshAccel::new(v, f).unwrap();
-        let mut t = vec![0.0; origins.len()];
-        let mut prim = vec![0; origins.len()];
-        accel.cast(origins, dirs, &mut t, Some(&mut prim), 2).unwrap();
+        let (t, object, prim) = cast(&accel, origins, dirs, 2);
         let mut occluded = vec![false; origins.len()];
-        accel.occluded(origins, dirs, &vec![f32::INFINITY; origins.len()], &mut occluded, 1).unwrap();
+        batch::occluded(&accel, &RaySlices::new(origins, dirs).unwrap(), None, &mut occluded, 1).unwrap();
         for i in 0..origins.len() {
             let want = brute(v, f, origins[i], dirs[i]);
             assert_eq!(want.is_some(), t[i].is_finite(), "ray {i}: hit/miss differs from brute force");
@@ -253,16 +197,20 @@ mod tests {
             if all_hit {
                 assert!(want.is_some(), "ray {i} {:?} {:?} leaked through the closed mesh", origins[i], dirs[i]);
             }
-            let Some((bt, _)) = want else {
-                assert_eq!(prim[i], -1);
+            let Some((bs, _)) = want else {
+                assert_eq!((object[i], prim[i]), (-1, -1));
                 continue;
             };
-            assert!((t[i] - bt).abs() <= 1e-5 * bt, "ray {i}: t {} vs brute force {bt}", t[i]);
+            assert_eq!(object[i], 0, "ray {i}: the mesh is object 0");
+            // The batch answer is the kernel's parameter times |d|, rounded once.
+            let (s, tri) = accel.nearest_param(origins[i], dirs[i], f32::INFINITY).unwrap();
+            assert_eq!((t[i], prim[i]), ((f64::from(s) * length(dirs[i])) as f32, i64::from(tri)), "ray {i}");
+            assert!((s - bs).abs() <= 1e-5 * bs, "ray {i}: s {s} vs brute force {bs}");
             let tri = f[prim[i] as usize].map(|k| v[k as usize]);
             let own = intersect_one(&ShearRay::new(origins[i], dirs[i]).unwrap(), tri, f32::INFINITY);
-            assert_eq!(own, Some(t[i]), "ray {i}: the reported triangle gives the reported t");
+            assert_eq!(own, Some(s), "ray {i}: the reported triangle gives the reported parameter");
             let exact = brute_f64(v, f, origins[i], dirs[i]);
-            assert!((f64::from(t[i]) - exact).abs() <= 1e-5 * exact, "ray {i}: t {} vs f64 {exact}", t[i]);
+            assert!((f64::from(s) - exact).abs() <= 1e-5 * exact, "ray {i}: s {s} vs f64 {exact}");
         }
     }
 
@@ -313,7 +261,7 @@ mod tests {
         let dirs = vec![[0.0, 0.0, -2.0]; origins.len()];
         check_batch(&v, &f, &origins, &dirs, true);
         let accel = MeshAccel::new(&v, &f).unwrap();
-        assert!(origins.iter().all(|o| accel.cast_one(*o, [0.0, 0.0, -2.0], f32::INFINITY).map(|h| h.0) == Some(1.5)));
+        assert!(origins.iter().all(|o| accel.nearest_param(*o, [0.0, 0.0, -2.0], f32::INFINITY).map(|h| h.0) == Some(1.5)));
     }
 
     #[test]
@@ -330,10 +278,9 @@ mod tests {
         check_batch(&v, &f, &origins, &dirs, false);
         // The answers do not depend on the thread count.
         let accel = MeshAccel::new(&v, &f).unwrap();
-        let (mut t1, mut t2) = (vec![0.0; 3000], vec![0.0; 3000]);
-        accel.cast(&origins, &dirs, &mut t1, None, 1).unwrap();
-        accel.cast(&origins, &dirs, &mut t2, None, 3).unwrap();
-        assert_eq!(t1, t2);
+        let one = cast(&accel, &origins, &dirs, 1);
+        assert_eq!(one, cast(&accel, &origins, &dirs, 3));
+        assert_eq!(one, cast(&accel, &origins, &dirs, 0));
         let mem = accel.memory();
         assert_eq!(mem.triangles, f.len());
         assert!(mem.bytes_per_triangle > 36.0 && mem.bytes_per_triangle < 100.0, "{mem:?}");
@@ -344,15 +291,24 @@ mod tests {
         let (v, f) = sphere(1, [0.0; 3]);
         let accel = MeshAccel::new(&v, &f).unwrap();
         let mut hit = [false; 2];
-        accel.occluded(&[[0.0, 0.0, -5.0]; 2], &[[0.0, 0.0, 1.0]; 2], &[2.5, 3.5], &mut hit, 1).unwrap();
+        // The sphere of radius 2 is 3 away; t_max is a distance, so a direction
+        // of length 2 changes nothing.
+        let rays = RaySlices::new(&[[0.0, 0.0, -5.0]; 2], &[[0.0, 0.0, 2.0]; 2]).unwrap();
+        batch::occluded(&accel, &rays, Some(&[2.5, 3.5]), &mut hit, 1).unwrap();
         assert_eq!(hit, [false, true]);
-        assert!(accel.cast_one([0.0; 3], [0.0; 3], f32::INFINITY).is_none(), "a zero direction hits nothing");
+        assert!(accel.nearest_param([0.0; 3], [0.0; 3], f32::INFINITY).is_none(), "a zero direction hits nothing");
         let mut t = [0.0; 1];
-        assert!(accel.cast(&[[0.0; 3]; 2], &[[1.0, 0.0, 0.0]; 2], &mut t, None, 1).is_err());
+        let two = RaySlices::new(&[[0.0f32; 3]; 2], &[[1.0, 0.0, 0.0]; 2]).unwrap();
+        let err = batch::cast(&accel, &two, Hits { t: &mut t, object: None, primitive: None, normal: None }, 1).unwrap_err();
+        assert_eq!(err.to_string(), "invalid t: 1 outputs for 2 rays: lengths must agree");
+        let mut normal = [[0.0f32; 3]; 2];
+        let mut t = [0.0; 2];
+        let err = batch::cast(&accel, &two, Hits { t: &mut t, object: None, primitive: None, normal: Some(&mut normal) }, 1).unwrap_err();
+        assert_eq!(err.to_string(), "invalid normal: this target does not report normals");
         assert!(MeshAccel::new(&[[0.0, 0.0, f32::NAN]], &[]).is_err());
         assert!(MeshAccel::new(&v, &[[0, 1, v.len() as u32]]).is_err());
         let empty = MeshAccel::new(&[], &[]).unwrap();
-        assert!(empty.cast_one([0.0; 3], [1.0, 0.0, 0.0], f32::INFINITY).is_none());
-        assert!(!empty.occluded_one([0.0; 3], [1.0, 0.0, 0.0], f32::INFINITY));
+        assert!(empty.nearest_param([0.0; 3], [1.0, 0.0, 0.0], f32::INFINITY).is_none());
+        assert!(!empty.occluded_param([0.0; 3], [1.0, 0.0, 0.0], f32::INFINITY));
     }
 }

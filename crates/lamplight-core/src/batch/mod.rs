@@ -1,0 +1,324 @@
+//! Batch ray queries: the one API behind `lamplight raycast` and Python's
+//! `Scene.intersect`, with one meaning for every number it returns.
+//!
+//! Ray `i` is `o_i + s d_i`, `s > 0`, for an origin `o_i` and a direction `d_i`
+//! of any non-zero finite length. For its nearest hit, at the point `p_i`:
+//!
+//! - `t_i = |p_i - o_i| = s_hit |d_i|`, the **distance** from the origin to the
+//!   hit, in scene units, whatever the length of `d_i`. For a unit `d_i` this is
+//!   Embree's and pbrt's ray parameter `t` (within rounding, as both measure `t`
+//!   along the direction as given); for a longer or shorter `d_i` it is not.
+//!   `+inf` for a miss.
+//! - `object_i`: the index of the object hit, objects numbered in scene order
+//!   (a [`MeshAccel`] is one object, number 0); `-1` for a miss.
+//! - `primitive_i`: the index of the triangle hit within that object's mesh, in
+//!   the mesh's face order; `-1` for a miss and for shapes that are not triangle
+//!   meshes (spheres, quadrics, boxes, single triangles...).
+//! - `normal_i` (targets that have them, [`BatchTarget::NORMALS`]): the unit
+//!   outward geometric normal at the hit, not turned towards the ray; zero for a
+//!   miss.
+//!
+//! A ray with a zero or non-finite direction, or a non-finite origin, misses.
+//! [`occluded`] answers only whether a ray hits anything at a distance in
+//! `(0, t_max)` (shadow rays), in the same units.
+//!
+//! Rays are split into chunks of [`CHUNK`] rays run on a rayon pool; every ray is
+//! answered on its own from the same inputs, so the answers do not depend on the
+//! thread count or the chunking, bit for bit.
+//!
+//! Two targets implement [`BatchTarget`]: a built [`crate::Scene`] (`f64`
+//! geometry, [`scene`]) and [`MeshAccel`] (one triangle mesh in `f32`, the
+//! Embree-style structure of [`mesh`]; `f64` rays are rounded to `f32` for it).
+
+use rayon::prelude::*;
+
+use crate::math::Vec3;
+use crate::Error;
+
+pub mod mesh;
+pub mod scene;
+
+pub use mesh::{AccelMemory, MeshAccel};
+
+/// Rays per work item: large enough to amortise scheduling, small enough to balance.
+pub const CHUNK: usize = 1024;
+
+/// Most worker threads a batch may ask for: far above any machine's cores; more
+/// would only cost memory and scheduling, and huge counts make the pool fail.
+pub const MAX_THREADS: usize = 1024;
+
+/// One ray as a target sees it: `origin + s dir` in the caller's float type `T`,
+/// with `|dir|^2` finite and positive and a finite origin (rays that are not are
+/// answered as misses before a target is asked). Kept in `T` so that an `f32`
+/// target given `f32` rays converts nothing.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BatchRay<T> {
+    /// Start point `o`.
+    pub origin: [T; 3],
+    /// Direction `d` as given (not normalized).
+    pub dir: [T; 3],
+    /// `d . d` in `f64`; its square root is only taken where needed.
+    length_sq: f64,
+}
+
+impl<T: Float> BatchRay<T> {
+    /// The ray `origin + s dir`, or `None` when it misses everything by definition
+    /// (non-finite origin, zero or non-finite direction or length).
+    #[inline]
+    pub fn new(origin: [T; 3], dir: [T; 3]) -> Option<BatchRay<T>> {
+        let d = Vec3::from_array(dir.map(T::to_f64));
+        let length_sq = d.dot(d);
+        // `d . d` is finite and positive exactly when `|d|` is, which also rules
+        // out non-finite components (NaN or inf make the sum NaN or inf). The
+        // checks are `&`, not `&&`: no branches (iterator chains here cost more
+        // than a tenth of a ray's time on a small mesh).
+        let o = origin.map(T::to_f64);
+        let usable = length_sq.is_finite() & (length_sq > 0.0) & o[0].is_finite() & o[1].is_finite() & o[2].is_finite();
+        usable.then_some(BatchRay { origin, dir, length_sq })
+    }
+
+    /// `|d|`, the factor from the parameter `s` to the distance `t = s |d|`
+    /// (bit for bit glam's `DVec3::length` of the `f64` direction).
+    #[inline]
+    pub fn length(&self) -> f64 {
+        self.length_sq.sqrt()
+    }
+}
+
+/// The nearest hit of one ray, in the units of the module documentation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RayHit {
+    /// Distance from the origin to the hit, `s |d|`.
+    pub t: f64,
+    /// Index of the object hit.
+    pub object: usize,
+    /// Index of the triangle hit in the object's mesh; `None` for other shapes.
+    pub primitive: Option<u32>,
+    /// Unit outward geometric normal; `None` when the target has none.
+    pub normal: Option<[f64; 3]>,
+}
+
+/// Something a batch of rays can be cast against.
+pub trait BatchTarget: Sync {
+    /// Whether [`BatchTarget::nearest`] reports normals.
+    const NORMALS: bool;
+
+    /// The nearest hit of `ray` with `s > 0`, or `None`.
+    fn nearest<T: Float>(&self, ray: &BatchRay<T>) -> Option<RayHit>;
+
+    /// Whether `ray` hits anything at a distance `t` in `(0, t_max)`.
+    fn occluded<T: Float>(&self, ray: &BatchRay<T>, t_max: f64) -> bool;
+}
+
+/// A batch of rays, read one at a time (so that callers can keep theirs in
+/// place: slices here, strided numpy arrays in the Python module).
+pub trait Rays: Sync {
+    /// The float type the rays are stored in.
+    type Scalar: Float;
+
+    /// Number of rays.
+    fn len(&self) -> usize;
+
+    /// Whether there are no rays.
+    fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Origin and direction of ray `i < len()`.
+    fn get(&self, i: usize) -> ([Self::Scalar; 3], [Self::Scalar; 3]);
+}
+
+/// A float type rays are read in and answers written in (`f32` or `f64`);
+/// conversions round to nearest.
+pub trait Float: Copy + Send + Sync + std::fmt::Debug + PartialEq + 'static {
+    /// `x` rounded to this type.
+    fn from_f64(x: f64) -> Self;
+    /// `self` as `f64` (exact).
+    fn to_f64(self) -> f64;
+    /// `self` rounded to `f32` (exact for `f32`).
+    fn to_f32(self) -> f32;
+}
+
+impl Float for f32 {
+    #[inline]
+    fn from_f64(x: f64) -> f32 {
+        x as f32
+    }
+    #[inline]
+    fn to_f64(self) -> f64 {
+        f64::from(self)
+    }
+    #[inline]
+    fn to_f32(self) -> f32 {
+        self
+    }
+}
+
+impl Float for f64 {
+    #[inline]
+    fn from_f64(x: f64) -> f64 {
+        x
+    }
+    #[inline]
+    fn to_f64(self) -> f64 {
+        self
+    }
+    #[inline]
+    fn to_f32(self) -> f32 {
+        self as f32
+    }
+}
+
+/// Rays from two slices of `[x, y, z]` rows, `origins[i] + s directions[i]`.
+#[derive(Clone, Copy, Debug)]
+pub struct RaySlices<'a, T> {
+    origins: &'a [[T; 3]],
+    directions: &'a [[T; 3]],
+}
+
+impl<'a, T: Float> RaySlices<'a, T> {
+    /// The rays; [`Error::InvalidParameter`] when the lengths differ.
+    pub fn new(origins: &'a [[T; 3]], directions: &'a [[T; 3]]) -> Result<RaySlices<'a, T>, Error> {
+        if origins.len() != directions.len() {
+            return Err(Error::invalid("rays", format!("{} origins but {} directions", origins.len(), directions.len())));
+        }
+        Ok(RaySlices { origins, directions })
+    }
+}
+
+impl<T: Float> Rays for RaySlices<'_, T> {
+    type Scalar = T;
+
+    fn len(&self) -> usize {
+        self.origins.len()
+    }
+
+    #[inline]
+    fn get(&self, i: usize) -> ([T; 3], [T; 3]) {
+        (self.origins[i], self.directions[i])
+    }
+}
+
+/// Where [`cast`] writes its answers: one entry per ray in each slice given.
+#[derive(Debug)]
+pub struct Hits<'a, T> {
+    /// Distances (`+inf` for a miss).
+    pub t: &'a mut [T],
+    /// Object indices (`-1` for a miss).
+    pub object: Option<&'a mut [i64]>,
+    /// Triangle indices within the object (`-1` for a miss or a non-mesh shape).
+    pub primitive: Option<&'a mut [i64]>,
+    /// Unit outward normals (zero for a miss); only for targets with normals.
+    pub normal: Option<&'a mut [[T; 3]]>,
+}
+
+/// One chunk of the outputs, with the index of its first ray.
+struct Part<'a, T> {
+    start: usize,
+    t: &'a mut [T],
+    object: Option<&'a mut [i64]>,
+    primitive: Option<&'a mut [i64]>,
+    normal: Option<&'a mut [[T; 3]]>,
+}
+
+/// Casts every ray of `rays` against `target` and writes the nearest hits to
+/// `out` (see the module documentation for the units). `threads` is the worker
+/// count, 1 to [`MAX_THREADS`], or 0 for the current rayon pool. Fails, writing
+/// nothing, when an output's length is not the ray count, when normals are asked
+/// of a target without them, or when the pool cannot start.
+pub fn cast<B: BatchTarget, R: Rays, T: Float>(target: &B, rays: &R, out: Hits<'_, T>, threads: usize) -> Result<(), Error> {
+    let n = rays.len();
+    let lengths = [
+        Some(out.t.len()),
+        out.object.as_ref().map(|s| s.len()),
+        out.primitive.as_ref().map(|s| s.len()),
+        out.normal.as_ref().map(|s| s.len()),
+    ];
+    for (name, len) in ["t", "object", "primitive", "normal"].iter().zip(lengths) {
+        if len.is_some_and(|len| len != n) {
+            return Err(Error::invalid(*name, format!("{} outputs for {n} rays: lengths must agree", len.unwrap_or(0))));
+        }
+    }
+    if out.normal.is_some() && !B::NORMALS {
+        return Err(Error::invalid("normal", "this target does not report normals"));
+    }
+    let mut object = out.object.map(|s| s.chunks_mut(CHUNK));
+    let mut primitive = out.primitive.map(|s| s.chunks_mut(CHUNK));
+    let mut normal = out.normal.map(|s| s.chunks_mut(CHUNK));
+    let parts: Vec<Part<'_, T>> = out
+        .t
+        .chunks_mut(CHUNK)
+        .enumerate()
+        .map(|(k, t)| Part {
+            start: k * CHUNK,
+            t,
+            object: object.as_mut().and_then(Iterator::next),
+            primitive: primitive.as_mut().and_then(Iterator::next),
+            normal: normal.as_mut().and_then(Iterator::next),
+        })
+        .collect();
+    run(threads, || {
+        parts.into_par_iter().for_each(|mut part| {
+            for j in 0..part.t.len() {
+                let (o, d) = rays.get(part.start + j);
+                let hit = BatchRay::new(o, d).and_then(|ray| target.nearest(&ray));
+                part.t[j] = T::from_f64(hit.map_or(f64::INFINITY, |h| h.t));
+                if let Some(object) = part.object.as_deref_mut() {
+                    object[j] = hit.map_or(-1, |h| h.object as i64);
+                }
+                if let Some(primitive) = part.primitive.as_deref_mut() {
+                    primitive[j] = hit.and_then(|h| h.primitive).map_or(-1, i64::from);
+                }
+                if let Some(normal) = part.normal.as_deref_mut() {
+                    normal[j] = hit.and_then(|h| h.normal).unwrap_or([0.0; 3]).map(T::from_f64);
+                }
+            }
+        })
+    })
+}
+
+/// The any-hit query: `hit_out[i]` is true when ray `i` hits something at a
+/// distance in `(0, t_max[i])` (`t_max` `None`: unbounded rays). Threads and
+/// failures as in [`cast`].
+pub fn occluded<B: BatchTarget, R: Rays>(
+    target: &B,
+    rays: &R,
+    t_max: Option<&[f64]>,
+    hit_out: &mut [bool],
+    threads: usize,
+) -> Result<(), Error> {
+    let n = rays.len();
+    if hit_out.len() != n || t_max.is_some_and(|t| t.len() != n) {
+        return Err(Error::invalid(
+            "occluded",
+            format!("{n} rays, {} outputs and {:?} t_max: lengths must agree", hit_out.len(), t_max.map(<[f64]>::len)),
+        ));
+    }
+    run(threads, || {
+        hit_out.par_chunks_mut(CHUNK).enumerate().for_each(|(k, hits)| {
+            for (j, hit) in hits.iter_mut().enumerate() {
+                let i = k * CHUNK + j;
+                let (o, d) = rays.get(i);
+                let limit = t_max.map_or(f64::INFINITY, |t| t[i]);
+                *hit = BatchRay::new(o, d).is_some_and(|ray| target.occluded(&ray, limit));
+            }
+        })
+    })
+}
+
+/// Runs `work` on a pool of `threads` workers (0: the current pool).
+fn run(threads: usize, work: impl FnOnce() + Send) -> Result<(), Error> {
+    if threads > MAX_THREADS {
+        return Err(Error::invalid("threads", format!("{threads}: at most {MAX_THREADS} (0 uses the current pool)")));
+    }
+    if threads == 0 {
+        work();
+        return Ok(());
+    }
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().map_err(|e| Error::Render(format!("thread pool: {e}")))?;
+    pool.install(work);
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests;

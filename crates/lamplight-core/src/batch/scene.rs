@@ -1,0 +1,32 @@
+//! A built [`Scene`] as a batch target: every object, `f64` geometry.
+//!
+//! The ray is normalized (`dir / |dir|`) and traced by
+//! [`Scene::first_intersect`], whose parameter is then already the distance `t`.
+//! Objects are numbered as in [`Scene::objects`]; the primitive is the face index
+//! of a triangle mesh (also when the mesh is placed by an instance transform) and
+//! `None` for every other shape. The normal is the shape's outward geometric
+//! normal, which `first_intersect` turned to face the ray and is turned back here.
+
+use super::{BatchRay, BatchTarget, Float, RayHit};
+use crate::math::Vec3;
+use crate::ray::Ray;
+use crate::Scene;
+
+/// The unit-direction ray the scene traces.
+fn unit_ray<T: Float>(ray: &BatchRay<T>) -> Ray {
+    Ray { origin: Vec3::from_array(ray.origin.map(T::to_f64)), dir: Vec3::from_array(ray.dir.map(T::to_f64)) / ray.length() }
+}
+
+impl BatchTarget for Scene {
+    const NORMALS: bool = true;
+
+    fn nearest<T: Float>(&self, ray: &BatchRay<T>) -> Option<RayHit> {
+        let hit = self.first_intersect(&unit_ray(ray), f64::INFINITY)?;
+        let outward = if hit.front_face { hit.geometric_normal } else { -hit.geometric_normal };
+        Some(RayHit { t: hit.t, object: hit.object, primitive: hit.primitive, normal: Some(outward.to_array()) })
+    }
+
+    fn occluded<T: Float>(&self, ray: &BatchRay<T>, t_max: f64) -> bool {
+        self.first_intersect(&unit_ray(ray), t_max).is_some()
+    }
+}
