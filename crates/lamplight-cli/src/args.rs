@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 use clap::{Args, Parser, Subcommand};
 use lamplight_core::film::tonemap::ToneMap;
 use lamplight_core::film::Filter;
-use lamplight_core::integrators::IntegratorKind;
+use lamplight_core::integrators::{self, IntegratorEntry};
 use lamplight_core::RenderOptions;
 use lamplight_scene::build::SceneFile;
 use lamplight_scene::builtin::{self, Builtin};
@@ -87,7 +87,7 @@ pub struct RenderArgs {
     /// How light is computed: `whitted` (the lecture's ray tracer) or `path` (path tracing with NEE and MIS)
     /// [default: the file's, else whitted].
     #[arg(long, value_name = "NAME")]
-    pub integrator: Option<IntegratorKind>,
+    pub integrator: Option<&'static IntegratorEntry>,
     /// Path tracer: stop after the last complete pass before this many seconds.
     #[arg(long, value_name = "SECONDS")]
     pub time_limit: Option<f64>,
@@ -202,7 +202,7 @@ impl RenderArgs {
         let integrator = self.integrator.unwrap_or(defaults.integrator);
         let variance_output = self.variance_output;
         if let Some(path) = &variance_output {
-            if integrator != IntegratorKind::Path {
+            if integrator.name != "path" {
                 return Err(usage("--variance-output needs --integrator path"));
             }
             if Format::from_path(path).map_err(|e| usage(e.to_string()))? != Format::Exr {
@@ -214,7 +214,7 @@ impl RenderArgs {
         let mut exr_layers = self.exr_layers;
         exr_layers.dedup();
         if !exr_layers.is_empty() {
-            if integrator != IntegratorKind::Path {
+            if integrator.name != "path" {
                 return Err(usage("--exr-layers needs --integrator path"));
             }
             if format != Format::Exr {
@@ -253,7 +253,7 @@ struct Defaults {
     size: (u32, u32),
     spp: u32,
     seed: u64,
-    integrator: IntegratorKind,
+    integrator: &'static IntegratorEntry,
 }
 
 /// The scene `arg` names: a built-in name (no path separator, no extension), a
@@ -268,7 +268,7 @@ fn resolve_scene(arg: &str) -> Result<(SceneSource, String, Defaults), UsageErro
         return Ok((
             SceneSource::Builtin(b),
             b.name.to_string(),
-            Defaults { size: b.default_size, spp: 1, seed: 0, integrator: IntegratorKind::Whitted },
+            Defaults { size: b.default_size, spp: 1, seed: 0, integrator: integrators::default_integrator() },
         ));
     }
     let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "scene".into());
@@ -285,7 +285,7 @@ fn resolve_scene(arg: &str) -> Result<(SceneSource, String, Defaults), UsageErro
         Some(ext) if import::EXTENSIONS.contains(&ext) => Ok((
             SceneSource::Mesh(path.to_path_buf()),
             stem,
-            Defaults { size: (640, 360), spp: 1, seed: 0, integrator: IntegratorKind::Whitted },
+            Defaults { size: (640, 360), spp: 1, seed: 0, integrator: integrators::default_integrator() },
         )),
         _ => Err(usage(format!(
             "{arg}: unknown scene file type, expected .toml or a mesh file ({})",
@@ -376,11 +376,11 @@ mod tests {
             "-1.5",
         ])
         .unwrap();
-        assert_eq!(job.options.integrator, IntegratorKind::Path);
+        assert_eq!(job.options.integrator.name, "path");
         assert_eq!(job.options.time_limit, Some(std::time::Duration::from_millis(2500)));
         assert_eq!(job.options.filter, Filter::Gaussian { sigma: 0.5 });
         assert_eq!((job.exposure, job.tonemap), (-1.5, ToneMap::Filmic));
-        assert_eq!(parse(&[]).unwrap().options.integrator, IntegratorKind::Whitted, "whitted stays the default");
+        assert_eq!(parse(&[]).unwrap().options.integrator.name, "whitted", "whitted stays the default");
         assert!(Cli::try_parse_from(["lamplight", "render", "--integrator", "photon"]).is_err());
     }
 

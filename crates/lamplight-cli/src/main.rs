@@ -73,12 +73,11 @@ fn render_command(job: RenderJob) -> anyhow::Result<()> {
     image_io::check_writable(&output)?;
 
     let build_start = Instant::now();
-    let aspect = options.width as f64 / options.height as f64;
     // File errors are the user's input: exit code 2, one line naming file and place.
     let mut scene = match scene {
-        SceneSource::Builtin(b) => (b.build)(aspect).with_context(|| format!("cannot build scene '{}'", b.name))?,
-        SceneSource::File(file) => file.build(options.width, options.height).map_err(|e| UsageError(e.to_string()))?,
-        SceneSource::Mesh(path) => imported::load(&path, aspect).map_err(|e| UsageError(e.to_string()))?,
+        SceneSource::Builtin(b) => (b.build)().with_context(|| format!("cannot build scene '{}'", b.name))?,
+        SceneSource::File(file) => file.build().map_err(|e| UsageError(e.to_string()))?,
+        SceneSource::Mesh(path) => imported::load(&path).map_err(|e| UsageError(e.to_string()))?,
     };
     if let Some(path) = &environment {
         let map = lamplight_scene::env_map::read_environment(path)?;
@@ -97,22 +96,16 @@ fn render_command(job: RenderJob) -> anyhow::Result<()> {
         }
     };
     let control = RenderControl { progress: &progress, cancel: None };
-    // The variance file and the extra EXR layers need the path tracer's per-pixel sums.
-    let mut variance = None;
-    let mut samples = 0;
-    let rendered = if variance_output.is_some() || !exr_layers.is_empty() {
-        lamplight_core::render_path(&scene, &options, &control).map(|(acc, stats)| {
-            variance = Some(acc.variance(options.width, options.height));
-            samples = acc.samples;
-            (acc.mean(options.width, options.height), stats)
-        })
-    } else {
-        render(&scene, &options, &control)
-    };
+    let rendered = render(&scene, &options, &control);
     if let Some(bar) = &bar {
         bar.finish_and_clear();
     }
-    let (image, stats) = rendered.with_context(|| format!("cannot render scene '{name}'"))?;
+    let (film, stats) = rendered.with_context(|| format!("cannot render scene '{name}'"))?;
+    // The variance file and the extra EXR layers come from the film's per-pixel sums.
+    let variance = (variance_output.is_some() || exr_layers.contains(&ExrLayer::Variance)).then(|| film.variance());
+    let samples = film.samples();
+    let image = film.mean();
+    drop(film);
     // EXR keeps linear radiance; display formats get the exposure and tone map.
     let image = match image_io::Format::from_path(&output) {
         Ok(image_io::Format::Exr) => image,
@@ -125,7 +118,7 @@ fn render_command(job: RenderJob) -> anyhow::Result<()> {
         let layers: Vec<ExtraLayer> = exr_layers
             .iter()
             .map(|layer| match layer {
-                ExrLayer::Variance => ExtraLayer::rgb("variance", variance.as_ref().expect("the path tracer ran")),
+                ExrLayer::Variance => ExtraLayer::rgb("variance", variance.as_ref().expect("computed for this layer")),
                 ExrLayer::Samples => ExtraLayer::single("samples", vec![samples as f32; image.pixels.len()]),
             })
             .collect();

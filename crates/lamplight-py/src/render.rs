@@ -12,7 +12,7 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use lamplight_core::film::{Filter, Image};
-use lamplight_core::integrators::IntegratorKind;
+use lamplight_core::integrators::{self, IntegratorEntry};
 use lamplight_core::{PixelWindow, RenderControl, RenderOptions, RenderStats};
 use numpy::{PyArray1, PyArray3, PyArrayMethods};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
@@ -66,8 +66,9 @@ pub fn render_array<'py>(
     if threads > MAX_THREADS {
         return Err(PyValueError::new_err(format!("threads must be at most {MAX_THREADS} (0 uses all cores), got {threads}")));
     }
-    let integrator: IntegratorKind =
-        integrator.parse().map_err(|_| PyValueError::new_err(format!("integrator must be \"whitted\" or \"path\", got {integrator:?}")))?;
+    let integrator: &'static IntegratorEntry = integrator
+        .parse()
+        .map_err(|_| PyValueError::new_err(format!("integrator must be {}, got {integrator:?}", integrators::quoted_names())))?;
     let filter: Filter =
         filter.parse().map_err(|_| PyValueError::new_err(format!("filter must be \"box\" or \"gaussian\", got {filter:?}")))?;
     let time_limit = match time_limit {
@@ -85,7 +86,7 @@ pub fn render_array<'py>(
         }
     }
     let options = RenderOptions { width, height, spp, max_depth, threads, seed, integrator, time_limit, filter, window };
-    let core = scene.core(py, width as f64 / height as f64)?;
+    let core = scene.core(py)?;
 
     let cancel = Arc::new(AtomicBool::new(false));
     let done = Arc::new(AtomicU64::new(0));
@@ -102,7 +103,7 @@ pub fn render_array<'py>(
                 };
                 let control = RenderControl { progress: &report, cancel: Some(&cancel) };
                 // The receiver may be gone (an error already raised): nothing to tell then.
-                let _ = tx.send(lamplight_core::render(&core, &options, &control));
+                let _ = tx.send(lamplight_core::render_image(&core, &options, &control));
             })
             .map_err(|e| PyRuntimeError::new_err(format!("cannot start the render thread: {e}")))?;
     }

@@ -1,15 +1,16 @@
 //! `Scene`: a scene from a built-in name, a scene file, a mesh file or a dict,
-//! with the core scenes built from it cached by image aspect.
+//! with the core scene built from it kept after its first use.
 //!
 //! A scene keeps what it was made from (the name, the file's text and path, the
 //! dict, or the mesh path) and pickles as that, never as built data: a Dask
 //! worker that receives it rebuilds it on first use and then keeps the build.
-//! The core camera depends on the image's aspect, so builds are cached per aspect.
+//! The core camera applies the image's aspect when rendering, so one build serves
+//! every image size.
 
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
-use lamplight_core::integrators::IntegratorKind;
+use lamplight_core::integrators::{self, IntegratorEntry};
 use lamplight_core::Scene as CoreScene;
 use lamplight_scene::build::{self, imported, SceneFile};
 use lamplight_scene::builtin::{self, Builtin};
@@ -22,9 +23,6 @@ use pyo3::types::{PyDict, PyTuple};
 
 use crate::convert;
 use crate::SceneError;
-
-/// Builds kept per scene (different image aspects); the oldest goes first.
-const CACHED_BUILDS: usize = 4;
 
 /// Where a scene comes from.
 #[derive(Debug)]
@@ -46,18 +44,18 @@ struct Defaults {
     height: u32,
     spp: u32,
     seed: u64,
-    integrator: IntegratorKind,
+    integrator: &'static IntegratorEntry,
 }
 
 /// A scene: made from a built-in name, a scene or mesh file, or a dict, and
-/// built (per image aspect) on first use.
+/// built on first use.
 #[pyclass(module = "lamplight._lamplight", frozen)]
 pub struct Scene {
     origin: Origin,
     /// A camera replacing the scene's (`with_camera`): the plain dict and its description.
     camera: Option<(PyObject, Located<CameraDesc>)>,
     defaults: Defaults,
-    builds: Mutex<Vec<(u64, Arc<CoreScene>)>>,
+    built: Mutex<Option<Arc<CoreScene>>>,
 }
 
 /// The names of the built-in scenes, the default first.
@@ -79,58 +77,52 @@ impl Scene {
     fn new(origin: Origin, camera: Option<(PyObject, Located<CameraDesc>)>) -> PyResult<Scene> {
         let defaults = match &origin {
             Origin::Builtin(b) => {
-                Defaults { width: b.default_size.0, height: b.default_size.1, spp: 1, seed: 0, integrator: IntegratorKind::Whitted }
+                let integrator = integrators::default_integrator();
+                Defaults { width: b.default_size.0, height: b.default_size.1, spp: 1, seed: 0, integrator }
             }
             Origin::Toml(file) | Origin::Dict { file, .. } => {
                 let s = file.settings().map_err(|e| if matches!(origin, Origin::Dict { .. }) { dict_error(e) } else { load_error(e) })?;
                 Defaults { width: s.width, height: s.height, spp: s.spp, seed: s.seed, integrator: s.integrator }
             }
-            Origin::Mesh(_) => Defaults { width: 640, height: 360, spp: 1, seed: 0, integrator: IntegratorKind::Whitted },
+            Origin::Mesh(_) => Defaults { width: 640, height: 360, spp: 1, seed: 0, integrator: integrators::default_integrator() },
         };
-        Ok(Scene { origin, camera, defaults, builds: Mutex::new(Vec::new()) })
+        Ok(Scene { origin, camera, defaults, built: Mutex::new(None) })
     }
 
-    /// The core scene for images of aspect `aspect`, built once and kept.
-    pub fn core(&self, py: Python<'_>, aspect: f64) -> PyResult<Arc<CoreScene>> {
-        let key = aspect.to_bits();
-        if let Some((_, scene)) =
-            self.builds.lock().map_err(|_| SceneError::new_err("scene cache poisoned"))?.iter().find(|(k, _)| *k == key)
-        {
+    /// The core scene (for any image size), built once and kept.
+    pub fn core(&self, py: Python<'_>) -> PyResult<Arc<CoreScene>> {
+        if let Some(scene) = self.built.lock().map_err(|_| SceneError::new_err("scene cache poisoned"))?.as_ref() {
             return Ok(scene.clone());
         }
         // Building reads mesh files and builds BVHs: let other Python threads run.
-        let built = py.allow_threads(|| self.build_core(aspect))?;
-        let built = Arc::new(built);
-        let mut builds = self.builds.lock().map_err(|_| SceneError::new_err("scene cache poisoned"))?;
-        if builds.len() >= CACHED_BUILDS {
-            builds.remove(0);
-        }
-        builds.push((key, built.clone()));
-        Ok(built)
+        // Two threads may both build; the first to finish is kept.
+        let built = Arc::new(py.allow_threads(|| self.build_core())?);
+        let mut kept = self.built.lock().map_err(|_| SceneError::new_err("scene cache poisoned"))?;
+        Ok(kept.get_or_insert(built).clone())
     }
 
-    fn build_core(&self, aspect: f64) -> PyResult<CoreScene> {
+    fn build_core(&self) -> PyResult<CoreScene> {
         let camera = self.camera.as_ref().map(|(_, c)| c.clone());
         let mut scene = match &self.origin {
-            Origin::Builtin(b) => (b.build)(aspect).map_err(|e| SceneError::new_err(format!("cannot build scene '{}': {e}", b.name)))?,
+            Origin::Builtin(b) => (b.build)().map_err(|e| SceneError::new_err(format!("cannot build scene '{}': {e}", b.name)))?,
             Origin::Toml(file) | Origin::Dict { file, .. } => {
                 let is_dict = matches!(self.origin, Origin::Dict { .. });
                 let fail = |e| if is_dict { dict_error(e) } else { load_error(e) };
                 return match camera {
                     Some(camera) => {
                         let description = SceneDescription { camera: Some(camera), ..file.description.clone() };
-                        build::build(&description, &file.source, aspect).map_err(fail)
+                        build::build(&description, &file.source).map_err(fail)
                     }
-                    None => build::build(&file.description, &file.source, aspect).map_err(fail),
+                    None => build::build(&file.description, &file.source).map_err(fail),
                 };
             }
-            Origin::Mesh(path) => imported::load(path, aspect).map_err(load_error)?,
+            Origin::Mesh(path) => imported::load(path).map_err(load_error)?,
         };
         if let Some(camera) = camera {
             // Built-in and imported scenes have no description: build the camera
             // alone with the scene format's rules and put it in.
             let description = SceneDescription { camera: Some(camera), ..SceneDescription::default() };
-            let camera_only = build::build(&description, &FileSource::without_text("camera"), aspect)
+            let camera_only = build::build(&description, &FileSource::without_text("camera"))
                 .map_err(|e| SceneError::new_err(format!("camera: {}", e.message)))?;
             scene.camera = camera_only.camera.clone();
         }
@@ -315,26 +307,22 @@ impl Scene {
         d.set_item("height", height)?;
         d.set_item("spp", spp)?;
         d.set_item("seed", seed)?;
-        d.set_item(
-            "integrator",
-            match integrator {
-                IntegratorKind::Whitted => "whitted",
-                IntegratorKind::Path => "path",
-            },
-        )?;
+        d.set_item("integrator", integrator.name)?;
         Ok(d)
     }
 
-    /// Builds the scene now for images of `width x height` (default: the
-    /// scene's size), so that errors show here and the first render starts at once.
+    /// Builds the scene now, so that errors show here and the first render
+    /// starts at once. One build serves every image size; `width` and `height`
+    /// (default: the scene's size) are only checked.
     #[pyo3(signature = (width=None, height=None))]
     fn build(&self, py: Python<'_>, width: Option<u32>, height: Option<u32>) -> PyResult<()> {
-        self.core(py, self.aspect(width, height)?).map(|_| ())
+        self.check_size(width, height)?;
+        self.core(py).map(|_| ())
     }
 
     /// Number of objects (placed shapes) in the scene; primitive ids run below it.
     fn object_count(&self, py: Python<'_>) -> PyResult<usize> {
-        Ok(self.core(py, self.aspect(None, None)?)?.objects.len())
+        Ok(self.core(py)?.objects.len())
     }
 
     /// Nearest hits of rays `origins[i] + t * directions[i] / |directions[i]|`:
@@ -347,7 +335,7 @@ impl Scene {
         directions: &Bound<'py, PyAny>,
         threads: usize,
     ) -> PyResult<Bound<'py, PyTuple>> {
-        let scene = self.core(py, self.aspect(None, None)?)?;
+        let scene = self.core(py)?;
         crate::intersect::intersect(py, &scene, origins, directions, threads)
     }
 
@@ -383,12 +371,12 @@ impl Scene {
         (self.defaults.width, self.defaults.height)
     }
 
-    fn aspect(&self, width: Option<u32>, height: Option<u32>) -> PyResult<f64> {
+    fn check_size(&self, width: Option<u32>, height: Option<u32>) -> PyResult<()> {
         let (w, h) = (width.unwrap_or(self.defaults.width), height.unwrap_or(self.defaults.height));
         if w == 0 || h == 0 {
             return Err(PyValueError::new_err(format!("image size {w}x{h} must be at least 1x1")));
         }
-        Ok(w as f64 / h as f64)
+        Ok(())
     }
 }
 

@@ -10,7 +10,7 @@ const CAMERA: &str = "[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\nvfov = 40\
 /// Parses and builds `text` as `s.toml`, returning the error message.
 fn error(text: &str) -> String {
     let path = Path::new("s.toml");
-    match SceneFile::parse(path, text).and_then(|f| f.settings().and_then(|_| f.build(64, 36))) {
+    match SceneFile::parse(path, text).and_then(|f| f.settings().and_then(|_| f.build())) {
         Ok(_) => panic!("expected an error for:\n{text}"),
         Err(e) => e.to_string(),
     }

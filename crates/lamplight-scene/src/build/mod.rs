@@ -5,8 +5,8 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use lamplight_core::camera::{Camera, Fov};
-use lamplight_core::integrators::IntegratorKind;
+use lamplight_core::camera::{Fit, Fov, Perspective};
+use lamplight_core::integrators::{self, IntegratorEntry};
 use lamplight_core::materials::{Material, Metal, Reflection, Refraction, Texture};
 use lamplight_core::math::{Rgb, Vec3};
 use lamplight_core::{Scene, SceneBuilder};
@@ -36,7 +36,7 @@ pub struct Settings {
     /// Seed (default 0).
     pub seed: u64,
     /// Integrator (default Whitted).
-    pub integrator: IntegratorKind,
+    pub integrator: &'static IntegratorEntry,
 }
 
 /// Deepest `max_depth` a file may ask for (as the command line's `--max-depth`).
@@ -71,9 +71,9 @@ impl SceneFile {
         settings(&self.description, &self.source)
     }
 
-    /// Builds the core scene for an image of `width x height` pixels.
-    pub fn build(&self, width: u32, height: u32) -> Result<Scene, LoadError> {
-        build(&self.description, &self.source, width as f64 / height as f64)
+    /// Builds the core scene (for any image size).
+    pub fn build(&self) -> Result<Scene, LoadError> {
+        build(&self.description, &self.source)
     }
 }
 
@@ -90,10 +90,10 @@ pub fn settings(desc: &SceneDescription, source: &Source) -> Result<Settings, Lo
         max_depth: r.max_depth.unwrap_or(5),
         min_weight: r.min_weight.unwrap_or(0.0),
         seed: r.seed.unwrap_or(0),
-        integrator: match r.integrator.as_deref().unwrap_or("whitted") {
-            "whitted" => IntegratorKind::Whitted,
-            "path" => IntegratorKind::Path,
-            other => return Err(err(format!("unknown integrator \"{other}\", expected \"whitted\" or \"path\""))),
+        integrator: {
+            let name = r.integrator.as_deref().unwrap_or("whitted");
+            integrators::find(name)
+                .ok_or_else(|| err(format!("unknown integrator \"{name}\", expected {}", integrators::quoted_names())))?
         },
     };
     if s.width == 0 || s.height == 0 || s.width as u64 * s.height as u64 > MAX_PIXELS {
@@ -111,11 +111,11 @@ pub fn settings(desc: &SceneDescription, source: &Source) -> Result<Settings, Lo
     Ok(s)
 }
 
-/// Builds the core scene for an image of aspect `width / height`.
-pub fn build(desc: &SceneDescription, source: &Source, aspect: f64) -> Result<Scene, LoadError> {
+/// Builds the core scene (for any image size: the camera applies the aspect when rendering).
+pub fn build(desc: &SceneDescription, source: &Source) -> Result<Scene, LoadError> {
     let settings = settings(desc, source)?;
     let camera_desc = desc.camera.as_ref().ok_or_else(|| LoadError::file(&source.path, "has no [camera] table, expected one"))?;
-    let camera = camera(&camera_desc.value, aspect).map_err(|m| source.error(camera_desc.span.as_ref(), format!("camera: {m}")))?;
+    let camera = camera(&camera_desc.value).map_err(|m| source.error(camera_desc.span.as_ref(), format!("camera: {m}")))?;
     let mut builder = SceneBuilder::new(camera);
     builder.ambient = color(desc.ambient, 0.0);
     builder.background = color(desc.background, 0.0);
@@ -144,30 +144,31 @@ fn vec3(a: [f64; 3]) -> Vec3 {
     Vec3::from_array(a)
 }
 
-fn camera(c: &CameraDesc, aspect: f64) -> Result<Camera, String> {
+fn camera(c: &CameraDesc) -> Result<Perspective, String> {
     let eye = vec3(c.eye.ok_or("needs eye = [x, y, z]")?);
     if let Some(center) = c.window_center {
         if c.look_at.is_some() || c.vfov.is_some() || c.hfov.is_some() {
             return Err("the window form (window_center, right, up) takes no look_at, vfov or hfov".into());
         }
-        let mut right = vec3(c.right.ok_or("the window form needs right = [x, y, z]")?);
-        let mut up = vec3(c.up.ok_or("the window form needs up = [x, y, z]")?);
-        match c.fit.as_deref().unwrap_or("none") {
-            "none" => {}
-            "width" => up /= aspect,
-            "height" => right *= aspect,
+        let right = vec3(c.right.ok_or("the window form needs right = [x, y, z]")?);
+        let up = vec3(c.up.ok_or("the window form needs up = [x, y, z]")?);
+        // The aspect is applied when rendering, as `fit` says.
+        let fit = match c.fit.as_deref().unwrap_or("none") {
+            "none" => Fit::None,
+            "width" => Fit::Width,
+            "height" => Fit::Height,
             other => return Err(format!("unknown fit \"{other}\", expected \"none\", \"width\" or \"height\"")),
-        }
+        };
         let pixel_offset = c.pixel_offset.unwrap_or(0.5);
-        let camera = Camera { eye, lookat: vec3(center), right, up, pixel_offset };
-        let finite = [camera.eye, camera.lookat, camera.right, camera.up].iter().all(|v| v.is_finite());
+        let finite = [eye, vec3(center), right, up].iter().all(|v| v.is_finite());
         if !finite || !(0.0..=1.0).contains(&pixel_offset) {
             return Err("vectors must be finite and pixel_offset between 0 and 1".into());
         }
         if right.cross(up).length_squared() == 0.0 {
             return Err("right and up must be non-zero and not parallel".into());
         }
-        return Ok(camera);
+        let camera = Perspective::window(eye, vec3(center), right, up, fit).and_then(|c| c.with_pixel_offset(pixel_offset));
+        return camera.map_err(|e| e.to_string());
     }
     if c.right.is_some() || c.fit.is_some() {
         return Err("right and fit belong to the window form (with window_center)".into());
@@ -180,12 +181,12 @@ fn camera(c: &CameraDesc, aspect: f64) -> Result<Camera, String> {
         (None, None) => return Err("needs vfov or hfov (degrees)".into()),
         (Some(_), Some(_)) => return Err("takes vfov or hfov, not both".into()),
     };
-    let mut camera = Camera::look_at(eye, target, sky, fov, aspect).map_err(|e| e.to_string())?;
+    let mut camera = Perspective::look_at(eye, target, sky, fov).map_err(|e| e.to_string())?;
     if let Some(offset) = c.pixel_offset {
         if !(0.0..=1.0).contains(&offset) {
             return Err(format!("pixel_offset must be between 0 and 1, got {offset}"));
         }
-        camera.pixel_offset = offset;
+        camera = camera.with_pixel_offset(offset).map_err(|e| e.to_string())?;
     }
     Ok(camera)
 }
