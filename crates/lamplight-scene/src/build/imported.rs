@@ -9,14 +9,14 @@ use std::path::Path;
 use std::sync::Arc;
 
 use lamplight_core::accel::Aabb;
-use lamplight_core::camera::{Camera, Fov, Perspective};
+use lamplight_core::camera::{Camera, Fov, Orthographic, Perspective};
 use lamplight_core::materials::Material;
 use lamplight_core::math::{Rgb, Vec3};
 use lamplight_core::shapes::TriangleMesh;
 use lamplight_core::{Scene, SceneBuilder};
 
 use crate::error::LoadError;
-use crate::import::{self, Imported, ImportedLight};
+use crate::import::{self, Imported, ImportedLight, ImportedProjection};
 
 /// Vertical field of view of the default camera, degrees.
 const DEFAULT_VFOV: f64 = 40.0;
@@ -49,7 +49,14 @@ pub fn build(path: &Path, imported: &Imported) -> Result<Scene, LoadError> {
     let center = bounds.centroid();
     let radius = (bounds.extent().length() / 2.0).max(1e-9);
     let (eye, camera): (Vec3, Arc<dyn Camera>) = match imported.cameras.first() {
-        Some(c) => (c.eye, Arc::new(Perspective::look_at(c.eye, c.target, c.up, Fov::VerticalDeg(c.vfov_deg)).map_err(fail)?)),
+        Some(c) => match c.projection {
+            ImportedProjection::Perspective { vfov_deg } => {
+                (c.eye, Arc::new(Perspective::look_at(c.eye, c.target, c.up, Fov::VerticalDeg(vfov_deg)).map_err(fail)?))
+            }
+            ImportedProjection::Orthographic { xmag, ymag } => {
+                (c.eye, Arc::new(Orthographic::look_at(c.eye, c.target, c.up, xmag, ymag).map_err(fail)?))
+            }
+        },
         None => {
             // Far enough back that the bounding sphere fits the vertical field of view.
             let distance = radius / (DEFAULT_VFOV.to_radians() / 2.0).sin();
