@@ -88,7 +88,8 @@ pub struct RenderArgs {
     /// [default: the file's, else whitted].
     #[arg(long, value_name = "NAME")]
     pub integrator: Option<&'static IntegratorEntry>,
-    /// Path tracer: stop after the last complete pass before this many seconds.
+    /// Stop after the last complete pass before this many seconds (the path tracer's
+    /// passes double in size; Whitted renders all samples in one pass).
     #[arg(long, value_name = "SECONDS")]
     pub time_limit: Option<f64>,
     /// Path tracer: pixel reconstruction filter, `box` or `gaussian` (sigma 0.5 pixel).
