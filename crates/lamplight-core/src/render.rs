@@ -192,6 +192,7 @@ fn render_in(
         let count = schedule.next_pass(done, spp);
         let pass_start = Instant::now();
         let mut pass = spare.take().unwrap_or_else(|| Film::new(window.width, window.height));
+        pass.prepare_pass(count);
         let tiles_x = pass.tiles_x();
         let expired = AtomicBool::new(false);
         let results: Vec<Option<(RayCounts, u64)>> = pool.install(|| {
