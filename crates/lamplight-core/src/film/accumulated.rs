@@ -83,7 +83,8 @@ impl Film {
         self.samples
     }
 
-    /// The sums of the pixel at column `x`, row `y` (from the top).
+    /// The sums of the pixel at column `x`, row `y` (from the top). Panics outside
+    /// the film, as indexing does.
     pub fn get(&self, x: u32, y: u32) -> PixelSum {
         assert!(x < self.width && y < self.height, "pixel ({x}, {y}) outside the {}x{} film", self.width, self.height);
         let tile = (y / TILE) as usize * self.tiles_x as usize + (x / TILE) as usize;
