@@ -11,7 +11,7 @@ fuzz_target!(|data: &[u8]| {
     let Ok(text) = std::str::from_utf8(data) else { return };
     if let Ok(file) = SceneFile::parse(Path::new("fuzz.toml"), text) {
         if file.settings().is_ok() {
-            let _ = file.build(8, 6);
+            let _ = file.build();
         }
     }
 });

@@ -18,8 +18,8 @@ class SceneError(ValueError):
 class Scene:
     """A scene from a built-in name, a scene file, a mesh file or a dict.
 
-    It keeps what it was made from and pickles as that; it is built (per image
-    aspect) on first use and the build is kept, so repeated renders and
+    It keeps what it was made from and pickles as that; it is built on first
+    use and the build is kept, so repeated renders (at any image size) and
     ``intersect`` calls do not rebuild it.
     """
 
@@ -62,7 +62,8 @@ class Scene:
     def defaults(self) -> Dict[str, Any]:
         """``width``, ``height``, ``spp``, ``seed``, ``integrator`` a render uses when not told."""
     def build(self, width: Optional[int] = None, height: Optional[int] = None) -> None:
-        """Builds now (errors show here), for images of ``width x height``."""
+        """Builds now (errors show here); one build serves every image size, and
+        ``width x height`` (default: the scene's size) is only checked."""
     def object_count(self) -> int:
         """Placed shapes in the scene: object ids run from 0 below this."""
     def intersect(

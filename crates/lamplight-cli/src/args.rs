@@ -9,7 +9,6 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
 use lamplight_core::film::tonemap::ToneMap;
-use lamplight_core::integrators::IntegratorKind;
 use lamplight_scene::builtin;
 use lamplight_scene::image_io::Format;
 use lamplight_scene::request::{Display, Job, Layer, Naming, Request, RequestError, SceneRequest};
@@ -88,10 +87,10 @@ pub struct RenderArgs {
     /// Path tracer: light the scene with this equirectangular HDR map (.exr or .hdr), importance-sampled.
     #[arg(long, value_name = "FILE")]
     pub environment: Option<PathBuf>,
-    /// Path tracer: also write the per-pixel variance of the image's mean to this .exr file.
+    /// Also write the per-pixel variance of the image's mean to this .exr file.
     #[arg(long, value_name = "FILE")]
     pub variance_output: Option<PathBuf>,
-    /// Path tracer, .exr output: extra layers in the same file, comma-separated:
+    /// .exr output: extra layers in the same file, comma-separated:
     /// `variance` (of each pixel's mean: variance.R/G/B), `samples` (per pixel: samples.Y).
     #[arg(long, value_name = "LIST", value_delimiter = ',')]
     pub exr_layers: Vec<ExrLayer>,
@@ -186,9 +185,6 @@ impl RenderArgs {
         let variance_output = self.variance_output;
         let variance_in_output = job.layers.contains(&Layer::Variance);
         if let Some(path) = &variance_output {
-            if job.options.integrator != IntegratorKind::Path {
-                return Err(usage("--variance-output needs --integrator path"));
-            }
             if Format::from_path(path).map_err(|e| usage(e.to_string()))? != Format::Exr {
                 return Err(usage("--variance-output must be an .exr file"));
             }
@@ -252,11 +248,11 @@ mod tests {
             "-1.5",
         ])
         .unwrap();
-        assert_eq!(job.job.options.integrator, IntegratorKind::Path);
+        assert_eq!(job.job.options.integrator.name, "path");
         assert_eq!(job.job.options.time_limit, Some(std::time::Duration::from_millis(2500)));
         assert_eq!(job.job.options.filter, lamplight_core::film::Filter::Gaussian { sigma: 0.5 });
         assert_eq!((job.display.exposure, job.display.tonemap), (-1.5, ToneMap::Filmic));
-        assert_eq!(parse(&[]).unwrap().job.options.integrator, IntegratorKind::Whitted, "whitted stays the default");
+        assert_eq!(parse(&[]).unwrap().job.options.integrator.name, "whitted", "whitted stays the default");
         assert_eq!(parse(&["--integrator", "photon"]).unwrap_err().0, "--integrator must be \"whitted\" or \"path\", got \"photon\"");
     }
 

@@ -72,7 +72,7 @@ fn render_command(job: RenderJob) -> anyhow::Result<()> {
     let build_start = Instant::now();
     let (width, height) = (job.options.width, job.options.height);
     // Scene errors are the user's input: exit code 2, one line naming file and place.
-    let mut built = scene.build(width, height).map_err(|e| UsageError(e.0))?;
+    let mut built = scene.build().map_err(|e| UsageError(e.0))?;
     job.prepare(&mut built).map_err(|e| UsageError(e.0))?;
     let build_time = build_start.elapsed();
 

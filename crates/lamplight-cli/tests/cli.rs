@@ -261,8 +261,13 @@ fn exr_layers_hold_the_variance_and_sample_count_of_the_same_render() {
     // The image channels are the plain render's, bit for bit.
     assert_eq!(read_exr(&d.join("layered.exr")).unwrap().pixels, read_exr(&d.join("plain.exr")).unwrap().pixels);
     fails(d, &[&cb[..], &["-o", "x.png", "--exr-layers", "variance"]].concat(), 2, "--exr-layers needs an .exr output file");
-    let whitted = ["render", "spheres", "--width", "8", "--height", "8", "-o", "x.exr", "--exr-layers", "samples"];
-    fails(d, &whitted, 2, "--exr-layers needs --integrator path");
+    // Every integrator fills the same film, so Whitted renders have the layers too.
+    let whitted = ["render", "spheres", "--width", "8", "--height", "8", "--spp", "4", "-o", "w.exr", "--exr-layers", "samples,variance"];
+    ok(d, &whitted);
+    let (_, _, channels) = lamplight_scene::exr_layers::read_exr_channels(&d.join("w.exr")).unwrap();
+    let get = |n: &str| channels.iter().find(|(name, _)| name == n).unwrap_or_else(|| panic!("no channel {n}")).1.clone();
+    assert_eq!(get("samples.Y"), vec![4.0; 64]);
+    assert!(get("variance.R").iter().any(|v| *v > 0.0), "jittered samples vary at edges");
 }
 
 #[test]

@@ -1,28 +1,25 @@
-//! `render()`: the one entry point that turns a scene into an image.
+//! The render loop, one for every integrator: [`render()`] turns a scene into an
+//! accumulated [`Film`], [`render_image()`] into its mean image.
 //!
-//! The image is cut into 16x16 tiles rendered in parallel (rayon). Each pixel's
-//! samples use their own generators seeded by (seed, pixel, sample), and each
-//! pixel is averaged in a fixed order, so the bytes of the image do not depend on
-//! the number of threads or the order tiles finish in. For the same reason a
-//! [`PixelWindow`] of the image renders to exactly the pixels of the full render
-//! there, so an image can be split across machines and stitched back.
+//! The image, or a [`PixelWindow`] of it, is cut into [`TILE`] x [`TILE`] tiles
+//! rendered in parallel (rayon), in passes as the integrator's [`Schedule`] says.
+//! Each sample's random numbers are seeded by (seed, pixel, sample index) and each
+//! pixel adds its samples in index order into its own sums, so the bytes of the
+//! image depend neither on the number of threads, nor on the order tiles finish
+//! in, nor on the pass sizes; and a window renders exactly the pixels of the full
+//! render there, so an image can be split across machines and stitched back.
+//! With a time limit, a pass that would not finish in time is not started and a
+//! pass cut short is dropped: the film is always that of the last complete pass.
 
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 
 use rayon::prelude::*;
 
-use crate::film::{Filter, Image};
-use crate::integrators::{Integrator, IntegratorKind, RayCounts, Whitted};
-use crate::progressive::Accumulator;
-use crate::sampling::{stratified_2d, Rng};
+use crate::film::{Film, Filter, Image, PixelSum, TileBlock, TILE};
+use crate::integrators::{self, Integrator, IntegratorEntry, IntegratorSettings, RayCounts, View};
 use crate::scene::Scene;
 use crate::Error;
-
-const TILE: u32 = 16;
-
-/// One finished tile: its pixels (row-major), ray counts and non-finite samples.
-type TileResult = (Vec<[f32; 3]>, RayCounts, u64);
 
 /// What to render and how.
 #[derive(Clone, Debug, PartialEq)]
@@ -31,19 +28,21 @@ pub struct RenderOptions {
     pub width: u32,
     /// Image height in pixels.
     pub height: u32,
-    /// Samples per pixel, stratified and jittered when more than one.
+    /// Samples per pixel.
     pub spp: u32,
     /// Depth limit; `None` uses the scene's.
     pub max_depth: Option<u32>,
     /// Worker threads; 0 uses all cores.
     pub threads: usize,
-    /// Seed of the per-sample generators.
+    /// Seed of the per-sample random numbers.
     pub seed: u64,
-    /// The integrator.
-    pub integrator: IntegratorKind,
-    /// Path tracer only: stop after the last complete pass before this much time.
+    /// The integrator, from [`integrators::INTEGRATORS`] (`"path".parse()` finds one by name).
+    pub integrator: &'static IntegratorEntry,
+    /// Stop after the last complete pass before this much time (an error if the
+    /// first pass does not finish in it).
     pub time_limit: Option<Duration>,
-    /// Path tracer only: the pixel reconstruction filter.
+    /// The pixel reconstruction filter, for integrators that place samples by it
+    /// (the path tracer).
     pub filter: Filter,
     /// Render only this part of the `width x height` image (the result has the
     /// window's size); `None` renders all of it.
@@ -79,7 +78,7 @@ impl Default for RenderOptions {
             max_depth: None,
             threads: 0,
             seed: 0,
-            integrator: IntegratorKind::Whitted,
+            integrator: integrators::default_integrator(),
             time_limit: None,
             filter: Filter::Box,
             window: None,
@@ -104,7 +103,7 @@ pub struct RenderStats {
 
 /// Progress reports and cancellation for a running render.
 pub struct RenderControl<'a> {
-    /// Called after each tile with (tiles done, tiles in all); from worker threads.
+    /// Called after each tile of each pass with (tiles done, tiles of all passes); from worker threads.
     pub progress: &'a (dyn Fn(u64, u64) + Sync),
     /// When set, remaining tiles are skipped and `render` returns [`Error::Render`].
     pub cancel: Option<&'a AtomicBool>,
@@ -116,8 +115,14 @@ impl Default for RenderControl<'_> {
     }
 }
 
-/// A pool of `threads` workers (0: one per core), shared by every renderer.
-pub(crate) fn thread_pool(threads: usize) -> Result<rayon::ThreadPool, Error> {
+impl RenderControl<'_> {
+    fn cancelled(&self) -> bool {
+        self.cancel.is_some_and(|c| c.load(Ordering::Relaxed))
+    }
+}
+
+/// A pool of `threads` workers (0: one per core).
+fn thread_pool(threads: usize) -> Result<rayon::ThreadPool, Error> {
     rayon::ThreadPoolBuilder::new().num_threads(threads).build().map_err(|e| Error::Render(format!("cannot start worker threads: {e}")))
 }
 
@@ -141,107 +146,141 @@ fn checked_depth(scene: &Scene, options: &RenderOptions) -> Result<u32, Error> {
     Ok(max_depth)
 }
 
-/// Renders `scene` with `options`. Errors on zero sizes, on a thread pool that cannot
-/// start, and on cancellation.
-pub fn render(scene: &Scene, options: &RenderOptions, control: &RenderControl) -> Result<(Image, RenderStats), Error> {
-    let max_depth = checked_depth(scene, options)?;
-    let PixelWindow { x0: wx, y0: wy, width, height } = options.pixel_window();
-    let spp = options.spp;
-    let integrator: Box<dyn Integrator> = match options.integrator {
-        IntegratorKind::Whitted => Box::new(Whitted { max_depth, min_weight: scene.min_weight }),
-        IntegratorKind::Path => {
-            let (acc, stats) = crate::progressive::render_path(scene, options, max_depth, control)?;
-            return Ok((acc.mean(width, height), stats));
-        }
-    };
+/// Renders `scene` with `options` into a film of the window's size: per pixel the
+/// sum and sum of squares of its samples, so the mean and its variance follow for
+/// any integrator. Errors on bad sizes, an integrator that cannot be built for the
+/// scene, a thread pool that cannot start, cancellation, and a time limit that
+/// ends before the first pass.
+pub fn render(scene: &Scene, options: &RenderOptions, control: &RenderControl) -> Result<(Film, RenderStats), Error> {
     let pool = thread_pool(options.threads)?;
-    let threads = pool.current_num_threads();
+    render_in(&pool, scene, options, control)
+}
 
-    let tiles_x = width.div_ceil(TILE);
-    let tiles_y = height.div_ceil(TILE);
-    let tile_count = tiles_x as u64 * tiles_y as u64;
-    let done = AtomicU64::new(0);
+/// [`render()`], developed into the mean image.
+pub fn render_image(scene: &Scene, options: &RenderOptions, control: &RenderControl) -> Result<(Image, RenderStats), Error> {
+    let pool = thread_pool(options.threads)?;
+    let (film, stats) = render_in(&pool, scene, options, control)?;
+    Ok((pool.install(|| film.mean()), stats))
+}
+
+fn render_in(
+    pool: &rayon::ThreadPool,
+    scene: &Scene,
+    options: &RenderOptions,
+    control: &RenderControl,
+) -> Result<(Film, RenderStats), Error> {
+    let max_depth = checked_depth(scene, options)?;
+    let window = options.pixel_window();
+    let integrator = (options.integrator.build)(scene, &IntegratorSettings { max_depth, filter: options.filter })?;
+    // The camera's window for this image size, worked out once rather than per ray.
+    let sized = scene.camera.for_image(options.width, options.height);
+    let camera = sized.as_deref().unwrap_or(scene.camera.as_ref());
+    let view = View::new(scene, camera, options.width, options.height, options.spp, options.seed);
+    let schedule = integrator.schedule();
+    let spp = options.spp;
+    let mut stats = RenderStats { threads: pool.current_num_threads(), ..RenderStats::default() };
     let start = Instant::now();
-    let results: Vec<Option<TileResult>> = pool.install(|| {
-        (0..tile_count)
-            .into_par_iter()
-            .map(|tile| {
-                if control.cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
-                    return None;
-                }
-                let x0 = wx + (tile % tiles_x as u64) as u32 * TILE;
-                let y0 = wy + (tile / tiles_x as u64) as u32 * TILE;
-                let out = render_tile(scene, integrator.as_ref(), options, x0, y0);
-                let finished = done.fetch_add(1, Ordering::Relaxed) + 1;
-                (control.progress)(finished, tile_count);
-                Some(out)
-            })
-            .collect()
-    });
-    let elapsed = start.elapsed();
-    let mut image = Image::new(width, height);
-    let mut stats = RenderStats { elapsed, threads, samples_per_pixel: spp, ..RenderStats::default() };
-    for (tile, result) in results.into_iter().enumerate() {
-        let Some((pixels, counts, nonfinite)) = result else {
+    let deadline = options.time_limit.map(|limit| start + limit);
+    let tiles_done = AtomicU64::new(0);
+    let tiles_per_pass = window.width.div_ceil(TILE) as u64 * window.height.div_ceil(TILE) as u64;
+    let total_tiles = tiles_per_pass * schedule.pass_count(spp) as u64;
+    // The first complete pass becomes the film; later ones are rendered into a
+    // spare film and added, so a pass cut short leaves the film untouched.
+    let (mut film, mut spare): (Option<Film>, Option<Film>) = (None, None);
+    let mut done = 0;
+    while done < spp {
+        let count = schedule.next_pass(done, spp);
+        let pass_start = Instant::now();
+        let mut pass = spare.take().unwrap_or_else(|| Film::new(window.width, window.height));
+        pass.prepare_pass(count);
+        let tiles_x = pass.tiles_x();
+        let expired = AtomicBool::new(false);
+        let results: Vec<Option<(RayCounts, u64)>> = pool.install(|| {
+            pass.tiles_mut()
+                .enumerate()
+                .map(|(tile, block)| {
+                    if control.cancelled() {
+                        return None;
+                    }
+                    if deadline.is_some_and(|d| Instant::now() > d) {
+                        expired.store(true, Ordering::Relaxed);
+                        return None;
+                    }
+                    let (tx, ty) = (tile as u32 % tiles_x, tile as u32 / tiles_x);
+                    let (x0, y0) = (window.x0 + tx * TILE, window.y0 + ty * TILE);
+                    let x1 = (x0 + TILE).min(window.x0 + window.width);
+                    let y1 = (y0 + TILE).min(window.y0 + window.height);
+                    let out = render_tile(integrator.as_ref(), &view, block, (x0, y0, x1, y1), done, count);
+                    (control.progress)(tiles_done.fetch_add(1, Ordering::Relaxed) + 1, total_tiles);
+                    Some(out)
+                })
+                .collect()
+        });
+        if control.cancelled() {
             return Err(Error::Render("cancelled".into()));
-        };
-        stats.rays.add(&counts);
-        stats.nonfinite_samples += nonfinite;
-        let x0 = (tile as u64 % tiles_x as u64) as u32 * TILE;
-        let y0 = (tile as u64 / tiles_x as u64) as u32 * TILE;
-        // Row by row: a division per pixel to find its place cost ~10 ms of serial
-        // time at 1280x720.
-        let tile_w = TILE.min(width - x0) as usize;
-        for (row, line) in pixels.chunks_exact(tile_w).enumerate() {
-            let start = (y0 as usize + row) * width as usize + x0 as usize;
-            image.pixels[start..start + tile_w].copy_from_slice(line);
+        }
+        if expired.load(Ordering::Relaxed) && results.iter().any(Option::is_none) {
+            if done == 0 {
+                return Err(Error::Render("the time limit ended before the first pass finished".into()));
+            }
+            break; // drop the incomplete pass
+        }
+        for (counts, nonfinite) in results.into_iter().flatten() {
+            stats.rays.add(&counts);
+            stats.nonfinite_samples += nonfinite;
+        }
+        done += count;
+        pass.set_samples(count);
+        match film.as_mut() {
+            None => film = Some(pass),
+            Some(film) => {
+                pool.install(|| film.add(&pass));
+                spare = Some(pass);
+            }
+        }
+        if let Some(d) = deadline {
+            // Do not start a pass that cannot finish: estimate it from this one's
+            // time per sample.
+            let now = Instant::now();
+            let next = pass_start.elapsed().mul_f64(schedule.next_pass(done, spp) as f64 / count as f64);
+            if now >= d || now + next > d {
+                break;
+            }
         }
     }
-    Ok((image, stats))
+    stats.elapsed = start.elapsed();
+    stats.samples_per_pixel = done;
+    // `spp >= 1`, and a render without a complete pass returned above.
+    let film = film.ok_or_else(|| Error::Render("no pass finished".into()))?;
+    Ok((film, stats))
 }
 
-/// Renders `scene` with the path tracer (whatever `options.integrator` says) and
-/// returns the per-pixel sums, from which the mean and its variance follow (of the
-/// window's pixels, row-major, when `options.window` is set).
-pub fn render_path(scene: &Scene, options: &RenderOptions, control: &RenderControl) -> Result<(Accumulator, RenderStats), Error> {
-    let max_depth = checked_depth(scene, options)?;
-    crate::progressive::render_path(scene, options, max_depth, control)
-}
-
-fn render_tile(scene: &Scene, integrator: &dyn Integrator, options: &RenderOptions, x0: u32, y0: u32) -> TileResult {
-    let (width, height, spp) = (options.width, options.height, options.spp);
-    let w = options.pixel_window();
-    let x1 = (x0 + TILE).min(w.x0 + w.width);
-    let y1 = (y0 + TILE).min(w.y0 + w.height);
-    let mut pixels = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
+/// Samples `first..first + count` of every pixel of the tile covering columns
+/// `x0..x1` and rows `y0..y1` of the full image, each pixel's summed in sample
+/// order into `block`; returns the ray counts and the non-finite samples (dropped).
+fn render_tile(
+    integrator: &dyn Integrator,
+    view: &View,
+    mut block: TileBlock,
+    (x0, y0, x1, y1): (u32, u32, u32, u32),
+    first: u32,
+    count: u32,
+) -> (RayCounts, u64) {
     let mut counts = RayCounts::default();
     let mut nonfinite = 0;
-    let camera = &scene.camera;
-    let shift = camera.pixel_offset - 0.5;
     for y in y0..y1 {
         for x in x0..x1 {
-            let pixel = y as u64 * width as u64 + x as u64;
-            let mut sum = crate::math::Rgb::ZERO;
-            for s in 0..spp {
-                let mut rng = Rng::for_sample(options.seed, pixel, s as u64);
-                let (dx, dy) = if spp == 1 {
-                    (camera.pixel_offset, camera.pixel_offset)
-                } else {
-                    let jitter = (rng.uniform(), rng.uniform());
-                    let (sx, sy) = stratified_2d(s, spp, jitter);
-                    (sx + shift, sy + shift)
-                };
-                let ray = camera.ray(x as f64 + dx, y as f64 + dy, width, height);
-                let radiance = integrator.radiance(scene, &ray, &mut rng, &mut counts);
-                if radiance.is_finite() {
-                    sum += radiance;
+            let mut sum = PixelSum::default();
+            for s in first..first + count {
+                let l = integrator.sample(view, x, y, s, &mut counts);
+                if l.is_finite() {
+                    sum.add(l);
                 } else {
                     nonfinite += 1;
                 }
             }
-            let mean = sum / spp as f64;
-            pixels.push([mean.x as f32, mean.y as f32, mean.z as f32]);
+            block.set(x - x0, y - y0, sum);
         }
     }
-    (pixels, counts, nonfinite)
+    (counts, nonfinite)
 }

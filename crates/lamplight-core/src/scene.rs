@@ -66,8 +66,8 @@ pub struct Scene {
     /// Light from everywhere for the path tracer (`None`: the ambient light
     /// becomes a uniform sky, see [`crate::lights::LightSet`]).
     pub environment: Option<Arc<crate::lights::Environment>>,
-    /// The camera.
-    pub camera: Camera,
+    /// The camera (shared: a scene seen by another camera shares it).
+    pub camera: Arc<dyn Camera>,
     /// Default recursion depth limit (camera ray = depth 1).
     pub max_depth: u32,
     /// Secondary rays whose weight falls to or below this (every channel) are not
@@ -107,7 +107,7 @@ pub struct SceneBuilder {
     /// Environment light for the path tracer.
     pub environment: Option<Arc<crate::lights::Environment>>,
     /// Camera.
-    pub camera: Camera,
+    pub camera: Arc<dyn Camera>,
     /// Default depth limit, 5.
     pub max_depth: u32,
     /// Weight cut-off, 0.
@@ -116,7 +116,12 @@ pub struct SceneBuilder {
 
 impl SceneBuilder {
     /// An empty scene seen by `camera`.
-    pub fn new(camera: Camera) -> SceneBuilder {
+    pub fn new(camera: impl Camera + 'static) -> SceneBuilder {
+        SceneBuilder::with_camera(Arc::new(camera))
+    }
+
+    /// An empty scene seen by a camera that may be shared.
+    pub fn with_camera(camera: Arc<dyn Camera>) -> SceneBuilder {
         SceneBuilder {
             objects: Vec::new(),
             materials: Vec::new(),
@@ -360,13 +365,13 @@ impl Scene {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::camera::Fov;
+    use crate::camera::{Fov, Perspective};
     use crate::shapes::Sphere;
 
     /// A bulb of radius 2 around the origin with a small opaque ball inside it,
     /// off centre towards +x, and an opaque ball outside it on the -x side.
     fn bulb_scene() -> Scene {
-        let camera = Camera::look_at(Vec3::new(0.0, 0.0, 10.0), Vec3::ZERO, Vec3::Y, Fov::VerticalDeg(40.0), 1.0).unwrap();
+        let camera = Perspective::look_at(Vec3::new(0.0, 0.0, 10.0), Vec3::ZERO, Vec3::Y, Fov::VerticalDeg(40.0)).unwrap();
         let mut builder = SceneBuilder::new(camera);
         let opaque = builder.material(Material::default()).unwrap();
         builder.object(Sphere::new(Vec3::ZERO, 2.0).unwrap(), opaque).unwrap();

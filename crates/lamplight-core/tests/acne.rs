@@ -10,7 +10,7 @@ use lamplight_core::prelude::*;
 
 fn render_scaled(scale: f64) -> (Scene, lamplight_core::film::Image) {
     let s = |v: Vec3| v * scale;
-    let camera = Camera::look_at(s(Vec3::new(0.3, 3.0, 6.0)), s(Vec3::new(0.0, 0.0, 0.0)), Vec3::Y, Fov::VerticalDeg(45.0), 1.0).unwrap();
+    let camera = Perspective::look_at(s(Vec3::new(0.3, 3.0, 6.0)), s(Vec3::new(0.0, 0.0, 0.0)), Vec3::Y, Fov::VerticalDeg(45.0)).unwrap();
     let mut builder = SceneBuilder::new(camera);
     builder.ambient = Rgb::splat(0.1);
     builder.background = Rgb::ZERO;
@@ -24,7 +24,7 @@ fn render_scaled(scale: f64) -> (Scene, lamplight_core::film::Image) {
     builder.light(DirectionalLight::new(Vec3::new(-0.2, -1.0, -0.45), Rgb::ONE).unwrap());
     let scene = builder.build().unwrap();
     let (image, _) =
-        render(&scene, &RenderOptions { width: 96, height: 96, ..RenderOptions::default() }, &RenderControl::default()).unwrap();
+        render_image(&scene, &RenderOptions { width: 96, height: 96, ..RenderOptions::default() }, &RenderControl::default()).unwrap();
     (scene, image)
 }
 
@@ -36,7 +36,7 @@ fn no_acne_at_any_scale() {
         let mut checked = 0;
         for y in 0..96 {
             for x in 0..96 {
-                let ray = scene.camera.ray(x as f64 + 0.5, y as f64 + 0.5, 96, 96);
+                let ray = scene.camera.ray(x as f64 + 0.5, y as f64 + 0.5, 96, 96, (0.5, 0.5));
                 let Some(hit) = scene.first_intersect(&ray, f64::INFINITY) else { continue };
                 // Skip points that the sphere really shadows (the floor behind it).
                 let to_light = lamplight_core::ray::Ray::new(hit.point + hit.geometric_normal * 1e-6 * scale, light_dir);

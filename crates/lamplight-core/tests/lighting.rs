@@ -1,21 +1,20 @@
 //! The rough model and the lights against values worked out by hand.
 
-use lamplight_core::integrators::{Integrator, RayCounts, Whitted};
+use lamplight_core::integrators::{RayCounts, Whitted};
 use lamplight_core::lights::Light;
 use lamplight_core::prelude::*;
 use lamplight_core::ray::Ray;
-use lamplight_core::sampling::Rng;
 
 /// A camera looking straight down at the origin from height 5.
-fn top_camera() -> Camera {
-    Camera::look_at(Vec3::new(0.0, 5.0, 0.0), Vec3::ZERO, Vec3::Z, Fov::VerticalDeg(30.0), 1.0).unwrap()
+fn top_camera() -> Perspective {
+    Perspective::look_at(Vec3::new(0.0, 5.0, 0.0), Vec3::ZERO, Vec3::Z, Fov::VerticalDeg(30.0)).unwrap()
 }
 
 /// Radiance seen along the ray from (0, 5, 0) straight down at the floor's origin.
 fn centre_radiance(scene: &Scene, max_depth: u32) -> (Rgb, RayCounts) {
     let mut counts = RayCounts::default();
     let ray = Ray::new(Vec3::new(0.0, 5.0, 0.0), -Vec3::Y);
-    let value = Whitted { max_depth, min_weight: 0.0 }.radiance(scene, &ray, &mut Rng::for_sample(0, 0, 0), &mut counts);
+    let value = Whitted { max_depth, min_weight: 0.0 }.trace(scene, &ray, &mut counts);
     (value, counts)
 }
 

@@ -4,11 +4,10 @@
 
 use std::sync::Arc;
 
-use lamplight_core::integrators::{IntegratorKind, PathTracer, RayCounts};
+use lamplight_core::integrators::{self, PathTracer, RayCounts};
 use lamplight_core::lights::LightSet;
 use lamplight_core::prelude::*;
 use lamplight_core::ray::Ray;
-use lamplight_core::render_path;
 use lamplight_core::sampling::PixelSampler;
 
 fn white() -> Material {
@@ -25,7 +24,7 @@ fn square_mesh(a: f64) -> TriangleMesh {
     TriangleMesh::new(p, vec![[0, 1, 2], [0, 2, 3]], None).unwrap()
 }
 
-fn dark_builder(camera: Camera) -> SceneBuilder {
+fn dark_builder(camera: Perspective) -> SceneBuilder {
     let mut b = SceneBuilder::new(camera);
     b.ambient = Rgb::ZERO;
     b.background = Rgb::ZERO;
@@ -40,7 +39,7 @@ fn irradiance_under_an_emissive_mesh_square_matches_the_form_factor() {
     // A white Lambertian floor there reflects L_o = E / pi = L F. The mesh is placed by
     // a rotation about the vertical and a translation (an instance).
     let (a, h, radiance) = (1.0, 1.0, 3.0);
-    let camera = Camera::look_at(Vec3::new(0.0, 0.5, 0.0), Vec3::ZERO, Vec3::Z, Fov::VerticalDeg(10.0), 1.0).unwrap();
+    let camera = Perspective::look_at(Vec3::new(0.0, 0.5, 0.0), Vec3::ZERO, Vec3::Z, Fov::VerticalDeg(10.0)).unwrap();
     let mut b = dark_builder(camera);
     let floor = b.material(white()).unwrap();
     let lamp = b.material(emitter(radiance)).unwrap();
@@ -69,7 +68,7 @@ fn irradiance_under_an_emissive_mesh_square_matches_the_form_factor() {
 /// A floor, a diffuse ball and a square light of side 1 at height 2, facing down,
 /// built as an analytic rectangle or as a two-triangle mesh.
 fn lit_room(mesh_light: bool) -> Scene {
-    let camera = Camera::look_at(Vec3::new(0.0, 1.5, 4.0), Vec3::new(0.0, 0.5, 0.0), Vec3::Y, Fov::VerticalDeg(50.0), 1.0).unwrap();
+    let camera = Perspective::look_at(Vec3::new(0.0, 1.5, 4.0), Vec3::new(0.0, 0.5, 0.0), Vec3::Y, Fov::VerticalDeg(50.0)).unwrap();
     let mut b = dark_builder(camera);
     let floor = b.material(Material { kd: Rgb::splat(0.8), ..white() }).unwrap();
     let ball = b.material(Material::plastic(Rgb::new(0.8, 0.4, 0.2), 0.0, 0.8, 0.2, 20.0)).unwrap();
@@ -93,11 +92,12 @@ fn mesh_quad_light_renders_like_the_analytic_quad_light() {
     // against the rectangle's own parameterization): the images agree within their
     // noise. Per pixel |a - b| <= 5 sigma (sigma^2 = var_a + var_b, the variances of
     // the pixel means), and the image means within 0.5 %.
-    let options = RenderOptions { width: 16, height: 16, spp: 1024, integrator: IntegratorKind::Path, ..RenderOptions::default() };
-    let (a, _) = render_path(&lit_room(false), &options, &RenderControl::default()).unwrap();
-    let (b, _) = render_path(&lit_room(true), &options, &RenderControl::default()).unwrap();
-    let (mean_a, mean_b) = (a.mean(16, 16), b.mean(16, 16));
-    let (var_a, var_b) = (a.variance(16, 16), b.variance(16, 16));
+    let options =
+        RenderOptions { width: 16, height: 16, spp: 1024, integrator: integrators::find("path").unwrap(), ..RenderOptions::default() };
+    let (a, _) = render(&lit_room(false), &options, &RenderControl::default()).unwrap();
+    let (b, _) = render(&lit_room(true), &options, &RenderControl::default()).unwrap();
+    let (mean_a, mean_b) = (a.mean(), b.mean());
+    let (var_a, var_b) = (a.variance(), b.variance());
     let (mut sum_a, mut sum_b, mut worst) = (0.0, 0.0, 0.0f64);
     for i in 0..mean_a.pixels.len() {
         for c in 0..3 {

@@ -3,14 +3,13 @@
 
 use std::sync::Arc;
 
-use lamplight_core::integrators::{IntegratorKind, PathTracer, RayCounts, SimplePath};
+use lamplight_core::integrators::{self, PathTracer, RayCounts, SimplePath};
 use lamplight_core::lights::Environment;
 use lamplight_core::prelude::*;
-use lamplight_core::render_path;
 use lamplight_core::sampling::PixelSampler;
 
 fn furnace_scene(material: Material) -> Scene {
-    let camera = Camera::look_at(Vec3::new(0.0, 0.0, 4.0), Vec3::ZERO, Vec3::Y, Fov::VerticalDeg(30.0), 1.0).unwrap();
+    let camera = Perspective::look_at(Vec3::new(0.0, 0.0, 4.0), Vec3::ZERO, Vec3::Y, Fov::VerticalDeg(30.0)).unwrap();
     let mut b = SceneBuilder::new(camera);
     let m = b.material(material).unwrap();
     b.object(Sphere::new(Vec3::ZERO, 1.0).unwrap(), m).unwrap();
@@ -28,7 +27,7 @@ fn white_glass() -> Material {
 }
 
 fn path_options(size: u32, spp: u32) -> RenderOptions {
-    RenderOptions { width: size, height: size, spp, integrator: IntegratorKind::Path, ..RenderOptions::default() }
+    RenderOptions { width: size, height: size, spp, integrator: integrators::find("path").unwrap(), ..RenderOptions::default() }
 }
 
 #[test]
@@ -37,7 +36,7 @@ fn white_furnace_gives_one_everywhere() {
     // every pixel, on the sphere or not, sees radiance 1.
     for (name, material) in [("lambertian", white_lambertian()), ("dielectric", white_glass())] {
         let scene = furnace_scene(material);
-        let (image, stats) = render(&scene, &path_options(8, 8192), &RenderControl::default()).unwrap();
+        let (image, stats) = render_image(&scene, &path_options(8, 8192), &RenderControl::default()).unwrap();
         assert_eq!(stats.nonfinite_samples, 0);
         let mut worst = 0.0f32;
         for (i, p) in image.pixels.iter().enumerate() {
@@ -69,7 +68,7 @@ fn rough_glass_furnace_loses_only_the_microfacet_shadowing() {
     // image means agreed within 0.1 % at all three roughnesses).
     for (alpha, mitsuba_centre, mitsuba_mean) in [(0.02, 0.9989, 0.9935), (0.1, 0.9799, 0.9529), (0.4, 0.7354, 0.7258)] {
         let scene = furnace_scene(Material { roughness: alpha, ..white_glass() });
-        let (image, stats) = render(&scene, &path_options(8, 8192), &RenderControl::default()).unwrap();
+        let (image, stats) = render_image(&scene, &path_options(8, 8192), &RenderControl::default()).unwrap();
         assert_eq!(stats.nonfinite_samples, 0);
         let (mut hi, mut centre_lo, mut centre, mut mean) = (f32::MIN, f32::MAX, 0.0, 0.0);
         for (i, p) in image.pixels.iter().enumerate() {
@@ -102,7 +101,7 @@ fn next_event_estimation_agrees_with_bsdf_sampling_alone() {
     // gold ball lit by a spherical area light and a dim sky: NEE + MIS and the
     // BSDF-only oracle estimate the same integral, so their image means agree within
     // their noise.
-    let camera = Camera::look_at(Vec3::new(0.0, 1.0, 5.0), Vec3::new(0.0, 0.5, 0.0), Vec3::Y, Fov::VerticalDeg(40.0), 1.0).unwrap();
+    let camera = Perspective::look_at(Vec3::new(0.0, 1.0, 5.0), Vec3::new(0.0, 0.5, 0.0), Vec3::Y, Fov::VerticalDeg(40.0)).unwrap();
     let mut b = SceneBuilder::new(camera);
     let floor = b.material(Material::plastic(Rgb::new(0.8, 0.6, 0.4), 0.0, 0.9, 0.0, 1.0)).unwrap();
     let glossy = b.material(Material::plastic(Rgb::new(0.2, 0.4, 0.8), 0.0, 0.5, 0.4, 30.0)).unwrap();
@@ -131,8 +130,9 @@ fn next_event_estimation_agrees_with_bsdf_sampling_alone() {
                 let mut o = PixelSampler::new(2, pixel, s);
                 let (ax, ay) = a.get_2d();
                 let (ox, oy) = o.get_2d();
-                let la = nee.li(&scene, &scene.camera.ray(x as f64 + ax, y as f64 + ay, w, h), &mut a, &mut counts).dot(Rgb::ONE);
-                let lo = oracle.li(&scene, &scene.camera.ray(x as f64 + ox, y as f64 + oy, w, h), &mut o).dot(Rgb::ONE);
+                let la =
+                    nee.li(&scene, &scene.camera.ray(x as f64 + ax, y as f64 + ay, w, h, (0.5, 0.5)), &mut a, &mut counts).dot(Rgb::ONE);
+                let lo = oracle.li(&scene, &scene.camera.ray(x as f64 + ox, y as f64 + oy, w, h, (0.5, 0.5)), &mut o).dot(Rgb::ONE);
                 sum_nee += la;
                 sum_oracle += lo;
                 sq_nee += la * la;
@@ -154,7 +154,7 @@ fn point_and_directional_lights_give_the_analytic_radiance() {
     // A white Lambertian floor (albedo 0.5) under a point light of intensity I at
     // height 2 and a directional light at 60 degrees: at the point below the lamp,
     // L = 0.5/pi (I / 4 + E cos 60).
-    let camera = Camera::look_at(Vec3::new(0.0, 1.0, 0.0), Vec3::ZERO, Vec3::Z, Fov::VerticalDeg(1.0), 1.0).unwrap();
+    let camera = Perspective::look_at(Vec3::new(0.0, 1.0, 0.0), Vec3::ZERO, Vec3::Z, Fov::VerticalDeg(1.0)).unwrap();
     let mut b = SceneBuilder::new(camera);
     let grey =
         b.material(Material { color: Texture::Constant(Rgb::ONE), kd: Rgb::splat(0.5), ka: Rgb::ZERO, ..Material::default() }).unwrap();
@@ -163,7 +163,8 @@ fn point_and_directional_lights_give_the_analytic_radiance() {
     let dir = Vec3::new(3f64.sqrt() / 2.0, 0.5, 0.0);
     b.light(DirectionalLight::new(-dir, Rgb::splat(2.0)).unwrap());
     let scene = b.build().unwrap();
-    let (image, _) = render(&scene, &RenderOptions { max_depth: Some(2), ..path_options(1, 256) }, &RenderControl::default()).unwrap();
+    let (image, _) =
+        render_image(&scene, &RenderOptions { max_depth: Some(2), ..path_options(1, 256) }, &RenderControl::default()).unwrap();
     let expected = 0.5 / std::f64::consts::PI * (8.0 / 4.0 + 2.0 * 0.5);
     assert!((image.get(0, 0)[0] as f64 - expected).abs() / expected < 1e-3, "{:?} vs {expected}", image.get(0, 0));
 }
@@ -172,13 +173,13 @@ fn point_and_directional_lights_give_the_analytic_radiance() {
 fn images_do_not_depend_on_threads_and_2n_continues_n() {
     let scene = furnace_scene(Material::plastic(Rgb::new(0.9, 0.3, 0.2), 0.0, 0.6, 0.3, 20.0));
     let opts = |threads: usize, spp: u32| RenderOptions { threads, ..path_options(20, spp) };
-    let (one, _) = render(&scene, &opts(1, 8), &RenderControl::default()).unwrap();
-    let (three, _) = render(&scene, &opts(3, 8), &RenderControl::default()).unwrap();
+    let (one, _) = render_image(&scene, &opts(1, 8), &RenderControl::default()).unwrap();
+    let (three, _) = render_image(&scene, &opts(3, 8), &RenderControl::default()).unwrap();
     assert_eq!(one, three, "same bytes for 1 and 3 threads");
     // The sums after 2N = 8 samples are those after N = 4 plus samples 4..8, taken
     // one by one with the same sampler: the first N samples are reused exactly.
-    let (acc4, _) = render_path(&scene, &opts(2, 4), &RenderControl::default()).unwrap();
-    let (acc8, _) = render_path(&scene, &opts(2, 8), &RenderControl::default()).unwrap();
+    let (acc4, _) = render(&scene, &opts(2, 4), &RenderControl::default()).unwrap();
+    let (acc8, _) = render(&scene, &opts(2, 8), &RenderControl::default()).unwrap();
     let tracer = PathTracer::new(&scene, scene.max_depth);
     let mut counts = RayCounts::default();
     for y in 0..20u32 {
@@ -188,10 +189,10 @@ fn images_do_not_depend_on_threads_and_2n_continues_n() {
             for s in 4..8 {
                 let mut sampler = PixelSampler::new(0, k as u64, s);
                 let (dx, dy) = lamplight_core::film::Filter::Box.sample(sampler.get_2d());
-                let ray = scene.camera.ray(x as f64 + 0.5 + dx, y as f64 + 0.5 + dy, 20, 20);
+                let ray = scene.camera.ray(x as f64 + 0.5 + dx, y as f64 + 0.5 + dy, 20, 20, (0.5, 0.5));
                 extra += tracer.li(&scene, &ray, &mut sampler, &mut counts);
             }
-            assert_eq!(acc8.sum[k], acc4.sum[k] + extra, "pixel {k}");
+            assert_eq!(acc8.get(x, y).sum, acc4.get(x, y).sum + extra, "pixel {k}");
         }
     }
 }
@@ -200,7 +201,7 @@ fn images_do_not_depend_on_threads_and_2n_continues_n() {
 fn time_limit_stops_after_a_complete_pass() {
     let scene = furnace_scene(white_lambertian());
     let options = RenderOptions { time_limit: Some(std::time::Duration::from_millis(150)), ..path_options(32, 1 << 20) };
-    let (image, stats) = render(&scene, &options, &RenderControl::default()).unwrap();
+    let (image, stats) = render_image(&scene, &options, &RenderControl::default()).unwrap();
     let spp = stats.samples_per_pixel;
     assert!((1..1 << 20).contains(&spp) && spp.is_power_of_two(), "{spp} samples");
     assert!(stats.elapsed < std::time::Duration::from_secs(2));

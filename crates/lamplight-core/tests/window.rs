@@ -4,13 +4,13 @@
 
 use std::sync::Arc;
 
-use lamplight_core::integrators::IntegratorKind;
+use lamplight_core::integrators::INTEGRATORS;
 use lamplight_core::lights::Environment;
 use lamplight_core::prelude::*;
 use lamplight_core::PixelWindow;
 
 fn scene() -> Scene {
-    let camera = Camera::look_at(Vec3::new(0.0, 1.0, 5.0), Vec3::ZERO, Vec3::Y, Fov::VerticalDeg(40.0), 37.0 / 23.0).unwrap();
+    let camera = Perspective::look_at(Vec3::new(0.0, 1.0, 5.0), Vec3::ZERO, Vec3::Y, Fov::VerticalDeg(40.0)).unwrap();
     let mut b = SceneBuilder::new(camera);
     let red = b.material(Material::plastic(Rgb::new(0.9, 0.2, 0.1), 0.1, 0.8, 0.3, 30.0)).unwrap();
     let glass = b.material(Material::glass(1.5, 0.5, 50.0)).unwrap();
@@ -26,15 +26,15 @@ fn scene() -> Scene {
 #[test]
 fn stitched_windows_equal_the_full_image_bit_for_bit() {
     let scene = scene();
-    for integrator in [IntegratorKind::Whitted, IntegratorKind::Path] {
+    for integrator in INTEGRATORS {
         let options = RenderOptions { width: 37, height: 23, spp: 4, integrator, threads: 2, ..RenderOptions::default() };
-        let (full, _) = render(&scene, &options, &RenderControl::default()).unwrap();
+        let (full, _) = render_image(&scene, &options, &RenderControl::default()).unwrap();
         let mut stitched = vec![[f32::NAN; 3]; 37 * 23];
         // Uneven windows that do not line up with the renderer's 16-pixel tiles.
         for (y0, h) in [(0, 9), (9, 13), (22, 1)] {
             for (x0, w) in [(0, 5), (5, 20), (25, 12)] {
                 let window = Some(PixelWindow { x0, y0, width: w, height: h });
-                let (tile, _) = render(&scene, &RenderOptions { window, ..options.clone() }, &RenderControl::default()).unwrap();
+                let (tile, _) = render_image(&scene, &RenderOptions { window, ..options.clone() }, &RenderControl::default()).unwrap();
                 assert_eq!((tile.width, tile.height), (w, h));
                 for y in 0..h {
                     for x in 0..w {

@@ -47,8 +47,8 @@ pub fn kinds(py: Python<'_>) -> PyResult<Bound<'_, PyList>> {
     for k in registry::TEXTURES {
         out.append(entry(py, "texture", k.name, k.summary, k.params)?)?;
     }
-    for (name, summary, params) in lamplight_scene::build::camera::KINDS {
-        out.append(entry(py, "camera", name, summary, params)?)?;
+    for k in registry::CAMERAS {
+        out.append(entry(py, "camera", k.name, k.summary, k.params)?)?;
     }
     Ok(out)
 }

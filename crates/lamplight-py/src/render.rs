@@ -76,13 +76,12 @@ pub fn render_array<'py>(
         layers,
     };
     let job = request.resolve(scene.settings(), Naming::Keywords).map_err(|e| PyValueError::new_err(e.0))?;
-    let aspect = job.options.width as f64 / job.options.height as f64;
     let core = if job.environment.is_some() {
-        let mut fresh = scene.fresh_core(py, aspect)?;
+        let mut fresh = scene.fresh_core(py)?;
         job.prepare(&mut fresh).map_err(|e| PyValueError::new_err(e.0))?;
         Arc::new(fresh)
     } else {
-        scene.core(py, aspect)?
+        scene.core(py)?
     };
 
     let cancel = Arc::new(AtomicBool::new(false));
@@ -184,11 +183,7 @@ pub fn resolve_settings(
 ) -> PyResult<(u32, u32, u32, &'static str, u64)> {
     let request = Request { width, height, spp, integrator, seed, ..Request::default() };
     let o = request.resolve(scene.settings(), Naming::Keywords).map_err(|e| PyValueError::new_err(e.0))?.options;
-    let name = match o.integrator {
-        lamplight_core::integrators::IntegratorKind::Whitted => "whitted",
-        lamplight_core::integrators::IntegratorKind::Path => "path",
-    };
-    Ok((o.width, o.height, o.spp, name, o.seed))
+    Ok((o.width, o.height, o.spp, o.integrator.name, o.seed))
 }
 
 fn to_array<'py>(py: Python<'py>, image: &Image) -> PyResult<Bound<'py, PyArray3<f32>>> {

@@ -1,21 +1,22 @@
 //! `Scene`: a scene from a built-in name, a scene file, a mesh file or a dict,
-//! with the core scenes built from it cached by image aspect.
+//! with the core scene built from it kept after its first use.
 //!
 //! A scene keeps what it was made from (the name, the file's text and path, the
 //! dict, or the mesh path) and pickles as that, never as built data: a Dask
 //! worker that receives it rebuilds it on first use and then keeps the build.
-//! The core camera depends on the image's aspect, so builds are cached per aspect.
+//! The core camera applies the image's aspect when rendering, so one build serves
+//! every image size.
 
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
-use lamplight_core::integrators::IntegratorKind;
+use lamplight_core::camera::Camera;
 use lamplight_core::Scene as CoreScene;
 use lamplight_scene::build::{self, imported, SceneFile};
 use lamplight_scene::builtin::{self, Builtin};
 use lamplight_scene::description::{Node, SceneDescription};
 use lamplight_scene::formats::native::Source as FileSource;
-use lamplight_scene::request::{Defaults, SceneRequest, PROGRAM_DEFAULTS};
+use lamplight_scene::request::{program_defaults, Defaults, SceneRequest};
 use lamplight_scene::{import, LoadError};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -23,9 +24,6 @@ use pyo3::types::{PyDict, PyTuple};
 
 use crate::convert;
 use crate::SceneError;
-
-/// Builds kept per scene (different image aspects); the oldest goes first.
-const CACHED_BUILDS: usize = 4;
 
 /// Where a scene comes from.
 #[derive(Debug)]
@@ -41,14 +39,14 @@ enum Origin {
 }
 
 /// A scene: made from a built-in name, a scene or mesh file, or a dict, and
-/// built (per image aspect) on first use.
+/// built on first use.
 #[pyclass(module = "lamplight._lamplight", frozen)]
 pub struct Scene {
     origin: Origin,
     /// A camera replacing the scene's (`with_camera`): the plain dict and its description.
-    camera: Option<(PyObject, Node)>,
+    camera: Option<(PyObject, Arc<dyn Camera>)>,
     defaults: Defaults,
-    builds: Mutex<Vec<(u64, Arc<CoreScene>)>>,
+    built: Mutex<Option<Arc<CoreScene>>>,
 }
 
 /// The names of the built-in scenes, the default first.
@@ -75,61 +73,39 @@ fn dict_param_error(e: lamplight_core::params::ParamError) -> PyErr {
 }
 
 impl Scene {
-    fn new(origin: Origin, camera: Option<(PyObject, Node)>) -> PyResult<Scene> {
+    fn new(origin: Origin, camera: Option<(PyObject, Arc<dyn Camera>)>) -> PyResult<Scene> {
         let defaults = match &origin {
             Origin::Builtin(b) => SceneRequest::builtin(b).defaults,
             Origin::Toml(file) | Origin::Dict { file, .. } => {
                 let s = file.settings().map_err(|e| if matches!(origin, Origin::Dict { .. }) { dict_error(e) } else { load_error(e) })?;
                 Defaults { size: (s.width, s.height), spp: s.spp, seed: s.seed, integrator: s.integrator }
             }
-            Origin::Mesh(_) => PROGRAM_DEFAULTS,
+            Origin::Mesh(_) => program_defaults(),
         };
-        Ok(Scene { origin, camera, defaults, builds: Mutex::new(Vec::new()) })
+        Ok(Scene { origin, camera, defaults, built: Mutex::new(None) })
     }
 
-    /// The core scene for images of aspect `aspect`, built once and kept.
-    pub fn core(&self, py: Python<'_>, aspect: f64) -> PyResult<Arc<CoreScene>> {
-        let key = aspect.to_bits();
-        if let Some((_, scene)) =
-            self.builds.lock().map_err(|_| SceneError::new_err("scene cache poisoned"))?.iter().find(|(k, _)| *k == key)
-        {
+    /// The core scene (for any image size), built once and kept.
+    pub fn core(&self, py: Python<'_>) -> PyResult<Arc<CoreScene>> {
+        if let Some(scene) = self.built.lock().map_err(|_| SceneError::new_err("scene cache poisoned"))?.as_ref() {
             return Ok(scene.clone());
         }
         // Building reads mesh files and builds BVHs: let other Python threads run.
-        let built = py.allow_threads(|| self.build_core(aspect))?;
-        let built = Arc::new(built);
-        let mut builds = self.builds.lock().map_err(|_| SceneError::new_err("scene cache poisoned"))?;
-        if builds.len() >= CACHED_BUILDS {
-            builds.remove(0);
-        }
-        builds.push((key, built.clone()));
-        Ok(built)
+        // Two threads may both build; the first to finish is kept.
+        let built = Arc::new(py.allow_threads(|| self.build_core())?);
+        let mut kept = self.built.lock().map_err(|_| SceneError::new_err("scene cache poisoned"))?;
+        Ok(kept.get_or_insert(built).clone())
     }
 
-    fn build_core(&self, aspect: f64) -> PyResult<CoreScene> {
-        let camera = self.camera.as_ref().map(|(_, c)| c.clone());
+    fn build_core(&self) -> PyResult<CoreScene> {
         let mut scene = match &self.origin {
-            Origin::Builtin(b) => (b.build)(aspect).map_err(|e| SceneError::new_err(format!("cannot build scene '{}': {e}", b.name)))?,
-            Origin::Toml(file) | Origin::Dict { file, .. } => {
-                let is_dict = matches!(self.origin, Origin::Dict { .. });
-                let fail = |e| if is_dict { dict_error(e) } else { load_error(e) };
-                return match camera {
-                    Some(camera) => {
-                        let description = SceneDescription { camera: Some(camera), ..file.description.clone() };
-                        build::build(&description, &file.source, aspect).map_err(fail)
-                    }
-                    None => build::build(&file.description, &file.source, aspect).map_err(fail),
-                };
-            }
-            Origin::Mesh(path) => imported::load(path, aspect).map_err(load_error)?,
+            Origin::Builtin(b) => (b.build)().map_err(|e| SceneError::new_err(format!("cannot build scene '{}': {e}", b.name)))?,
+            Origin::Toml(file) => build::build(&file.description, &file.source).map_err(load_error)?,
+            Origin::Dict { file, .. } => build::build(&file.description, &file.source).map_err(dict_error)?,
+            Origin::Mesh(path) => imported::load(path).map_err(load_error)?,
         };
-        if let Some(camera) = camera {
-            // Built-in and imported scenes have no description: build the camera
-            // alone with the scene format's rules and put it in.
-            let description = SceneDescription { camera: Some(camera), ..SceneDescription::default() };
-            let camera_only = build::build(&description, &FileSource::without_text("camera"), aspect)
-                .map_err(|e| SceneError::new_err(format!("camera: {}", e.message)))?;
-            scene.camera = camera_only.camera.clone();
+        if let Some((_, camera)) = &self.camera {
+            scene.camera = camera.clone();
         }
         Ok(scene)
     }
@@ -232,8 +208,8 @@ impl Scene {
         let plain = convert::plain(camera)?;
         let table = convert::table(plain.bind(py), "camera")?;
         let desc = Node::from_table(table, "camera", Some("perspective"), false).map_err(dict_param_error)?;
-        // Checked now, so that a bad camera fails here rather than at the first render.
-        lamplight_scene::build::camera::camera(&desc, 1.0).map_err(dict_param_error)?;
+        // Built now, so that a bad camera fails here rather than at the first render.
+        let camera = lamplight_scene::build::camera::camera(&desc).map_err(dict_param_error)?;
         let origin = match &self.origin {
             Origin::Builtin(b) => Origin::Builtin(b),
             Origin::Toml(file) => Origin::Toml(file.clone()),
@@ -242,7 +218,7 @@ impl Scene {
             }
             Origin::Mesh(path) => Origin::Mesh(path.clone()),
         };
-        Scene::new(origin, Some((plain, desc)))
+        Scene::new(origin, Some((plain, camera)))
     }
 
     /// What the scene was made from: `"builtin"`, `"file"`, `"dict"` or `"mesh"`.
@@ -323,26 +299,22 @@ impl Scene {
         d.set_item("height", height)?;
         d.set_item("spp", spp)?;
         d.set_item("seed", seed)?;
-        d.set_item(
-            "integrator",
-            match integrator {
-                IntegratorKind::Whitted => "whitted",
-                IntegratorKind::Path => "path",
-            },
-        )?;
+        d.set_item("integrator", integrator.name)?;
         Ok(d)
     }
 
-    /// Builds the scene now for images of `width x height` (default: the
-    /// scene's size), so that errors show here and the first render starts at once.
+    /// Builds the scene now (one build serves every image size; `width` and
+    /// `height` are accepted for compatibility), so that errors show here and the
+    /// first render starts at once.
     #[pyo3(signature = (width=None, height=None))]
     fn build(&self, py: Python<'_>, width: Option<u32>, height: Option<u32>) -> PyResult<()> {
-        self.core(py, self.aspect(width, height)?).map(|_| ())
+        let _ = (width, height);
+        self.core(py).map(|_| ())
     }
 
     /// Number of objects (placed shapes) in the scene; primitive ids run below it.
     fn object_count(&self, py: Python<'_>) -> PyResult<usize> {
-        Ok(self.core(py, self.aspect(None, None)?)?.objects.len())
+        Ok(self.core(py)?.objects.len())
     }
 
     /// Nearest hits of rays `origins[i] + s * directions[i]`, `t = s |directions[i]|`
@@ -355,7 +327,7 @@ impl Scene {
         directions: &Bound<'py, PyAny>,
         threads: usize,
     ) -> PyResult<Bound<'py, PyTuple>> {
-        let scene = self.core(py, self.aspect(None, None)?)?;
+        let scene = self.core(py)?;
         crate::intersect::intersect(py, &scene, origins, directions, threads)
     }
 
@@ -391,18 +363,10 @@ impl Scene {
         &self.defaults
     }
 
-    /// A fresh core scene for images of aspect `aspect`, not cached (a render
-    /// that changes it, such as one with its own environment map, takes this).
-    pub fn fresh_core(&self, py: Python<'_>, aspect: f64) -> PyResult<CoreScene> {
-        py.allow_threads(|| self.build_core(aspect))
-    }
-
-    fn aspect(&self, width: Option<u32>, height: Option<u32>) -> PyResult<f64> {
-        let (w, h) = (width.unwrap_or(self.defaults.size.0), height.unwrap_or(self.defaults.size.1));
-        if w == 0 || h == 0 {
-            return Err(PyValueError::new_err(format!("image size {w}x{h} must be at least 1x1")));
-        }
-        Ok(w as f64 / h as f64)
+    /// A fresh core scene, not cached (a render that changes it, such as one with
+    /// its own environment map, takes this).
+    pub fn fresh_core(&self, py: Python<'_>) -> PyResult<CoreScene> {
+        py.allow_threads(|| self.build_core())
     }
 }
 

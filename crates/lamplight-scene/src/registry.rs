@@ -1,5 +1,8 @@
-//! The registry of kinds: every shape, light, material and texture a scene may
-//! name by `type`, each listed once, with its parameter table and builder.
+//! The registry of kinds: every shape, light, material, texture and camera a
+//! scene may name by `type`, each listed once, with its parameter table and
+//! builder. Integrators are listed by the core's own registry
+//! (`lamplight_core::integrators::INTEGRATORS`), which `[render] integrator`,
+//! `--integrator` and Python's `integrator=` all read.
 //!
 //! A kind is one file (its struct, its `KIND` with the parameter table, its
 //! tests) and one line here. The builder ([`crate::build`]) finds kinds only
@@ -9,6 +12,7 @@
 //! `build/`; the structural node types (`group`, `instance`, `mesh`) are the
 //! builder's own and are documented by [`STRUCTURAL`].
 
+use lamplight_core::camera::{self, CameraKind};
 use lamplight_core::lights::{self, LightKind};
 use lamplight_core::materials::{self, MaterialKind, TextureKind};
 use lamplight_core::params::{Param, ParamType as T};
@@ -41,6 +45,10 @@ pub static LIGHTS: &[&LightKind] = &[&lights::point::KIND, &lights::directional:
 
 /// Material kinds; the first is the default `type`.
 pub static MATERIALS: &[&MaterialKind] = &[&materials::phong::KIND];
+
+/// Camera kinds; the first is the default `type`.
+pub static CAMERAS: &[&CameraKind] =
+    &[&camera::perspective::PERSPECTIVE_KIND, &camera::perspective::WINDOW_KIND, &camera::thin_lens::KIND, &camera::orthographic::KIND];
 
 /// Texture kinds.
 pub static TEXTURES: &[&TextureKind] = &[&materials::texture::CHECKER];
@@ -125,6 +133,11 @@ pub fn shape(name: &str) -> Option<&'static ShapeKind> {
 /// The light kind called `name`.
 pub fn light(name: &str) -> Option<&'static LightKind> {
     LIGHTS.iter().copied().find(|k| k.name == name)
+}
+
+/// The camera kind called `name`.
+pub fn camera(name: &str) -> Option<&'static CameraKind> {
+    CAMERAS.iter().copied().find(|k| k.name == name)
 }
 
 /// The material kind called `name`.

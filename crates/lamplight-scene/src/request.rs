@@ -14,7 +14,7 @@ use std::time::Duration;
 
 use lamplight_core::film::tonemap::ToneMap;
 use lamplight_core::film::{Filter, Image};
-use lamplight_core::integrators::IntegratorKind;
+use lamplight_core::integrators::{self, IntegratorEntry};
 use lamplight_core::{PixelWindow, RenderControl, RenderOptions, RenderStats, Scene};
 
 use crate::build::{imported, SceneFile};
@@ -96,11 +96,13 @@ pub struct Defaults {
     /// Seed.
     pub seed: u64,
     /// Integrator.
-    pub integrator: IntegratorKind,
+    pub integrator: &'static IntegratorEntry,
 }
 
 /// The program's own settings, for scenes without any.
-pub const PROGRAM_DEFAULTS: Defaults = Defaults { size: (640, 360), spp: 1, seed: 0, integrator: IntegratorKind::Whitted };
+pub fn program_defaults() -> Defaults {
+    Defaults { size: (640, 360), spp: 1, seed: 0, integrator: integrators::default_integrator() }
+}
 
 /// A scene named and read, with its own settings.
 #[derive(Clone, Debug)]
@@ -132,7 +134,7 @@ impl SceneRequest {
                 SceneRequest::file(file, stem)
             }
             Some(ext) if import::EXTENSIONS.contains(&ext) => {
-                Ok(SceneRequest { spec: SceneSpec::Mesh(path.to_path_buf()), name: stem, defaults: PROGRAM_DEFAULTS })
+                Ok(SceneRequest { spec: SceneSpec::Mesh(path.to_path_buf()), name: stem, defaults: program_defaults() })
             }
             _ => Err(bad(format!(
                 "{arg}: unknown scene file type, expected .toml or a mesh file ({})",
@@ -146,7 +148,7 @@ impl SceneRequest {
         SceneRequest {
             spec: SceneSpec::Builtin(b),
             name: b.name.to_string(),
-            defaults: Defaults { size: b.default_size, ..PROGRAM_DEFAULTS },
+            defaults: Defaults { size: b.default_size, ..program_defaults() },
         }
     }
 
@@ -157,13 +159,12 @@ impl SceneRequest {
         Ok(SceneRequest { spec: SceneSpec::File(Box::new(file)), name, defaults })
     }
 
-    /// Builds the scene for an image of `width x height`.
-    pub fn build(&self, width: u32, height: u32) -> Result<Scene, RequestError> {
-        let aspect = width as f64 / height as f64;
+    /// Builds the scene (for any image size: the camera applies the aspect when rendering).
+    pub fn build(&self) -> Result<Scene, RequestError> {
         match &self.spec {
-            SceneSpec::Builtin(b) => (b.build)(aspect).map_err(|e| bad(format!("cannot build scene '{}': {e}", b.name))),
-            SceneSpec::File(file) => file.build(width, height).map_err(|e| bad(e.to_string())),
-            SceneSpec::Mesh(path) => imported::load(path, aspect).map_err(|e| bad(e.to_string())),
+            SceneSpec::Builtin(b) => (b.build)().map_err(|e| bad(format!("cannot build scene '{}': {e}", b.name))),
+            SceneSpec::File(file) => file.build().map_err(|e| bad(e.to_string())),
+            SceneSpec::Mesh(path) => imported::load(path).map_err(|e| bad(e.to_string())),
         }
     }
 }
@@ -258,7 +259,8 @@ impl Request {
         };
         let integrator = match &self.integrator {
             None => d.integrator,
-            Some(name) => name.parse().map_err(|_| bad(format!("{} must be \"whitted\" or \"path\", got {name:?}", n("integrator"))))?,
+            Some(name) => integrators::find(name)
+                .ok_or_else(|| bad(format!("{} must be {}, got {name:?}", n("integrator"), integrators::quoted_names())))?,
         };
         let filter: Filter = match &self.filter {
             None => Filter::Box,
@@ -283,13 +285,6 @@ impl Request {
             if !layers.contains(layer) {
                 layers.push(*layer);
             }
-        }
-        let path_integrator = match naming {
-            Naming::Flags => "--integrator path",
-            Naming::Keywords => "integrator=\"path\"",
-        };
-        if !layers.is_empty() && integrator != IntegratorKind::Path {
-            return Err(bad(format!("{} needs {path_integrator}", n("exr_layers"))));
         }
         let seed = self.seed.unwrap_or(d.seed);
         let options =
@@ -343,28 +338,23 @@ impl Job {
         Ok(())
     }
 
-    /// Renders `scene` (prepared) with the job's options.
+    /// Renders `scene` (prepared) with the job's options: the mean image and the
+    /// layers asked for, from the film's per-pixel sums (any integrator).
     pub fn run(&self, scene: &Scene, control: &RenderControl) -> Result<Rendered, lamplight_core::Error> {
-        let o = &self.options;
-        let w = o.pixel_window();
-        if self.layers.is_empty() {
-            let (image, stats) = lamplight_core::render(scene, o, control)?;
-            return Ok(Rendered { image, layers: Vec::new(), stats });
-        }
-        let (acc, stats) = lamplight_core::render_path(scene, o, control)?;
+        let (film, stats) = lamplight_core::render(scene, &self.options, control)?;
         let layers = self
             .layers
             .iter()
             .map(|layer| match layer {
-                Layer::Variance => (Layer::Variance, acc.variance(w.width, w.height)),
+                Layer::Variance => (Layer::Variance, film.variance()),
                 Layer::Samples => {
-                    let mut image = Image::new(w.width, w.height);
-                    image.pixels.iter_mut().for_each(|p| *p = [acc.samples as f32; 3]);
+                    let mut image = Image::new(film.width(), film.height());
+                    image.pixels.iter_mut().for_each(|p| *p = [film.samples() as f32; 3]);
                     (Layer::Samples, image)
                 }
             })
             .collect();
-        Ok(Rendered { image: acc.mean(w.width, w.height), layers, stats })
+        Ok(Rendered { image: film.mean(), layers, stats })
     }
 }
 
@@ -436,8 +426,11 @@ mod tests {
             r.resolve(&luxo().defaults, Naming::Flags).unwrap_err().0,
             "--max-depth must be between 1 and 64, got 65 (work grows as 2^depth)"
         );
-        let r = Request { layers: vec![Layer::Variance], ..Request::default() };
-        assert_eq!(r.resolve(&luxo().defaults, Naming::Keywords).unwrap_err().0, "exr_layers needs integrator=\"path\"");
+        let r = Request { integrator: Some("photon".into()), ..Request::default() };
+        assert_eq!(
+            r.resolve(&luxo().defaults, Naming::Flags).unwrap_err().0,
+            "--integrator must be \"whitted\" or \"path\", got \"photon\""
+        );
     }
 
     #[test]
@@ -447,13 +440,13 @@ mod tests {
         let scene = SceneRequest::file(file, "s".into()).unwrap();
         let job = Request::default().resolve(&scene.defaults, Naming::Flags).unwrap();
         let o = &job.options;
-        assert_eq!((o.width, o.height, o.spp, o.seed, o.integrator), (100, 50, 8, 3, IntegratorKind::Path));
+        assert_eq!((o.width, o.height, o.spp, o.seed, o.integrator.name), (100, 50, 8, 3, "path"));
         let job = Request { width: Some(40), spp: Some(2), integrator: Some("whitted".into()), ..Request::default() }
             .resolve(&scene.defaults, Naming::Flags)
             .unwrap();
         let o = &job.options;
-        assert_eq!((o.width, o.height, o.spp, o.seed, o.integrator), (40, 20, 2, 3, IntegratorKind::Whitted));
+        assert_eq!((o.width, o.height, o.spp, o.seed, o.integrator.name), (40, 20, 2, 3, "whitted"));
         let o = Request::default().resolve(&luxo().defaults, Naming::Flags).unwrap().options;
-        assert_eq!((o.width, o.height, o.spp, o.seed, o.integrator), (1280, 720, 1, 0, IntegratorKind::Whitted));
+        assert_eq!((o.width, o.height, o.spp, o.seed, o.integrator.name), (1280, 720, 1, 0, "whitted"));
     }
 }

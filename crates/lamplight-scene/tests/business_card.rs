@@ -18,7 +18,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use lamplight_core::{render, RenderControl, RenderOptions};
+use lamplight_core::{render_image, RenderControl, RenderOptions};
 use lamplight_scene::builtin;
 
 const SOURCE: &str = include_str!("data/heckbert.c");
@@ -90,9 +90,9 @@ fn compile(cc: &str, source: &Path, binary: &Path) -> Option<bool> {
 /// Lamplight's `business-card` at the printout's size, as `255 * radiance`.
 fn render_card(width: u32, height: u32) -> Vec<[f64; 3]> {
     let card = builtin::find("business-card").expect("registered");
-    let scene = (card.build)(width as f64 / height as f64).unwrap();
+    let scene = (card.build)().unwrap();
     let options = RenderOptions { width, height, spp: 1, ..RenderOptions::default() };
-    let (image, stats) = render(&scene, &options, &RenderControl::default()).unwrap();
+    let (image, stats) = render_image(&scene, &options, &RenderControl::default()).unwrap();
     assert_eq!(stats.nonfinite_samples, 0);
     image.pixels.iter().map(|p| p.map(|c| 255.0 * c as f64)).collect()
 }
@@ -158,8 +158,8 @@ fn glass_in_the_centre_and_ambient_corners() {
     }
     // The centre pixel's ray (0, 1/tan 12.5deg, 0) hits the glass sphere at
     // (0, 6, 0.5), radius 0.9; the render agrees with a direct intersection.
-    let scene = (builtin::find("business-card").unwrap().build)(1.0).unwrap();
-    let ray = scene.camera.ray(16.0, 16.0, 32, 32);
+    let scene = (builtin::find("business-card").unwrap().build)().unwrap();
+    let ray = scene.camera.ray(16.0, 16.0, 32, 32, (0.5, 0.5));
     let hit = scene.first_intersect(&ray, f64::INFINITY).expect("the centre ray hits");
     assert_eq!(hit.object, 0, "the glass sphere");
     // It is mostly refraction (kt = 0.85) of the two spheres behind and the

@@ -10,7 +10,7 @@ const CAMERA: &str = "[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\nvfov = 40\
 /// Parses and builds `text` as `s.toml`, returning the error message.
 fn error(text: &str) -> String {
     let path = Path::new("s.toml");
-    match SceneFile::parse(path, text).and_then(|f| f.settings().and_then(|_| f.build(64, 36))) {
+    match SceneFile::parse(path, text).and_then(|f| f.settings().and_then(|_| f.build())) {
         Ok(_) => panic!("expected an error for:\n{text}"),
         Err(e) => e.to_string(),
     }
@@ -150,8 +150,8 @@ fn every_registered_kind_reports_a_mistyped_parameter_at_its_key() {
         let column = "color = { type = \"\", ".len() + k.name.len() + 1;
         cases.push(("material \"m\": color".into(), text, (6, column), key));
     }
-    for (name, _, params) in lamplight_scene::build::camera::KINDS {
-        let key = params[1].name;
+    for k in registry::CAMERAS {
+        let (name, key) = (k.name, k.params[1].name);
         let text = format!("[camera]\ntype = \"{name}\"\n{} = 1\n", mistyped(key));
         cases.push(("camera".into(), text, (3, 1), key));
     }
@@ -197,7 +197,7 @@ fn rotate_takes_an_array_of_degrees() {
     let text = with_camera(
         "[[objects]]\ntype = \"group\"\nrotate = [0, 25, 0]\nchildren = [{ type = \"sphere\", center = [1, 0, 0], radius = 0.5 }]\n",
     );
-    let scene = SceneFile::parse(Path::new("s.toml"), &text).unwrap().build(8, 8).unwrap();
+    let scene = SceneFile::parse(Path::new("s.toml"), &text).unwrap().build().unwrap();
     let expected = lamplight_core::math::Mat4::from_rotation_y(25f64.to_radians()).transform_point3(lamplight_core::math::Vec3::X);
     let centre = scene.objects[0].shape.bounds().centroid();
     assert!((centre - expected).length() < 1e-12, "{centre} vs {expected}");

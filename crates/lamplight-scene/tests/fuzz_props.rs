@@ -59,7 +59,7 @@ const FRAGMENTS: &[&str] = &[
 fn load(text: &str) {
     if let Ok(file) = SceneFile::parse(Path::new("fuzz.toml"), text) {
         if file.settings().is_ok() {
-            let _ = file.build(8, 6);
+            let _ = file.build();
         }
     }
 }
@@ -140,6 +140,6 @@ proptest! {
 fn the_examples_themselves_load() {
     for text in EXAMPLES {
         let file = SceneFile::parse(Path::new("e.toml"), text).unwrap();
-        file.build(8, 6).unwrap();
+        file.build().unwrap();
     }
 }

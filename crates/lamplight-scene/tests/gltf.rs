@@ -8,7 +8,7 @@ use base64::Engine;
 use common::{error_of, shared_data, triangles, write_and_load};
 use lamplight_core::materials::{Reflection, Refraction};
 use lamplight_core::math::{Rgb, Vec3};
-use lamplight_scene::import::{self, ImportedLight};
+use lamplight_scene::import::{self, ImportedLight, ImportedProjection};
 
 /// One triangle: 3 float positions (36 bytes), then 3 `u16` indices and 2 bytes of padding.
 fn triangle_buffer(indices: [u16; 3], y1: f32) -> Vec<u8> {
@@ -113,7 +113,7 @@ fn check_scene(imported: &import::Imported) {
         (Vec3::new(0.0, 1.0, 15.0), Vec3::new(0.0, 1.0, 14.0), Vec3::Y),
         "the camera is a child of the translated node"
     );
-    assert!((camera.vfov_deg - 0.5f64.to_degrees()).abs() < 1e-5);
+    assert!(matches!(camera.projection, ImportedProjection::Perspective { vfov_deg } if (vfov_deg - 0.5f64.to_degrees()).abs() < 1e-5));
     assert_eq!(imported.lights.len(), 3);
     match &imported.lights[0] {
         ImportedLight::Point(p) => assert_eq!((p.position, p.intensity), (Vec3::new(0.0, 4.0, 0.0), Rgb::splat(20.0))),
@@ -252,4 +252,38 @@ proptest::proptest! {
         let binary = glb(&scene_json(None, 3, ""), &buffer);
         let _ = import::load_bytes(&common::fake_path("x.glb"), &common::mutate(&binary, &edits, cut));
     }
+}
+
+/// The test scene with its camera made orthographic with half-extents `xmag x ymag`.
+fn orthographic_scene(xmag: f64, ymag: f64) -> Vec<u8> {
+    let buffer = triangle_buffer([0, 1, 2], 0.0);
+    let perspective = r#"{"type": "perspective", "perspective": {"yfov": 0.5, "znear": 0.1}}"#;
+    let orthographic =
+        format!(r#"{{"type": "orthographic", "orthographic": {{"xmag": {xmag}, "ymag": {ymag}, "znear": 0.1, "zfar": 100}}}}"#);
+    let json = scene_json(Some(&data_uri(&buffer)), 3, "");
+    assert!(json.contains(perspective));
+    json.replace(perspective, &orthographic).into_bytes()
+}
+
+#[test]
+fn orthographic_cameras_see_their_window_at_every_aspect() {
+    let dir = tempfile::tempdir().unwrap();
+    let imported = write_and_load(dir.path(), "ortho.gltf", &orthographic_scene(3.0, 1.5)).unwrap();
+    assert_eq!(imported.cameras[0].projection, ImportedProjection::Orthographic { xmag: 3.0, ymag: 1.5 });
+    assert!(!imported.warnings.iter().any(|w| w.contains("orthographic")), "{:?}", imported.warnings);
+    let scene = lamplight_scene::build::imported::build(&dir.path().join("ortho.gltf"), &imported).unwrap();
+    let eye = Vec3::new(0.0, 1.0, 15.0);
+    // xmag and ymag are half-extents; an image of another aspect than 3 : 1.5
+    // widens the window along one side, never crops or stretches it.
+    for ((w, h), (half_w, half_h)) in [((40, 20), (3.0, 1.5)), ((80, 20), (6.0, 1.5)), ((20, 20), (3.0, 3.0))] {
+        let top_left = scene.camera.ray(0.0, 0.0, w, h, (0.5, 0.5));
+        let bottom_right = scene.camera.ray(w as f64, h as f64, w, h, (0.5, 0.5));
+        assert_eq!((top_left.dir, bottom_right.dir), (-Vec3::Z, -Vec3::Z), "parallel rays down the node's -z");
+        assert!((top_left.origin - (eye + Vec3::new(-half_w, half_h, 0.0))).length() < 1e-12, "{w}x{h}: {}", top_left.origin);
+        assert!((bottom_right.origin - (eye + Vec3::new(half_w, -half_h, 0.0))).length() < 1e-12, "{w}x{h}");
+    }
+    assert_eq!(
+        error_of(dir.path(), "a.gltf", &orthographic_scene(0.0, 1.0)),
+        "a.gltf: at cameras[0].orthographic.xmag: expected a positive half-extent"
+    );
 }

@@ -13,7 +13,7 @@
 
 use std::path::PathBuf;
 
-use lamplight_core::{render, RenderControl, RenderOptions};
+use lamplight_core::{render_image, RenderControl, RenderOptions};
 use lamplight_scene::builtin;
 
 fn golden_dir() -> PathBuf {
@@ -21,9 +21,9 @@ fn golden_dir() -> PathBuf {
 }
 
 fn check(name: &str, width: u32, height: u32, spp: u32) {
-    let scene = (builtin::find(name).unwrap().build)(width as f64 / height as f64).unwrap();
+    let scene = (builtin::find(name).unwrap().build)().unwrap();
     let options = RenderOptions { width, height, spp, ..RenderOptions::default() };
-    let (image, stats) = render(&scene, &options, &RenderControl::default()).unwrap();
+    let (image, stats) = render_image(&scene, &options, &RenderControl::default()).unwrap();
     assert_eq!(stats.nonfinite_samples, 0, "{name}: NaN or infinite samples");
     let actual = image.to_srgb8();
     let reference_path = golden_dir().join(format!("{name}-{width}x{height}-{spp}spp.png"));

@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use lamplight_core::{render, RenderControl, RenderOptions};
+use lamplight_core::{render_image, RenderControl, RenderOptions};
 use lamplight_scene::build::SceneFile;
 
 /// A white Lambertian floor (`kd = 1`, no ambient) seen from the light's own
@@ -18,9 +18,9 @@ fn spot_light_matches_its_irradiance_inside_across_and_outside_the_cone() {
          [[objects]]\ntype = \"rectangle\"\nmaterial = \"floor\"\ncorner = [-50, 0, -50]\nedge_u = [0, 0, 100]\nedge_v = [100, 0, 0]\n\
          [[objects]]\ntype = \"spot_light\"\nposition = [0, {height}, 0]\nlook_at = [0, 0, 0]\nintensity = {intensity}\ninner_angle = 20\nouter_angle = 40\n"
     );
-    let scene = SceneFile::parse(Path::new("spot.toml"), &text).unwrap().build(w, h).unwrap();
+    let scene = SceneFile::parse(Path::new("spot.toml"), &text).unwrap().build().unwrap();
     let options = RenderOptions { width: w, height: h, threads: 1, ..RenderOptions::default() };
-    let image = render(&scene, &options, &RenderControl::default()).unwrap().0;
+    let image = render_image(&scene, &options, &RenderControl::default()).unwrap().0;
     let tan_half = 50f64.to_radians().tan();
     let (cos_inner, cos_outer) = (20f64.to_radians().cos(), 40f64.to_radians().cos());
     let (mut inside, mut across, mut outside) = (0, 0, 0);

@@ -18,7 +18,7 @@ fn obj_with_an_emissive_mtl_is_an_area_light_and_needs_no_default_light() {
                o floor\nv -2 0 -2\nv -2 0 2\nv 2 0 2\nv 2 0 -2\nusemtl grey\nf 5 6 7 8\n";
     let path = dir.path().join("lamp.obj");
     std::fs::write(&path, obj).unwrap();
-    let scene = imported::load(&path, 1.0).unwrap();
+    let scene = imported::load(&path).unwrap();
     assert!(scene.lights.is_empty(), "the emitting mesh lights the scene: no default point light");
     let lights = LightSet::new(&scene);
     assert_eq!(lights.area.len(), 1);
@@ -35,7 +35,7 @@ fn a_native_mesh_node_with_an_emitting_material_is_an_area_light() {
                 [meshes.quad]\npositions = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]\nindices = [[0, 1, 2], [0, 2, 3]]\n\
                 [[objects]]\ntype = \"group\"\nscale = [2, 3, 1]\nchildren = [{ type = \"mesh\", mesh = \"quad\", material = \"lamp\" }]\n";
     let file = SceneFile::parse(Path::new("t.toml"), text).unwrap_or_else(|e| panic!("{e}"));
-    let scene = file.build(8, 8).unwrap_or_else(|e| panic!("{e}"));
+    let scene = file.build().unwrap_or_else(|e| panic!("{e}"));
     let lights = LightSet::new(&scene);
     assert_eq!(lights.area.len(), 1);
     assert!((lights.area[0].area() - 6.0).abs() < 1e-12, "scaled by 2 x 3");
@@ -62,7 +62,7 @@ fn a_gltf_mesh_with_an_emissive_factor_is_an_area_light() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("glow.gltf");
     std::fs::write(&path, json).unwrap();
-    let scene = imported::load(&path, 1.0).unwrap();
+    let scene = imported::load(&path).unwrap();
     let lights = LightSet::new(&scene);
     assert_eq!(lights.area.len(), 1);
     assert!((lights.area[0].area() - 2.0).abs() < 1e-12, "area 1/2 scaled by 2 x 2");

@@ -5,7 +5,7 @@
 use std::path::{Path, PathBuf};
 
 use lamplight_core::film::Image;
-use lamplight_core::{render, RenderControl, RenderOptions, Scene};
+use lamplight_core::{render_image, RenderControl, RenderOptions, Scene};
 use lamplight_scene::build::SceneFile;
 use lamplight_scene::builtin;
 
@@ -15,14 +15,14 @@ fn example(name: &str) -> PathBuf {
 
 fn image(scene: &Scene, width: u32, height: u32) -> Image {
     let options = RenderOptions { width, height, threads: 2, ..RenderOptions::default() };
-    render(scene, &options, &RenderControl::default()).unwrap().0
+    render_image(scene, &options, &RenderControl::default()).unwrap().0
 }
 
 /// The example's render and the built-in's, at `width x height`, 1 spp.
 fn both(name: &str, width: u32, height: u32) -> (Vec<u8>, Vec<u8>) {
     let file = SceneFile::read(&example(name)).unwrap_or_else(|e| panic!("{e}"));
-    let from_file = file.build(width, height).unwrap_or_else(|e| panic!("{e}"));
-    let built_in = (builtin::find(name).unwrap().build)(width as f64 / height as f64).unwrap();
+    let from_file = file.build().unwrap_or_else(|e| panic!("{e}"));
+    let built_in = (builtin::find(name).unwrap().build)().unwrap();
     assert_eq!(from_file.objects.len(), built_in.objects.len(), "{name}: object count");
     assert_eq!(from_file.lights.len(), built_in.lights.len(), "{name}: light count");
     assert_eq!(from_file.max_depth, built_in.max_depth);
@@ -40,17 +40,17 @@ fn cornell_box_file_renders_the_builtin_byte_for_byte_under_both_integrators() {
     let (file, built_in) = both("cornell-box", 32, 32);
     assert!(file == built_in, "cornell-box.toml differs from the built-in (whitted)");
     let read = SceneFile::read(&example("cornell-box")).unwrap();
-    assert_eq!(read.settings().unwrap().integrator, lamplight_core::integrators::IntegratorKind::Path);
+    assert_eq!(read.settings().unwrap().integrator, lamplight_core::integrators::find("path").unwrap());
     let options = RenderOptions {
         width: 24,
         height: 24,
         spp: 4,
-        integrator: lamplight_core::integrators::IntegratorKind::Path,
+        integrator: lamplight_core::integrators::find("path").unwrap(),
         ..RenderOptions::default()
     };
-    let path = |scene: &Scene| render(scene, &options, &RenderControl::default()).unwrap().0.to_srgb8();
-    let from_file = read.build(24, 24).unwrap();
-    let built_in = (builtin::find("cornell-box").unwrap().build)(1.0).unwrap();
+    let path = |scene: &Scene| render_image(scene, &options, &RenderControl::default()).unwrap().0.to_srgb8();
+    let from_file = read.build().unwrap();
+    let built_in = (builtin::find("cornell-box").unwrap().build)().unwrap();
     // The boxes' group transforms compose the built-in's matrices bit for bit ({:?}
     // prints every f64 exactly, the sign of a zero included).
     let shapes = |scene: &Scene| scene.objects.iter().map(|o| format!("{:?}", o.shape)).collect::<Vec<_>>();
@@ -91,7 +91,7 @@ const CAMERA: &str = "[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\nvfov = 40\
 
 fn scene(text: &str) -> Scene {
     let file = SceneFile::parse(Path::new("t.toml"), &format!("{CAMERA}{text}")).unwrap_or_else(|e| panic!("{e}"));
-    file.build(8, 8).unwrap_or_else(|e| panic!("{e}"))
+    file.build().unwrap_or_else(|e| panic!("{e}"))
 }
 
 fn centre(scene: &Scene, object: usize) -> lamplight_core::math::Vec3 {
@@ -153,7 +153,7 @@ fn the_documented_examples_load() {
     for block in blocks {
         let text = if block.contains("[camera]") { block.to_string() } else { format!("{CAMERA}{block}") };
         let file = SceneFile::parse(Path::new("doc.toml"), &text).unwrap_or_else(|e| panic!("{e}\n{text}"));
-        let s = file.build(8, 8).unwrap_or_else(|e| panic!("{e}\n{text}"));
+        let s = file.build().unwrap_or_else(|e| panic!("{e}\n{text}"));
         image(&s, 8, 8);
     }
 }
@@ -175,7 +175,7 @@ fn frosted_example_has_rough_lobes_and_a_mesh_light() {
     use lamplight_core::bsdfs::{bsdf_for, Lobe};
     let path = example("frosted");
     let file = SceneFile::parse(&path, &std::fs::read_to_string(&path).unwrap()).unwrap_or_else(|e| panic!("{e}"));
-    let s = file.build(24, 16).unwrap_or_else(|e| panic!("{e}"));
+    let s = file.build().unwrap_or_else(|e| panic!("{e}"));
     let lights = lamplight_core::lights::LightSet::new(&s);
     assert_eq!(lights.area.len(), 1, "the lamp mesh");
     assert!((lights.area[0].area() - 1.0).abs() < 1e-12);
@@ -190,10 +190,10 @@ fn frosted_example_has_rough_lobes_and_a_mesh_light() {
         width: 24,
         height: 16,
         spp: 16,
-        integrator: lamplight_core::integrators::IntegratorKind::Path,
+        integrator: lamplight_core::integrators::find("path").unwrap(),
         ..RenderOptions::default()
     };
-    let (image, stats) = render(&s, &options, &RenderControl::default()).unwrap();
+    let (image, stats) = render_image(&s, &options, &RenderControl::default()).unwrap();
     assert_eq!(stats.nonfinite_samples, 0);
     assert!(image.pixels.iter().any(|p| p[0] > 0.05), "the lamp lights the scene");
 }

@@ -5,14 +5,20 @@
 //! The test asks for a slope between -1.1 and -0.4: never slower than Monte Carlo.
 
 use lamplight_core::film::Image;
-use lamplight_core::integrators::IntegratorKind;
-use lamplight_core::{render, RenderControl, RenderOptions};
+use lamplight_core::{render_image, RenderControl, RenderOptions};
 use lamplight_scene::builtin;
 
 fn cornell(size: u32, spp: u32, seed: u64) -> Image {
-    let scene = (builtin::find("cornell-box").unwrap().build)(1.0).unwrap();
-    let options = RenderOptions { width: size, height: size, spp, seed, integrator: IntegratorKind::Path, ..RenderOptions::default() };
-    render(&scene, &options, &RenderControl::default()).unwrap().0
+    let scene = (builtin::find("cornell-box").unwrap().build)().unwrap();
+    let options = RenderOptions {
+        width: size,
+        height: size,
+        spp,
+        seed,
+        integrator: lamplight_core::integrators::find("path").unwrap(),
+        ..RenderOptions::default()
+    };
+    render_image(&scene, &options, &RenderControl::default()).unwrap().0
 }
 
 fn rmse(a: &Image, b: &Image) -> f64 {

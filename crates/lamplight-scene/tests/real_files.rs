@@ -6,7 +6,7 @@
 mod common;
 
 use common::shared_data;
-use lamplight_core::{render, RenderControl, RenderOptions};
+use lamplight_core::{render_image, RenderControl, RenderOptions};
 use lamplight_scene::build::imported;
 
 const FILES: &[&str] = &[
@@ -26,9 +26,9 @@ fn every_shared_file_renders_a_sensible_image() {
     let Some(data) = shared_data("every_shared_file_renders_a_sensible_image") else { return };
     for file in FILES {
         let path = data.join(file);
-        let scene = imported::load(&path, 1.0).unwrap_or_else(|e| panic!("{e}"));
+        let scene = imported::load(&path).unwrap_or_else(|e| panic!("{e}"));
         let options = RenderOptions { width: 48, height: 48, ..RenderOptions::default() };
-        let (image, stats) = render(&scene, &options, &RenderControl::default()).unwrap();
+        let (image, stats) = render_image(&scene, &options, &RenderControl::default()).unwrap();
         assert_eq!(stats.nonfinite_samples, 0, "{file}: NaN or infinite samples");
         let background = scene.background.as_vec3().to_array();
         let covered: Vec<[f32; 3]> =

@@ -4,7 +4,7 @@
 use std::sync::Arc;
 
 use super::*;
-use crate::camera::{Camera, Fov};
+use crate::camera::{Fov, Perspective};
 use crate::materials::Material;
 use crate::math::Rgb;
 use crate::shapes::{Instance, Sphere, TriangleMesh};
@@ -17,7 +17,7 @@ const SQUARE: ([[f32; 3]; 4], [[u32; 3]; 2]) =
 /// Object 0: a sphere of radius 1 at (0, 0, -5); object 1: the square moved by
 /// (5, 0, 0) through an instance; object 2: the square itself.
 fn scene() -> Scene {
-    let camera = Camera::look_at(Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO, Vec3::Y, Fov::VerticalDeg(30.0), 1.0).unwrap();
+    let camera = Perspective::look_at(Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO, Vec3::Y, Fov::VerticalDeg(30.0)).unwrap();
     let mut b = SceneBuilder::new(camera);
     let m = b.material(Material::plastic(Rgb::splat(0.5), 0.1, 0.8, 0.0, 1.0)).unwrap();
     b.object(Sphere::new(Vec3::new(0.0, 0.0, -5.0), 1.0).unwrap(), m).unwrap();

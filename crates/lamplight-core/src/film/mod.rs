@@ -1,8 +1,12 @@
-//! The film: a linear-radiance RGB image, and the sRGB encoding used for display formats.
+//! The film: the per-pixel sums a render accumulates ([`Film`]), the linear-radiance
+//! RGB image developed from them ([`Image`]), and the sRGB encoding used for display formats.
 
+mod accumulated;
 mod filter;
 pub mod tonemap;
 
+pub(crate) use accumulated::TileBlock;
+pub use accumulated::{Film, PixelSum, TILE};
 pub use filter::Filter;
 
 /// A linear RGB image, row-major from the top-left pixel.

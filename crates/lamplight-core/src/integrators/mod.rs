@@ -1,12 +1,24 @@
-//! Integrators: how the radiance arriving along a camera ray is computed.
+//! Integrators: what one sample of a pixel sees.
 //!
-//! To add an integrator: a new file here with `impl Integrator`, a `mod` line, and
-//! a variant in [`IntegratorKind`].
+//! An [`Integrator`] turns (pixel, sample index) into radiance: it draws its own
+//! sample values (seeded by the render seed, the pixel and the index, so that
+//! nothing depends on threads), asks the camera for the primary ray and follows
+//! light along it. It also says how the render loop should schedule its samples
+//! ([`Schedule`]). The render loop ([`crate::render()`]) is the same for every
+//! integrator: tiles, windows, passes, progress, cancellation, time limit and the
+//! per-pixel sums of the [`crate::film::Film`].
+//!
+//! Integrators are chosen by name from [`INTEGRATORS`]. To add one: a file here
+//! with a type that implements [`Integrator`] and a `pub const ENTRY:
+//! IntegratorEntry`, and one line in [`INTEGRATORS`] (with the file's `mod` line).
 
+use std::fmt;
+
+use crate::camera::Camera;
+use crate::film::Filter;
 use crate::math::Rgb;
-use crate::ray::Ray;
-use crate::sampling::Rng;
 use crate::scene::Scene;
+use crate::Error;
 
 mod path;
 mod simple_path;
@@ -15,6 +27,9 @@ mod whitted;
 pub use path::{power_heuristic, unoccluded, PathTracer};
 pub use simple_path::SimplePath;
 pub use whitted::Whitted;
+
+/// Every integrator by name; the first is the default.
+pub static INTEGRATORS: &[IntegratorEntry] = &[whitted::ENTRY, path::ENTRY];
 
 /// Counts of rays traced, by kind; summed over threads at the end of a render.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -41,30 +56,185 @@ impl RayCounts {
     }
 }
 
-/// Computes the radiance arriving at the camera along a ray.
+/// The image an integrator renders: the scene, the camera, the full image size
+/// (pixel coordinates are the full image's, also when a window is rendered), the
+/// samples per pixel and the seed.
+#[derive(Clone, Copy, Debug)]
+pub struct View<'a> {
+    /// The scene.
+    pub scene: &'a Scene,
+    /// The camera making the primary rays.
+    pub camera: &'a dyn Camera,
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+    /// Samples per pixel the render asks for.
+    pub spp: u32,
+    /// Seed of the per-sample random numbers.
+    pub seed: u64,
+    /// Whether the camera takes a lens sample (asked once per render, not per ray).
+    pub lens: bool,
+    /// The camera's [`Camera::pixel_offset`] (asked once per render).
+    pub pixel_offset: f64,
+}
+
+impl<'a> View<'a> {
+    /// The view of `scene` through `camera` (the scene's, or one made from it by
+    /// [`Camera::for_image`] for this size).
+    pub fn new(scene: &'a Scene, camera: &'a dyn Camera, width: u32, height: u32, spp: u32, seed: u64) -> View<'a> {
+        View { scene, camera, width, height, spp, seed, lens: camera.uses_lens_sample(), pixel_offset: camera.pixel_offset() }
+    }
+
+    /// Index of pixel `(x, y)` in the full image, row-major: the seed of its samples.
+    #[inline]
+    pub fn pixel_index(&self, x: u32, y: u32) -> u64 {
+        y as u64 * self.width as u64 + x as u64
+    }
+}
+
+/// How the render loop splits a pixel's samples into passes over the image.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Schedule {
+    /// Every sample in one pass (the stratified Whitted sampler needs the count).
+    OnePass,
+    /// Passes of 1, 1, 2, 4, ... samples: each finished pass leaves a power-of-two
+    /// count (where Sobol points are best stratified) and a time limit can stop
+    /// after any of them.
+    Doubling,
+}
+
+impl Schedule {
+    /// Samples of the pass after `done` samples of `spp`: `spp - done`, or
+    /// `max(done, 1)` capped by it for [`Schedule::Doubling`].
+    pub fn next_pass(self, done: u32, spp: u32) -> u32 {
+        let left = spp.saturating_sub(done);
+        match self {
+            Schedule::OnePass => left,
+            Schedule::Doubling => done.max(1).min(left),
+        }
+    }
+
+    /// Number of passes for `spp` samples.
+    pub fn pass_count(self, spp: u32) -> u32 {
+        let (mut done, mut passes) = (0, 0);
+        while done < spp {
+            done += self.next_pass(done, spp);
+            passes += 1;
+        }
+        passes
+    }
+}
+
+/// Computes the radiance of pixel samples.
 pub trait Integrator: Send + Sync {
-    /// Radiance along camera ray `ray`. `rng` is this pixel sample's own generator.
-    fn radiance(&self, scene: &Scene, ray: &Ray, rng: &mut Rng, counts: &mut RayCounts) -> Rgb;
+    /// Radiance of sample `index` of pixel `(x, y)` of `view`'s image. Ray counts
+    /// go to `counts`. The same arguments give the same value on any thread.
+    fn sample(&self, view: &View, x: u32, y: u32, index: u32, counts: &mut RayCounts) -> Rgb;
+
+    /// How the render loop schedules the samples.
+    fn schedule(&self) -> Schedule;
 }
 
-/// The integrators the program offers by name.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub enum IntegratorKind {
-    /// Recursive (Whitted) ray tracing: the lecture's `trace`.
-    #[default]
-    Whitted,
-    /// Unidirectional path tracing with next-event estimation and MIS.
-    Path,
+/// What an integrator is built from besides the scene, resolved by the render loop.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct IntegratorSettings {
+    /// Depth limit in segments (camera ray = 1), at least 1.
+    pub max_depth: u32,
+    /// Pixel reconstruction filter (for integrators that sample film positions).
+    pub filter: Filter,
 }
 
-impl std::str::FromStr for IntegratorKind {
+/// How a registry entry makes its integrator for a scene.
+pub type BuildIntegrator = fn(&Scene, &IntegratorSettings) -> Result<Box<dyn Integrator>, Error>;
+
+/// An integrator the program offers by name.
+pub struct IntegratorEntry {
+    /// Name on the command line, in scene files and in Python.
+    pub name: &'static str,
+    /// One line for help texts.
+    pub summary: &'static str,
+    /// Builds the integrator for a scene.
+    pub build: BuildIntegrator,
+}
+
+impl fmt::Debug for IntegratorEntry {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name)
+    }
+}
+
+/// Entries are the same integrator when their names are.
+impl PartialEq for IntegratorEntry {
+    fn eq(&self, other: &IntegratorEntry) -> bool {
+        self.name == other.name
+    }
+}
+
+impl Eq for IntegratorEntry {}
+
+/// The default integrator, the first of [`INTEGRATORS`].
+pub fn default_integrator() -> &'static IntegratorEntry {
+    &INTEGRATORS[0]
+}
+
+/// The integrator called `name`.
+pub fn find(name: &str) -> Option<&'static IntegratorEntry> {
+    INTEGRATORS.iter().find(|e| e.name == name)
+}
+
+/// The names, comma separated: `whitted, path`.
+pub fn names() -> String {
+    INTEGRATORS.iter().map(|e| e.name).collect::<Vec<_>>().join(", ")
+}
+
+/// The names quoted as alternatives: `"whitted" or "path"`.
+pub fn quoted_names() -> String {
+    let quoted: Vec<String> = INTEGRATORS.iter().map(|e| format!("\"{}\"", e.name)).collect();
+    match quoted.split_last() {
+        Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
+        _ => quoted.join(""),
+    }
+}
+
+impl std::str::FromStr for &'static IntegratorEntry {
     type Err = String;
 
-    fn from_str(s: &str) -> Result<IntegratorKind, String> {
-        match s {
-            "whitted" => Ok(IntegratorKind::Whitted),
-            "path" => Ok(IntegratorKind::Path),
-            _ => Err(format!("unknown integrator '{s}' (whitted, path)")),
-        }
+    fn from_str(s: &str) -> Result<&'static IntegratorEntry, String> {
+        find(s).ok_or_else(|| format!("unknown integrator '{s}' ({})", names()))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn doubling_passes_leave_powers_of_two() {
+        let passes = |schedule: Schedule, spp: u32| {
+            let mut done = 0;
+            let mut sizes = Vec::new();
+            while done < spp {
+                let n = schedule.next_pass(done, spp);
+                sizes.push(n);
+                done += n;
+            }
+            assert_eq!(sizes.len() as u32, schedule.pass_count(spp));
+            sizes
+        };
+        assert_eq!(passes(Schedule::Doubling, 16), [1, 1, 2, 4, 8]);
+        assert_eq!(passes(Schedule::Doubling, 6), [1, 1, 2, 2]);
+        assert_eq!(passes(Schedule::Doubling, 1), [1]);
+        assert_eq!(passes(Schedule::OnePass, 6), [6]);
+    }
+
+    #[test]
+    fn integrators_are_found_by_name() {
+        assert_eq!(default_integrator().name, "whitted");
+        assert_eq!("path".parse::<&IntegratorEntry>().unwrap().name, "path");
+        assert_eq!("photon".parse::<&IntegratorEntry>().unwrap_err(), "unknown integrator 'photon' (whitted, path)");
+        assert_eq!(quoted_names(), "\"whitted\" or \"path\"");
+        let names: std::collections::HashSet<_> = INTEGRATORS.iter().map(|e| e.name).collect();
+        assert_eq!(names.len(), INTEGRATORS.len(), "names are unique");
     }
 }

@@ -15,14 +15,27 @@
 //! lecture's shadows, glass blocks them (light through glass arrives along
 //! refracted BSDF paths), so nothing is counted twice.
 
-use super::{Integrator, RayCounts};
+use super::{Integrator, IntegratorEntry, IntegratorSettings, RayCounts, Schedule, View};
 use crate::bsdfs::{bsdf_for, Bsdf, Frame};
+use crate::film::Filter;
 use crate::lights::{LightSet, Picked};
 use crate::materials::{Reflection, Refraction};
 use crate::math::{Rgb, Vec3};
 use crate::ray::{offset_origin, Ray};
-use crate::sampling::{PixelSampler, Rng};
+use crate::sampling::PixelSampler;
 use crate::scene::{Hit, Scene};
+use crate::Error;
+
+/// The registry's entry.
+pub const ENTRY: IntegratorEntry = IntegratorEntry {
+    name: "path",
+    summary: "unidirectional path tracing with next-event estimation, MIS and Russian roulette",
+    build: build_path,
+};
+
+fn build_path(scene: &Scene, settings: &IntegratorSettings) -> Result<Box<dyn Integrator>, Error> {
+    Ok(Box::new(PathTracer::new(scene, settings.max_depth).with_filter(settings.filter)))
+}
 
 /// Path tracing with NEE, MIS and Russian roulette.
 #[derive(Debug)]
@@ -34,6 +47,8 @@ pub struct PathTracer {
     lights: LightSet,
     /// Every material stops shadow rays: visibility can use the BVH's any-hit query.
     all_opaque: bool,
+    /// Where in and around its pixel a sample's film position falls.
+    filter: Filter,
 }
 
 /// The power heuristic with exponent 2 for one sample of each strategy.
@@ -80,7 +95,12 @@ impl PathTracer {
     /// A path tracer for `scene` (its lights are collected here).
     pub fn new(scene: &Scene, max_depth: u32) -> PathTracer {
         let all_opaque = scene.materials.iter().all(|m| m.shadow_transmittance == Rgb::ZERO);
-        PathTracer { max_depth, rr_depth: 4, lights: LightSet::new(scene), all_opaque }
+        PathTracer { max_depth, rr_depth: 4, lights: LightSet::new(scene), all_opaque, filter: Filter::Box }
+    }
+
+    /// The same tracer with film positions drawn from `filter` (default: the box).
+    pub fn with_filter(self, filter: Filter) -> PathTracer {
+        PathTracer { filter, ..self }
     }
 
     /// The lights it samples.
@@ -262,10 +282,20 @@ impl PathTracer {
 }
 
 impl Integrator for PathTracer {
-    /// Through the generic interface the sample values are independent random
-    /// numbers; [`crate::render()`] uses [`PathTracer::li`] with Sobol points.
-    fn radiance(&self, scene: &Scene, ray: &Ray, rng: &mut Rng, counts: &mut RayCounts) -> Rgb {
-        let mut sampler = PixelSampler::new(rng.next_u64(), rng.next_u64(), 0);
-        self.li(scene, ray, &mut sampler, counts)
+    /// Sample `index` of a pixel uses the Sobol point `index` scrambled for that
+    /// pixel ([`PixelSampler`]): its first 2D dimension places the sample by the
+    /// filter around the pixel centre, the next one is the lens sample (only for a
+    /// camera that takes one), and the path's vertices use the rest. Its passes
+    /// double, so a render of `2N` samples continues one of `N`.
+    fn sample(&self, view: &View, x: u32, y: u32, index: u32, counts: &mut RayCounts) -> Rgb {
+        let mut sampler = PixelSampler::new(view.seed, view.pixel_index(x, y), index);
+        let (dx, dy) = self.filter.sample(sampler.get_2d());
+        let lens = if view.lens { sampler.get_2d() } else { (0.5, 0.5) };
+        let ray = view.camera.ray(x as f64 + 0.5 + dx, y as f64 + 0.5 + dy, view.width, view.height, lens);
+        self.li(view.scene, &ray, &mut sampler, counts)
+    }
+
+    fn schedule(&self) -> Schedule {
+        Schedule::Doubling
     }
 }

@@ -10,12 +10,24 @@
 
 use std::mem::MaybeUninit;
 
-use super::{Integrator, RayCounts};
+use super::{Integrator, IntegratorEntry, IntegratorSettings, RayCounts, Schedule, View};
 use crate::materials::{fresnel_conductor, fresnel_dielectric, Material, Reflection, Refraction};
 use crate::math::{max_component, Rgb, Vec3};
 use crate::ray::{offset_origin, Ray};
-use crate::sampling::Rng;
+use crate::sampling::{stratified_2d, Rng};
 use crate::scene::{Hit, Scene};
+use crate::Error;
+
+/// The registry's entry.
+pub const ENTRY: IntegratorEntry = IntegratorEntry {
+    name: "whitted",
+    summary: "recursive (Whitted) ray tracing: the lecture's trace, with shadows, mirror reflection and refraction",
+    build: build_whitted,
+};
+
+fn build_whitted(scene: &Scene, settings: &IntegratorSettings) -> Result<Box<dyn Integrator>, Error> {
+    Ok(Box::new(Whitted { max_depth: settings.max_depth, min_weight: scene.min_weight }))
+}
 
 /// Lights whose `N.L` is at or below this are skipped (POV-Ray's threshold).
 const MIN_COSINE: f64 = 1e-10;
@@ -45,7 +57,36 @@ struct Pending {
 }
 
 impl Integrator for Whitted {
-    fn radiance(&self, scene: &Scene, ray: &Ray, _rng: &mut Rng, counts: &mut RayCounts) -> Rgb {
+    /// One sample: a single sample per pixel sits at the camera's pixel offset;
+    /// `n > 1` samples are stratified over the pixel ([`stratified_2d`], strata
+    /// shifted by `pixel_offset - 0.5`) and jittered by the sample's own generator,
+    /// which then draws the lens sample if the camera takes one.
+    fn sample(&self, view: &View, x: u32, y: u32, index: u32, counts: &mut RayCounts) -> Rgb {
+        let offset = view.pixel_offset;
+        // Made only when a value is drawn: a single pinhole sample needs none.
+        let mut rng = None;
+        let mut uniform = || rng.get_or_insert_with(|| Rng::for_sample(view.seed, view.pixel_index(x, y), index as u64)).uniform();
+        let (dx, dy) = if view.spp == 1 {
+            (offset, offset)
+        } else {
+            let jitter = (uniform(), uniform());
+            let (sx, sy) = stratified_2d(index, view.spp, jitter);
+            let shift = offset - 0.5;
+            (sx + shift, sy + shift)
+        };
+        let lens = if view.lens { (uniform(), uniform()) } else { (0.5, 0.5) };
+        let ray = view.camera.ray(x as f64 + dx, y as f64 + dy, view.width, view.height, lens);
+        self.trace(view.scene, &ray, counts)
+    }
+
+    fn schedule(&self) -> Schedule {
+        Schedule::OnePass
+    }
+}
+
+impl Whitted {
+    /// The lecture's `trace`: the radiance arriving along camera ray `ray`.
+    pub fn trace(&self, scene: &Scene, ray: &Ray, counts: &mut RayCounts) -> Rgb {
         counts.camera += 1;
         let mut total = Rgb::ZERO;
         // Depth-first: each ray taken off the list adds at most two one level deeper,

@@ -9,28 +9,28 @@ use std::path::Path;
 use std::sync::Arc;
 
 use lamplight_core::accel::Aabb;
-use lamplight_core::camera::{Camera, Fov};
+use lamplight_core::camera::{Camera, Fov, Orthographic, Perspective};
 use lamplight_core::materials::Material;
 use lamplight_core::math::{Rgb, Vec3};
 use lamplight_core::shapes::TriangleMesh;
 use lamplight_core::{Scene, SceneBuilder};
 
 use crate::error::LoadError;
-use crate::import::{self, Imported, ImportedLight};
+use crate::import::{self, Imported, ImportedLight, ImportedProjection};
 
 /// Vertical field of view of the default camera, degrees.
 const DEFAULT_VFOV: f64 = 40.0;
 /// Ambient radiance of an imported scene (its files carry none).
 const AMBIENT: f64 = 0.1;
 
-/// Reads the mesh file at `path` and builds a scene for an image of aspect `aspect`.
-pub fn load(path: &Path, aspect: f64) -> Result<Scene, LoadError> {
+/// Reads the mesh file at `path` and builds a scene (for any image size).
+pub fn load(path: &Path) -> Result<Scene, LoadError> {
     let imported = import::load(path)?;
-    build(path, &imported, aspect)
+    build(path, &imported)
 }
 
 /// Builds a scene from what an importer read from `path`.
-pub fn build(path: &Path, imported: &Imported, aspect: f64) -> Result<Scene, LoadError> {
+pub fn build(path: &Path, imported: &Imported) -> Result<Scene, LoadError> {
     let fail = |e: lamplight_core::Error| LoadError::file(path, e.to_string());
     let mut bounds = Aabb::EMPTY;
     let mut meshes = Vec::with_capacity(imported.meshes.len());
@@ -48,16 +48,23 @@ pub fn build(path: &Path, imported: &Imported, aspect: f64) -> Result<Scene, Loa
     }
     let center = bounds.centroid();
     let radius = (bounds.extent().length() / 2.0).max(1e-9);
-    let camera = match imported.cameras.first() {
-        Some(c) => Camera::look_at(c.eye, c.target, c.up, Fov::VerticalDeg(c.vfov_deg), aspect).map_err(fail)?,
+    let (eye, camera): (Vec3, Arc<dyn Camera>) = match imported.cameras.first() {
+        Some(c) => match c.projection {
+            ImportedProjection::Perspective { vfov_deg } => {
+                (c.eye, Arc::new(Perspective::look_at(c.eye, c.target, c.up, Fov::VerticalDeg(vfov_deg)).map_err(fail)?))
+            }
+            ImportedProjection::Orthographic { xmag, ymag } => {
+                (c.eye, Arc::new(Orthographic::look_at(c.eye, c.target, c.up, xmag, ymag).map_err(fail)?))
+            }
+        },
         None => {
             // Far enough back that the bounding sphere fits the vertical field of view.
             let distance = radius / (DEFAULT_VFOV.to_radians() / 2.0).sin();
             let eye = center + Vec3::new(0.5, 0.4, 1.0).normalize() * distance;
-            Camera::look_at(eye, center, Vec3::Y, Fov::VerticalDeg(DEFAULT_VFOV), aspect).map_err(fail)?
+            (eye, Arc::new(Perspective::look_at(eye, center, Vec3::Y, Fov::VerticalDeg(DEFAULT_VFOV)).map_err(fail)?))
         }
     };
-    let mut builder = SceneBuilder::new(camera.clone());
+    let mut builder = SceneBuilder::with_camera(camera);
     builder.ambient = Rgb::splat(AMBIENT);
     let default_material = builder.material(Material::default()).map_err(fail)?;
     for placed in &imported.instances {
@@ -71,8 +78,8 @@ pub fn build(path: &Path, imported: &Imported, aspect: f64) -> Result<Scene, Loa
     let emits = imported.instances.iter().any(|p| p.material.as_ref().is_some_and(|m| m.emission.max_element() > 0.0));
     if imported.lights.is_empty() && !emits {
         // A light at the eye, of intensity d^2 so that it gives about unit irradiance at the model.
-        let distance = (camera.eye - center).length();
-        let light = lamplight_core::lights::PointLight::new(camera.eye, Rgb::splat(distance * distance)).map_err(fail)?;
+        let distance = (eye - center).length();
+        let light = lamplight_core::lights::PointLight::new(eye, Rgb::splat(distance * distance)).map_err(fail)?;
         builder.light(light);
     }
     for light in &imported.lights {
@@ -99,13 +106,13 @@ mod tests {
             instances: vec![ImportedMesh { mesh: 0, transform: Mat4::from_translation(Vec3::Z), material: None }],
             ..Imported::default()
         };
-        let scene = build(Path::new("t.obj"), &imported, 1.0).unwrap();
+        let scene = build(Path::new("t.obj"), &imported).unwrap();
         assert_eq!(scene.objects.len(), 1);
         assert_eq!(scene.lights.len(), 1);
-        let ray = scene.camera.ray(0.5, 0.5, 1, 1);
+        let ray = scene.camera.ray(0.5, 0.5, 1, 1, (0.5, 0.5));
         let centre = Vec3::new(0.5, 0.5, 1.0);
-        assert!((ray.dir - (centre - scene.camera.eye).normalize()).length() < 1e-12, "looks at the centre");
+        assert!((ray.dir - (centre - ray.origin).normalize()).length() < 1e-12, "looks at the centre");
         let empty = Imported::default();
-        assert_eq!(build(Path::new("e.obj"), &empty, 1.0).unwrap_err().to_string(), "e.obj: has no geometry to render");
+        assert_eq!(build(Path::new("e.obj"), &empty).unwrap_err().to_string(), "e.obj: has no geometry to render");
     }
 }

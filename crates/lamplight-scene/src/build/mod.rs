@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use lamplight_core::integrators::IntegratorKind;
+use lamplight_core::integrators::{self, IntegratorEntry};
 use lamplight_core::math::Rgb;
 use lamplight_core::params::{Param, ParamType as T, Params, Table};
 use lamplight_core::{Scene, SceneBuilder};
@@ -38,7 +38,7 @@ pub struct Settings {
     /// Seed (default 0).
     pub seed: u64,
     /// Integrator (default Whitted).
-    pub integrator: IntegratorKind,
+    pub integrator: &'static IntegratorEntry,
 }
 
 /// Deepest `max_depth` a file may ask for (as the command line's `--max-depth`).
@@ -98,9 +98,9 @@ impl SceneFile {
         settings(&self.description, &self.source)
     }
 
-    /// Builds the core scene for an image of `width x height` pixels.
-    pub fn build(&self, width: u32, height: u32) -> Result<Scene, LoadError> {
-        build(&self.description, &self.source, width as f64 / height as f64)
+    /// Builds the core scene (for any image size: the camera applies the aspect when rendering).
+    pub fn build(&self) -> Result<Scene, LoadError> {
+        build(&self.description, &self.source)
     }
 }
 
@@ -126,9 +126,11 @@ pub fn settings(desc: &SceneDescription, source: &Source) -> Result<Settings, Lo
             return Err(p.key_error("min_weight", format!("must be a non-negative number, got {min_weight}")));
         }
         let seed = whole(p, "seed", i64::MAX as u64, 0)?;
-        let integrator = match p.choice("integrator", &["whitted", "path"])? {
-            "whitted" => IntegratorKind::Whitted,
-            _ => IntegratorKind::Path,
+        let integrator = match p.string("integrator")? {
+            None => integrators::default_integrator(),
+            Some(name) => integrators::find(name).ok_or_else(|| {
+                p.key_error("integrator", format!("unknown integrator \"{name}\", expected {}", integrators::quoted_names()))
+            })?,
         };
         Ok(Settings { width, height, spp, max_depth, min_weight, seed, integrator })
     };
@@ -137,12 +139,12 @@ pub fn settings(desc: &SceneDescription, source: &Source) -> Result<Settings, Lo
     Ok(settings)
 }
 
-/// Builds the core scene for an image of aspect `width / height`.
-pub fn build(desc: &SceneDescription, source: &Source, aspect: f64) -> Result<Scene, LoadError> {
+/// Builds the core scene (for any image size: the camera applies the aspect when rendering).
+pub fn build(desc: &SceneDescription, source: &Source) -> Result<Scene, LoadError> {
     let settings = settings(desc, source)?;
     let camera_node = desc.camera.as_ref().ok_or_else(|| LoadError::file(&source.path, "has no [camera] table, expected one"))?;
-    let camera = camera::camera(camera_node, aspect).map_err(|e| source.param_error(e))?;
-    let mut builder = SceneBuilder::new(camera);
+    let camera = camera::camera(camera_node).map_err(|e| source.param_error(e))?;
+    let mut builder = SceneBuilder::with_camera(camera);
     let (ambient, background) = globals(&desc.globals).map_err(|e| source.param_error(e))?;
     builder.ambient = ambient;
     builder.background = background;

@@ -77,13 +77,14 @@
 //!   field of view with the sample at the pixel's corner. With `pixel_offset = 0`,
 //!   `lookat = (0, 1/tan(..), 0)`, `right = (1, 0, 0)`, `up = (0, 0, 1)` the core camera
 //!   gives the direction `U / (N/2)`. For other aspects the horizontal extent is
-//!   kept and `up` scaled by `height/width`.
+//!   kept and `up` scaled by `height/width` (the window's [`Fit::Width`]).
 //!
 //! Remaining differences are rounding: the core moves secondary-ray origins off the
 //! surface (`ray::offset_origin`, about `2^-32` of the scene scale) where the card
 //! starts them on it and skips hits closer than `1e-7`, and it skips lights with
 //! `N.L <= 1e-10` where the card skips `N.L <= 0`.
 
+use lamplight_core::camera::Fit;
 use lamplight_core::prelude::*;
 use lamplight_core::Error;
 
@@ -131,23 +132,14 @@ pub const MAX_DEPTH: u32 = 3;
 /// `25 / 114.5915590261` (114.59... = 360/pi, so 12.5 degrees).
 pub const HALF_FOV: f64 = 25.0 / 114.5915590261;
 
-/// The card's camera for an image of aspect `width / height` (see the module doc).
-pub fn camera(aspect: f64) -> Result<Camera, Error> {
-    if !(aspect.is_finite() && aspect > 0.0) {
-        return Err(Error::invalid("aspect", "must be positive"));
-    }
-    Ok(Camera {
-        eye: Vec3::ZERO,
-        lookat: Vec3::new(0.0, 1.0 / HALF_FOV.tan(), 0.0),
-        right: Vec3::X,
-        up: Vec3::Z / aspect,
-        pixel_offset: 0.0,
-    })
+/// The card's camera (see the module doc).
+pub fn camera() -> Result<Perspective, Error> {
+    Perspective::window(Vec3::ZERO, Vec3::new(0.0, 1.0 / HALF_FOV.tan(), 0.0), Vec3::X, Vec3::Z, Fit::Width)?.with_pixel_offset(0.0)
 }
 
-/// Builds the scene for an image of aspect `width / height`.
-pub fn build(aspect: f64) -> Result<Scene, Error> {
-    let mut scene = SceneBuilder::new(camera(aspect)?);
+/// Builds the scene.
+pub fn build() -> Result<Scene, Error> {
+    let mut scene = SceneBuilder::new(camera()?);
     scene.ambient = Rgb::splat(AMBIENT);
     scene.background = Rgb::splat(AMBIENT);
     scene.max_depth = MAX_DEPTH;
@@ -195,7 +187,7 @@ mod tests {
 
     #[test]
     fn lights_are_the_emitting_spheres() {
-        let scene = build(1.0).unwrap();
+        let scene = build().unwrap();
         assert_eq!(scene.objects.len(), 5);
         assert_eq!(scene.lights.len(), 3, "spheres 1, 3 and 4 have kl > 0");
         let owners: Vec<_> = scene.lights.iter().map(|l| l.own_object()).collect();
@@ -212,12 +204,12 @@ mod tests {
 
     #[test]
     fn camera_rays_match_the_cards_pixel_directions() {
-        let cam = camera(1.0).unwrap();
+        let cam = camera().unwrap();
         for n in [32u32, 64, 100] {
             let half = (n / 2) as f64;
             for (col, row) in [(0, 0), (n / 2, n / 2), (n - 1, 3), (5, n - 1)] {
                 let u = Vec3::new(col as f64 - half, half / HALF_FOV.tan(), half - row as f64).normalize();
-                let ray = cam.ray(col as f64, row as f64, n, n);
+                let ray = cam.ray(col as f64, row as f64, n, n, (0.5, 0.5));
                 assert!((ray.dir - u).length() < 1e-15, "n {n} pixel ({col}, {row})");
                 assert_eq!(ray.origin, Vec3::ZERO);
             }
@@ -226,11 +218,10 @@ mod tests {
 
     #[test]
     fn wide_images_keep_the_horizontal_field() {
-        let cam = camera(2.0).unwrap();
-        let left = cam.ray(0.0, 32.0, 128, 64).dir;
-        let top = cam.ray(64.0, 0.0, 128, 64).dir;
+        let cam = camera().unwrap();
+        let left = cam.ray(0.0, 32.0, 128, 64, (0.5, 0.5)).dir;
+        let top = cam.ray(64.0, 0.0, 128, 64, (0.5, 0.5)).dir;
         assert!((left.x / left.y + HALF_FOV.tan()).abs() < 1e-14);
         assert!((top.z / top.y - HALF_FOV.tan() / 2.0).abs() < 1e-14);
-        assert!(camera(0.0).is_err());
     }
 }

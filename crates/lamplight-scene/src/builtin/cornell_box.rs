@@ -26,10 +26,9 @@ fn diffuse(c: Rgb) -> Material {
     Material { color: Texture::Constant(c), ka: Rgb::ZERO, kd: Rgb::ONE, ..Material::default() }
 }
 
-/// The Cornell box for an image of aspect `width / height`.
-pub fn build(aspect: f64) -> Result<lamplight_core::Scene, Error> {
-    let fov = if aspect >= 1.0 { Fov::VerticalDeg(39.3077) } else { Fov::HorizontalDeg(39.3077) };
-    let camera = Camera::look_at(Vec3::new(0.0, 0.0, 3.9), Vec3::ZERO, Vec3::Y, fov, aspect)?;
+/// The Cornell box; the field of view spans the image's shorter side, as in Mitsuba.
+pub fn build() -> Result<lamplight_core::Scene, Error> {
+    let camera = Perspective::look_at(Vec3::new(0.0, 0.0, 3.9), Vec3::ZERO, Vec3::Y, Fov::SmallerSideDeg(39.3077))?;
     let mut b = SceneBuilder::new(camera);
     b.max_depth = 8;
     let white = b.material(diffuse(Rgb::new(0.885809, 0.698859, 0.666422)))?;
@@ -59,7 +58,7 @@ mod tests {
 
     #[test]
     fn walls_face_into_the_room_and_box_faces_face_out() {
-        let scene = build(1.0).unwrap();
+        let scene = build().unwrap();
         assert_eq!(scene.objects.len(), 6 + 2);
         // Mitsuba's small-box matrix: first row (0.286891, 0, -0.0877115, 0.335).
         let m = DMat4::from_translation(Vec3::new(0.335, -0.7, 0.38))

@@ -37,9 +37,9 @@ fn capped_cylinder(scene: &mut SceneBuilder, p0: Vec3, p1: Vec3, radius: f64, ma
     Ok(())
 }
 
-/// Builds the scene for an image of aspect `width / height`.
-pub fn build(aspect: f64) -> Result<Scene, Error> {
-    let camera = Camera::look_at(Vec3::new(1.3, 1.6, 3.0), Vec3::new(-0.15, 0.45, -0.2), Vec3::Y, Fov::VerticalDeg(40.0), aspect)?;
+/// Builds the scene.
+pub fn build() -> Result<Scene, Error> {
+    let camera = Perspective::look_at(Vec3::new(1.3, 1.6, 3.0), Vec3::new(-0.15, 0.45, -0.2), Vec3::Y, Fov::VerticalDeg(40.0))?;
     let mut scene = SceneBuilder::new(camera);
     scene.ambient = Rgb::ONE;
     scene.background = Rgb::new(0.02, 0.02, 0.03);
@@ -123,7 +123,7 @@ mod tests {
         let axis = (SHADE_TARGET - SHADE_APEX).normalize();
         let focus = SHADE_APEX + axis * SHADE_FOCAL;
         assert!((focus - Vec3::new(-0.4130447773, 1.2592917260, -0.2298426058)).length() < 1e-9);
-        let scene = build(16.0 / 9.0).unwrap();
+        let scene = build().unwrap();
         let light = scene.lights[0].illuminate(Vec3::ZERO).unwrap();
         assert!((light.distance - focus.length()).abs() < 1e-12);
     }
@@ -140,7 +140,7 @@ mod tests {
 
     #[test]
     fn the_light_is_visible_below_the_shade_and_hidden_above_it() {
-        let scene = build(16.0 / 9.0).unwrap();
+        let scene = build().unwrap();
         let focus = Vec3::new(-0.4130447773, 1.2592917260, -0.2298426058);
         // A table point on the shade's axis is lit; a point above the lamp is not.
         let below = Vec3::new(0.10, 0.0, 0.05);

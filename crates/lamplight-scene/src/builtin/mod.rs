@@ -1,7 +1,8 @@
 //! Scenes built into the program, by name: `lamplight render luxo`.
 //!
-//! Each scene is one file with a `build(aspect)` function that builds the core
-//! scene for an image of aspect `width / height`; the registry below lists them.
+//! Each scene is one file with a `build()` function that builds the core scene
+//! (for any image size: the camera applies the aspect when rendering); the
+//! registry below lists them.
 //! To add one: a new file and one line in [`BUILTINS`].
 
 use lamplight_core::{Error, Scene};
@@ -20,8 +21,8 @@ pub struct Builtin {
     pub summary: &'static str,
     /// Image size used when none is given.
     pub default_size: (u32, u32),
-    /// Builds the scene for an image of aspect `width / height`.
-    pub build: fn(aspect: f64) -> Result<Scene, Error>,
+    /// Builds the scene.
+    pub build: fn() -> Result<Scene, Error>,
 }
 
 /// Every built-in scene; the first is the default.

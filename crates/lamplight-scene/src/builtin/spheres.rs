@@ -28,9 +28,9 @@ pub(crate) fn pov_mirror() -> Material {
     }
 }
 
-/// Builds the scene for an image of aspect `width / height`.
-pub fn build(aspect: f64) -> Result<Scene, Error> {
-    let camera = Camera::look_at(Vec3::new(0.0, 6.5, 10.5), Vec3::new(0.0, 0.0, 0.8), Vec3::Y, Fov::VerticalDeg(40.0), aspect)?;
+/// Builds the scene.
+pub fn build() -> Result<Scene, Error> {
+    let camera = Perspective::look_at(Vec3::new(0.0, 6.5, 10.5), Vec3::new(0.0, 0.0, 0.8), Vec3::Y, Fov::VerticalDeg(40.0))?;
     let mut scene = SceneBuilder::new(camera);
     scene.ambient = Rgb::ONE;
     scene.background = Rgb::new(0.40, 0.50, 0.65);
@@ -73,7 +73,7 @@ mod tests {
 
     #[test]
     fn has_the_hundred_spheres_and_floor() {
-        let scene = build(16.0 / 9.0).unwrap();
+        let scene = build().unwrap();
         assert_eq!(scene.objects.len(), 101);
         assert_eq!(scene.lights.len(), 2);
         // SCENES.md table: row k = 0 reads D0 D1 D2 M G D5 D0 D1 M G.

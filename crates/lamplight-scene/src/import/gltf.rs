@@ -3,10 +3,14 @@
 //!
 //! Reads the default scene's node tree (or the first scene, or with no scenes
 //! every root node) with `matrix` or TRS transforms, triangle primitives (mode
-//! 4, indexed or not) as meshes, perspective cameras and `KHR_lights_punctual`
-//! lights; materials map as in [`super::gltf_material`]. The camera looks down
-//! its node's -Z with +Y up; a directional light and a spot light shine along
-//! -Z, the spot light with the spec's cone profile ([`SpotProfile::Gltf`]). Light
+//! 4, indexed or not) as meshes, perspective and orthographic cameras and
+//! `KHR_lights_punctual` lights; materials map as in [`super::gltf_material`]. The
+//! camera looks down its node's -Z with +Y up; a directional light and a spot
+//! light shine along -Z, the spot light with the spec's cone profile
+//! ([`SpotProfile::Gltf`]). An orthographic camera's `xmag` and `ymag` are the
+//! half-width and half-height of its view; an image of another aspect widens the
+//! view rather than crop or stretch it (the glTF 2.0 specification's rule for
+//! orthographic projections: no cropping, no non-uniform scaling). Light
 //! intensities (candela, lux) are taken as lamplight intensity/radiance as is.
 //!
 //! The `gltf` crate parses and validates the JSON (`Gltf::from_slice`, so a bad
@@ -14,8 +18,7 @@
 //! the crate's `import` would report a missing `.bin` without its JSON path,
 //! and its accessor iterators assume valid lengths (`count - 1` underflows,
 //! `debug_assert`s on strides), while every range here is checked against the
-//! buffer first. Unsupported parts (other primitive modes, orthographic
-//! cameras, textures, skins, animations, morph targets, sparse accessors'
+//! buffer first. Unsupported parts (other primitive modes, textures, skins, animations, morph targets, sparse accessors'
 //! meshes are errors) are reported once each as warnings.
 
 use std::collections::HashMap;
@@ -29,7 +32,7 @@ use lamplight_core::lights::{DirectionalLight, PointLight, SpotLight, SpotProfil
 use lamplight_core::materials::Material;
 use lamplight_core::math::{Mat4, Rgb, Vec3};
 
-use super::{gltf_material, Imported, ImportedCamera, ImportedLight, ImportedMesh, MeshData, Warnings};
+use super::{gltf_material, Imported, ImportedCamera, ImportedLight, ImportedMesh, ImportedProjection, MeshData, Warnings};
 use crate::error::LoadError;
 
 /// Reads a `.gltf` or `.glb` file's bytes; external buffers are read relative to `path`.
@@ -147,7 +150,7 @@ impl Reader<'_> {
         let origin = world.transform_point3(Vec3::ZERO);
         let forward = world.transform_vector3(-Vec3::Z);
         if let Some(camera) = node.camera() {
-            match camera.projection() {
+            let projection = match camera.projection() {
                 gltf::camera::Projection::Perspective(p) => {
                     let vfov_deg = f64::from(p.yfov()).to_degrees();
                     if !(vfov_deg > 0.0 && vfov_deg < 180.0) || forward.length_squared() == 0.0 {
@@ -157,15 +160,23 @@ impl Reader<'_> {
                             "expected a field of view in (0, pi)",
                         ));
                     }
-                    out.cameras.push(ImportedCamera {
-                        eye: origin,
-                        target: origin + forward,
-                        up: world.transform_vector3(Vec3::Y),
-                        vfov_deg,
-                    });
+                    ImportedProjection::Perspective { vfov_deg }
                 }
-                gltf::camera::Projection::Orthographic(_) => self.warnings.once("glTF orthographic cameras ignored".to_string()),
-            }
+                gltf::camera::Projection::Orthographic(o) => {
+                    let (xmag, ymag) = (f64::from(o.xmag()), f64::from(o.ymag()));
+                    for (key, mag) in [("xmag", xmag), ("ymag", ymag)] {
+                        if !(mag.is_finite() && mag > 0.0) || forward.length_squared() == 0.0 {
+                            return Err(LoadError::json(
+                                self.path,
+                                format!("cameras[{}].orthographic.{key}", camera.index()),
+                                "expected a positive half-extent",
+                            ));
+                        }
+                    }
+                    ImportedProjection::Orthographic { xmag, ymag }
+                }
+            };
+            out.cameras.push(ImportedCamera { eye: origin, target: origin + forward, up: world.transform_vector3(Vec3::Y), projection });
         }
         if let Some(light) = node.light() {
             let at = format!("extensions.KHR_lights_punctual.lights[{}]", light.index());

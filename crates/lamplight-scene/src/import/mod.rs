@@ -47,7 +47,7 @@ pub struct ImportedMesh {
     pub material: Option<Material>,
 }
 
-/// A camera from the file (glTF perspective cameras).
+/// A camera from the file (glTF cameras).
 #[derive(Clone, Debug, PartialEq)]
 pub struct ImportedCamera {
     /// Eye position.
@@ -56,8 +56,26 @@ pub struct ImportedCamera {
     pub target: Vec3,
     /// Up direction.
     pub up: Vec3,
-    /// Vertical field of view, degrees.
-    pub vfov_deg: f64,
+    /// How it projects.
+    pub projection: ImportedProjection,
+}
+
+/// The projection of an [`ImportedCamera`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ImportedProjection {
+    /// Perspective with this vertical field of view, degrees.
+    Perspective {
+        /// Vertical field of view, degrees.
+        vfov_deg: f64,
+    },
+    /// Parallel projection of a window with these half-extents (glTF's `xmag`,
+    /// `ymag`), widened to the image's aspect without cropping or stretching.
+    Orthographic {
+        /// Half-width.
+        xmag: f64,
+        /// Half-height.
+        ymag: f64,
+    },
 }
 
 /// A light from the file (glTF KHR_lights_punctual).

@@ -5,8 +5,8 @@ use std::fmt::Write;
 
 use lamplight_core::params::Param;
 
-use super::{LIGHTS, MATERIALS, NODE_COMMON, SHAPES, SHAPE_COMMON, STRUCTURAL, TEXTURES};
-use crate::build::{camera, RENDER_PARAMS, SCENE_PARAMS};
+use super::{CAMERAS, LIGHTS, MATERIALS, NODE_COMMON, SHAPES, SHAPE_COMMON, STRUCTURAL, TEXTURES};
+use crate::build::{RENDER_PARAMS, SCENE_PARAMS};
 
 /// Markdown tables of every kind and its parameters, in the order of the
 /// reference: top level, `[render]`, cameras, materials, textures, node keys,
@@ -15,8 +15,8 @@ pub fn reference() -> String {
     let mut out = String::new();
     section(&mut out, "Top level values", "", SCENE_PARAMS);
     section(&mut out, "`[render]`", "", RENDER_PARAMS);
-    for (name, summary, params) in camera::KINDS {
-        section(&mut out, &format!("Camera `type = \"{name}\"`"), summary, params);
+    for k in CAMERAS {
+        section(&mut out, &format!("Camera `type = \"{}\"`", k.name), k.summary, k.params);
     }
     for k in MATERIALS {
         section(&mut out, &format!("Material `type = \"{}\"`", k.name), k.summary, k.params);

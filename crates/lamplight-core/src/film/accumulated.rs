@@ -1,0 +1,276 @@
+//! The accumulated film: per pixel, the sum and the sum of squares of its sample
+//! radiance, from which the image (the mean) and the variance of the mean follow.
+//!
+//! Pixels are stored tile by tile in the renderer's [`TILE`] x [`TILE`] tiles
+//! (tiles in row-major order, each a row-major block, edge tiles padded), so each
+//! tile of a pass writes one contiguous block and no tile touches another's.
+//!
+//! While every pixel holds at most one sample `l`, its sum of squares is `l * l`,
+//! the very product a sample adds, so it is not stored: a render of one sample
+//! per pixel (the usual Whitted render) keeps half the memory, and the squares
+//! appear, with the same bits, when a second sample is added.
+
+use rayon::prelude::*;
+
+use super::Image;
+use crate::math::Rgb;
+
+/// Side in pixels of the square tiles the renderer works in and the film stores.
+pub const TILE: u32 = 16;
+/// Entries of one stored tile.
+const TILE_PIXELS: usize = (TILE * TILE) as usize;
+
+/// One pixel's sums over its samples `l_i`: `sum = sum_i l_i`, `sum_sq = sum_i l_i^2`
+/// (per channel), added in sample order.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PixelSum {
+    /// Sum of the sample radiance.
+    pub sum: Rgb,
+    /// Sum of the squared sample radiance.
+    pub sum_sq: Rgb,
+}
+
+impl PixelSum {
+    /// Adds one sample `l`.
+    #[inline]
+    pub fn add(&mut self, l: Rgb) {
+        self.sum += l;
+        self.sum_sq += l * l;
+    }
+}
+
+/// One stored channel triple. Plain arrays, so that a new film is zeroed memory
+/// from the allocator rather than a serial fill.
+type Stored = [f64; 3];
+
+#[inline]
+fn rgb(s: &Stored) -> Rgb {
+    Rgb::new(s[0], s[1], s[2])
+}
+
+/// Per-pixel sums of `samples` samples per pixel of a `width x height` image.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Film {
+    width: u32,
+    height: u32,
+    tiles_x: u32,
+    sums: Vec<Stored>,
+    /// The sums of squares; `None` while no pixel holds more than one sample.
+    squares: Option<Vec<Stored>>,
+    samples: u32,
+}
+
+impl Film {
+    /// An empty film (no samples).
+    pub fn new(width: u32, height: u32) -> Film {
+        let tiles_x = width.div_ceil(TILE);
+        let tiles = tiles_x as usize * height.div_ceil(TILE) as usize;
+        Film { width, height, tiles_x, sums: vec![[0.0; 3]; tiles * TILE_PIXELS], squares: None, samples: 0 }
+    }
+
+    /// Width in pixels.
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Height in pixels.
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// Samples per pixel accumulated.
+    pub fn samples(&self) -> u32 {
+        self.samples
+    }
+
+    /// The sums of the pixel at column `x`, row `y` (from the top). Panics outside
+    /// the film, as indexing does.
+    pub fn get(&self, x: u32, y: u32) -> PixelSum {
+        assert!(x < self.width && y < self.height, "pixel ({x}, {y}) outside the {}x{} film", self.width, self.height);
+        let tile = (y / TILE) as usize * self.tiles_x as usize + (x / TILE) as usize;
+        let i = tile * TILE_PIXELS + ((y % TILE) * TILE + x % TILE) as usize;
+        let sum = rgb(&self.sums[i]);
+        PixelSum { sum, sum_sq: self.squares.as_ref().map_or(sum * sum, |q| rgb(&q[i])) }
+    }
+
+    /// The image: each pixel's mean `sum / n` (black before any sample).
+    pub fn mean(&self) -> Image {
+        let n = self.samples.max(1) as f64;
+        self.develop(|i| {
+            let m = rgb(&self.sums[i]) / n;
+            [m.x as f32, m.y as f32, m.z as f32]
+        })
+    }
+
+    /// Variance of each pixel's mean, per channel: the sample variance
+    /// `(sum_sq / n - mean^2) n / (n - 1)`, clamped at 0 against rounding, over `n`.
+    /// Black with fewer than two samples.
+    pub fn variance(&self) -> Image {
+        let n = self.samples as f64;
+        let Some(squares) = self.squares.as_ref().filter(|_| n >= 2.0) else {
+            return Image::new(self.width, self.height);
+        };
+        self.develop(|i| {
+            let mean = rgb(&self.sums[i]) / n;
+            let var = ((rgb(&squares[i]) / n - mean * mean) * (n / (n - 1.0))).max(Rgb::ZERO) / n;
+            [var.x as f32, var.y as f32, var.z as f32]
+        })
+    }
+
+    /// A row-major image of `value(i)` per pixel, `i` its index in this film's
+    /// storage; rows in parallel: for a large image this would otherwise be the
+    /// longest serial step after the render.
+    fn develop(&self, value: impl Fn(usize) -> [f32; 3] + Sync) -> Image {
+        let mut image = Image::new(self.width, self.height);
+        let (width, tiles_x) = (self.width as usize, self.tiles_x as usize);
+        image.pixels.par_chunks_mut(width.max(1)).enumerate().for_each(|(y, row)| {
+            let first = (y / TILE as usize) * tiles_x * TILE_PIXELS + (y % TILE as usize) * TILE as usize;
+            for (tx, out) in row.chunks_mut(TILE as usize).enumerate() {
+                let start = first + tx * TILE_PIXELS;
+                for (k, o) in out.iter_mut().enumerate() {
+                    *o = value(start + k);
+                }
+            }
+        });
+        image
+    }
+
+    /// Tiles per row.
+    pub(crate) fn tiles_x(&self) -> u32 {
+        self.tiles_x
+    }
+
+    /// Makes room for the squares before a pass of `count` samples per pixel
+    /// writes them (a single sample's square is its sum's).
+    pub(crate) fn prepare_pass(&mut self, count: u32) {
+        if count > 1 && self.squares.is_none() {
+            self.squares = Some(vec![[0.0; 3]; self.sums.len()]);
+        }
+    }
+
+    /// Every tile's block, in tile order, for the renderer's workers.
+    pub(crate) fn tiles_mut(&mut self) -> impl IndexedParallelIterator<Item = TileBlock<'_>> {
+        let sums = self.sums.chunks_mut(TILE_PIXELS);
+        let blocks: Vec<TileBlock> = match self.squares.as_mut() {
+            Some(q) => sums.zip(q.chunks_mut(TILE_PIXELS)).map(|(sums, squares)| TileBlock { sums, squares: Some(squares) }).collect(),
+            None => sums.map(|sums| TileBlock { sums, squares: None }).collect(),
+        };
+        blocks.into_par_iter()
+    }
+
+    /// Adds the samples of `pass` (a film of the same size) to this one, pixel by
+    /// pixel in the order the samples were taken.
+    pub(crate) fn add(&mut self, pass: &Film) {
+        debug_assert_eq!((self.width, self.height), (pass.width, pass.height));
+        if self.squares.is_none() {
+            // At most one sample so far: its square is its sum's.
+            self.squares = Some(self.sums.par_iter().map(|s| s.map(|v| v * v)).collect());
+        }
+        let squares = self.squares.as_mut().expect("made above");
+        let add = |mine: &mut Stored, theirs: Stored| {
+            for (a, b) in mine.iter_mut().zip(theirs) {
+                *a += b;
+            }
+        };
+        squares.par_chunks_mut(TILE_PIXELS).zip(pass.sums.par_chunks(TILE_PIXELS)).enumerate().for_each(|(tile, (mine, sums))| match &pass
+            .squares
+        {
+            Some(q) => mine.iter_mut().zip(&q[tile * TILE_PIXELS..]).for_each(|(m, t)| add(m, *t)),
+            None => mine.iter_mut().zip(sums).for_each(|(m, s)| add(m, s.map(|v| v * v))),
+        });
+        self.sums.par_chunks_mut(TILE_PIXELS).zip(pass.sums.par_chunks(TILE_PIXELS)).for_each(|(mine, theirs)| {
+            mine.iter_mut().zip(theirs).for_each(|(m, t)| add(m, *t));
+        });
+        self.samples += pass.samples;
+    }
+
+    /// Records that every pixel now holds `samples` samples.
+    pub(crate) fn set_samples(&mut self, samples: u32) {
+        self.samples = samples;
+    }
+}
+
+/// One tile's pixels of a film, written by the worker rendering that tile.
+pub(crate) struct TileBlock<'a> {
+    sums: &'a mut [Stored],
+    squares: Option<&'a mut [Stored]>,
+}
+
+impl TileBlock<'_> {
+    /// Sets the pixel at column `x`, row `y` of the tile (from its top-left corner).
+    #[inline]
+    pub(crate) fn set(&mut self, x: u32, y: u32, sum: PixelSum) {
+        let i = (y * TILE + x) as usize;
+        self.sums[i] = sum.sum.to_array();
+        if let Some(squares) = self.squares.as_mut() {
+            squares[i] = sum.sum_sq.to_array();
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A film whose pixel (x, y) holds the samples `v = x + 100 y` and, with two
+    /// samples, `2 v`, written as a render writes them.
+    fn film(width: u32, height: u32, samples: u32) -> Film {
+        let mut film = Film::new(width, height);
+        film.prepare_pass(samples);
+        let tiles_x = film.tiles_x();
+        for (t, mut block) in film.tiles_mut().collect::<Vec<_>>().into_iter().enumerate() {
+            let (tx, ty) = (t as u32 % tiles_x, t as u32 / tiles_x);
+            for (lx, ly) in (0..TILE).flat_map(|ly| (0..TILE).map(move |lx| (lx, ly))) {
+                let (x, y) = (tx * TILE + lx, ty * TILE + ly);
+                if x < width && y < height {
+                    let v = Rgb::splat((x + 100 * y) as f64);
+                    let mut s = PixelSum::default();
+                    for k in 1..=samples {
+                        s.add(v * k as f64);
+                    }
+                    block.set(lx, ly, s);
+                }
+            }
+        }
+        film.set_samples(samples);
+        film
+    }
+
+    #[test]
+    fn tiles_map_back_to_rows() {
+        // Sizes that are and are not multiples of the tile.
+        for (w, h) in [(37, 23), (16, 16), (1, 40), (33, 1)] {
+            let film = film(w, h, 2);
+            let mean = film.mean();
+            let variance = film.variance();
+            for y in 0..h {
+                for x in 0..w {
+                    let v = (x + 100 * y) as f64;
+                    assert_eq!(film.get(x, y).sum, Rgb::splat(3.0 * v));
+                    assert_eq!(mean.get(x, y), [(1.5 * v) as f32; 3], "{w}x{h} ({x}, {y})");
+                    // Samples v and 2v: sample variance v^2 / 2, of the mean v^2 / 4.
+                    assert_eq!(variance.get(x, y), [(v * v / 4.0) as f32; 3]);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn single_samples_keep_their_squares_implicit_and_exact() {
+        // Two one-sample passes give the bits of one two-sample pass: the first
+        // pass's squares appear as its sums squared, the second's likewise.
+        let mut two_passes = film(20, 3, 1);
+        assert!(two_passes.squares.is_none());
+        assert_eq!(two_passes.get(19, 2).sum_sq, Rgb::splat(219.0 * 219.0));
+        assert_eq!(two_passes.variance(), Image::new(20, 3), "one sample: no variance");
+        let second = film(20, 3, 1);
+        two_passes.add(&second);
+        two_passes.add(&film(20, 3, 2));
+        assert_eq!(two_passes.samples(), 4);
+        let v = 219.0;
+        assert_eq!(two_passes.get(19, 2).sum, Rgb::splat(v + v + 3.0 * v));
+        assert_eq!(two_passes.get(19, 2).sum_sq, Rgb::splat(v * v + v * v + 5.0 * v * v));
+        assert_eq!(Film::new(5, 5).mean(), Image::new(5, 5), "no samples: black");
+        assert_eq!(Film::new(5, 5).variance(), Image::new(5, 5));
+    }
+}
