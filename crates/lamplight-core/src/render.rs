@@ -17,7 +17,7 @@ use std::time::{Duration, Instant};
 use rayon::prelude::*;
 
 use crate::film::{Film, Filter, Image, PixelSum, TileBlock, TILE};
-use crate::integrators::{self, Integrator, IntegratorEntry, IntegratorSettings, RayCounts, View};
+use crate::integrators::{self, Integrator, IntegratorEntry, IntegratorSettings, RayCounts, Schedule, View};
 use crate::scene::Scene;
 use crate::Error;
 
@@ -153,13 +153,13 @@ fn checked_depth(scene: &Scene, options: &RenderOptions) -> Result<u32, Error> {
 /// ends before the first pass.
 pub fn render(scene: &Scene, options: &RenderOptions, control: &RenderControl) -> Result<(Film, RenderStats), Error> {
     let pool = thread_pool(options.threads)?;
-    render_in(&pool, scene, options, control)
+    render_in(&pool, scene, options, control, false)
 }
 
 /// [`render()`], developed into the mean image.
 pub fn render_image(scene: &Scene, options: &RenderOptions, control: &RenderControl) -> Result<(Image, RenderStats), Error> {
     let pool = thread_pool(options.threads)?;
-    let (film, stats) = render_in(&pool, scene, options, control)?;
+    let (film, stats) = render_in(&pool, scene, options, control, true)?;
     Ok((pool.install(|| film.mean()), stats))
 }
 
@@ -168,6 +168,7 @@ fn render_in(
     scene: &Scene,
     options: &RenderOptions,
     control: &RenderControl,
+    image_only: bool,
 ) -> Result<(Film, RenderStats), Error> {
     let max_depth = checked_depth(scene, options)?;
     let window = options.pixel_window();
@@ -191,12 +192,17 @@ fn render_in(
     while done < spp {
         let count = schedule.next_pass(done, spp);
         let pass_start = Instant::now();
-        let mut pass = spare.take().unwrap_or_else(|| Film::new(window.width, window.height));
+        // Only the image of one pass is wanted: keep its means, not its sums.
+        let new_film = || match (image_only, schedule) {
+            (true, Schedule::OnePass) => Film::means_only(window.width, window.height),
+            _ => Film::new(window.width, window.height),
+        };
+        let mut pass = spare.take().unwrap_or_else(new_film);
         pass.prepare_pass(count);
         let tiles_x = pass.tiles_x();
         let expired = AtomicBool::new(false);
         let results: Vec<Option<(RayCounts, u64)>> = pool.install(|| {
-            pass.tiles_mut()
+            pass.tiles_mut(count)
                 .enumerate()
                 .map(|(tile, block)| {
                     if control.cancelled() {

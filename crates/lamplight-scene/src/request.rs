@@ -341,6 +341,11 @@ impl Job {
     /// Renders `scene` (prepared) with the job's options: the mean image and the
     /// layers asked for, from the film's per-pixel sums (any integrator).
     pub fn run(&self, scene: &Scene, control: &RenderControl) -> Result<Rendered, lamplight_core::Error> {
+        if self.layers.is_empty() {
+            // The image alone: the renderer need not keep every pixel's sums.
+            let (image, stats) = lamplight_core::render_image(scene, &self.options, control)?;
+            return Ok(Rendered { image, layers: Vec::new(), stats });
+        }
         let (film, stats) = lamplight_core::render(scene, &self.options, control)?;
         let layers = self
             .layers
