@@ -274,18 +274,14 @@ fn render_tile(
 ) -> (RayCounts, u64) {
     let mut counts = RayCounts::default();
     let mut nonfinite = 0;
+    let mut row = [PixelSum::default(); TILE as usize];
+    let width = (x1 - x0) as usize;
     for y in y0..y1 {
-        for x in x0..x1 {
-            let mut sum = PixelSum::default();
-            for s in first..first + count {
-                let l = integrator.sample(view, x, y, s, &mut counts);
-                if l.is_finite() {
-                    sum.add(l);
-                } else {
-                    nonfinite += 1;
-                }
-            }
-            block.set(x - x0, y - y0, sum);
+        let sums = &mut row[..width];
+        sums.fill(PixelSum::default());
+        nonfinite += integrator.sample_row(view, (x0, y), first..first + count, &mut counts, sums);
+        for (x, sum) in (x0..x1).zip(sums.iter()) {
+            block.set(x - x0, y - y0, *sum);
         }
     }
     (counts, nonfinite)
