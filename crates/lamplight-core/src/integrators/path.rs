@@ -18,7 +18,7 @@
 use super::{Integrator, IntegratorEntry, IntegratorSettings, RayCounts, Schedule, View};
 use crate::bsdfs::{bsdf_for, Bsdf, Frame};
 use crate::film::Filter;
-use crate::lights::{LightSet, Picked};
+use crate::lights::LightSet;
 use crate::materials::{Reflection, Refraction};
 use crate::math::{Rgb, Vec3};
 use crate::ray::{offset_origin, Ray};
@@ -225,21 +225,10 @@ impl PathTracer {
     ) -> Rgb {
         let Some(picked) = self.lights.pick(u_pick) else { return Rgb::ZERO };
         let p_pick = self.lights.pick_probability();
-        // (direction, distance, incident radiance, light pdf or None for delta, own
-        // object, whether the segment is known to end on the own object's surface)
-        let (wi, distance, li, light_pdf, own, ends_on_own) = match picked {
-            Picked::Delta(light) => {
-                let Some(s) = light.illuminate(hit.point) else { return Rgb::ZERO };
-                (s.wi, s.distance, s.radiance, None, light.own_object(), false)
-            }
-            Picked::Area(light) => {
-                let Some(s) = light.sample(hit.point, u) else { return Rgb::ZERO };
-                (s.wi, s.distance, s.radiance, Some(s.pdf), Some(light.object), light.convex)
-            }
-            Picked::Environment(env) => {
-                let Some((d, l, pdf)) = env.sample(u) else { return Rgb::ZERO };
-                (d, f64::INFINITY, l, Some(pdf), None, false)
-            }
+        let Some(crate::lights::LiSample { wi, distance, radiance: li, pdf: light_pdf, own_object: own, ends_on_own }) =
+            picked.sample_li(hit.point, u)
+        else {
+            return Rgb::ZERO;
         };
         if li == Rgb::ZERO {
             return Rgb::ZERO;

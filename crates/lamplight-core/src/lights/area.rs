@@ -10,6 +10,7 @@
 use std::sync::Arc;
 
 use super::mesh::TriangleSampler;
+use super::{LiSample, Light, LightSample};
 use crate::math::{Rgb, Vec3};
 use crate::shapes::Shape;
 
@@ -93,6 +94,30 @@ impl AreaLight {
             return 0.0;
         }
         distance * distance / (cos_y * self.area)
+    }
+}
+
+impl Light for AreaLight {
+    /// Not a delta light: the Whitted integrator does not see it this way.
+    fn illuminate(&self, _point: Vec3) -> Option<LightSample> {
+        None
+    }
+
+    fn own_object(&self) -> Option<usize> {
+        Some(self.object)
+    }
+
+    /// A point on the surface ([`AreaLight::sample`]).
+    fn sample_li(&self, point: Vec3, u: (f64, f64)) -> Option<LiSample> {
+        let s = self.sample(point, u)?;
+        Some(LiSample {
+            wi: s.wi,
+            distance: s.distance,
+            radiance: s.radiance,
+            pdf: Some(s.pdf),
+            own_object: Some(self.object),
+            ends_on_own: self.convex,
+        })
     }
 }
 

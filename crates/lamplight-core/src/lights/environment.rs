@@ -127,6 +127,19 @@ impl Environment {
     }
 }
 
+impl super::Light for Environment {
+    /// Not a delta light: the Whitted integrator sees the sky as its background.
+    fn illuminate(&self, _point: Vec3) -> Option<super::LightSample> {
+        None
+    }
+
+    /// A direction towards the sky ([`Environment::sample`]), infinitely far.
+    fn sample_li(&self, _point: Vec3, u: (f64, f64)) -> Option<super::LiSample> {
+        let (wi, radiance, pdf) = self.sample(u)?;
+        Some(super::LiSample { wi, distance: f64::INFINITY, radiance, pdf: Some(pdf), own_object: None, ends_on_own: false })
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -24,7 +24,7 @@ pub use directional::DirectionalLight;
 pub use environment::{EnvMap, Environment};
 pub use mesh::TriangleSampler;
 pub use point::{Falloff, PointLight};
-pub use set::{LightSet, Picked};
+pub use set::LightSet;
 pub use spot::{SpotLight, SpotProfile};
 
 /// What a light delivers to one point.
@@ -39,15 +39,56 @@ pub struct LightSample {
     pub radiance: Rgb,
 }
 
-/// A light source that illuminates points from one direction each.
+/// One light sample for a receiving point, as the path tracer draws it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LiSample {
+    /// Unit direction from the point towards the light.
+    pub wi: Vec3,
+    /// Distance to the light point (`f64::INFINITY` for lights at infinity).
+    pub distance: f64,
+    /// Incident radiance before shadowing.
+    pub radiance: Rgb,
+    /// Solid-angle density of `wi`; `None` for a delta light (one direction only).
+    pub pdf: Option<f64>,
+    /// A scene object that belongs to the light and must not shadow it.
+    pub own_object: Option<usize>,
+    /// The sampled point lies where a shadow ray towards it first meets
+    /// `own_object` (a convex emitter), so the shadow ray need not search for it.
+    pub ends_on_own: bool,
+}
+
+/// A light source: the one interface of delta lights (point, directional, spot),
+/// area lights (emitting objects) and the environment.
+///
+/// [`Light::illuminate`] is the lecture's question, asked by the Whitted
+/// integrator: the light arriving at a point from the light's one direction
+/// (`None` for lights that are not delta lights). [`Light::sample_li`] is the
+/// path tracer's: one direction towards the light drawn from `u`, with its
+/// density; its default is the delta sample `illuminate` gives. Lights a ray can
+/// hit (emitting shapes, the environment) are also found by the path tracer's
+/// BSDF samples, which [`LightSet`] weights against these densities.
 pub trait Light: Send + Sync + std::fmt::Debug {
-    /// The light arriving at `point`, or `None` if it sends none there.
+    /// The light arriving at `point` from a delta light, or `None`.
     fn illuminate(&self, point: Vec3) -> Option<LightSample>;
 
     /// Index of a scene object that belongs to the light itself (a bulb around a
     /// point light) and must not shadow it.
     fn own_object(&self) -> Option<usize> {
         None
+    }
+
+    /// One light sample for receiver `point` from `u` in `[0, 1)^2`, or `None`
+    /// when the light sends nothing there.
+    fn sample_li(&self, point: Vec3, u: (f64, f64)) -> Option<LiSample> {
+        let _ = u;
+        self.illuminate(point).map(|s| LiSample {
+            wi: s.wi,
+            distance: s.distance,
+            radiance: s.radiance,
+            pdf: None,
+            own_object: self.own_object(),
+            ends_on_own: false,
+        })
     }
 }
 

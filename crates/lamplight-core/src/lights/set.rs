@@ -32,17 +32,6 @@ pub struct LightSet {
     by_object: Vec<Option<u32>>,
 }
 
-/// A light picked from the set.
-#[derive(Clone, Copy, Debug)]
-pub enum Picked<'a> {
-    /// A point or directional light.
-    Delta(&'a dyn Light),
-    /// An emitting object.
-    Area(&'a AreaLight),
-    /// The sky.
-    Environment(&'a Environment),
-}
-
 impl LightSet {
     /// Collects the lights of `scene`.
     pub fn new(scene: &Scene) -> LightSet {
@@ -86,25 +75,69 @@ impl LightSet {
         1.0 / self.count().max(1) as f64
     }
 
-    /// The light picked by uniform `u`.
-    pub fn pick(&self, u: f64) -> Option<Picked<'_>> {
+    /// The light picked by uniform `u`: delta lights first, then area lights,
+    /// then the sky, each with probability [`LightSet::pick_probability`].
+    pub fn pick(&self, u: f64) -> Option<&dyn Light> {
         let n = self.count();
         if n == 0 {
             return None;
         }
         let mut i = ((u * n as f64) as usize).min(n - 1);
         if i < self.delta.len() {
-            return Some(Picked::Delta(self.delta[i].as_ref()));
+            return Some(self.delta[i].as_ref());
         }
         i -= self.delta.len();
         if i < self.area.len() {
-            return Some(Picked::Area(&self.area[i]));
+            return Some(&self.area[i]);
         }
-        self.environment.as_deref().map(Picked::Environment)
+        self.environment.as_deref().map(|e| e as &dyn Light)
     }
 
     /// The area light of object `object`, if it emits.
     pub fn area_light_of(&self, object: usize) -> Option<&AreaLight> {
         self.by_object.get(object).copied().flatten().map(|i| &self.area[i as usize])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::camera::{Fov, Perspective};
+    use crate::lights::{PointLight, SpotLight, SpotProfile};
+    use crate::materials::Material;
+    use crate::math::Vec3;
+    use crate::shapes::Rectangle;
+    use crate::SceneBuilder;
+
+    /// Delta, area and environment lights are sampled through the one `Light`
+    /// interface, each with the density its own `pdf` gives.
+    #[test]
+    fn every_kind_of_light_is_sampled_through_one_interface() {
+        let camera = Perspective::look_at(Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO, Vec3::Y, Fov::VerticalDeg(40.0)).unwrap();
+        let mut b = SceneBuilder::new(camera);
+        let lamp = b.material(Material { emission: Rgb::splat(4.0), ..Material::default() }).unwrap();
+        // A downward-facing square lamp of area 1 at height 2.
+        let square = Rectangle::new(Vec3::new(-0.5, 2.0, -0.5), Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 1.0)).unwrap();
+        let lamp_object = b.object(square, lamp).unwrap();
+        b.light(PointLight::new(Vec3::new(0.0, 3.0, 0.0), Rgb::splat(9.0)).unwrap());
+        b.light(SpotLight::new(Vec3::new(0.0, 3.0, 0.0), -Vec3::Y, Rgb::splat(9.0), 10.0, 20.0, SpotProfile::Smoothstep).unwrap());
+        b.environment = Some(Arc::new(Environment::Constant(Rgb::splat(0.5))));
+        let set = LightSet::new(&b.build().unwrap());
+        assert_eq!(set.count(), 4);
+        let x = Vec3::ZERO;
+        let picks: Vec<_> = [0.1, 0.3, 0.6, 0.9].iter().map(|&u| set.pick(u).unwrap().sample_li(x, (0.5, 0.5)).unwrap()).collect();
+        // The point and spot lights: delta samples straight up, 9 / 3^2.
+        for s in &picks[..2] {
+            assert_eq!((s.wi, s.distance, s.radiance, s.pdf), (Vec3::Y, 3.0, Rgb::ONE, None));
+        }
+        // The area light: its centre from (0.5, 0.5), at distance 2 straight up: pdf d^2 / (cos A) = 4.
+        let area = picks[2];
+        assert_eq!((area.own_object, area.ends_on_own, area.radiance), (Some(lamp_object), true, Rgb::splat(4.0)));
+        assert!((area.wi - Vec3::Y).length() < 1e-12 && (area.pdf.unwrap() - 4.0).abs() < 1e-12);
+        let light = set.area_light_of(lamp_object).unwrap();
+        assert_eq!(light.pdf(area.wi, area.distance, -Vec3::Y), area.pdf.unwrap());
+        // The sky: uniform over the sphere, infinitely far.
+        let sky = picks[3];
+        assert_eq!((sky.distance, sky.radiance, sky.pdf), (f64::INFINITY, Rgb::splat(0.5), Some(1.0 / (4.0 * std::f64::consts::PI))));
     }
 }
