@@ -73,19 +73,27 @@ impl PointLight {
     }
 }
 
+/// The unit direction from `point` to a light at `position`, the distance and
+/// its square; `None` at the light itself.
+#[inline]
+pub(crate) fn towards(position: Vec3, point: Vec3) -> Option<(Vec3, f64, f64)> {
+    let to_light = position - point;
+    let d2 = to_light.length_squared();
+    if !(d2 > 0.0) {
+        return None;
+    }
+    let distance = d2.sqrt();
+    Some((to_light / distance, distance, d2))
+}
+
 impl Light for PointLight {
     fn illuminate(&self, point: Vec3) -> Option<LightSample> {
-        let to_light = self.position - point;
-        let d2 = to_light.length_squared();
-        if !(d2 > 0.0) {
-            return None;
-        }
-        let distance = d2.sqrt();
+        let (wi, distance, d2) = towards(self.position, point)?;
         let radiance = match self.falloff {
             Falloff::InverseSquare => self.intensity / d2,
             Falloff::None => self.intensity,
         };
-        Some(LightSample { wi: to_light / distance, distance, radiance })
+        Some(LightSample { wi, distance, radiance })
     }
 
     fn own_object(&self) -> Option<usize> {

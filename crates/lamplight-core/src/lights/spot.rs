@@ -154,13 +154,7 @@ impl SpotLight {
 
 impl Light for SpotLight {
     fn illuminate(&self, point: Vec3) -> Option<LightSample> {
-        let to_light = self.position - point;
-        let d2 = to_light.length_squared();
-        if !(d2 > 0.0) {
-            return None;
-        }
-        let distance = d2.sqrt();
-        let wi = to_light / distance;
+        let (wi, distance, d2) = super::point::towards(self.position, point)?;
         let s = self.falloff(-wi.dot(self.axis));
         if s == 0.0 {
             return None;
