@@ -11,7 +11,7 @@ use clap::{Args, Parser, Subcommand};
 use lamplight_core::film::tonemap::ToneMap;
 use lamplight_scene::builtin;
 use lamplight_scene::image_io::Format;
-use lamplight_scene::request::{Display, Job, Layer, Naming, Request, RequestError, SceneRequest};
+use lamplight_scene::request::{DisplayTransform, Job, Layer, Naming, Request, RequestError, SceneRequest};
 
 /// The `lamplight` command line.
 #[derive(Debug, Parser)]
@@ -117,7 +117,7 @@ pub struct RenderJob {
     /// Whether to stay silent.
     pub quiet: bool,
     /// Exposure and tone map for display formats.
-    pub display: Display,
+    pub display: DisplayTransform,
     /// Where the path tracer's variance image goes.
     pub variance_output: Option<PathBuf>,
     /// Whether the output file itself holds the variance layer (`--exr-layers variance`).
@@ -192,7 +192,7 @@ impl RenderArgs {
                 job.layers.push(Layer::Variance);
             }
         }
-        let display = Display { exposure: self.exposure, tonemap: self.tonemap };
+        let display = DisplayTransform { exposure: self.exposure, tonemap: self.tonemap };
         Ok(RenderJob { scene, output, job, quiet: self.quiet, display, variance_output, variance_in_output })
     }
 }

@@ -365,7 +365,7 @@ impl Job {
 
 /// How an image file is written: the display transform of `.png`/`.ppm`.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Display {
+pub struct DisplayTransform {
     /// Exposure in stops (the image is scaled by `2^EV`).
     pub exposure: f64,
     /// Tone map.
@@ -375,7 +375,7 @@ pub struct Display {
 /// Writes `rendered` to `path` (the format by extension): EXR keeps linear
 /// radiance and the extra layers; display formats get the exposure and tone map
 /// and cannot hold layers.
-pub fn write(path: &Path, rendered: &Rendered, display: Display) -> Result<(), crate::image_io::ImageError> {
+pub fn write(path: &Path, rendered: &Rendered, display: DisplayTransform) -> Result<(), crate::image_io::ImageError> {
     let format = Format::from_path(path)?;
     if format == Format::Exr {
         if rendered.layers.is_empty() {
