@@ -6,7 +6,7 @@
 //!
 //! A kind is one file (its struct, its `KIND` with the parameter table, its
 //! tests) and one line here. The builder ([`crate::build`]) finds kinds only
-//! through these lists, the reference in `docs/scene-format.md` is generated
+//! through these lists (`Kind::find`), the reference in `docs/scene-format.md` is generated
 //! from them ([`reference()`]), and the error tests feed every kind a mistyped key.
 //! Kinds that need this crate (an implicit surface's expression parser) live in
 //! `build/`; the structural node types (`group`, `instance`, `mesh`) are the
@@ -123,26 +123,6 @@ pub fn node_types() -> Vec<&'static str> {
     names.extend(LIGHTS.iter().map(|k| k.name));
     names.extend(SHAPES.iter().map(|k| k.name));
     names
-}
-
-/// The shape kind called `name`.
-pub fn shape(name: &str) -> Option<&'static ShapeKind> {
-    SHAPES.iter().copied().find(|k| k.name == name)
-}
-
-/// The light kind called `name`.
-pub fn light(name: &str) -> Option<&'static LightKind> {
-    LIGHTS.iter().copied().find(|k| k.name == name)
-}
-
-/// The camera kind called `name`.
-pub fn camera(name: &str) -> Option<&'static CameraKind> {
-    CAMERAS.iter().copied().find(|k| k.name == name)
-}
-
-/// The material kind called `name`.
-pub fn material(name: &str) -> Option<&'static MaterialKind> {
-    MATERIALS.iter().copied().find(|k| k.name == name)
 }
 
 mod reference;

@@ -56,11 +56,8 @@ fn build(p: &mut Params<'_>, textures: &super::Textures<'_>) -> ParamResult<Mate
     let color = match (p.has("color"), p.has("checker")) {
         (true, true) => return Err(p.error("takes color or checker, not both")),
         (false, true) => {
-            let mut checker = p.table("checker")?.expect("present");
-            checker.check_keys(super::texture::CHECKER.params, &[])?;
-            let texture = (super::texture::CHECKER.build)(&mut checker)?;
-            checker.finish()?;
-            texture
+            let checker = &super::texture::CHECKER;
+            p.table("checker")?.expect("present").read(checker.params, &[], checker.build)?
         }
         _ => textures.read(p, "color")?.unwrap_or(d.color.clone()),
     };

@@ -5,7 +5,7 @@
 //! tells them apart.
 
 use crate::math::{Rgb, Vec3};
-use crate::params::{Item, Kind, Param, ParamResult, ParamType as T, Params, Value};
+use crate::params::{unknown_kind, Item, Kind, Param, ParamResult, ParamType as T, Params, Value};
 
 /// Builds a texture kind's texture from its parameters.
 pub type TextureBuild = fn(&mut Params<'_>) -> ParamResult<Texture>;
@@ -46,20 +46,14 @@ impl Textures<'_> {
             None => Ok(None),
             Some(Item { value: Value::Table(_), .. }) => {
                 let mut table = p.table(key)?.expect("the key holds a table");
-                let names: Vec<&str> = self.kinds.iter().map(|k| k.name).collect();
                 let Some(kind_name) = table.string("type")? else {
+                    let names: Vec<&str> = self.kinds.iter().map(|k| k.name).collect();
                     return Err(table.error(format!("needs `type` (a texture: {})", names.join(", "))));
                 };
-                let Some(kind) = self.kinds.iter().find(|k| k.name == kind_name) else {
-                    let hint = crate::params::suggestion(kind_name, names.iter().copied())
-                        .map(|s| format!("did you mean '{s}'? "))
-                        .unwrap_or_default();
-                    return Err(table.key_error("type", format!("unknown texture \"{kind_name}\" ({hint}textures: {})", names.join(", "))));
+                let Some(kind) = Kind::find(self.kinds, kind_name) else {
+                    return Err(table.key_error("type", unknown_kind("texture", kind_name, self.kinds)));
                 };
-                table.check_keys(kind.params, &["type"])?;
-                let texture = (kind.build)(&mut table)?;
-                table.finish()?;
-                Ok(Some(texture))
+                table.read(kind.params, &["type"], kind.build).map(Some)
             }
             Some(_) => Ok(p.color(key)?.map(Texture::Constant)),
         }

@@ -104,6 +104,21 @@ pub struct Kind<B: 'static> {
     pub build: B,
 }
 
+impl<B: 'static> Kind<B> {
+    /// The kind called `name` among `kinds` (a registry's list).
+    pub fn find<'a>(kinds: &[&'a Kind<B>], name: &str) -> Option<&'a Kind<B>> {
+        kinds.iter().copied().find(|k| k.name == name)
+    }
+}
+
+/// The message for a `type` that no kind of `kinds` has, `what` naming them:
+/// `unknown texture "checkers" (did you mean 'checker'? textures: checker)`.
+pub fn unknown_kind<B: 'static>(what: &str, name: &str, kinds: &[&Kind<B>]) -> String {
+    let names: Vec<&str> = kinds.iter().map(|k| k.name).collect();
+    let hint = suggestion(name, names.iter().copied()).map(|s| format!("did you mean '{s}'? ")).unwrap_or_default();
+    format!("unknown {what} \"{name}\" ({hint}{what}s: {})", names.join(", "))
+}
+
 /// A parameter could not be read: where, and what was expected.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct ParamError {
@@ -404,6 +419,16 @@ impl<'a> Params<'a> {
             });
         }
         Ok(())
+    }
+
+    /// Reads the table as a kind whose parameters are `params` (and `extra`):
+    /// checks its keys ([`Params::check_keys`]), builds with `build`, then fails
+    /// at any key left unread ([`Params::finish`]).
+    pub fn read<T>(mut self, params: &[Param], extra: &[&str], build: impl FnOnce(&mut Params<'a>) -> ParamResult<T>) -> ParamResult<T> {
+        self.check_keys(params, extra)?;
+        let made = build(&mut self)?;
+        self.finish()?;
+        Ok(made)
     }
 
     /// Fails at the first present key the builder did not read: it is valid for

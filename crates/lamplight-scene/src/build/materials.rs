@@ -3,7 +3,7 @@
 use std::collections::BTreeMap;
 
 use lamplight_core::materials::Textures;
-use lamplight_core::params::Params;
+use lamplight_core::params::{unknown_kind, Kind, Params};
 use lamplight_core::SceneBuilder;
 
 use crate::description::SceneDescription;
@@ -17,17 +17,12 @@ pub(super) fn add_all(desc: &SceneDescription, source: &Source, builder: &mut Sc
     let mut out = BTreeMap::new();
     for named in &desc.materials {
         let node = &named.value;
-        let mut p = Params::new(node.label.clone(), &node.params);
-        let Some(kind) = registry::material(&node.kind) else {
-            let names: Vec<&str> = registry::MATERIALS.iter().map(|k| k.name).collect();
-            let hint = lamplight_core::params::suggestion(&node.kind, names.iter().copied())
-                .map(|s| format!("did you mean '{s}'? "))
-                .unwrap_or_default();
-            let message = format!("{}: unknown material type \"{}\" ({hint}material types: {})", node.label, node.kind, names.join(", "));
+        let Some(kind) = Kind::find(registry::MATERIALS, &node.kind) else {
+            let message = format!("{}: {}", node.label, unknown_kind("material type", &node.kind, registry::MATERIALS));
             return Err(source.error(&node.kind_loc, message));
         };
-        let made = p.check_keys(kind.params, &[]).and_then(|()| (kind.build)(&mut p, &textures)).and_then(|m| p.finish().map(|()| m));
-        let material = made.map_err(|e| source.param_error(e))?;
+        let p = Params::new(node.label.clone(), &node.params);
+        let material = p.read(kind.params, &[], |p| (kind.build)(p, &textures)).map_err(|e| source.param_error(e))?;
         let index = builder.material(material).map_err(|e| source.error(&node.params.loc, format!("{}: {e}", node.label)))?;
         out.insert(named.name.clone(), index);
     }

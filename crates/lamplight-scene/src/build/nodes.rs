@@ -16,7 +16,7 @@ use std::sync::Arc;
 use lamplight_core::lights::LightContext;
 use lamplight_core::materials::Material;
 use lamplight_core::math::Mat4;
-use lamplight_core::params::{ParamError, ParamResult, Params};
+use lamplight_core::params::{Kind, ParamError, ParamResult, Params};
 use lamplight_core::shapes::{placed, Shape, TriangleMesh};
 use lamplight_core::SceneBuilder;
 
@@ -80,7 +80,7 @@ pub(super) fn add_all(
         ctx.node(node, Mat4::IDENTITY, None, 0)?;
     }
     for (node, world) in std::mem::take(&mut ctx.lights) {
-        let kind = registry::light(&node.kind).expect("only light kinds are deferred");
+        let kind = Kind::find(registry::LIGHTS, &node.kind).expect("only light kinds are deferred");
         let names = &ctx.names;
         let object = |name: &str| -> Result<usize, String> {
             match names.get(name).map(Vec::as_slice).unwrap_or_default() {
@@ -89,12 +89,9 @@ pub(super) fn add_all(
                 many => Err(format!("\"{name}\" names {} objects, expected one", many.len())),
             }
         };
-        let mut p = Params::new(node.label.clone(), &node.params);
-        let light = p
-            .check_keys(kind.params, &[])
-            .and_then(|()| (kind.build)(&mut p, &LightContext { world, object: &object }))
-            .and_then(|l| p.finish().map(|()| l))
-            .map_err(|e| source.param_error(e))?;
+        let p = Params::new(node.label.clone(), &node.params);
+        let light = p.read(kind.params, &[], |p| (kind.build)(p, &LightContext { world, object: &object }));
+        let light = light.map_err(|e| source.param_error(e))?;
         ctx.builder.shared_light(light);
     }
     Ok(())
@@ -114,7 +111,7 @@ impl<'a> Ctx<'a> {
         if n.children.is_some() && n.kind != "group" {
             return Err(self.fail(at_node("takes no `children` (only a group does)".into())));
         }
-        if registry::light(&n.kind).is_some() {
+        if Kind::find(registry::LIGHTS, &n.kind).is_some() {
             self.lights.push((n, m));
             return Ok(());
         }
@@ -124,7 +121,7 @@ impl<'a> Ctx<'a> {
                 let own = registry::STRUCTURAL.iter().find(|s| s.name == n.kind).expect("structural").params;
                 p.check_keys(own, &[]).map_err(|e| self.fail(e))?;
             }
-            kind => match registry::shape(kind) {
+            kind => match Kind::find(registry::SHAPES, kind) {
                 Some(k) => p.check_keys(k.params, &["material"]).map_err(|e| self.fail(e))?,
                 None => return Err(self.fail(unknown_type(n))),
             },
@@ -169,7 +166,7 @@ impl<'a> Ctx<'a> {
                 }
             }
             kind => {
-                let k = registry::shape(kind).expect("checked above");
+                let k = Kind::find(registry::SHAPES, kind).expect("checked above");
                 let made = (k.build)(&mut p, &m).map_err(|e| self.fail(e))?;
                 let material = match material {
                     Some(m) => m,
