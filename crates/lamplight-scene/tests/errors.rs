@@ -61,10 +61,15 @@ fn malformed_inputs_give_their_exact_errors() {
     // The list of node types comes from the registry, so a new kind changes no test.
     let blob = format!("s.toml:6:8: blob: unknown node type (node types: {})", lamplight_scene::registry::node_types().join(", "));
     let cases: Vec<(String, &str)> = cases.into_iter().chain([(with_camera("[[objects]]\ntype = \"blob\"\n"), blob.as_str())]).collect();
+    // The lists of kinds come from the registry, so a new kind changes no test.
+    let names = |kinds: Vec<&str>| kinds.join(", ");
+    let textures = names(lamplight_scene::registry::TEXTURES.iter().map(|k| k.name).collect());
+    let materials = names(lamplight_scene::registry::MATERIALS.iter().map(|k| k.name).collect());
     let mut failures = Vec::new();
     for (text, expected) in &cases {
+        let expected = expected.replace("{TEXTURES}", &textures).replace("{MATERIALS}", &materials);
         let got = error(text);
-        if got != *expected {
+        if got != expected {
             failures.push(format!("input:\n{text}\n  expected: {expected}\n  got:      {got}"));
         }
         assert!(!got.contains('\n'), "one line: {got}");
@@ -177,15 +182,20 @@ fn wrong_types_say_what_was_expected_at_the_key() {
         (with_camera("[[objects]]\ntype = \"box\"\nmin = [0, 0, 0]\nmax = 1\n"), "s.toml:8:7: box: max: expected [x, y, z], got a number 1"),
         (with_camera("[[objects]]\ntype = \"cylinder\"\nfrom = [0, 0, 0]\nto = [0, 1, 0]\nradius = 1\ncaps = 1\n"), "s.toml:10:8: cylinder: caps: expected true or false, got a number 1"),
         (with_camera("[[objects]]\ntype = \"point_light\"\nposition = [0, 0, 0]\nintensity = [1, 2]\n"), "s.toml:8:13: point_light: intensity: expected a number or [r, g, b], got an array of 2"),
-        (with_camera("[materials.m]\ncolor = { type = \"checkers\" }\n"), "s.toml:6:18: material \"m\": color: type: unknown texture \"checkers\" (did you mean 'checker'? textures: checker)"),
-        (with_camera("[materials.m]\ntype = \"phongg\"\n"), "s.toml:6:8: material \"m\": unknown material type \"phongg\" (did you mean 'phong'? material types: phong)"),
+        (with_camera("[materials.m]\ncolor = { type = \"checkers\" }\n"), "s.toml:6:18: material \"m\": color: type: unknown texture \"checkers\" (did you mean 'checker'? textures: {TEXTURES})"),
+        (with_camera("[materials.m]\ntype = \"phongg\"\n"), "s.toml:6:8: material \"m\": unknown material type \"phongg\" (did you mean 'phong'? material types: {MATERIALS})"),
         (with_camera("[[objects]]\ntype = \"spher\"\n"), "s.toml:6:8: spher: unknown node type (did you mean 'sphere'?)"),
         (with_camera("[[objects]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nchildren = []\n"), "s.toml:5:1: sphere: takes no `children` (only a group does)"),
     ];
+    // The lists of kinds come from the registry, so a new kind changes no test.
+    let names = |kinds: Vec<&str>| kinds.join(", ");
+    let textures = names(lamplight_scene::registry::TEXTURES.iter().map(|k| k.name).collect());
+    let materials = names(lamplight_scene::registry::MATERIALS.iter().map(|k| k.name).collect());
     let mut failures = Vec::new();
     for (text, expected) in &cases {
+        let expected = expected.replace("{TEXTURES}", &textures).replace("{MATERIALS}", &materials);
         let got = error(text);
-        if got != *expected {
+        if got != expected {
             failures.push(format!("input:\n{text}\n  expected: {expected}\n  got:      {got}"));
         }
     }
