@@ -47,8 +47,13 @@ pub static LIGHTS: &[&LightKind] = &[&lights::point::KIND, &lights::directional:
 pub static MATERIALS: &[&MaterialKind] = &[&materials::phong::KIND];
 
 /// Camera kinds; the first is the default `type`.
-pub static CAMERAS: &[&CameraKind] =
-    &[&camera::perspective::PERSPECTIVE_KIND, &camera::perspective::WINDOW_KIND, &camera::thin_lens::KIND, &camera::orthographic::KIND];
+pub static CAMERAS: &[&CameraKind] = &[
+    &camera::perspective::PERSPECTIVE_KIND,
+    &camera::perspective::WINDOW_KIND,
+    &camera::thin_lens::KIND,
+    &camera::orthographic::KIND,
+    &camera::spherical::KIND,
+];
 
 /// Texture kinds.
 pub static TEXTURES: &[&TextureKind] = &[&materials::texture::CHECKER];

@@ -21,6 +21,7 @@ use crate::Error;
 
 pub mod orthographic;
 pub mod perspective;
+pub mod spherical;
 pub mod thin_lens;
 
 /// Builds a camera kind's camera from its parameters.
