@@ -14,7 +14,7 @@ fn top_camera() -> Perspective {
 fn centre_radiance(scene: &Scene, max_depth: u32) -> (Rgb, RayCounts) {
     let mut counts = RayCounts::default();
     let ray = Ray::new(Vec3::new(0.0, 5.0, 0.0), -Vec3::Y);
-    let value = Whitted { max_depth, min_weight: 0.0 }.trace(scene, &ray, &mut counts);
+    let value = Whitted::new(scene, max_depth, 0.0).trace(scene, &ray, &mut counts);
     (value, counts)
 }
 

@@ -153,7 +153,8 @@ fn next_event_estimation_agrees_with_bsdf_sampling_alone() {
 fn point_and_directional_lights_give_the_analytic_radiance() {
     // A white Lambertian floor (albedo 0.5) under a point light of intensity I at
     // height 2 and a directional light at 60 degrees: at the point below the lamp,
-    // L = 0.5/pi (I / 4 + E cos 60).
+    // L = 0.5 (I / 4 + E cos 60), the lecture's value (the lights' radiant
+    // intensity and irradiance are pi I and pi E, the BSDF 0.5 / pi).
     let camera = Perspective::look_at(Vec3::new(0.0, 1.0, 0.0), Vec3::ZERO, Vec3::Z, Fov::VerticalDeg(1.0)).unwrap();
     let mut b = SceneBuilder::new(camera);
     let grey =
@@ -165,7 +166,7 @@ fn point_and_directional_lights_give_the_analytic_radiance() {
     let scene = b.build().unwrap();
     let (image, _) =
         render_image(&scene, &RenderOptions { max_depth: Some(2), ..path_options(1, 256) }, &RenderControl::default()).unwrap();
-    let expected = 0.5 / std::f64::consts::PI * (8.0 / 4.0 + 2.0 * 0.5);
+    let expected = 0.5 * (8.0 / 4.0 + 2.0 * 0.5);
     assert!((image.get(0, 0)[0] as f64 - expected).abs() / expected < 1e-3, "{:?} vs {expected}", image.get(0, 0));
 }
 

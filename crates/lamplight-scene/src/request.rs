@@ -148,7 +148,12 @@ impl SceneRequest {
         SceneRequest {
             spec: SceneSpec::Builtin(b),
             name: b.name.to_string(),
-            defaults: Defaults { size: b.default_size, ..program_defaults() },
+            // The registry's names are tested to be integrators (tests/native.rs).
+            defaults: Defaults {
+                size: b.default_size,
+                integrator: integrators::find(b.integrator).unwrap_or(integrators::default_integrator()),
+                ..program_defaults()
+            },
         }
     }
 

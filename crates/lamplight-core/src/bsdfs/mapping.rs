@@ -12,7 +12,11 @@
 //! | `Refraction::Fresnel` alone | refraction of weight `1 - F` |
 //! | `Refraction::Constant(w)` | refraction of weight `w` |
 //! | `emission` | area light radiance (see [`crate::lights::area`]) |
-//! | `ka` | nothing: the ambient light becomes a uniform sky the surface reflects through its BSDF |
+//! | `ka` | nothing: it stands for the indirect light the path tracer computes (the background is the sky, [`crate::lights::LightSet`]) |
+//!
+//! With lights read as [`crate::lights::DELTA_SCALE`] says, the Lambertian lobe
+//! gives exactly the lecture's diffuse term under point, directional and spot
+//! lights; the GGX lobe only approximates the Blinn highlight.
 //!
 //! On a conductor or on Fresnel glass the Blinn highlight is dropped: it stands for
 //! the light source's own reflection, which the path tracer computes from the

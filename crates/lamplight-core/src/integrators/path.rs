@@ -125,23 +125,22 @@ impl PathTracer {
             // the intersection's latency. Unused if the path ends here.
             let (u_light, u_bsdf) = (sampler.peek_2d(1), sampler.peek_2d(3));
             let Some(hit) = scene.first_intersect(&ray, f64::INFINITY) else {
-                match (depth, self.lights.camera_background, &self.lights.environment) {
-                    (1, Some(bg), _) => radiance += beta * bg,
-                    (_, _, Some(env)) => {
-                        let w = if prev_delta { 1.0 } else { power_heuristic(prev_pdf, p_pick * env.pdf(ray.dir)) };
-                        radiance += beta * env.radiance(ray.dir) * w;
-                    }
-                    _ => {}
+                if let Some(env) = &self.lights.environment {
+                    let w = if prev_delta { 1.0 } else { power_heuristic(prev_pdf, p_pick * env.pdf(ray.dir)) };
+                    radiance += beta * env.radiance(ray.dir) * w;
                 }
                 break;
             };
             let material = &scene.materials[hit.material];
-            if hit.front_face && material.emission != Rgb::ZERO {
+            if material.emits_towards(hit.front_face) {
                 let w = match self.lights.area_light_of(hit.object) {
                     Some(light) if !prev_delta => {
                         // Outward normal: the geometric normal faces the ray on the front face.
                         power_heuristic(prev_pdf, p_pick * light.pdf(ray.dir, hit.t, hit.geometric_normal))
                     }
+                    // A bulb's light comes through its delta light, which BSDF
+                    // samples cannot find: only delta paths see the bulb itself.
+                    _ if !prev_delta && self.lights.is_bulb(hit.object) => 0.0,
                     // Delta paths, and emitters that light sampling cannot reach.
                     _ => 1.0,
                 };

@@ -31,15 +31,13 @@ impl SimplePath {
         let mut ray = *camera_ray;
         for depth in 1..=self.max_depth {
             let Some(hit) = scene.first_intersect(&ray, f64::INFINITY) else {
-                match (depth, self.lights.camera_background, &self.lights.environment) {
-                    (1, Some(bg), _) => radiance += beta * bg,
-                    (_, _, Some(env)) => radiance += beta * env.radiance(ray.dir),
-                    _ => {}
+                if let Some(env) = &self.lights.environment {
+                    radiance += beta * env.radiance(ray.dir);
                 }
                 break;
             };
             let material = &scene.materials[hit.material];
-            if hit.front_face {
+            if material.emits_towards(hit.front_face) {
                 radiance += beta * material.emission;
             }
             if depth >= self.max_depth {

@@ -7,10 +7,19 @@
 //! of (ray, weight, depth) and sums `weight * direct light`: the stack cannot
 //! overflow whatever the depth limit, and the work is bounded by `2^depth` rays
 //! per camera ray (less with the weight cut-off).
+//!
+//! Emitting objects are area lights here too (POV-Ray's `area_light`): each hit
+//! takes [`AREA_SAMPLES`] stratified points on every one, each with its own
+//! shadow ray, so they give soft shadows. A sample of density `pdf` (solid
+//! angle) stands for `Lin = Le / (pi pdf N)`, the lecture's light term that the
+//! rough model multiplies: the same reading of `kd` that makes the path tracer
+//! agree ([`crate::lights::DELTA_SCALE`]). Rays that leave the scene see the
+//! environment map if there is one, else the background colour.
 
 use std::mem::MaybeUninit;
 
 use super::{Integrator, IntegratorEntry, IntegratorSettings, RayCounts, Schedule, View};
+use crate::lights::{AreaLight, LightSet};
 use crate::materials::{fresnel_conductor, fresnel_dielectric, Material, Reflection, Refraction};
 use crate::math::{max_component, Rgb, Vec3};
 use crate::ray::{offset_origin, Ray};
@@ -26,8 +35,11 @@ pub const ENTRY: IntegratorEntry = IntegratorEntry {
 };
 
 fn build_whitted(scene: &Scene, settings: &IntegratorSettings) -> Result<Box<dyn Integrator>, Error> {
-    Ok(Box::new(Whitted { max_depth: settings.max_depth, min_weight: scene.min_weight }))
+    Ok(Box::new(Whitted::new(scene, settings.max_depth, scene.min_weight)))
 }
+
+/// Points taken on each area light at each hit (a 4 x 4 grid, jittered).
+pub const AREA_SAMPLES: u32 = 16;
 
 /// Lights whose `N.L` is at or below this are skipped (POV-Ray's threshold).
 const MIN_COSINE: f64 = 1e-10;
@@ -37,12 +49,14 @@ const MIN_COSINE: f64 = 1e-10;
 const NEGLIGIBLE: f64 = 1e-12;
 
 /// Whitted ray tracing with a depth limit.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub struct Whitted {
     /// Rays deeper than this return black (camera ray = 1).
     pub max_depth: u32,
     /// Secondary rays with weight at or below this in every channel are dropped.
     pub min_weight: f64,
+    /// The scene's emitting objects.
+    area_lights: Vec<AreaLight>,
 }
 
 /// The deepest recursion the integrator accepts: the work list lives on the stack
@@ -76,7 +90,7 @@ impl Integrator for Whitted {
         };
         let lens = if view.lens { (uniform(), uniform()) } else { (0.5, 0.5) };
         let ray = view.camera.ray(x as f64 + dx, y as f64 + dy, view.width, view.height, lens);
-        self.trace(view.scene, &ray, counts)
+        self.trace_with(view.scene, &ray, &mut uniform, counts)
     }
 
     fn schedule(&self) -> Schedule {
@@ -85,8 +99,21 @@ impl Integrator for Whitted {
 }
 
 impl Whitted {
+    /// The tracer for `scene` (its area lights are collected here).
+    pub fn new(scene: &Scene, max_depth: u32, min_weight: f64) -> Whitted {
+        Whitted { max_depth, min_weight, area_lights: LightSet::new(scene).area }
+    }
+
     /// The lecture's `trace`: the radiance arriving along camera ray `ray`.
+    /// Area lights draw their points from a fixed generator.
     pub fn trace(&self, scene: &Scene, ray: &Ray, counts: &mut RayCounts) -> Rgb {
+        let mut rng = Rng::for_sample(0, 0, 0);
+        self.trace_with(scene, ray, &mut || rng.uniform(), counts)
+    }
+
+    /// [`Whitted::trace`] with the values of `[0, 1)` for area light points drawn
+    /// from `uniform` (called only when the scene has area lights).
+    pub fn trace_with(&self, scene: &Scene, ray: &Ray, uniform: &mut dyn FnMut() -> f64, counts: &mut RayCounts) -> Rgb {
         counts.camera += 1;
         let mut total = Rgb::ZERO;
         // Depth-first: each ray taken off the list adds at most two one level deeper,
@@ -102,11 +129,14 @@ impl Whitted {
             // `work[pending]` and then increments it).
             let Pending { ray, weight, depth } = unsafe { work[pending].assume_init_read() };
             let Some(hit) = scene.first_intersect(&ray, f64::INFINITY) else {
-                total += weight * scene.background;
+                total += weight * scene.environment.as_ref().map_or(scene.background, |env| env.radiance(ray.dir));
                 continue;
             };
             let material = &scene.materials[hit.material];
             total += weight * direct_light(scene, &ray, &hit, material, counts);
+            if !self.area_lights.is_empty() && material.is_lit() {
+                total += weight * area_light(scene, &self.area_lights, &ray, &hit, material, uniform, counts);
+            }
             if depth >= max_depth {
                 continue;
             }
@@ -127,37 +157,87 @@ impl Whitted {
 
 /// The lecture's `DirectLight`: `Ke + ka*C*La + sum over visible lights of
 /// Lin * (kd*C (L.N) + ks (H.N)^shine)`, skipping lights with `L.N <= 1e-10`.
+/// `Ke` counts on the side the surface emits from ([`Material::emits_towards`]).
 pub fn direct_light(scene: &Scene, ray: &Ray, hit: &Hit, material: &Material, counts: &mut RayCounts) -> Rgb {
     let color = material.color.evaluate(hit.point);
-    let mut radiance = material.emission + material.ka * color * scene.ambient;
+    let emission = if material.emits_towards(hit.front_face) { material.emission } else { Rgb::ZERO };
+    let mut radiance = emission + material.ka * color * scene.ambient;
     if !material.is_lit() {
         return radiance;
     }
-    let n = hit.normal;
-    let view = -ray.dir;
     for light in &scene.lights {
         let Some(sample) = light.illuminate(hit.point) else { continue };
-        let cos_light = n.dot(sample.wi);
-        if cos_light <= MIN_COSINE || hit.geometric_normal.dot(sample.wi) <= 0.0 {
-            continue;
-        }
-        // The unshadowed reflection first: a light whose contribution could not
-        // show (a highlight of a material without diffuse term, far from its peak)
-        // costs no shadow ray.
-        let diffuse = material.kd * color * cos_light;
-        let cos_half = n.dot((view + sample.wi).normalize());
-        let specular =
-            if cos_half > 0.0 && material.ks != Rgb::ZERO { material.ks * blinn_power(cos_half, material.shininess) } else { Rgb::ZERO };
-        let reflected = diffuse + specular;
-        if max_component(reflected) < NEGLIGIBLE {
-            continue;
-        }
-        counts.shadow += 1;
-        let origin = offset_origin(hit.point, hit.geometric_normal, sample.wi, hit.t, hit.error);
-        let remaining = sample.distance - (origin - hit.point).length();
-        let visible = scene.transmittance(origin, sample.wi, remaining, light.own_object());
-        if visible != Rgb::ZERO {
-            radiance += sample.radiance * visible * reflected;
+        radiance += lit_by(scene, ray, hit, material, color, sample.wi, sample.distance, sample.radiance, light.own_object(), counts);
+    }
+    radiance
+}
+
+/// What the rough model reflects towards `-ray.dir` of light `lin` arriving
+/// from `wi` over `distance` if nothing blocks it: `Lin (kd C (L.N) + ks
+/// (H.N)^shine)` times the shadow ray's transmittance (`own` does not block).
+#[allow(clippy::too_many_arguments)]
+#[inline]
+fn lit_by(
+    scene: &Scene,
+    ray: &Ray,
+    hit: &Hit,
+    material: &Material,
+    color: Rgb,
+    wi: Vec3,
+    distance: f64,
+    lin: Rgb,
+    own: Option<usize>,
+    counts: &mut RayCounts,
+) -> Rgb {
+    let n = hit.normal;
+    let cos_light = n.dot(wi);
+    if cos_light <= MIN_COSINE || hit.geometric_normal.dot(wi) <= 0.0 {
+        return Rgb::ZERO;
+    }
+    // The unshadowed reflection first: a light whose contribution could not
+    // show (a highlight of a material without diffuse term, far from its peak)
+    // costs no shadow ray.
+    let diffuse = material.kd * color * cos_light;
+    let cos_half = n.dot((wi - ray.dir).normalize());
+    let specular =
+        if cos_half > 0.0 && material.ks != Rgb::ZERO { material.ks * blinn_power(cos_half, material.shininess) } else { Rgb::ZERO };
+    let reflected = diffuse + specular;
+    if max_component(reflected) < NEGLIGIBLE {
+        return Rgb::ZERO;
+    }
+    counts.shadow += 1;
+    let origin = offset_origin(hit.point, hit.geometric_normal, wi, hit.t, hit.error);
+    let remaining = distance - (origin - hit.point).length();
+    let visible = scene.transmittance(origin, wi, remaining, own);
+    if visible == Rgb::ZERO {
+        return Rgb::ZERO;
+    }
+    lin * visible * reflected
+}
+
+/// The rough model under the area lights `lights`: [`AREA_SAMPLES`] points on
+/// each, stratified on a 4 x 4 grid of the light's sample square and jittered by
+/// `uniform`, each standing for `Lin = Le / (pi pdf N)`.
+fn area_light(
+    scene: &Scene,
+    lights: &[AreaLight],
+    ray: &Ray,
+    hit: &Hit,
+    material: &Material,
+    uniform: &mut dyn FnMut() -> f64,
+    counts: &mut RayCounts,
+) -> Rgb {
+    let color = material.color.evaluate(hit.point);
+    let mut radiance = Rgb::ZERO;
+    let side = (AREA_SAMPLES as f64).sqrt() as u32;
+    let scale = 1.0 / (std::f64::consts::PI * AREA_SAMPLES as f64);
+    for light in lights {
+        for k in 0..AREA_SAMPLES {
+            let (jx, jy) = (uniform(), uniform());
+            let u = (((k % side) as f64 + jx) / side as f64, ((k / side) as f64 + jy) / side as f64);
+            let Some(s) = light.sample(hit.point, u) else { continue };
+            let lin = s.radiance * (scale / s.pdf);
+            radiance += lit_by(scene, ray, hit, material, color, s.wi, s.distance, lin, Some(light.object), counts);
         }
     }
     radiance

@@ -1,7 +1,8 @@
 //! Area lights: scene objects whose material emits (`emission > 0`).
 //!
 //! An emitting surface sends radiance `Le` from its outward side only (as area
-//! lights in pbrt and Mitsuba do). Light sampling picks a point `y` uniformly on
+//! lights in pbrt and Mitsuba do), or from both when its material is
+//! [two-sided](crate::materials::Material::two_sided). Light sampling picks a point `y` uniformly on
 //! the shape's area `A`; seen from `x`, its density in solid angle is
 //! `pdf = |x - y|^2 / (|cos(theta_y)| A)`, where `theta_y` is between the light's
 //! normal and the direction back to `x`. Shapes that only know their area as
@@ -23,6 +24,8 @@ pub struct AreaLight {
     pub shape: Arc<dyn Shape>,
     /// Emitted radiance on the outward side.
     pub radiance: Rgb,
+    /// The inward side emits `radiance` too.
+    pub two_sided: bool,
     area: f64,
     /// The shape is convex ([`Shape::is_convex`]): a sampled point is where a
     /// shadow ray towards it first meets the light.
@@ -56,7 +59,12 @@ impl AreaLight {
             }
         };
         let convex = triangles.is_none() && shape.is_convex();
-        (area > 0.0 && area.is_finite()).then_some(AreaLight { object, shape, radiance, area, convex, triangles })
+        (area > 0.0 && area.is_finite()).then_some(AreaLight { object, shape, radiance, two_sided: false, area, convex, triangles })
+    }
+
+    /// The same light emitting from both sides when `two_sided`.
+    pub fn with_two_sided(self, two_sided: bool) -> AreaLight {
+        AreaLight { two_sided, ..self }
     }
 
     /// Surface area.
@@ -78,7 +86,8 @@ impl AreaLight {
         let distance = d2.sqrt();
         // One division for the three components (divisions are the slow part here).
         let wi = to * (1.0 / distance);
-        let cos_y = -wi.dot(n);
+        let facing = -wi.dot(n);
+        let cos_y = if self.two_sided { facing.abs() } else { facing };
         if cos_y <= 0.0 {
             return None; // the back side does not emit
         }

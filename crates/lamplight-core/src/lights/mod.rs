@@ -27,6 +27,18 @@ pub use point::{Falloff, PointLight};
 pub use set::LightSet;
 pub use spot::{SpotLight, SpotProfile};
 
+/// The physical reading of a delta light's lecture intensity: `pi`.
+///
+/// The lecture's diffuse term `kd C (L.N) Lin` is what a Lambertian surface of
+/// albedo `kd C` (BSDF `kd C / pi`) reflects under an irradiance of
+/// `pi Lin (L.N)`. So a point or spot light of intensity `I` has the radiant
+/// intensity `pi I` (per steradian) and a directional light of intensity `E`
+/// gives the irradiance `pi E` across its direction. The path tracer uses these
+/// physical values ([`Light::sample_li`]); the Whitted integrator uses `Lin`
+/// itself ([`Light::illuminate`]). Direct light on a diffuse surface is then the
+/// same number under both: `kd C (L.N) I / d^2`.
+pub const DELTA_SCALE: f64 = std::f64::consts::PI;
+
 /// What a light delivers to one point.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LightSample {
@@ -79,12 +91,16 @@ pub trait Light: Send + Sync + std::fmt::Debug {
 
     /// One light sample for receiver `point` from `u` in `[0, 1)^2`, or `None`
     /// when the light sends nothing there.
+    ///
+    /// The default is a delta light's: [`Light::illuminate`]'s `Lin` times `pi`
+    /// ([`DELTA_SCALE`]), the physical reading of the lecture's intensities that
+    /// makes both integrators agree.
     fn sample_li(&self, point: Vec3, u: (f64, f64)) -> Option<LiSample> {
         let _ = u;
         self.illuminate(point).map(|s| LiSample {
             wi: s.wi,
             distance: s.distance,
-            radiance: s.radiance,
+            radiance: s.radiance * DELTA_SCALE,
             pdf: None,
             own_object: self.own_object(),
             ends_on_own: false,

@@ -2,20 +2,20 @@
 //! (delta lights), emitting objects (area lights) and the environment.
 //!
 //! One light is picked uniformly per light sample, with probability `1 / count`.
-//! When the scene has no environment of its own, the ambient light becomes a
-//! uniform sky lighting every surface, and rays leaving the camera straight into
-//! the sky see the scene's background colour (so lecture scenes keep their look).
 //!
-//! The sky's radiance is not `La` itself: the lecture's ambient term `ka C La` is
-//! what a diffuse surface of albedo `kd C` reflects under an open sky of radiance
-//! `(ka / kd) La`. The sky takes `La` times the mean of `ka / kd` over the scene's
-//! diffuse materials (0.125 for luxo's table), so a scene keeps the fill light
-//! balance its author set against its lamps.
+//! An emitting object that is a delta light's own body (its `own_object`, a
+//! bulb around a point light) is not an area light: its light is the delta
+//! light's, and counting both would count it twice. It is still seen.
+//!
+//! The sky is the scene's environment map, or else its background colour as a
+//! uniform environment light: every ray that leaves the scene sees it, camera
+//! rays and reflections alike (what the Whitted integrator's rays see), and it
+//! lights every surface. The ambient term `ka C La` lights nothing here: it is
+//! the lecture's stand-in for indirect light, which the path tracer computes.
 
 use std::sync::Arc;
 
 use super::{AreaLight, Environment, Light};
-use crate::math::Rgb;
 use crate::scene::Scene;
 
 /// The lights of a scene in one list.
@@ -27,42 +27,36 @@ pub struct LightSet {
     pub area: Vec<AreaLight>,
     /// The sky, if any.
     pub environment: Option<Arc<Environment>>,
-    /// What camera rays that hit nothing see.
-    pub camera_background: Option<Rgb>,
     by_object: Vec<Option<u32>>,
+    bulb: Vec<bool>,
 }
 
 impl LightSet {
     /// Collects the lights of `scene`.
     pub fn new(scene: &Scene) -> LightSet {
         let mut by_object = vec![None; scene.objects.len()];
+        let mut bulb = vec![false; scene.objects.len()];
+        for own in scene.lights.iter().filter_map(|l| l.own_object()) {
+            if let Some(b) = bulb.get_mut(own) {
+                *b = true;
+            }
+        }
         let mut area = Vec::new();
         for (i, object) in scene.objects.iter().enumerate() {
-            let emission = scene.materials[object.material].emission;
-            if emission.max_element() > 0.0 {
-                if let Some(light) = AreaLight::new(i, object.shape.clone(), emission) {
+            let material = &scene.materials[object.material];
+            if material.emission.max_element() > 0.0 && !bulb[i] {
+                if let Some(light) = AreaLight::new(i, object.shape.clone(), material.emission) {
+                    let light = light.with_two_sided(material.two_sided);
                     by_object[i] = Some(area.len() as u32);
                     area.push(light);
                 }
             }
         }
-        let (environment, camera_background) = match &scene.environment {
-            Some(env) => (Some(env.clone()), None),
-            None if scene.ambient.max_element() > 0.0 => {
-                let ratios: Vec<f64> = scene
-                    .materials
-                    .iter()
-                    .filter(|m| m.kd.max_element() > 0.0)
-                    .map(|m| (m.ka.max_element() / m.kd.max_element()).min(1.0))
-                    .collect();
-                let scale = if ratios.is_empty() { 1.0 } else { ratios.iter().sum::<f64>() / ratios.len() as f64 };
-                let sky = scene.ambient * scale;
-                let env = (sky.max_element() > 0.0).then(|| Arc::new(Environment::Constant(sky)));
-                (env, Some(scene.background))
-            }
-            None => (None, Some(scene.background)),
+        let environment = match &scene.environment {
+            Some(env) => Some(env.clone()),
+            None => (scene.background.max_element() > 0.0).then(|| Arc::new(Environment::Constant(scene.background))),
         };
-        LightSet { delta: scene.lights.clone(), area, environment, camera_background, by_object }
+        LightSet { delta: scene.lights.clone(), area, environment, by_object, bulb }
     }
 
     /// Number of lights.
@@ -93,6 +87,12 @@ impl LightSet {
         self.environment.as_deref().map(|e| e as &dyn Light)
     }
 
+    /// Whether object `object` is a delta light's own body, whose light the
+    /// delta light gives (see the module doc).
+    pub fn is_bulb(&self, object: usize) -> bool {
+        self.bulb.get(object).copied().unwrap_or(false)
+    }
+
     /// The area light of object `object`, if it emits.
     pub fn area_light_of(&self, object: usize) -> Option<&AreaLight> {
         self.by_object.get(object).copied().flatten().map(|i| &self.area[i as usize])
@@ -105,7 +105,7 @@ mod tests {
     use crate::camera::{Fov, Perspective};
     use crate::lights::{PointLight, SpotLight, SpotProfile};
     use crate::materials::Material;
-    use crate::math::Vec3;
+    use crate::math::{Rgb, Vec3};
     use crate::shapes::Rectangle;
     use crate::SceneBuilder;
 
@@ -126,9 +126,9 @@ mod tests {
         assert_eq!(set.count(), 4);
         let x = Vec3::ZERO;
         let picks: Vec<_> = [0.1, 0.3, 0.6, 0.9].iter().map(|&u| set.pick(u).unwrap().sample_li(x, (0.5, 0.5)).unwrap()).collect();
-        // The point and spot lights: delta samples straight up, 9 / 3^2.
+        // The point and spot lights: delta samples straight up, pi 9 / 3^2.
         for s in &picks[..2] {
-            assert_eq!((s.wi, s.distance, s.radiance, s.pdf), (Vec3::Y, 3.0, Rgb::ONE, None));
+            assert_eq!((s.wi, s.distance, s.radiance, s.pdf), (Vec3::Y, 3.0, Rgb::splat(std::f64::consts::PI), None));
         }
         // The area light: its centre from (0.5, 0.5), at distance 2 straight up: pdf d^2 / (cos A) = 4.
         let area = picks[2];

@@ -100,8 +100,12 @@ pub struct Material {
     pub ks: Rgb,
     /// Blinn exponent.
     pub shininess: f64,
-    /// Emitted radiance `Ke`, added as seen (lights are separate objects).
+    /// Emitted radiance `Ke`, from the outward (front) side only unless
+    /// [`Material::two_sided`], as pbrt's and Mitsuba's area lights emit.
     pub emission: Rgb,
+    /// Whether `emission` leaves both sides of the surface (Mitsuba's
+    /// `twosided` emitter, Blender's default for emission shaders).
+    pub two_sided: bool,
     /// Smooth mirror reflection.
     pub reflection: Reflection,
     /// Smooth refraction.
@@ -124,6 +128,7 @@ impl Default for Material {
             ks: Rgb::ZERO,
             shininess: 1.0,
             emission: Rgb::ZERO,
+            two_sided: false,
             reflection: Reflection::None,
             refraction: Refraction::None,
             shadow_transmittance: Rgb::ZERO,
@@ -173,6 +178,14 @@ impl Material {
             reflection: Reflection::Conductor { eta, k },
             ..Material::default()
         }
+    }
+
+    /// Whether the surface emits towards a ray that met its front face
+    /// (`front_face`) or its back: some emission, and the front side or
+    /// [`Material::two_sided`].
+    #[inline]
+    pub fn emits_towards(&self, front_face: bool) -> bool {
+        self.emission != Rgb::ZERO && (front_face || self.two_sided)
     }
 
     /// True when the material needs the light loop (some diffuse or specular term).

@@ -36,7 +36,8 @@ pub const KIND: MaterialKind = Kind {
         Param::new("kd", T::Color, "0.9", "", "diffuse factor"),
         Param::new("ks", T::Color, "0", "", "Blinn highlight factor (not multiplied by `C`)"),
         Param::new("shininess", T::Number, "1", ">= 0", "Blinn exponent"),
-        Param::new("emission", T::Color, "0", "radiance", "emitted radiance; in the path tracer an emitting shape is an area light"),
+        Param::new("emission", T::Color, "0", "radiance", "emitted radiance, from the front side; an emitting shape is an area light"),
+        Param::new("two_sided", T::Bool, "false", "", "emit from both sides of the surface, not only the front"),
         Param::new("reflection", T::Table, "none", "", "mirror reflection (see below)"),
         Param::new("refraction", T::Table, "none", "", "refraction (see below)"),
         Param::new(
@@ -68,6 +69,7 @@ fn build(p: &mut Params<'_>, textures: &super::Textures<'_>) -> ParamResult<Mate
         ks: p.color_or("ks", d.ks)?,
         shininess: p.number_or("shininess", d.shininess)?,
         emission: p.color_or("emission", d.emission)?,
+        two_sided: p.boolean("two_sided")?.unwrap_or(d.two_sided),
         reflection: reflection(p)?,
         refraction: refraction(p)?,
         shadow_transmittance: p.color_or("shadow_transmittance", d.shadow_transmittance)?,

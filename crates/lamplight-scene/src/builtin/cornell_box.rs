@@ -9,8 +9,9 @@
 //! Lambertian; the light's own surface is the white material. Sharing the scene
 //! exactly with Mitsuba is what makes `bench/mitsuba_cornell.py` a cross-check.
 //!
-//! Lit only by its emitting rectangle, the box needs `--integrator path`: the
-//! Whitted tracer shows the light and nothing it illuminates.
+//! Its default integrator is the path tracer (as the example file's); under
+//! `--integrator whitted` the lamp is an area light with soft shadows and no
+//! indirect light.
 
 use glam::DMat4;
 use lamplight_core::prelude::*;

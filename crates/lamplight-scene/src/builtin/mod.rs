@@ -21,6 +21,8 @@ pub struct Builtin {
     pub summary: &'static str,
     /// Image size used when none is given.
     pub default_size: (u32, u32),
+    /// The integrator used when none is given (the example file's `integrator`).
+    pub integrator: &'static str,
     /// Builds the scene.
     pub build: fn() -> Result<Scene, Error>,
 }
@@ -31,24 +33,28 @@ pub const BUILTINS: &[Builtin] = &[
         name: "luxo",
         summary: "the lecture's Homework 2: a paraboloid desk lamp with a light in its focus over a table",
         default_size: (1280, 720),
+        integrator: "whitted",
         build: luxo::build,
     },
     Builtin {
         name: "business-card",
         summary: "Paul Heckbert's business-card ray tracer: five spheres, constant weights",
         default_size: (32, 32),
+        integrator: "whitted",
         build: business_card::build,
     },
     Builtin {
         name: "cornell-box",
-        summary: "the Cornell box with an area light in the ceiling (Mitsuba 3's cornell_box(); use --integrator path)",
+        summary: "the Cornell box with an area light in the ceiling (Mitsuba 3's cornell_box(), path traced)",
         default_size: (512, 512),
+        integrator: "path",
         build: cornell_box::build,
     },
     Builtin {
         name: "spheres",
         summary: "100 spheres of three materials on a checkered floor (POV-Ray comparison scene)",
         default_size: (1280, 720),
+        integrator: "whitted",
         build: spheres::build,
     },
 ];

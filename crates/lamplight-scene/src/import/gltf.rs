@@ -10,8 +10,11 @@
 //! ([`SpotProfile::Gltf`]). An orthographic camera's `xmag` and `ymag` are the
 //! half-width and half-height of its view; an image of another aspect widens the
 //! view rather than crop or stretch it (the glTF 2.0 specification's rule for
-//! orthographic projections: no cropping, no non-uniform scaling). Light
-//! intensities (candela, lux) are taken as lamplight intensity/radiance as is.
+//! orthographic projections: no cropping, no non-uniform scaling). A light's
+//! intensity (candela for point and spot lights, lux for directional ones) is
+//! divided by `pi` ([`lamplight_core::lights::DELTA_SCALE`]): a white diffuse
+//! surface 1 m from a 1 cd light, facing it, then shows the `1 / pi` nit the
+//! glTF specification's units give, under both integrators.
 //!
 //! The `gltf` crate parses and validates the JSON (`Gltf::from_slice`, so a bad
 //! reference names its JSON path), but the buffers and accessors are read here:
@@ -180,7 +183,8 @@ impl Reader<'_> {
         }
         if let Some(light) = node.light() {
             let at = format!("extensions.KHR_lights_punctual.lights[{}]", light.index());
-            let power = Rgb::from_array(light.color().map(f64::from)) * f64::from(light.intensity());
+            let power =
+                Rgb::from_array(light.color().map(f64::from)) * (f64::from(light.intensity()) / lamplight_core::lights::DELTA_SCALE);
             if light.range().is_some() {
                 self.warnings.once("glTF light range ignored: point and spot lights fall off with the squared distance".to_string());
             }
