@@ -67,8 +67,9 @@ pub enum Texture {
     Constant(Rgb),
     /// A 3D checker of cubes of edge `size`: `even` where
     /// `floor((x+o.x)/size) + floor((y+o.y)/size) + floor((z+o.z)/size)` is even,
-    /// `odd` elsewhere (POV-Ray's `checker`). The offset `o` keeps a planar floor
-    /// away from a cube boundary, where rounding would make the pattern flicker.
+    /// `odd` elsewhere (POV-Ray's `checker`). A point within rounding error of a
+    /// cell boundary counts as on it ([`cell_parity`]), so a floor at `y = 0`
+    /// shows clean squares without an offset; `o` shifts the pattern.
     Checker {
         /// Cube edge length.
         size: f64,
@@ -99,19 +100,37 @@ impl Texture {
     }
 }
 
-/// `(floor(x) + floor(y) + floor(z)) mod 2` for the checker's cell coordinates.
+/// Relative distance below a cell boundary within which a point counts as on
+/// it: far above the rounding of a hit point (about 1e-16 of its distance from
+/// the origin and from the ray's origin), far below anything a pixel resolves
+/// when the camera is within a million cells of the pattern.
+pub const CELL_SNAP: f64 = 1e-9;
+
+/// `(floor(x) + floor(y) + floor(z)) mod 2` for the checker's cell coordinates,
+/// where a coordinate within [`CELL_SNAP`] `* max(1, |v|)` below an integer
+/// counts as that integer. A surface lying in a cell boundary (a floor at
+/// `y = 0`) is hit at `y = +-1e-17` as rounding falls; without this its pixels
+/// would take either cell's colour at random (POV-Ray adds a small tolerance to
+/// its `checker` for the same reason).
 ///
 /// In integers where they fit (the usual case): `floor` and `rem_euclid` are libm
 /// calls on baseline x86-64 and cost more than the rest of the lookup. Beyond
 /// 2^50 every `f64` is an integer and the float formula is exact.
 #[inline]
-fn cell_parity(cell: Vec3) -> u8 {
+pub fn cell_parity(cell: Vec3) -> u8 {
     const FITS: f64 = (1u64 << 50) as f64;
     if cell.x.abs() < FITS && cell.y.abs() < FITS && cell.z.abs() < FITS {
-        // Truncation, minus one for negative non-integers, is floor.
+        // Truncation, minus one for negative non-integers, is floor; a value just
+        // below the next integer is taken as that integer.
         let floor = |v: f64| {
             let t = v as i64;
-            t - ((t as f64) > v) as i64
+            let below = t - ((t as f64) > v) as i64;
+            let next = below + 1;
+            if next as f64 - v <= CELL_SNAP * v.abs().max(1.0) {
+                next
+            } else {
+                below
+            }
         };
         ((floor(cell.x) + floor(cell.y) + floor(cell.z)) & 1) as u8
     } else {
@@ -125,12 +144,12 @@ mod tests {
     use super::*;
 
     #[test]
-    fn cell_parity_equals_the_float_formula() {
+    fn cell_parity_equals_the_float_formula_away_from_boundaries() {
         let float = |c: Vec3| {
             let f = c.floor();
             (f.x + f.y + f.z).rem_euclid(2.0) as u8
         };
-        let values = [-3.5, -2.0, -1.0, -0.5, -1e-300, 0.0, 0.5, 1.0, 1.5, 2.999, 7.0, 1e9 + 0.5, -1e9 - 0.5, 3e15, -3e15, 1e300];
+        let values = [-3.5, -2.0, -1.0, -0.5, 0.0, 0.5, 1.0, 1.5, 2.999, 7.0, 1e9 + 0.5, -1e9 - 0.5, 3e15, -3e15, 1e300];
         for &x in &values {
             for &y in &values {
                 for &z in &[-0.25, 0.0, 2.5] {
@@ -148,5 +167,23 @@ mod tests {
         assert_eq!(t.evaluate(Vec3::new(0.6, 0.0, 0.1)), Rgb::ZERO);
         assert_eq!(t.evaluate(Vec3::new(-0.1, 0.0, 0.1)), Rgb::ZERO);
         assert_eq!(t.evaluate(Vec3::new(-0.1, -1e-17, -0.1)), Rgb::ONE, "rounding below the plane must not flip it");
+    }
+
+    #[test]
+    fn a_floor_in_a_cell_boundary_shows_one_colour_per_square() {
+        // No offset: the floor y = 0 is a boundary; its hits land a rounding
+        // error above or below it, and both sides must give the same square.
+        let t = Texture::Checker { size: 1.0, even: Rgb::ONE, odd: Rgb::ZERO, offset: Vec3::ZERO };
+        for (x, z) in [(0.5, 0.5), (1.5, 0.5), (-0.5, 0.5), (-0.5, -0.5), (1e5 + 0.5, -3e5 + 0.5)] {
+            let colours: Vec<Rgb> =
+                [-1e-17, -1e-12, -1e-10, 0.0, 1e-17, 1e-12].iter().map(|&y| t.evaluate(Vec3::new(x, y, z))).collect();
+            assert!(colours.iter().all(|c| *c == colours[0]), "({x}, {z}): {colours:?}");
+        }
+        // Cells still alternate, and a point a visible distance below the floor is in the cell below.
+        assert_ne!(t.evaluate(Vec3::new(0.5, 0.0, 0.5)), t.evaluate(Vec3::new(1.5, 0.0, 0.5)));
+        assert_ne!(t.evaluate(Vec3::new(0.5, 0.0, 0.5)), t.evaluate(Vec3::new(0.5, -1e-6, 0.5)));
+        // Far from the origin the tolerance scales with the coordinate.
+        let far = 1e6;
+        assert_eq!(cell_parity(Vec3::new(far - 1e-4, 0.5, 0.5)), cell_parity(Vec3::new(far + 1e-4, 0.5, 0.5)));
     }
 }
