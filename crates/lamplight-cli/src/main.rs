@@ -121,7 +121,11 @@ fn render_command(job: RenderJob) -> anyhow::Result<()> {
     if !quiet {
         eprintln!("{} -> {}", summary, output.display());
     } else if stats.nonfinite_samples > 0 {
-        eprintln!("lamplight: warning: {} samples were NaN or infinite and were replaced by black", stats.nonfinite_samples);
+        eprintln!(
+            "lamplight: warning: {} samples were NaN, infinite or brighter than {:e} and were replaced by black",
+            stats.nonfinite_samples,
+            lamplight_core::film::MAX_RADIANCE
+        );
     }
     Ok(())
 }
