@@ -70,6 +70,17 @@ fn malformed_inputs_give_their_exact_errors() {
         (with_camera("[meshes.m]\nfile = \"s.toml\"\n[[objects]]\ntype = \"mesh\"\nmesh = \"m\"\n"), "s.toml:6:8: mesh \"m\": file \"s.toml\" not found (looked for s.toml)"),
         (with_camera("ambient = 1\nambient = 2\n"), "s.toml:6:1: duplicate key `ambient`, expected each key once per table"),
         (with_camera("[materials.m]\nkd = 1\nkd = 2\n"), "s.toml:7:1: duplicate key `kd`, expected each key once per table"),
+        // Issue 12: ranges that are reversed or outside what the quantity allows.
+        (with_camera("[[objects]]\ntype = \"implicit\"\nexpression = \"x*x + y*y + z*z - 1\"\nmin = [1, 1, 1]\nmax = [-1, -1, -1]\nlipschitz = 4\n"), "s.toml:9:7: implicit: max: min [1, 1, 1] must be below max [-1, -1, -1] on every axis"),
+        (with_camera("[materials.m]\nreflection = { type = \"dielectric\", ior = 1.5, min = 2, max = -1 }\n"), "s.toml:6:54: material \"m\": reflection: min: must be between 0 and 1, got 2"),
+        (with_camera("[materials.m]\nreflection = { type = \"dielectric\", ior = 1.5, min = 0.5, max = 0.25 }\n"), "s.toml:6:65: material \"m\": reflection: max: must be between min (0.5) and 1, got 0.25"),
+        // Issue 12: bounded work per ray, and inputs whose products would overflow a pixel.
+        (with_camera("[[objects]]\ntype = \"implicit\"\nexpression = \"x*x + y*y + z*z - 1\"\nmin = [-1, -1, -1]\nmax = [1, 1, 1]\nlipschitz = 1e30\nmax_steps = 4294967295\n"), "s.toml:11:13: implicit: max_steps: must be between 1 and 65536, got 4294967295"),
+        (with_camera("[[objects]]\ntype = \"point_light\"\nposition = [0, 0, 3]\nintensity = 1e300\n"), "s.toml:8:13: point_light: intensity: must be at most 1e12 in magnitude, got [1e300, 1e300, 1e300]"),
+        (with_camera("[materials.e]\nemission = 1e39\n"), "s.toml:6:12: material \"e\": emission: must be at most 1e12 in magnitude, got [1e39, 1e39, 1e39]"),
+        (with_camera("[materials.e]\ncolor = [1, 2e13, 0]\n"), "s.toml:6:9: material \"e\": color: must be at most 1e12 in magnitude, got [1, 20000000000000, 0]"),
+        (format!("ambient = -1e20\n{CAMERA}"), "s.toml:1:11: scene: ambient: must be at most 1e12 in magnitude, got [-1e20, -1e20, -1e20]"),
+        (with_camera("[[objects]]\ntype = \"group\"\nscale = [1, 1, 1e13]\n"), "s.toml:7:9: group: scale: must be at most 1e12 in magnitude, got [1, 1, 10000000000000]"),
         (format!("ambient = nan\n{CAMERA}"), "s.toml:1:11: scene: ambient: must be finite numbers, got [NaN, NaN, NaN]"),
         (format!("{CAMERA}a{} = 1\n", ".a".repeat(10_000)), "s.toml:5:130: nested more than 64 levels deep (tables, arrays and dotted keys together), expected at most 64"),
         (format!("{CAMERA}x = {}\n", "[".repeat(10_000)), "s.toml:5:69: nested more than 64 levels deep (tables, arrays and dotted keys together), expected at most 64"),
