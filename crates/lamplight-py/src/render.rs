@@ -31,6 +31,9 @@ const POLL: Duration = Duration::from_millis(100);
 
 type Rendered = Result<request::Rendered, lamplight_core::Error>;
 
+/// `window = (x0, y0, w, h)` as Python gave it, each checked by [`whole`].
+type Window<'py> = (Bound<'py, PyAny>, Bound<'py, PyAny>, Bound<'py, PyAny>, Bound<'py, PyAny>);
+
 /// The image array, the statistics and the extra layers.
 type RenderArrays<'py> = (Bound<'py, PyArray3<f32>>, Bound<'py, PyDict>, Bound<'py, PyDict>);
 
@@ -53,7 +56,7 @@ pub fn render_array<'py>(
     threads: Option<Bound<'py, PyAny>>,
     seed: Option<Bound<'py, PyAny>>,
     max_depth: Option<Bound<'py, PyAny>>,
-    window: Option<(Bound<'py, PyAny>, Bound<'py, PyAny>, Bound<'py, PyAny>, Bound<'py, PyAny>)>,
+    window: Option<Window<'py>>,
     progress: Option<Bound<'py, PyAny>>,
     time_limit: Option<f64>,
     filter: Option<String>,

@@ -192,7 +192,7 @@ pub const MAX_PIXELS_PER_BYTE: u64 = 100;
 /// Checks an image's stated size before its pixels are allocated: at most
 /// [`MAX_IMAGE_PIXELS`], and at most [`MAX_PIXELS_PER_BYTE`] per byte of the file.
 pub(crate) fn check_image_size(width: u64, height: u64, file_len: u64) -> Result<(), String> {
-    let pixels = width.checked_mul(height).unwrap_or(u64::MAX);
+    let pixels = width.saturating_mul(height);
     if pixels > MAX_IMAGE_PIXELS {
         return Err(format!("is {width}x{height} pixels, more than the {MAX_IMAGE_PIXELS} an input image may have"));
     }
