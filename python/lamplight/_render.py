@@ -43,12 +43,11 @@ def resolve(scene: Scene, width, height, spp, integrator, seed) -> Tuple[int, in
 
 
 def _check_ints(**values) -> None:
-    """Python's own types first, so that ``width=2.5`` says what it is."""
+    """Python's own types first, so that ``width=2.5`` says what it is; the ranges
+    (``threads=-1``, ``width=2**32``) are checked by the extension, naming the bound."""
     for name, value in values.items():
         if value is not None and (isinstance(value, bool) or not isinstance(value, int)):
             raise TypeError(f"{name} must be an int, got {type(value).__name__}")
-        if value is not None and value < 0:
-            raise ValueError(f"{name} must be at least {0 if name == 'seed' else 1}, got {value}")
 
 
 def _in_notebook() -> bool:

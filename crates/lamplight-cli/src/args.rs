@@ -5,7 +5,7 @@
 //! rejection is a [`UsageError`] with a one-line message (exit code 2).
 
 use std::fmt;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use clap::{Args, Parser, Subcommand};
 use lamplight_core::film::tonemap::ToneMap;
@@ -48,22 +48,22 @@ pub struct RenderArgs {
     #[arg(short, long, value_name = "FILE")]
     pub output: Option<PathBuf>,
     /// Image width in pixels [default: the scene's; with only --height, keeps the scene's aspect].
-    #[arg(long, value_name = "W")]
+    #[arg(long, value_name = "W", allow_negative_numbers = true, value_parser = count::<u32>)]
     pub width: Option<u32>,
     /// Image height in pixels [default: the scene's; with only --width, keeps the scene's aspect].
-    #[arg(long, value_name = "H")]
+    #[arg(long, value_name = "H", allow_negative_numbers = true, value_parser = count::<u32>)]
     pub height: Option<u32>,
     /// Samples per pixel, stratified and jittered when more than one [default: the file's, else 1].
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = count::<u32>)]
     pub spp: Option<u32>,
     /// Ray depth limit, 1 to 64, camera ray = 1 [default: the scene's].
-    #[arg(long, value_name = "D")]
+    #[arg(long, value_name = "D", allow_negative_numbers = true, value_parser = count::<u32>)]
     pub max_depth: Option<u32>,
     /// Worker threads; 0 uses all cores. The image does not depend on it.
-    #[arg(long, value_name = "T", default_value_t = 0)]
+    #[arg(long, value_name = "T", default_value_t = 0, allow_negative_numbers = true, value_parser = count::<usize>)]
     pub threads: usize,
     /// Seed of the per-sample random numbers [default: the file's, else 0].
-    #[arg(long, value_name = "S")]
+    #[arg(long, value_name = "S", allow_negative_numbers = true, value_parser = count::<u64>)]
     pub seed: Option<u64>,
     /// No progress bar and no summary line.
     #[arg(short, long)]
@@ -142,6 +142,49 @@ impl From<RequestError> for UsageError {
     }
 }
 
+/// A count given on the command line (pixels, samples, threads, a seed): a
+/// whole number from 0 to `T`'s largest. Negative numbers are taken as values
+/// (`allow_negative_numbers`) so that `--spp -1` is answered by this message
+/// rather than by clap's "unexpected argument '-1'"; the request layer then
+/// applies each option's own limits.
+pub fn count<T: TryFrom<u128>>(text: &str) -> Result<T, String> {
+    let digits = text.strip_prefix('+').unwrap_or(text);
+    if let Some(rest) = digits.strip_prefix('-') {
+        if !rest.is_empty() && rest.bytes().all(|b| b.is_ascii_digit()) {
+            return Err("must be a positive number".to_string());
+        }
+    }
+    if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
+        return Err("must be a positive whole number".to_string());
+    }
+    let too_large = || format!("must be at most {}", max_of::<T>());
+    let value: u128 = digits.parse().map_err(|_| too_large())?;
+    T::try_from(value).map_err(|_| too_large())
+}
+
+/// The largest value of the unsigned type `T` (no standard trait gives it).
+fn max_of<T: TryFrom<u128>>() -> u128 {
+    (1..=128).rev().map(|bits| u128::MAX >> (128 - bits)).find(|&m| T::try_from(m).is_ok()).unwrap_or(0)
+}
+
+/// Fails when two of `outputs` (`(flag, path)` pairs) are the same file
+/// ([`lamplight_scene::atomic::same_file`]: links and `..` included): the
+/// second write would replace the first, and the data of one would be lost.
+pub fn distinct_outputs(outputs: &[(&str, &Path)]) -> Result<(), UsageError> {
+    for (i, (flag_a, a)) in outputs.iter().enumerate() {
+        for (flag_b, b) in &outputs[i + 1..] {
+            if lamplight_scene::atomic::same_file(a, b) {
+                return Err(usage(format!(
+                    "{flag_a} {} and {flag_b} {} are the same file; give each output a file of its own",
+                    a.display(),
+                    b.display()
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
 fn usage(message: impl Into<String>) -> UsageError {
     UsageError(message.into())
 }
@@ -191,6 +234,7 @@ impl RenderArgs {
             if !job.layers.contains(&Layer::Variance) {
                 job.layers.push(Layer::Variance);
             }
+            distinct_outputs(&[("-o", &output), ("--variance-output", path)])?;
         }
         let display = DisplayTransform { exposure: self.exposure, tonemap: self.tonemap };
         Ok(RenderJob { scene, output, job, quiet: self.quiet, display, variance_output, variance_in_output })

@@ -10,10 +10,12 @@
 //! scene, calls [`lamplight_core::render`] and writes the image with
 //! [`lamplight_scene::image_io`]. Errors print as one line,
 //! `lamplight: error: ...`; the exit code is 2 for bad input, 1 for failures
-//! while running (such as an unwritable output file).
+//! while running (such as an unwritable output file), 130 after Ctrl-C, SIGTERM
+//! or SIGHUP, which leave no temporary file behind ([`signals`]).
 
 mod args;
 mod raycast;
+mod signals;
 
 use std::io::{self, IsTerminal, Write};
 use std::process::ExitCode;
@@ -29,6 +31,7 @@ use lamplight_scene::{builtin, image_io};
 use crate::args::{Cli, Command, RenderJob, UsageError};
 
 fn main() -> ExitCode {
+    signals::install();
     match run() {
         Ok(()) => ExitCode::SUCCESS,
         // `lamplight list | head -1`: the reader leaving is not our failure.
@@ -45,11 +48,25 @@ fn main() -> ExitCode {
 }
 
 fn run() -> anyhow::Result<()> {
-    // clap prints its own usage errors and exits with code 2.
-    match Cli::parse().command {
+    match parse_args()?.command {
         Command::Render(render_args) => render_command(render_args.validate()?),
         Command::List => list_command(),
         Command::Raycast(raycast_args) => raycast::raycast_command(raycast_args),
+    }
+}
+
+/// The parsed command line. clap prints help, version and most usage errors
+/// itself (exit code 0 for help, 2 for errors); a flag's value that fails its
+/// check (`--spp -1`) becomes one line naming the flag, like every other bad input.
+fn parse_args() -> anyhow::Result<Cli> {
+    match Cli::try_parse() {
+        Ok(cli) => Ok(cli),
+        Err(e) if matches!(e.kind(), clap::error::ErrorKind::ValueValidation | clap::error::ErrorKind::InvalidValue) => {
+            let text = e.render().to_string();
+            let first = text.lines().next().unwrap_or_default();
+            Err(UsageError(first.strip_prefix("error: ").unwrap_or(first).to_string()).into())
+        }
+        Err(e) => e.exit(),
     }
 }
 
@@ -104,7 +121,11 @@ fn render_command(job: RenderJob) -> anyhow::Result<()> {
     if !quiet {
         eprintln!("{} -> {}", summary, output.display());
     } else if stats.nonfinite_samples > 0 {
-        eprintln!("lamplight: warning: {} samples were NaN or infinite and were replaced by black", stats.nonfinite_samples);
+        eprintln!(
+            "lamplight: warning: {} samples were NaN, infinite or brighter than {:e} and were replaced by black",
+            stats.nonfinite_samples,
+            lamplight_core::film::MAX_RADIANCE
+        );
     }
     Ok(())
 }

@@ -69,13 +69,13 @@ pub struct RaycastArgs {
     #[arg(long, value_name = "OBJ.npy")]
     pub objects: Option<PathBuf>,
     /// Worker threads for build and casting, at most 1024; 0 uses all cores. The answers do not depend on it.
-    #[arg(long, value_name = "N", default_value_t = 0)]
+    #[arg(long, value_name = "N", default_value_t = 0, allow_negative_numbers = true, value_parser = crate::args::count::<usize>)]
     pub threads: usize,
     /// Only test occlusion (shadow rays): T is 0 for a hit, +inf for a miss.
     #[arg(long, conflicts_with_all = ["prims", "objects"])]
     pub any_hit: bool,
     /// Cast the batch K times and report the median time.
-    #[arg(long, value_name = "K", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..))]
+    #[arg(long, value_name = "K", default_value_t = 1, allow_negative_numbers = true, value_parser = crate::args::count::<u32>)]
     pub repeat: u32,
 }
 
@@ -97,6 +97,14 @@ pub fn raycast_command(args: RaycastArgs) -> anyhow::Result<()> {
     if args.threads > MAX_THREADS {
         return Err(UsageError(format!("--threads must be at most {MAX_THREADS} (0 uses all cores), got {}", args.threads)).into());
     }
+    if args.repeat == 0 {
+        return Err(UsageError("--repeat must be at least 1".into()).into());
+    }
+    let outputs: Vec<(&str, &Path)> = [("-o", Some(&args.output)), ("--prims", args.prims.as_ref()), ("--objects", args.objects.as_ref())]
+        .into_iter()
+        .filter_map(|(flag, path)| Some((flag, path?.as_path())))
+        .collect();
+    crate::args::distinct_outputs(&outputs)?;
     for path in [Some(&args.output), args.prims.as_ref(), args.objects.as_ref()].into_iter().flatten() {
         check_writable(path)?;
     }

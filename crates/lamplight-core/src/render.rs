@@ -91,7 +91,8 @@ impl Default for RenderOptions {
 pub struct RenderStats {
     /// Rays traced, by kind.
     pub rays: RayCounts,
-    /// Samples whose radiance was NaN or infinite and was replaced by black.
+    /// Samples whose radiance was NaN, infinite or beyond
+    /// [`crate::film::MAX_RADIANCE`] and was replaced by black.
     pub nonfinite_samples: u64,
     /// Wall-clock time of the render (not of scene building or file writing).
     pub elapsed: Duration,

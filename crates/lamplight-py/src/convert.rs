@@ -8,7 +8,7 @@
 //! Errors name the key path, such as `objects[2].radius`.
 
 use lamplight_core::params::{Entry, Item, Loc, Table, Value};
-use pyo3::exceptions::PyTypeError;
+use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 
@@ -111,4 +111,26 @@ fn value(obj: &Bound<'_, PyAny>, path: &str) -> PyResult<Value> {
     }
     let type_name = obj.get_type().name().map(|n| n.to_string()).unwrap_or_default();
     Err(SceneError::new_err(format!("scene dict: {path}: expected a number, string, boolean, list or dict, got {type_name}")))
+}
+
+/// A whole-number keyword argument: a Python int of any size, checked here
+/// against `T`'s range so that the error is a `ValueError` naming the argument
+/// and its bound (`spp must be at most 1048576, got 1099511627776`) rather than
+/// PyO3's bare `OverflowError`. `min` and `max` are the argument's real limits as
+/// the messages quote them (the request layer checks values inside `T` again,
+/// in its own words); `note` follows the bound (` (0 uses all cores)`).
+pub fn whole<T: TryFrom<i128>>(name: &str, value: Option<&Bound<'_, PyAny>>, min: i128, max: i128, note: &str) -> PyResult<Option<T>> {
+    let Some(value) = value.filter(|v| !v.is_none()) else { return Ok(None) };
+    if value.is_instance_of::<PyBool>() || !value.is_instance_of::<PyInt>() {
+        return Err(PyTypeError::new_err(format!("{name} must be an int, got {}", value.get_type().name()?)));
+    }
+    let shown = || value.str().map(|s| s.to_string()).unwrap_or_default();
+    // Beyond i128 the extraction fails: too large (or too small) either way.
+    let v: Option<i128> = value.extract().ok();
+    let negative = || value.lt(0).unwrap_or(false);
+    match v.and_then(|v| T::try_from(v).ok()) {
+        Some(t) => Ok(Some(t)),
+        None if negative() => Err(PyValueError::new_err(format!("{name} must be at least {min}{note}, got {}", shown()))),
+        None => Err(PyValueError::new_err(format!("{name} must be at most {max}{note}, got {}", shown()))),
+    }
 }

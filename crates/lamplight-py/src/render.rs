@@ -17,18 +17,22 @@ use std::path::PathBuf;
 
 use lamplight_core::film::Image;
 use lamplight_core::RenderControl;
-use lamplight_scene::request::{self, Layer, Naming, Request};
+use lamplight_scene::request::{self, limits, Layer, Naming, Request};
 use numpy::{PyArray1, PyArray3, PyArrayMethods};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use crate::convert::whole;
 use crate::scene::Scene;
 
 /// How often the waiting thread looks at signals and progress.
 const POLL: Duration = Duration::from_millis(100);
 
 type Rendered = Result<request::Rendered, lamplight_core::Error>;
+
+/// `window = (x0, y0, w, h)` as Python gave it, each checked by [`whole`].
+type Window<'py> = (Bound<'py, PyAny>, Bound<'py, PyAny>, Bound<'py, PyAny>, Bound<'py, PyAny>);
 
 /// The image array, the statistics and the extra layers.
 type RenderArrays<'py> = (Bound<'py, PyArray3<f32>>, Bound<'py, PyDict>, Bound<'py, PyDict>);
@@ -40,19 +44,19 @@ type RenderArrays<'py> = (Bound<'py, PyArray3<f32>>, Bound<'py, PyDict>, Bound<'
 /// defaults, through the same request layer as the command line.
 /// `progress(done, total)` is called from this thread.
 #[pyfunction]
-#[pyo3(signature = (scene, width=None, height=None, spp=None, integrator=None, threads=0, seed=None, max_depth=None, window=None, progress=None, time_limit=None, filter=None, environment=None, exr_layers=None))]
+#[pyo3(signature = (scene, width=None, height=None, spp=None, integrator=None, threads=None, seed=None, max_depth=None, window=None, progress=None, time_limit=None, filter=None, environment=None, exr_layers=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn render_array<'py>(
     py: Python<'py>,
     scene: &Scene,
-    width: Option<u32>,
-    height: Option<u32>,
-    spp: Option<u32>,
+    width: Option<Bound<'py, PyAny>>,
+    height: Option<Bound<'py, PyAny>>,
+    spp: Option<Bound<'py, PyAny>>,
     integrator: Option<String>,
-    threads: usize,
-    seed: Option<u64>,
-    max_depth: Option<u32>,
-    window: Option<(u32, u32, u32, u32)>,
+    threads: Option<Bound<'py, PyAny>>,
+    seed: Option<Bound<'py, PyAny>>,
+    max_depth: Option<Bound<'py, PyAny>>,
+    window: Option<Window<'py>>,
     progress: Option<Bound<'py, PyAny>>,
     time_limit: Option<f64>,
     filter: Option<String>,
@@ -61,12 +65,21 @@ pub fn render_array<'py>(
 ) -> PyResult<RenderArrays<'py>> {
     let layers =
         exr_layers.unwrap_or_default().iter().map(|l| l.parse::<Layer>().map_err(PyValueError::new_err)).collect::<PyResult<Vec<_>>>()?;
+    let (width, height, spp, seed) = size_spp_seed(width, height, spp, seed)?;
+    let window = match window {
+        None => None,
+        Some((x0, y0, w, h)) => {
+            let side =
+                |name: &str, v: &Bound<'py, PyAny>| whole::<u32>(name, Some(v), 0, u32::MAX.into(), "").map(Option::unwrap_or_default);
+            Some((side("window x0", &x0)?, side("window y0", &y0)?, side("window width", &w)?, side("window height", &h)?))
+        }
+    };
     let request = Request {
         width,
         height,
         spp,
-        max_depth,
-        threads: Some(threads),
+        max_depth: whole("max_depth", max_depth.as_ref(), 1, limits::MAX_DEPTH.into(), "")?,
+        threads: Some(threads_arg(threads.as_ref())?),
         seed,
         integrator,
         time_limit,
@@ -175,15 +188,37 @@ pub fn render_array<'py>(
 #[pyo3(signature = (scene, width=None, height=None, spp=None, integrator=None, seed=None))]
 pub fn resolve_settings(
     scene: &Scene,
-    width: Option<u32>,
-    height: Option<u32>,
-    spp: Option<u32>,
+    width: Option<Bound<'_, PyAny>>,
+    height: Option<Bound<'_, PyAny>>,
+    spp: Option<Bound<'_, PyAny>>,
     integrator: Option<String>,
-    seed: Option<u64>,
+    seed: Option<Bound<'_, PyAny>>,
 ) -> PyResult<(u32, u32, u32, &'static str, u64)> {
+    let (width, height, spp, seed) = size_spp_seed(width, height, spp, seed)?;
     let request = Request { width, height, spp, integrator, seed, ..Request::default() };
     let o = request.resolve(scene.settings(), Naming::Keywords).map_err(|e| PyValueError::new_err(e.0))?.options;
     Ok((o.width, o.height, o.spp, o.integrator.name, o.seed))
+}
+
+/// `width`, `height`, `spp` and `seed` as Python gave them, checked ([`whole`]).
+#[allow(clippy::type_complexity)]
+fn size_spp_seed(
+    width: Option<Bound<'_, PyAny>>,
+    height: Option<Bound<'_, PyAny>>,
+    spp: Option<Bound<'_, PyAny>>,
+    seed: Option<Bound<'_, PyAny>>,
+) -> PyResult<(Option<u32>, Option<u32>, Option<u32>, Option<u64>)> {
+    Ok((
+        whole("width", width.as_ref(), 1, u32::MAX.into(), "")?,
+        whole("height", height.as_ref(), 1, u32::MAX.into(), "")?,
+        whole("spp", spp.as_ref(), 1, limits::MAX_SPP.into(), "")?,
+        whole("seed", seed.as_ref(), 0, u64::MAX.into(), "")?,
+    ))
+}
+
+/// `threads` as Python gave it (`None` or 0: every core), checked ([`whole`]).
+pub fn threads_arg(threads: Option<&Bound<'_, PyAny>>) -> PyResult<usize> {
+    Ok(whole("threads", threads, 0, limits::MAX_THREADS as i128, " (0 uses all cores)")?.unwrap_or(0))
 }
 
 fn to_array<'py>(py: Python<'py>, image: &Image) -> PyResult<Bound<'py, PyArray3<f32>>> {

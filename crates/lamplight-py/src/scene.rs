@@ -319,14 +319,15 @@ impl Scene {
 
     /// Nearest hits of rays `origins[i] + s * directions[i]`, `t = s |directions[i]|`
     /// the distance: see `lamplight.Scene.intersect` in the type stubs.
-    #[pyo3(signature = (origins, directions, threads=0))]
+    #[pyo3(signature = (origins, directions, threads=None))]
     fn intersect<'py>(
         &self,
         py: Python<'py>,
         origins: &Bound<'py, PyAny>,
         directions: &Bound<'py, PyAny>,
-        threads: usize,
+        threads: Option<Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyTuple>> {
+        let threads = crate::render::threads_arg(threads.as_ref())?;
         let scene = self.core(py)?;
         crate::intersect::intersect(py, &scene, origins, directions, threads)
     }

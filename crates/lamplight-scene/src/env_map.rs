@@ -5,45 +5,82 @@
 //! `c = m 2^(e - 136)` (Greg Ward's format; the `image` crate decodes it),
 //! so each channel keeps about `1/256` of the pixel's brightest channel.
 
-use std::io::BufReader;
 use std::path::Path;
 
 use lamplight_core::film::Image;
 
-use crate::image_io::{read_exr, ImageError};
+use crate::image_io::ImageError;
 
 /// The extensions [`read_environment`] understands, for messages.
 pub const ENVIRONMENT_EXTENSIONS: &str = ".exr, .hdr";
 
 /// Reads an equirectangular environment map (`.exr` or `.hdr`) as linear RGB.
 pub fn read_environment(path: &Path) -> Result<Image, ImageError> {
-    let ext = path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
-    match ext.as_str() {
-        "exr" => read_exr(path),
-        "hdr" => read_hdr(path),
-        _ => Err(ImageError::Read {
-            path: path.to_path_buf(),
-            reason: format!("unknown environment map format {ext:?} (supported: {ENVIRONMENT_EXTENSIONS})"),
-        }),
-    }
+    let format = format(path)?;
+    let bytes = crate::input::read_regular(path, crate::image_io::MAX_IMAGE_FILE_BYTES)
+        .map_err(|r| read_error(path, crate::image_io::refusal(&r)))?;
+    decode(path, format, &bytes)
+}
+
+/// Decodes the bytes of an environment map file named `path` (whose extension
+/// picks the format, and which is only named in errors). The fuzz target and
+/// the property tests enter here.
+pub fn decode_environment(path: &Path, bytes: &[u8]) -> Result<Image, ImageError> {
+    decode(path, format(path)?, bytes)
 }
 
 /// Reads a Radiance RGBE (`.hdr`) file as linear RGB.
 pub fn read_hdr(path: &Path) -> Result<Image, ImageError> {
-    let read_error = |reason: String| ImageError::Read { path: path.to_path_buf(), reason };
-    let (file, _) =
-        crate::input::open_regular(path, crate::image_io::MAX_IMAGE_FILE_BYTES).map_err(|r| read_error(crate::image_io::refusal(&r)))?;
-    let decoded = image::ImageReader::with_format(BufReader::new(file), image::ImageFormat::Hdr)
-        .decode()
-        .map_err(|e| read_error(format!("not a valid Radiance .hdr file: {e}")))?;
+    let bytes = crate::input::read_regular(path, crate::image_io::MAX_IMAGE_FILE_BYTES)
+        .map_err(|r| read_error(path, crate::image_io::refusal(&r)))?;
+    decode(path, Format::Hdr, &bytes)
+}
+
+#[derive(Clone, Copy)]
+enum Format {
+    Exr,
+    Hdr,
+}
+
+fn read_error(path: &Path, reason: String) -> ImageError {
+    ImageError::Read { path: path.to_path_buf(), reason }
+}
+
+fn format(path: &Path) -> Result<Format, ImageError> {
+    let ext = path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
+    match ext.as_str() {
+        "exr" => Ok(Format::Exr),
+        "hdr" => Ok(Format::Hdr),
+        _ => Err(read_error(path, format!("unknown environment map format {ext:?} (supported: {ENVIRONMENT_EXTENSIONS})"))),
+    }
+}
+
+fn decode(path: &Path, format: Format, bytes: &[u8]) -> Result<Image, ImageError> {
+    let image = match format {
+        Format::Exr => crate::image_io::decode_exr(path, bytes)?,
+        Format::Hdr => decode_hdr(path, bytes)?,
+    };
+    if let Some(i) = image.pixels.iter().position(|p| p.iter().any(|c| !c.is_finite() || *c < 0.0)) {
+        return Err(read_error(path, format!("pixel {i} is not a finite non-negative colour: {:?}", image.pixels[i])));
+    }
+    // As bright as a scene's colours may be, no brighter (the same bound, for the same reason).
+    let max = lamplight_core::params::MAX_COLOR;
+    if let Some(i) = image.pixels.iter().position(|p| p.iter().any(|c| f64::from(*c) > max)) {
+        return Err(read_error(path, format!("pixel {i} is brighter than {max:e}: {:?}", image.pixels[i])));
+    }
+    Ok(image)
+}
+
+fn decode_hdr(path: &Path, bytes: &[u8]) -> Result<Image, ImageError> {
+    let invalid = |e: image::ImageError| read_error(path, format!("not a valid Radiance .hdr file: {e}"));
+    let reader = image::ImageReader::with_format(std::io::Cursor::new(bytes), image::ImageFormat::Hdr);
+    let (width, height) = reader.into_dimensions().map_err(invalid)?;
+    crate::image_io::check_image_size(width.into(), height.into(), bytes.len() as u64).map_err(|m| read_error(path, m))?;
+    let decoded = image::ImageReader::with_format(std::io::Cursor::new(bytes), image::ImageFormat::Hdr).decode().map_err(invalid)?;
     let rgb = decoded.into_rgb32f();
-    let (width, height) = (rgb.width(), rgb.height());
-    let mut image = Image::new(width, height);
+    let mut image = Image::new(rgb.width(), rgb.height());
     for (p, q) in image.pixels.iter_mut().zip(rgb.pixels()) {
         *p = q.0;
-    }
-    if let Some(i) = image.pixels.iter().position(|p| p.iter().any(|c| !c.is_finite() || *c < 0.0)) {
-        return Err(read_error(format!("pixel {i} is not a finite non-negative colour: {:?}", image.pixels[i])));
     }
     Ok(image)
 }

@@ -177,8 +177,40 @@ pub fn read_png_srgb8(path: &Path) -> Result<(u32, u32, Vec<u8>), ImageError> {
 /// Reads the first RGB(A) layer of an OpenEXR file as linear float RGB (alpha is dropped).
 pub fn read_exr(path: &Path) -> Result<Image, ImageError> {
     let read_error = |reason: String| ImageError::Read { path: path.to_path_buf(), reason };
+    let bytes = crate::input::read_regular(path, MAX_IMAGE_FILE_BYTES).map_err(|r| read_error(refusal(&r)))?;
+    decode_exr(path, &bytes)
+}
+
+/// Most pixels of an input image (`2^27`, a 16384x8192 environment map).
+pub const MAX_IMAGE_PIXELS: u64 = 1 << 27;
+
+/// Most pixels per byte of an image file: deflate, EXR's strongest compression
+/// of ordinary data, stays below about 1032:1, so a header that claims more
+/// pixels than this many per byte of the file is not telling the truth.
+pub const MAX_PIXELS_PER_BYTE: u64 = 100;
+
+/// Checks an image's stated size before its pixels are allocated: at most
+/// [`MAX_IMAGE_PIXELS`], and at most [`MAX_PIXELS_PER_BYTE`] per byte of the file.
+pub(crate) fn check_image_size(width: u64, height: u64, file_len: u64) -> Result<(), String> {
+    let pixels = width.saturating_mul(height);
+    if pixels > MAX_IMAGE_PIXELS {
+        return Err(format!("is {width}x{height} pixels, more than the {MAX_IMAGE_PIXELS} an input image may have"));
+    }
+    if pixels > file_len.saturating_mul(MAX_PIXELS_PER_BYTE) {
+        return Err(format!("claims {width}x{height} pixels, more than a file of {file_len} bytes can hold"));
+    }
+    Ok(())
+}
+
+/// Decodes the bytes of an OpenEXR file as [`read_exr`] does; `path` is only named in errors.
+pub fn decode_exr(path: &Path, bytes: &[u8]) -> Result<Image, ImageError> {
+    let read_error = |reason: String| ImageError::Read { path: path.to_path_buf(), reason };
     use exr::prelude::{ReadChannels, ReadLayers};
-    let (file, _) = crate::input::open_regular(path, MAX_IMAGE_FILE_BYTES).map_err(|r| read_error(refusal(&r)))?;
+    let meta = exr::meta::MetaData::read_from_buffered(bytes, false).map_err(|e| read_error(e.to_string()))?;
+    for header in meta.headers.iter() {
+        let size = header.layer_size;
+        check_image_size(size.width() as u64, size.height() as u64, bytes.len() as u64).map_err(read_error)?;
+    }
     let exr = exr::prelude::read()
         .no_deep_data()
         .largest_resolution_level()
@@ -191,7 +223,7 @@ pub fn read_exr(path: &Path) -> Result<Image, ImageError> {
         )
         .first_valid_layer()
         .all_attributes()
-        .from_buffered(std::io::BufReader::new(file))
+        .from_buffered(std::io::Cursor::new(bytes))
         .map_err(|e| read_error(e.to_string()))?;
     Ok(exr.layer_data.channel_data.pixels)
 }

@@ -38,6 +38,8 @@ pub mod limits {
     pub const MAX_THREADS: usize = lamplight_core::batch::MAX_THREADS;
     /// Longest time limit, seconds (about 31 years: beyond it is a typo).
     pub const MAX_TIME_LIMIT: f64 = 1e9;
+    /// Most ray-march steps an implicit surface may take per ray (its `max_steps`).
+    pub const MAX_MARCH_STEPS: i64 = crate::build::implicit::MAX_STEPS;
 }
 
 /// How the front end spells its options, for messages.

@@ -51,12 +51,39 @@ fn malformed_inputs_give_their_exact_errors() {
         (with_camera("[materials.m]\nreflection = { type = \"mirror\" }\n"), "s.toml:6:23: material \"m\": reflection: type: unknown value \"mirror\", expected \"constant\", \"dielectric\" or \"conductor\""),
         (with_camera("[definitions.a]\ntype = \"instance\"\nof = \"a\"\n[[objects]]\ntype = \"instance\"\nof = \"a\"\n"), "s.toml:5:1: instance: cyclic instance: a -> a"),
         (with_camera("[[objects]]\ntype = \"instance\"\nof = \"nothing\"\n"), "s.toml:7:6: instance: of: unknown definition \"nothing\" (definitions: none defined)"),
-        (with_camera("[meshes.m]\nfile = \"missing.obj\"\n[[objects]]\ntype = \"mesh\"\nmesh = \"m\"\n"), "s.toml:5:1: mesh \"m\": file \"missing.obj\" not found (looked for missing.obj)"),
+        (with_camera("[meshes.m]\nfile = \"missing.obj\"\n[[objects]]\ntype = \"mesh\"\nmesh = \"m\"\n"), "s.toml:6:8: mesh \"m\": file \"missing.obj\" not found (looked for missing.obj)"),
         (huge, "s.toml:5:1: mesh \"m\": invalid indices: face 0 refers to vertex 1, but there are only 1 vertices"),
         (with_camera("[[objects]]\ntype = \"implicit\"\nexpression = \"x*x + y*y + z*z - w\"\nmin = [-1, -1, -1]\nmax = [1, 1, 1]\nlipschitz = 4\n"), "s.toml:7:14: implicit: expression: at character 19: unknown name 'w' (variables: x, y, z; constants: pi, e; functions: sin, cos, tan, sqrt, abs, exp, ln, min, max, pow)"),
         (with_camera("[[objects]]\ntype = \"group\"\nscale = 0\n"), "s.toml:7:9: group: scale: must not be 0 (it would flatten the geometry)"),
         (with_camera("[[objects]]\ntype = \"point_light\"\nposition = [0, 0, 0]\nintensity = 1\nown_object = \"bulb\"\n"), "s.toml:9:14: point_light: own_object: \"bulb\" names no shape"),
         ("[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 5]\nvfov = 40\n".into(), "s.toml:1:1: camera: invalid camera: eye and lookat coincide"),
+        // Issue 12: extras are refused, not dropped, with the text Python dicts get.
+        (with_camera("[[objects]]\ntype = \"sphere\"\ncenter = [0, 0, 0, 0]\nradius = 1\n"), "s.toml:7:10: sphere: center: expected [x, y, z], got an array of 4"),
+        ("[camera]\neye = [0, 0, 5, 123]\nlook_at = [0, 0, 0]\nvfov = 40\n".into(), "s.toml:2:7: camera: eye: expected [x, y, z], got an array of 4"),
+        ("[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0, \"junk\", true]\nvfov = 40\n".into(), "s.toml:3:11: camera: look_at: expected [x, y, z], got an array of 5"),
+        (with_camera("[[objects]]\ntype = \"quadric\"\nmatrix = [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, -1], [0, 0, 0, 0]]\n"), "s.toml:7:10: quadric: matrix: expected 4 rows of 4 numbers, got an array of 5"),
+        (with_camera("[[objects]]\ntype = \"quadric\"\nmatrix = [[1, 0, 0, 0, 9], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, -1]]\n"), "s.toml:7:10: quadric: matrix: expected 4 rows of 4 numbers, got an array of 4"),
+        (with_camera("[[objects]]\ntype = \"triangle\"\nvertices = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]\n"), "s.toml:7:12: triangle: vertices: expected 3 points, got 4"),
+        // Issue 12: messages that say what is wrong, where.
+        ("[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\nup = [0, 0, 0]\nvfov = 40\n".into(), "s.toml:4:6: camera: invalid up: is the zero vector [0, 0, 0], expected a direction"),
+        (with_camera("[meshes.m]\nfile = \"\"\n[[objects]]\ntype = \"mesh\"\nmesh = \"m\"\n"), "s.toml:6:8: mesh \"m\": file: the path is empty, expected a mesh file"),
+        (with_camera("[meshes.m]\nfile = \"s.toml\"\n[[objects]]\ntype = \"mesh\"\nmesh = \"m\"\n"), "s.toml:6:8: mesh \"m\": file \"s.toml\" not found (looked for s.toml)"),
+        (with_camera("ambient = 1\nambient = 2\n"), "s.toml:6:1: duplicate key `ambient`, expected each key once per table"),
+        (with_camera("[materials.m]\nkd = 1\nkd = 2\n"), "s.toml:7:1: duplicate key `kd`, expected each key once per table"),
+        // Issue 12: ranges that are reversed or outside what the quantity allows.
+        (with_camera("[[objects]]\ntype = \"implicit\"\nexpression = \"x*x + y*y + z*z - 1\"\nmin = [1, 1, 1]\nmax = [-1, -1, -1]\nlipschitz = 4\n"), "s.toml:9:7: implicit: max: min [1, 1, 1] must be below max [-1, -1, -1] on every axis"),
+        (with_camera("[materials.m]\nreflection = { type = \"dielectric\", ior = 1.5, min = 2, max = -1 }\n"), "s.toml:6:54: material \"m\": reflection: min: must be between 0 and 1, got 2"),
+        (with_camera("[materials.m]\nreflection = { type = \"dielectric\", ior = 1.5, min = 0.5, max = 0.25 }\n"), "s.toml:6:65: material \"m\": reflection: max: must be between min (0.5) and 1, got 0.25"),
+        // Issue 12: bounded work per ray, and inputs whose products would overflow a pixel.
+        (with_camera("[[objects]]\ntype = \"implicit\"\nexpression = \"x*x + y*y + z*z - 1\"\nmin = [-1, -1, -1]\nmax = [1, 1, 1]\nlipschitz = 1e30\nmax_steps = 4294967295\n"), "s.toml:11:13: implicit: max_steps: must be between 1 and 65536, got 4294967295"),
+        (with_camera("[[objects]]\ntype = \"point_light\"\nposition = [0, 0, 3]\nintensity = 1e300\n"), "s.toml:8:13: point_light: intensity: must be at most 1e12 in magnitude, got [1e300, 1e300, 1e300]"),
+        (with_camera("[materials.e]\nemission = 1e39\n"), "s.toml:6:12: material \"e\": emission: must be at most 1e12 in magnitude, got [1e39, 1e39, 1e39]"),
+        (with_camera("[materials.e]\ncolor = [1, 2e13, 0]\n"), "s.toml:6:9: material \"e\": color: must be at most 1e12 in magnitude, got [1, 20000000000000, 0]"),
+        (format!("ambient = -1e20\n{CAMERA}"), "s.toml:1:11: scene: ambient: must be at most 1e12 in magnitude, got [-1e20, -1e20, -1e20]"),
+        (with_camera("[[objects]]\ntype = \"group\"\nscale = [1, 1, 1e13]\n"), "s.toml:7:9: group: scale: must be at most 1e12 in magnitude, got [1, 1, 10000000000000]"),
+        (format!("ambient = nan\n{CAMERA}"), "s.toml:1:11: scene: ambient: must be finite numbers, got [NaN, NaN, NaN]"),
+        (format!("{CAMERA}a{} = 1\n", ".a".repeat(10_000)), "s.toml:5:130: nested more than 64 levels deep (tables, arrays and dotted keys together), expected at most 64"),
+        (format!("{CAMERA}x = {}\n", "[".repeat(10_000)), "s.toml:5:69: nested more than 64 levels deep (tables, arrays and dotted keys together), expected at most 64"),
     ];
     // The list of node types comes from the registry, so a new kind changes no test.
     let blob = format!("s.toml:6:8: blob: unknown node type (node types: {})", lamplight_scene::registry::node_types().join(", "));
@@ -211,4 +238,51 @@ fn rotate_takes_an_array_of_degrees() {
     let expected = lamplight_core::math::Mat4::from_rotation_y(25f64.to_radians()).transform_point3(lamplight_core::math::Vec3::X);
     let centre = scene.objects[0].shape.bounds().centroid();
     assert!((centre - expected).length() < 1e-12, "{centre} vs {expected}");
+}
+
+/// 4 KiB of seeded pseudo-random bytes (a 64-bit LCG's high bytes).
+fn random_bytes(seed: u64) -> Vec<u8> {
+    let mut x = seed;
+    (0..4096)
+        .map(|_| {
+            x = x.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (x >> 56) as u8
+        })
+        .collect()
+}
+
+#[test]
+fn mesh_files_that_are_not_meshes_are_refused_at_their_key_with_the_importers_text() {
+    // See: issue 12 ("Garbage meshes", "a mesh path that is the scene file itself").
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let garbage = d.join("garbage.obj");
+    std::fs::write(&garbage, random_bytes(12)).unwrap();
+    let alone = lamplight_scene::import::load(&garbage).unwrap_err().to_string();
+    assert_eq!(alone, format!("{}: has no triangles, expected a mesh", garbage.display()));
+    let scene = |file: &str| with_camera(&format!("[meshes.m]\nfile = \"{file}\"\n[[objects]]\ntype = \"mesh\"\nmesh = \"m\"\n"));
+    let path = d.join("s.toml");
+    std::fs::write(&path, scene("garbage.obj")).unwrap();
+    let err = SceneFile::read(&path).and_then(|f| f.build()).unwrap_err().to_string();
+    assert_eq!(err, format!("{}:6:8: mesh \"m\": {alone}", path.display()), "the same bytes, the same text, at the key");
+    std::fs::write(&path, scene("s.toml")).unwrap();
+    let err = SceneFile::read(&path).and_then(|f| f.build()).unwrap_err().to_string();
+    assert_eq!(err, format!("{0}:6:8: mesh \"m\": {0}: cannot read .toml files (supported: obj, ply, gltf, glb)", path.display()));
+    // A PLY header with no faces, and an OBJ of points only: no triangles either.
+    let ply = d.join("empty.ply");
+    std::fs::write(
+        &ply,
+        "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n",
+    )
+    .unwrap();
+    assert_eq!(
+        lamplight_scene::import::load(&ply).unwrap_err().to_string(),
+        format!("{}: has no triangles, expected a mesh", ply.display())
+    );
+    let obj = d.join("points.obj");
+    std::fs::write(&obj, "v 0 0 0\nv 1 0 0\np 1 2\n").unwrap();
+    assert_eq!(
+        lamplight_scene::import::load(&obj).unwrap_err().to_string(),
+        format!("{}: has no triangles, expected a mesh", obj.display())
+    );
 }

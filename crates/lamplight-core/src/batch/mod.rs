@@ -19,6 +19,9 @@
 //!   miss.
 //!
 //! A ray with a zero or non-finite direction, or a non-finite origin, misses.
+//! Normals are always finite: far from the origin, where `f64` cannot resolve
+//! the hit point, a shape computes them from the precise parts of its
+//! intersection, and a hit it cannot resolve at all is a miss ([`scene`]).
 //! [`occluded`] answers only whether a ray hits anything at a distance in
 //! `(0, t_max)` (shadow rays), in the same units.
 //!

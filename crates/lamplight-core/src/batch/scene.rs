@@ -6,6 +6,14 @@
 //! of a triangle mesh (also when the mesh is placed by an instance transform) and
 //! `None` for every other shape. The normal is the shape's outward geometric
 //! normal, which `first_intersect` turned to face the ray and is turned back here.
+//!
+//! Far from a shape, precision is that of `f64`: the distance `t` is rounded to
+//! about `1.1e-16 t` (a ray from `z = 1e17` towards a unit sphere reports
+//! `t = 1e17`, good to some 16 units), while the normal is computed from the
+//! hit's offset to the shape rather than from the rounded point, so it stays a
+//! finite unit vector (`[0, 0, 1]` there). A hit whose normal the shape still
+//! cannot compute finitely is answered as a miss: the batch API never returns
+//! a NaN normal.
 
 use super::{BatchRay, BatchTarget, Float, RayHit};
 use crate::math::Vec3;
@@ -23,6 +31,10 @@ impl BatchTarget for Scene {
     fn nearest<T: Float>(&self, ray: &BatchRay<T>) -> Option<RayHit> {
         let hit = self.first_intersect(&unit_ray(ray), f64::INFINITY)?;
         let outward = if hit.front_face { hit.geometric_normal } else { -hit.geometric_normal };
+        if !outward.is_finite() {
+            // The shape could not resolve where the ray meets it (see the module doc).
+            return None;
+        }
         Some(RayHit { t: hit.t, object: hit.object, primitive: hit.primitive, normal: Some(outward.to_array()) })
     }
 

@@ -67,6 +67,9 @@ impl Orthographic {
             }
         }
         let dir = (target - eye).try_normalize().ok_or_else(|| Error::invalid("camera", "eye and lookat coincide"))?;
+        if sky.try_normalize().is_none() {
+            return Err(Error::invalid("up", format!("is the zero vector [{}, {}, {}], expected a direction", sky.x, sky.y, sky.z)));
+        }
         let right = dir.cross(sky).try_normalize().ok_or_else(|| Error::invalid("camera", "up is parallel to the viewing direction"))?;
         Ok(Orthographic { eye, dir, right, up: right.cross(dir), half_width, half_height })
     }

@@ -83,7 +83,7 @@ pub fn read_look_at(p: &mut Params<'_>) -> ParamResult<Perspective> {
         (None, None) => return Err(p.error("needs vfov or hfov (degrees)")),
         (Some(_), Some(_)) => return Err(p.error("takes vfov or hfov, not both")),
     };
-    let camera = Perspective::look_at(eye, target, sky, fov).map_err(|e| p.error(e))?;
+    let camera = Perspective::look_at(eye, target, sky, fov).map_err(|e| p.core_error(e))?;
     with_offset(p, camera)
 }
 
@@ -132,6 +132,9 @@ impl Perspective {
             return Err(Error::invalid("camera", "eye, lookat and up must be finite"));
         }
         let w = (target - eye).try_normalize().ok_or_else(|| Error::invalid("camera", "eye and lookat coincide"))?;
+        if sky.try_normalize().is_none() {
+            return Err(Error::invalid("up", format!("is the zero vector [{}, {}, {}], expected a direction", sky.x, sky.y, sky.z)));
+        }
         let r = w.cross(sky).try_normalize().ok_or_else(|| Error::invalid("camera", "up is parallel to the viewing direction"))?;
         let u = r.cross(w);
         let tan_half = fov.half_tan()?;

@@ -9,6 +9,22 @@ pub(crate) use accumulated::TileBlock;
 pub use accumulated::{Film, PixelSum, TILE};
 pub use filter::Filter;
 
+/// Largest sample radiance the film accepts, per channel. A sample beyond it
+/// (or NaN, or infinite) is replaced by black and counted
+/// ([`crate::RenderStats::nonfinite_samples`]), so that every pixel's mean and
+/// variance fit an `f32` (`1e18^2` is far below `f32::MAX`, about `3.4e38`) and no
+/// infinity reaches an image. Scene inputs are bounded well below it
+/// ([`crate::params::MAX_COLOR`]), so only an extreme product of a light and its
+/// geometry comes near.
+pub const MAX_RADIANCE: f64 = 1e18;
+
+/// Whether the film accepts sample radiance `l` (see [`MAX_RADIANCE`]).
+#[inline]
+pub fn accepts(l: crate::math::Rgb) -> bool {
+    // `max_element` skips NaN, so finiteness is checked on its own.
+    l.is_finite() && l.abs().max_element() <= MAX_RADIANCE
+}
+
 /// A linear RGB image, row-major from the top-left pixel.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Image {

@@ -136,7 +136,8 @@ pub trait Integrator: Send + Sync {
     /// How the render loop schedules the samples.
     fn schedule(&self) -> Schedule;
 
-    /// Adds samples `samples` of pixels `x0..x0 + sums.len()` of row `y` to `sums`, each pixel's in sample order, dropping non-finite samples;
+    /// Adds samples `samples` of pixels `x0..x0 + sums.len()` of row `y` to `sums`, each pixel's in sample order, dropping samples the film does not accept
+    /// ([`crate::film::accepts`]: NaN, infinite or beyond [`crate::film::MAX_RADIANCE`]);
     /// returns how many were dropped. The render loop calls this once per tile
     /// row: the default body is compiled for each integrator, so its loop calls
     /// [`Integrator::sample`] directly rather than through the trait object
@@ -146,7 +147,7 @@ pub trait Integrator: Send + Sync {
         for (x, sum) in (x0..).zip(sums.iter_mut()) {
             for s in samples.clone() {
                 let l = self.sample(view, x, y, s, counts);
-                if l.is_finite() {
+                if crate::film::accepts(l) {
                     sum.add(l);
                 } else {
                     nonfinite += 1;

@@ -238,6 +238,9 @@ impl Material {
                 if !(min.is_finite() && max.is_finite()) {
                     return Err(crate::Error::invalid("reflection", "min and max must be finite"));
                 }
+                if !(0.0 <= *min && min <= max && *max <= 1.0) {
+                    return Err(crate::Error::invalid("reflection", format!("needs 0 <= min <= max <= 1, got min {min} and max {max}")));
+                }
             }
             Reflection::Conductor { eta, k } => {
                 rgb_ok("eta", *eta)?;

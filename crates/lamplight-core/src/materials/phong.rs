@@ -84,7 +84,17 @@ fn reflection(p: &mut Params<'_>) -> ParamResult<Reflection> {
     let out = match r.required_choice("type", &["constant", "dielectric", "conductor"])? {
         "constant" => Reflection::Constant(r.color("weight")?.ok_or_else(|| r.error("needs `weight` (a colour)"))?),
         "dielectric" => {
-            Reflection::Dielectric { ior: r.required_number("ior")?, min: r.number_or("min", 0.0)?, max: r.number_or("max", 1.0)? }
+            let ior = r.required_number("ior")?;
+            let (min, max) = (r.number_or("min", 0.0)?, r.number_or("max", 1.0)?);
+            // A weight of Fresnel reflectance: outside [0, 1], or reversed, it
+            // would reflect more light than arrives (or less than none).
+            if !(0.0..=1.0).contains(&min) {
+                return Err(r.key_error("min", format!("must be between 0 and 1, got {min}")));
+            }
+            if !(min..=1.0).contains(&max) {
+                return Err(r.key_error("max", format!("must be between min ({min}) and 1, got {max}")));
+            }
+            Reflection::Dielectric { ior, min, max }
         }
         _ => match (r.string("metal")?, r.color("eta")?, r.color("k")?) {
             (Some(name), None, None) => {

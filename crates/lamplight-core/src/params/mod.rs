@@ -23,6 +23,13 @@ mod tests;
 
 pub use table::{Entry, Item, Loc, Table, Value};
 
+/// Largest magnitude of a colour channel, an emission, a light's intensity or a
+/// scale factor a scene may give (`1e12`). Radiance is a product of a few of
+/// them with geometric factors; bounded so, the products stay far below the
+/// film's [`crate::film::MAX_RADIANCE`] and `f32`'s range, where a pixel would
+/// become infinite.
+pub const MAX_COLOR: f64 = 1e12;
+
 /// A parameter's type, as the reference documentation names it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ParamType {
@@ -311,11 +318,18 @@ impl<'a> Params<'a> {
         }
     }
 
-    /// A colour: a number `v` (`[v, v, v]`) or `[r, g, b]`, finite.
+    /// A colour: a number `v` (`[v, v, v]`) or `[r, g, b]`, finite, each
+    /// channel at most [`MAX_COLOR`] in magnitude (colours, emission, light
+    /// intensities and scale factors all read through here).
     pub fn color(&mut self, key: &str) -> ParamResult<Option<Rgb>> {
         let v =
             self.typed(key, "a number or [r, g, b]", |v| as_number(v).map(Rgb::splat).or_else(|| numbers::<3>(v).map(Rgb::from_array)))?;
-        self.finite_vec(key, v)
+        match self.finite_vec(key, v)? {
+            Some(c) if c.abs().max_element() > MAX_COLOR => {
+                Err(self.key_error(key, format!("must be at most {MAX_COLOR:e} in magnitude, got {}", show_large(c.to_array()))))
+            }
+            v => Ok(v),
+        }
     }
 
     /// A colour, `default` when absent.
@@ -495,6 +509,12 @@ fn numbers<const N: usize>(v: &Value) -> Option<[f64; N]> {
 
 fn show(v: [f64; 3]) -> String {
     format!("[{}, {}, {}]", v[0], v[1], v[2])
+}
+
+/// `[1e300, 1e300, 1e300]`: large numbers in exponent form, not 300 digits.
+fn show_large(v: [f64; 3]) -> String {
+    let n = |x: f64| if x.abs() >= 1e15 { format!("{x:e}") } else { format!("{x}") };
+    format!("[{}, {}, {}]", n(v[0]), n(v[1]), n(v[2]))
 }
 
 fn quoted(choices: &[&str]) -> String {

@@ -93,7 +93,7 @@ impl Implicit {
     /// The surface `f = 0` inside `bounds` (finite, non-empty), where `f` changes by
     /// at most `lipschitz` (positive, finite) per unit of distance.
     pub fn new(f: ImplicitFn, bounds: Aabb, lipschitz: f64) -> Result<Implicit, Error> {
-        if !bounds.is_finite() {
+        if !bounds.is_finite() || bounds.min.cmpgt(bounds.max).any() {
             return Err(Error::invalid("bounds", "must be a finite, non-empty box"));
         }
         if !(lipschitz > 0.0 && lipschitz.is_finite()) {

@@ -116,7 +116,15 @@ impl Shape for Sphere {
         } else {
             return None;
         };
-        let normal = (ray.at(t) - self.center) * self.inv_radius;
+        let mut normal = (ray.at(t) - self.center) * self.inv_radius;
+        if (normal.length_squared() - 1.0).abs() > 1e-6 {
+            // Far from the origin `ray.at(t) - c` cancels (a ray from 1e17 to a
+            // unit sphere gives 0, a NaN normal). The same vector from the
+            // precise parts: `p - c = f + t d = perpendicular + (t - t_c) d`,
+            // where `t_c = -f.d` and `t - t_c = -+sqrt(discriminant)`.
+            let along = if t == t0 { -discriminant.sqrt() } else { discriminant.sqrt() };
+            normal = (perpendicular + ray.dir * along) * self.inv_radius;
+        }
         Some(SurfaceHit::new(t, normal.normalize()))
     }
 
@@ -149,6 +157,20 @@ mod tests {
         let hit = unit().intersect(&Ray::new(Vec3::new(0.0, 0.0, -3.0), Vec3::Z), 0.0, f64::INFINITY).unwrap();
         assert!((hit.t - 2.0).abs() < 1e-14);
         assert!((hit.normal - Vec3::new(0.0, 0.0, -1.0)).length() < 1e-14);
+    }
+
+    #[test]
+    fn hits_far_from_the_origin_keep_their_normals() {
+        // See: issue 12 ("NaN from Python"): the hit point minus the centre cancels to 0 there.
+        for z in [1e17, 1e30, 1e308] {
+            let hit = unit().intersect(&Ray::new(Vec3::new(0.0, 0.0, z), -Vec3::Z), 0.0, f64::INFINITY).unwrap();
+            assert_eq!(hit.normal, Vec3::Z, "from z = {z}");
+            assert_eq!(hit.t, z, "the distance, rounded");
+        }
+        let s = Sphere::new(Vec3::new(3.0, -2.0, 1.0), 0.5).unwrap();
+        let dir = Vec3::new(1.0, 2.0, -2.0) / 3.0;
+        let hit = s.intersect(&Ray::new(s.center - dir * 1e16 + Vec3::new(0.0, 0.1, 0.05), dir), 0.0, f64::INFINITY).unwrap();
+        assert!(hit.normal.is_finite() && (hit.normal.length() - 1.0).abs() < 1e-12, "{}", hit.normal);
     }
 
     #[test]

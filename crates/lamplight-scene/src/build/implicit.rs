@@ -15,8 +15,10 @@ use lamplight_core::shapes::{placed, Implicit, ImplicitFn, ShapeKind};
 
 use crate::expr::Expr;
 
-/// Most steps of the ray march a file may ask for.
-pub const MAX_STEPS: i64 = 1 << 20;
+/// Most steps of the ray march a file may ask for: with a loose Lipschitz bound
+/// every ray takes them all, so this bounds the work per ray (65,536 steps of an
+/// interpreted expression cost a few milliseconds; 2^32 cost minutes per pixel).
+pub const MAX_STEPS: i64 = 1 << 16;
 
 /// `implicit`.
 pub const KIND: ShapeKind = Kind {
@@ -28,12 +30,17 @@ pub const KIND: ShapeKind = Kind {
         Param::new("max", T::Point, "", "", "high corner of the bounding box"),
         Param::new("lipschitz", T::Number, "", "> 0", "bound of |grad f| inside the box"),
         Param::new("tolerance", T::Number, "1e-6 of the box diagonal", "scene units", "root tolerance"),
-        Param::new("max_steps", T::Integer, "4096", "1 to 2^20", "march steps per ray"),
+        Param::new("max_steps", T::Integer, "4096", "1 to 2^16", "march steps per ray"),
     ],
     build: |p, m| {
         let text = p.required_string("expression")?;
         let expr = Expr::compile(text).map_err(|e| p.key_error("expression", format!("at character {}: {}", e.offset + 1, e.message)))?;
-        let bounds = Aabb::new(p.required_vec3("min")?, p.required_vec3("max")?);
+        let (lo, hi) = (p.required_vec3("min")?, p.required_vec3("max")?);
+        if lo.cmpge(hi).any() {
+            // As `box` says it: the box would be empty or inside out.
+            return Err(p.key_error("max", format!("min {lo} must be below max {hi} on every axis")));
+        }
+        let bounds = Aabb::new(lo, hi);
         let f: ImplicitFn = Arc::new(move |q: Vec3| expr.eval(q.x, q.y, q.z));
         let mut shape = Implicit::new(f, bounds, p.required_number("lipschitz")?).map_err(|e| p.core_error(e))?;
         if let Some(t) = p.number("tolerance")? {

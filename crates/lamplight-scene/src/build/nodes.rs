@@ -224,8 +224,13 @@ impl<'a> Ctx<'a> {
         let asset = match (p.has("file"), p.has("positions")) {
             (true, false) if !p.has("indices") && !p.has("normals") => {
                 let file = p.required_string("file").map_err(|e| Err(self.fail(e)))?;
+                // Problems with the file as a whole are reported at the `file` key;
+                // those at a place inside the mesh file, at that place.
+                let file_loc = desc.value.get("file").map(|e| e.item.loc.clone()).unwrap_or_default();
+                let at_file = |m: String| self.source.error(&file_loc, format!("mesh \"{name}\": {m}"));
                 self.file_asset(file).map_err(|e| match e {
-                    Ok(m) => Err(at(m)),
+                    Ok(m) => Err(at_file(m)),
+                    Err(load) if load.location == Location::File => Err(at_file(load.to_string())),
                     Err(load) => Err(load),
                 })?
             }
@@ -238,6 +243,9 @@ impl<'a> Ctx<'a> {
     }
 
     fn file_asset(&mut self, file: &str) -> Result<Asset, Result<String, LoadError>> {
+        if file.is_empty() {
+            return Err(Ok("file: the path is empty, expected a mesh file".to_string()));
+        }
         let dir = self.source.path.parent().map(|p| p.to_path_buf()).unwrap_or_default();
         let path = dir.join(file);
         let meta = std::fs::metadata(&path).map_err(|_| Ok(format!("file \"{file}\" not found (looked for {})", path.display())))?;

@@ -107,14 +107,24 @@ pub fn parse(path: &Path, text: String) -> Result<(SceneDescription, Source), Lo
         return Err(LoadError::file(path, "is empty, expected a scene (at least a [camera] table)"));
     }
     let source = Source { path: path.to_path_buf(), text: None };
+    if let Some(offset) = too_deep(&text) {
+        let source = Source { text: Some(text), ..source };
+        let message =
+            format!("nested more than {MAX_DEPTH} levels deep (tables, arrays and dotted keys together), expected at most {MAX_DEPTH}");
+        return Err(source.error(&Loc::Span(offset..offset + 1), message));
+    }
     let table = match DeTable::parse(&text) {
         Ok(doc) => {
             let span = doc.span();
             table(doc.into_inner(), span)
         }
         Err(e) => {
+            let mut message = tidy(e.message());
+            if let (true, Some(key)) = (message == "duplicate key", e.span().and_then(|s| text.get(s))) {
+                message = format!("duplicate key `{}`, expected each key once per table", key.trim());
+            }
             let source = Source { text: Some(text.clone()), ..source };
-            return Err(source.error(&e.span().map_or(Loc::Unknown, Loc::Span), tidy(e.message())));
+            return Err(source.error(&e.span().map_or(Loc::Unknown, Loc::Span), message));
         }
     };
     let source = Source { text: Some(text), ..source };
@@ -122,6 +132,68 @@ pub fn parse(path: &Path, text: String) -> Result<(SceneDescription, Source), Lo
         Ok(description) => Ok((description, source)),
         Err(e) => Err(source.param_error(e)),
     }
+}
+
+/// Deepest nesting of a scene file: tables, arrays and the parts of dotted keys
+/// together. Scenes nest a few levels; the TOML parser stops at 80 with no
+/// position, so the file is checked against this bound first.
+pub const MAX_DEPTH: usize = 64;
+
+/// The byte offset where `text` first nests deeper than [`MAX_DEPTH`]: brackets
+/// and braces outside strings and comments, plus the dots of the key being
+/// written (a dot between digits is a number's).
+fn too_deep(text: &str) -> Option<usize> {
+    let bytes = text.as_bytes();
+    let (mut depth, mut dots, mut i) = (0usize, 0usize, 0usize);
+    while i < bytes.len() {
+        let b = bytes[i];
+        match b {
+            b'#' => {
+                while i < bytes.len() && bytes[i] != b'\n' {
+                    i += 1;
+                }
+                continue;
+            }
+            b'"' | b'\'' => {
+                i = string_end(bytes, i);
+                continue;
+            }
+            b'[' | b'{' => depth += 1,
+            b']' | b'}' => depth = depth.saturating_sub(1),
+            b'=' | b',' | b'\n' => dots = 0,
+            b'.' => {
+                let digit = |j: Option<&u8>| j.is_some_and(u8::is_ascii_digit);
+                if !(digit(i.checked_sub(1).and_then(|j| bytes.get(j))) && digit(bytes.get(i + 1))) {
+                    dots += 1;
+                }
+            }
+            _ => {}
+        }
+        if depth + dots > MAX_DEPTH {
+            return Some(i);
+        }
+        i += 1;
+    }
+    None
+}
+
+/// The index just past the string that starts at `start` (`"`, `'`, `"""` or
+/// `'''`); backslash escapes count in basic strings only. An unclosed string
+/// runs to the end (the parser reports it).
+fn string_end(bytes: &[u8], start: usize) -> usize {
+    let quote = bytes[start];
+    let triple = bytes.get(start..start + 3) == Some(&[quote; 3][..]);
+    let mut i = start + if triple { 3 } else { 1 };
+    while i < bytes.len() {
+        match bytes[i] {
+            b'\\' if quote == b'"' => i += 1,
+            b'\n' if !triple => return i,
+            q if q == quote && (!triple || bytes.get(i..i + 3) == Some(&[quote; 3][..])) => return i + if triple { 3 } else { 1 },
+            _ => {}
+        }
+        i += 1;
+    }
+    bytes.len()
 }
 
 /// The document tree as a [`Table`]. Tables of `[header]` sections span their
@@ -188,5 +260,17 @@ mod tests {
         assert_eq!(line_column(text, 2), (2, 1));
         assert_eq!(line_column(text, 6), (2, 4), "é is one character, two bytes");
         assert_eq!(line_column(text, 100), (3, 1));
+    }
+
+    #[test]
+    fn nesting_is_counted_outside_strings_and_comments_and_numbers() {
+        let deep = |n: usize| format!("a{} = 1\n", ".a".repeat(n));
+        assert_eq!(too_deep(&deep(MAX_DEPTH)), None);
+        assert_eq!(too_deep(&deep(MAX_DEPTH + 1)), Some(1 + 2 * MAX_DEPTH));
+        let arrays = format!("x = {}1{}\n", "[".repeat(MAX_DEPTH + 1), "]".repeat(MAX_DEPTH + 1));
+        assert_eq!(too_deep(&arrays), Some(4 + MAX_DEPTH));
+        let quiet = format!("s = \"{0}\"\nt = '{0}'\nu = \"\"\"\n{0}\"\"\"\n# {0}\nv = [{1}]\n", "[.".repeat(100), "1.5, ".repeat(100));
+        assert_eq!(too_deep(&quiet), None);
+        assert_eq!(too_deep("s = \"\\\"[[[\"\n"), None, "an escaped quote does not end a basic string");
     }
 }

@@ -124,12 +124,21 @@ pub fn load_bytes(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
     if bytes.is_empty() {
         return Err(LoadError::file(path, "the file is empty"));
     }
-    match ext.as_str() {
+    let imported = match ext.as_str() {
         "ply" => ply::parse(path, bytes),
         "obj" => obj::parse(path, bytes),
         "gltf" | "glb" => gltf::parse(path, bytes),
         _ => Err(LoadError::file(path, format!("cannot read .{ext} files yet"))),
+    }?;
+    // Every caller (a rendered mesh file, a scene's `[meshes]`, `raycast --mesh`)
+    // wants triangles: a file with none is not what was meant, most often not a
+    // mesh file at all (an OBJ reader skips what it does not know, so random
+    // bytes read as an OBJ of unknown statements).
+    let placed = |i: &ImportedMesh| imported.meshes.get(i.mesh).is_some_and(|m| !m.indices.is_empty());
+    if !imported.instances.iter().any(placed) {
+        return Err(LoadError::file(path, "has no triangles, expected a mesh"));
     }
+    Ok(imported)
 }
 
 /// All triangles of a mesh file merged into one mesh in file order, in world

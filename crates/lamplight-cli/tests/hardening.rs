@@ -1,0 +1,173 @@
+//! Issue 12 ("Hardening") end to end: each bad input of the issue with the one
+//! line it must print and the exit code, and the files a run leaves.
+//! See: issue 12 in the project's tracker.
+
+use std::fs;
+use std::path::Path;
+use std::process::{Command, Output, Stdio};
+use std::time::Duration;
+
+fn lamplight(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_lamplight")).args(args).current_dir(dir).stdin(Stdio::null()).output().expect("the binary runs")
+}
+
+/// The names in `dir`, sorted.
+fn entries(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = fs::read_dir(dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into()).collect();
+    names.sort();
+    names
+}
+
+/// Runs each case in `dir` and collects every mismatch of exit code or of the whole stderr.
+fn check(dir: &Path, cases: &[(Vec<&str>, i32, String)]) {
+    let mut failures = Vec::new();
+    for (args, code, message) in cases {
+        let out = lamplight(dir, args);
+        let err = String::from_utf8_lossy(&out.stderr).into_owned();
+        let expected = format!("lamplight: error: {message}\n");
+        if out.status.code() != Some(*code) || err != expected {
+            failures.push(format!("lamplight {args:?}\n  expected ({code}): {expected}  got ({:?}):      {err}", out.status.code()));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+const SMALL: &[&str] = &["render", "spheres", "--width", "8", "--height", "8", "-q"];
+
+fn small<'a>(extra: &[&'a str]) -> Vec<&'a str> {
+    [SMALL, extra].concat()
+}
+
+#[test]
+fn negative_counts_say_the_value_must_be_positive() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let raycast = |flag: &'static str, value: &'static str| {
+        vec!["raycast", "--mesh", "m.obj", "--origins", "o.npy", "--directions", "d.npy", "-o", "t.npy", flag, value]
+    };
+    let cases = vec![
+        (vec!["render", "--spp", "-1"], 2, "invalid value '-1' for '--spp <N>': must be a positive number".to_string()),
+        (vec!["render", "--threads", "-1"], 2, "invalid value '-1' for '--threads <T>': must be a positive number".into()),
+        (vec!["render", "--width", "-5"], 2, "invalid value '-5' for '--width <W>': must be a positive number".into()),
+        (vec!["render", "--height", "-5"], 2, "invalid value '-5' for '--height <H>': must be a positive number".into()),
+        (vec!["render", "--max-depth", "-2"], 2, "invalid value '-2' for '--max-depth <D>': must be a positive number".into()),
+        (vec!["render", "--seed", "-7"], 2, "invalid value '-7' for '--seed <S>': must be a positive number".into()),
+        (vec!["render", "--spp", "99999999999"], 2, "invalid value '99999999999' for '--spp <N>': must be at most 4294967295".into()),
+        (vec!["render", "--width", "wide"], 2, "invalid value 'wide' for '--width <W>': must be a positive whole number".into()),
+        (raycast("--threads", "-1"), 2, "invalid value '-1' for '--threads <N>': must be a positive number".into()),
+        (raycast("--repeat", "-1"), 2, "invalid value '-1' for '--repeat <K>': must be a positive number".into()),
+        (raycast("--repeat", "0"), 2, "--repeat must be at least 1".into()),
+    ];
+    check(d, &cases);
+    assert!(entries(d).is_empty());
+}
+
+#[test]
+fn two_outputs_may_never_be_the_same_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    fs::create_dir(d.join("sub")).unwrap();
+    fs::write(d.join("same.exr"), b"old").unwrap();
+    #[cfg(unix)]
+    std::os::unix::fs::symlink("same.exr", d.join("link.exr")).unwrap();
+    fs::hard_link(d.join("same.exr"), d.join("hard.exr")).unwrap();
+    let path = ["--integrator", "path", "-o", "same.exr", "--variance-output"];
+    let message = |other: &str| format!("-o same.exr and --variance-output {other} are the same file; give each output a file of its own");
+    let mut cases = vec![
+        (small(&[&path[..], &["same.exr"]].concat()), 2, message("same.exr")),
+        (small(&[&path[..], &["sub/../same.exr"]].concat()), 2, message("sub/../same.exr")),
+        (small(&[&path[..], &["hard.exr"]].concat()), 2, message("hard.exr")),
+    ];
+    #[cfg(unix)]
+    cases.push((small(&[&path[..], &["link.exr"]].concat()), 2, message("link.exr")));
+    let raycast = ["raycast", "--mesh", "m.obj", "--origins", "o.npy", "--directions", "d.npy", "-o", "t.npy", "--prims", "./t.npy"];
+    cases.push((raycast.to_vec(), 2, "-o t.npy and --prims ./t.npy are the same file; give each output a file of its own".into()));
+    check(d, &cases);
+    assert_eq!(fs::read(d.join("same.exr")).unwrap(), b"old", "nothing was written");
+    // Two different files are fine.
+    let out = lamplight(d, &small(&["--integrator", "path", "-o", "a.exr", "--variance-output", "sub/a.exr"]));
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(d.join("a.exr").exists() && d.join("sub/a.exr").exists());
+}
+
+#[test]
+fn a_bad_environment_map_is_bad_input() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    fs::write(d.join("bad.exr"), b"junk\n").unwrap();
+    fs::create_dir(d.join("dir.exr")).unwrap();
+    let env = |file: &'static str| small(&["--integrator", "path", "--environment", file]);
+    let cases = vec![
+        (env("missing.exr"), 2, "cannot read missing.exr: no such file".to_string()),
+        (env("bad.exr"), 2, "cannot read bad.exr: invalid: file identifier missing".into()),
+        (env("dir.exr"), 2, "cannot read dir.exr: is a directory, expected an image file".into()),
+        (env("sky.txt"), 2, "cannot read sky.txt: unknown environment map format \"txt\" (supported: .exr, .hdr)".into()),
+    ];
+    check(d, &cases);
+    assert_eq!(entries(d), ["bad.exr", "dir.exr"]);
+}
+
+/// 4 KiB of seeded pseudo-random bytes (a 64-bit LCG's high bytes).
+fn random_bytes(seed: u64) -> Vec<u8> {
+    let mut x = seed;
+    (0..4096)
+        .map(|_| {
+            x = x.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (x >> 56) as u8
+        })
+        .collect()
+}
+
+#[test]
+fn garbage_meshes_are_refused_the_same_way_wherever_they_come_from() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    fs::write(d.join("garbage.obj"), random_bytes(12)).unwrap();
+    let scene = "[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\nvfov = 40\n[meshes.m]\nfile = \"garbage.obj\"\n[[objects]]\ntype = \"mesh\"\nmesh = \"m\"\n";
+    fs::write(d.join("s.toml"), scene).unwrap();
+    let text = "garbage.obj: has no triangles, expected a mesh";
+    let raycast = vec!["raycast", "--mesh", "garbage.obj", "--origins", "o.npy", "--directions", "d.npy", "-o", "t.npy"];
+    let cases = vec![
+        (vec!["render", "garbage.obj", "-q"], 2, text.to_string()),
+        (vec!["render", "s.toml", "-q"], 2, format!("s.toml:6:8: mesh \"m\": {text}")),
+        (raycast, 2, text.to_string()),
+    ];
+    check(d, &cases);
+    assert_eq!(entries(d), ["garbage.obj", "s.toml"]);
+}
+
+/// Ctrl-C at any moment of a render, the final write included: exit code 130,
+/// no temporary file, and the output either absent or whole. The signal is sent
+/// after a range of delays across the run (the write itself is deterministic in
+/// `lamplight_scene::atomic`'s own test, which interrupts in the middle of it).
+#[cfg(unix)]
+#[test]
+fn an_interrupt_at_any_moment_leaves_no_temporary_file() {
+    let mut interrupted = 0;
+    for delay_ms in [150u64, 250, 350, 450, 550, 650, 750, 850, 950] {
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path();
+        let child = Command::new(env!("CARGO_BIN_EXE_lamplight"))
+            .args(["render", "spheres", "--width", "1000", "--height", "1000", "--max-depth", "1", "-o", "big.exr", "-q"])
+            .current_dir(d)
+            .stdin(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(Duration::from_millis(delay_ms));
+        // Fails harmlessly when the render has already ended.
+        let _ = Command::new("kill").args(["-INT", &child.id().to_string()]).stderr(Stdio::null()).status();
+        let out = child.wait_with_output().unwrap();
+        let names = entries(d);
+        assert!(names.is_empty() || names == ["big.exr"], "after {delay_ms} ms: {names:?}");
+        if names == ["big.exr"] {
+            assert_eq!(lamplight_scene::image_io::read_exr(&d.join("big.exr")).unwrap().width, 1000, "renamed whole");
+        }
+        if !out.status.success() {
+            assert_eq!(out.status.code(), Some(130), "after {delay_ms} ms");
+            assert_eq!(String::from_utf8_lossy(&out.stderr), "lamplight: error: interrupted\n");
+            interrupted += 1;
+        }
+    }
+    assert!(interrupted > 0, "no render lasted 150 ms: the signal was never handled");
+}

@@ -1,0 +1,83 @@
+"""Issue 12 ("Hardening") from Python: every bad value raises one error naming
+the parameter or the key path and its bound, and no NaN reaches an answer."""
+
+import re
+
+import numpy as np
+import pytest
+
+import lamplight
+
+CAMERA = {"eye": [0, 0, 5], "look_at": [0, 0, 0], "vfov": 40}
+SPHERE = {"type": "sphere", "center": [0, 0, 0], "radius": 1}
+
+
+def scene_with(**parts):
+    return {"camera": dict(CAMERA), "objects": [dict(SPHERE)], **parts}
+
+
+@pytest.mark.parametrize(
+    "kwargs, message",
+    [
+        (dict(width=2**32), "width must be at most 4294967295, got 4294967296"),
+        (dict(height=-5), "height must be at least 1, got -5"),
+        (dict(spp=2**40), "spp must be at most 1048576, got 1099511627776"),
+        (dict(threads=-1), "threads must be at least 0 (0 uses all cores), got -1"),
+        (dict(threads=2**70), "threads must be at most 1024 (0 uses all cores), got 1180591620717411303424"),
+        (dict(seed=-1), "seed must be at least 0, got -1"),
+        (dict(seed=2**64), "seed must be at most 18446744073709551615, got 18446744073709551616"),
+        (dict(max_depth=2**33), "max_depth must be at most 64, got 8589934592"),
+        (dict(window=(0, 0, -1, 2)), "window width must be at least 0, got -1"),
+    ],
+)
+def test_out_of_range_integers_name_the_parameter_and_its_bound(kwargs, message):
+    with pytest.raises(ValueError, match="^" + re.escape(message) + "$"):
+        lamplight.render(scene_with(), progress=False, **kwargs)
+
+
+def test_intersect_threads_are_checked_by_name():
+    with pytest.raises(ValueError, match="^" + re.escape("threads must be at least 0 (0 uses all cores), got -1") + "$"):
+        lamplight.Scene(scene_with()).intersect(np.zeros((1, 3)), np.ones((1, 3)), threads=-1)
+
+
+@pytest.mark.parametrize("z", [1e17, 1e30, 1e308])
+def test_far_hits_keep_finite_normals(z):
+    t, ids, _, normals = lamplight.Scene(scene_with()).intersect(np.array([[0.0, 0.0, z]]), np.array([[0.0, 0.0, -1.0]]))
+    assert list(ids) == [0] and t[0] == z
+    assert normals.tolist() == [[0.0, 0.0, 1.0]]
+
+
+def garbage_mesh(tmp_path):
+    path = tmp_path / "garbage.obj"
+    path.write_bytes(np.random.default_rng(12).integers(0, 256, 4096, dtype=np.uint8).tobytes())
+    return path
+
+
+@pytest.mark.parametrize(
+    "make, message",
+    [
+        (lambda t: scene_with(objects=[{"type": "group", "children": [dict(SPHERE, radius=-1)]}]),
+         "scene dict: objects[0].children[0].radius: sphere: invalid radius: must be a positive number, got -1"),
+        (lambda t: scene_with(objects=[dict(SPHERE, center=[0, 0, 0, 0])]),
+         "scene dict: objects[0].center: sphere: center: expected [x, y, z], got an array of 4"),
+        (lambda t: {"camera": dict(CAMERA, eye=[0, 0, 5, 123])}, "scene dict: camera.eye: camera: eye: expected [x, y, z], got an array of 4"),
+        (lambda t: {"camera": dict(CAMERA, up=[0, 0, 0])},
+         "scene dict: camera.up: camera: invalid up: is the zero vector [0, 0, 0], expected a direction"),
+        (lambda t: scene_with(materials={"e": {"emission": 1e39}}),
+         "scene dict: materials.e.emission: material \"e\": emission: must be at most 1e12 in magnitude, got [1e39, 1e39, 1e39]"),
+        (lambda t: scene_with(objects=[{"type": "point_light", "position": [0, 0, 3], "intensity": 1e300}]),
+         "scene dict: objects[0].intensity: point_light: intensity: must be at most 1e12 in magnitude, got [1e300, 1e300, 1e300]"),
+        (lambda t: scene_with(materials={"m": {"reflection": {"type": "dielectric", "ior": 1.5, "min": 2, "max": -1}}}),
+         "scene dict: materials.m.reflection.min: material \"m\": reflection: min: must be between 0 and 1, got 2"),
+        (lambda t: scene_with(objects=[{"type": "implicit", "expression": "x*x + y*y + z*z - 1", "min": [1, 1, 1], "max": [-1, -1, -1], "lipschitz": 4}]),
+         "scene dict: objects[0].max: implicit: max: min [1, 1, 1] must be below max [-1, -1, -1] on every axis"),
+        (lambda t: scene_with(meshes={"m": {"file": ""}}, objects=[{"type": "mesh", "mesh": "m"}]),
+         "scene dict: meshes.m.file: mesh \"m\": file: the path is empty, expected a mesh file"),
+        (lambda t: scene_with(meshes={"m": {"file": str(garbage_mesh(t))}}, objects=[{"type": "mesh", "mesh": "m"}]),
+         "scene dict: meshes.m.file: mesh \"m\": {tmp}/garbage.obj: has no triangles, expected a mesh"),
+    ],
+)
+def test_builder_errors_keep_their_key_path(tmp_path, make, message):
+    with pytest.raises(lamplight.SceneError) as info:
+        lamplight.render(make(tmp_path), width=4, height=4, progress=False)
+    assert str(info.value) == message.replace("{tmp}", str(tmp_path))
