@@ -100,14 +100,17 @@ impl Texture {
     }
 }
 
-/// Relative distance below a cell boundary within which a point counts as on
-/// it: far above the rounding of a hit point (about 1e-16 of its distance from
-/// the origin and from the ray's origin), far below anything a pixel resolves
-/// when the camera is within a million cells of the pattern.
+/// Distance in cells below a cell boundary within which a point counts as on
+/// it, plus [`CELL_SNAP_RELATIVE`] of the coordinate: far above the rounding of
+/// a hit point (about 1e-16 of its distance from the origin and from the ray's
+/// origin, so up to 10^7 cells away), far below anything a pixel resolves.
 pub const CELL_SNAP: f64 = 1e-9;
 
+/// The part of the snap distance that grows with the cell coordinate `|v|`.
+pub const CELL_SNAP_RELATIVE: f64 = 1e-12;
+
 /// `(floor(x) + floor(y) + floor(z)) mod 2` for the checker's cell coordinates,
-/// where a coordinate within [`CELL_SNAP`] `* max(1, |v|)` below an integer
+/// where a coordinate within `CELL_SNAP + CELL_SNAP_RELATIVE |v|` below an integer
 /// counts as that integer. A surface lying in a cell boundary (a floor at
 /// `y = 0`) is hit at `y = +-1e-17` as rounding falls; without this its pixels
 /// would take either cell's colour at random (POV-Ray adds a small tolerance to
@@ -126,7 +129,7 @@ pub fn cell_parity(cell: Vec3) -> u8 {
             let t = v as i64;
             let below = t - ((t as f64) > v) as i64;
             let next = below + 1;
-            if next as f64 - v <= CELL_SNAP * v.abs().max(1.0) {
+            if next as f64 - v <= CELL_SNAP + CELL_SNAP_RELATIVE * v.abs() {
                 next
             } else {
                 below
@@ -184,6 +187,7 @@ mod tests {
         assert_ne!(t.evaluate(Vec3::new(0.5, 0.0, 0.5)), t.evaluate(Vec3::new(0.5, -1e-6, 0.5)));
         // Far from the origin the tolerance scales with the coordinate.
         let far = 1e6;
-        assert_eq!(cell_parity(Vec3::new(far - 1e-4, 0.5, 0.5)), cell_parity(Vec3::new(far + 1e-4, 0.5, 0.5)));
+        assert_eq!(cell_parity(Vec3::new(far - 1e-7, 0.5, 0.5)), cell_parity(Vec3::new(far + 1e-7, 0.5, 0.5)));
+        assert_ne!(cell_parity(Vec3::new(far - 1e-4, 0.5, 0.5)), cell_parity(Vec3::new(far + 1e-4, 0.5, 0.5)));
     }
 }
