@@ -72,7 +72,9 @@ fn render_command(job: RenderJob) -> anyhow::Result<()> {
     let build_start = Instant::now();
     let (width, height) = (job.options.width, job.options.height);
     // Scene errors are the user's input: exit code 2, one line naming file and place.
-    let mut built = scene.build().map_err(|e| UsageError(e.0))?;
+    let built = scene.build_with_warnings().map_err(|e| UsageError(e.0))?;
+    print_warnings(&built.warnings);
+    let mut built = built.scene;
     job.prepare(&mut built).map_err(|e| UsageError(e.0))?;
     let build_time = build_start.elapsed();
 
@@ -107,6 +109,13 @@ fn render_command(job: RenderJob) -> anyhow::Result<()> {
         eprintln!("lamplight: warning: {} samples were NaN or infinite and were replaced by black", stats.nonfinite_samples);
     }
     Ok(())
+}
+
+/// Prints the importers' warnings to stderr, one line each (each is given once).
+pub(crate) fn print_warnings(warnings: &[String]) {
+    for warning in warnings {
+        eprintln!("lamplight: warning: {warning}");
+    }
 }
 
 /// A tile progress bar on stderr, only for a person watching a terminal.

@@ -15,6 +15,7 @@ use lamplight_core::math::{Rgb, Vec3};
 use lamplight_core::shapes::TriangleMesh;
 use lamplight_core::{Scene, SceneBuilder};
 
+use super::Built;
 use crate::error::LoadError;
 use crate::import::{self, Imported, ImportedLight, ImportedProjection};
 
@@ -25,8 +26,14 @@ const AMBIENT: f64 = 0.1;
 
 /// Reads the mesh file at `path` and builds a scene (for any image size).
 pub fn load(path: &Path) -> Result<Scene, LoadError> {
+    load_with_warnings(path).map(|built| built.scene)
+}
+
+/// [`load`], keeping the importer's warnings, each as `PATH: what`.
+pub fn load_with_warnings(path: &Path) -> Result<Built, LoadError> {
     let imported = import::load(path)?;
-    build(path, &imported)
+    let scene = build(path, &imported)?;
+    Ok(Built { scene, warnings: imported.warnings_of(path) })
 }
 
 /// Builds a scene from what an importer read from `path`.
