@@ -19,6 +19,7 @@ pub mod imported;
 mod materials;
 mod nodes;
 mod transform;
+pub mod viewer;
 
 pub use nodes::{MAX_NESTING, MAX_OBJECTS, MESH_PARAMS};
 
