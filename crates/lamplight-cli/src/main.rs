@@ -4,6 +4,7 @@
 //! lamplight render [SCENE|FILE] [-o FILE] [--width W] [--height H] [--spp N]
 //!                  [--max-depth D] [--threads T] [--seed S] [--quiet]
 //! lamplight list
+//! lamplight info FILE
 //! ```
 //!
 //! The binary is thin: it turns arguments into options ([`args`]), builds the
@@ -49,6 +50,7 @@ fn run() -> anyhow::Result<()> {
     match Cli::parse().command {
         Command::Render(render_args) => render_command(render_args.validate()?),
         Command::List => list_command(),
+        Command::Info(info_args) => info_command(&info_args.file),
         Command::Raycast(raycast_args) => raycast::raycast_command(raycast_args),
     }
 }
@@ -60,6 +62,15 @@ fn list_command() -> anyhow::Result<()> {
         let (w, h) = b.default_size;
         writeln!(out, "{:width$}  {:>9}  {}", b.name, format!("{w}x{h}"), b.summary)?;
     }
+    out.flush()?;
+    Ok(())
+}
+
+fn info_command(file: &str) -> anyhow::Result<()> {
+    let scene = request::SceneRequest::resolve(file).map_err(UsageError::from)?;
+    let text = lamplight_scene::info::describe(&scene).map_err(UsageError::from)?;
+    let mut out = io::stdout().lock();
+    out.write_all(text.as_bytes())?;
     out.flush()?;
     Ok(())
 }
