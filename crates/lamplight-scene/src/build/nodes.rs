@@ -292,7 +292,13 @@ impl<'a> Ctx<'a> {
 pub const MESH_PARAMS: &[lamplight_core::params::Param] = {
     use lamplight_core::params::{Param, ParamType as T};
     &[
-        Param::new("file", T::String, "", "", "an OBJ, PLY or glTF file, relative to the scene file's folder"),
+        Param::new(
+            "file",
+            T::String,
+            "",
+            "",
+            "an OBJ, PLY, glTF or GLB file: an absolute path, or one relative to the scene file's folder (a dict's `base_dir`)",
+        ),
         Param::new("positions", T::Array, "", "", "inline vertex positions, `[x, y, z]` each"),
         Param::new("indices", T::Array, "", "", "inline triangles, `[i, j, k]` vertex indices from 0"),
         Param::new("normals", T::Array, "none", "", "inline per-vertex normals"),
