@@ -38,6 +38,9 @@ enum Origin {
     Mesh(PathBuf),
 }
 
+/// A kept build: the core scene and its mesh files' warnings.
+type Kept = (Arc<CoreScene>, Arc<Vec<String>>);
+
 /// A scene: made from a built-in name, a scene or mesh file, or a dict, and
 /// built on first use.
 #[pyclass(module = "lamplight._lamplight", frozen)]
@@ -47,7 +50,7 @@ pub struct Scene {
     camera: Option<(PyObject, Arc<dyn Camera>)>,
     defaults: Defaults,
     /// The core scene once built, and the warnings of the mesh files it read.
-    built: Mutex<Option<(Arc<CoreScene>, Arc<Vec<String>>)>>,
+    built: Mutex<Option<Kept>>,
 }
 
 /// The names of the built-in scenes, the default first.
@@ -93,7 +96,7 @@ impl Scene {
 
     /// The core scene and its mesh files' warnings, built once and kept. The
     /// build that is kept gives each warning to Python's `warnings.warn` once.
-    fn core_and_warnings(&self, py: Python<'_>) -> PyResult<(Arc<CoreScene>, Arc<Vec<String>>)> {
+    fn core_and_warnings(&self, py: Python<'_>) -> PyResult<Kept> {
         if let Some(built) = self.built.lock().map_err(|_| SceneError::new_err("scene cache poisoned"))?.as_ref() {
             return Ok(built.clone());
         }
