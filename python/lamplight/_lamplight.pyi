@@ -64,18 +64,25 @@ class Scene:
     def build(self, width: Optional[int] = None, height: Optional[int] = None) -> None:
         """Builds now (errors show here); one build serves every image size, and
         ``width x height`` (default: the scene's size) is only checked."""
+    @property
+    def warnings(self) -> List[str]:
+        """What the importers skipped in the scene's mesh files, one line each
+        (``FILE: what``); builds the scene if needed. Building also gives each
+        to ``warnings.warn`` (a ``UserWarning``) once."""
     def object_count(self) -> int:
         """Placed shapes in the scene: object ids run from 0 below this."""
     def intersect(
         self,
-        origins: npt.NDArray[_Float],
-        directions: npt.NDArray[_Float],
+        origins: Union[npt.NDArray[_Float], List[List[float]]],
+        directions: Union[npt.NDArray[_Float], List[List[float]]],
         threads: int = 0,
     ) -> Tuple[npt.NDArray[_Float], npt.NDArray[np.int64], npt.NDArray[np.int64], npt.NDArray[_Float]]:
         """Nearest hits of the rays ``origins[i] + s * directions[i]``, ``s > 0``.
 
         ``origins`` and ``directions`` are ``(N, 3)`` arrays, both float32 or
-        both float64, read in place (any strides); directions need not be unit.
+        both float64, read in place (any strides); a list (or tuple) of
+        ``[x, y, z]`` rows is copied into an array of the other argument's
+        dtype (float64 when both are lists). Directions need not be unit.
         Runs on ``threads`` threads (0: every core, at most 1024) with the GIL
         released; the answers do not depend on it. Returns
         ``(t, ids, prims, normals)``:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 import sys
+import warnings
 from typing import Any, Callable, Optional, Sequence, Tuple, Union
 
 from . import _lamplight
@@ -54,6 +55,20 @@ def _in_notebook() -> bool:
     return "ipykernel" in sys.modules
 
 
+_warned_no_tqdm = False
+
+
+def _warn_no_tqdm() -> None:
+    """Says once why ``progress=True`` shows nothing."""
+    global _warned_no_tqdm
+    if not _warned_no_tqdm:
+        _warned_no_tqdm = True
+        warnings.warn(
+            "progress=True shows a bar only with tqdm installed (pip install tqdm); rendering without one",
+            stacklevel=4,
+        )
+
+
 def progress_reporter(progress: Progress, desc: str = "lamplight", unit: str = "tile"):
     """(callback, closer) for ``progress``: a callable is called with
     ``(done, total)``; ``True`` shows a tqdm bar (where tqdm is installed);
@@ -67,6 +82,8 @@ def progress_reporter(progress: Progress, desc: str = "lamplight", unit: str = "
     try:
         from tqdm.auto import tqdm
     except ImportError:
+        if progress is True:
+            _warn_no_tqdm()
         return None, lambda: None
     bar = tqdm(total=0, desc=desc, unit=unit, leave=False)
 

@@ -21,7 +21,8 @@ class Image(np.ndarray):
     ``stats`` holds the render's statistics when it came from a render, and
     ``layers`` the extra layers it asked for (``exr_layers``): ``"variance"``
     ``(H, W, 3)`` and ``"samples"`` ``(H, W)``, which :meth:`save` writes beside
-    the image into an ``.exr`` file.
+    the image into an ``.exr`` file. Slices and views keep both; the result of
+    arithmetic (``image * 2``, ``a - b``) is new data and has neither.
     """
 
     stats: dict
@@ -31,8 +32,22 @@ class Image(np.ndarray):
         return np.asarray(array, dtype=np.float32).view(cls)
 
     def __array_finalize__(self, obj) -> None:
+        # Views and slices keep the render's stats and layers; results of
+        # arithmetic get fresh ones (__array_wrap__ below).
         self.stats = getattr(obj, "stats", {})
         self.layers = getattr(obj, "layers", {})
+
+    def __array_wrap__(self, array, context=None, return_scalar=False):
+        # A ufunc's result (image * 2, a - b, np.sqrt(a)) is new data: the
+        # operand's stats and layers do not describe it.
+        if return_scalar:
+            result = super().__array_wrap__(array, context, return_scalar)
+        else:  # numpy 1 takes no return_scalar
+            result = super().__array_wrap__(array, context)
+        if isinstance(result, Image) and context is not None:
+            result.stats = {}
+            result.layers = {}
+        return result
 
     def _is_image(self) -> bool:
         return self.ndim == 3 and self.shape[2] == 3 and self.shape[0] > 0 and self.shape[1] > 0 and self.dtype == np.float32

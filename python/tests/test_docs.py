@@ -19,3 +19,25 @@ def test_the_dict_examples_run(monkeypatch):
         exec(compile(block, "docs/python.md", "exec"), names)
         image = names["image"]
         assert image.ndim == 3 and image.shape[2] == 3 and image.max() > 0
+
+
+def test_the_quoted_dict_error_is_the_one_the_code_raises():
+    import lamplight as ll
+
+    text = (ROOT / "docs" / "python.md").read_text()
+    quoted = re.search(r"`(scene dict: objects\[1\]\.radius: [^`]*)`", text).group(1)
+    scene = ll.scene(
+        camera=ll.camera(eye=[0, 0, 5], look_at=[0, 0, 0]),
+        objects=[ll.point_light([0, 4, 0], 10), ll.sphere([0, 0, 0], "big")],
+    )
+    try:
+        ll.render(scene, width=8, height=8)
+    except ll.SceneError as e:
+        assert str(e) == quoted
+    else:
+        raise AssertionError("a sphere of radius 'big' rendered")
+
+
+def test_every_example_file_is_listed_in_the_docs():
+    listed = set(re.findall(r"`examples/([\w-]+\.toml)`", (ROOT / "docs" / "examples.md").read_text()))
+    assert listed == {p.name for p in (ROOT / "examples").glob("*.toml")}

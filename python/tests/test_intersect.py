@@ -162,7 +162,9 @@ def test_python_and_the_command_line_give_the_same_numbers(cli, tmp_path):
 @pytest.mark.parametrize(
     "origins, directions, error, message",
     [
-        ([[0, 0, 0]], np.zeros((1, 3)), TypeError, "origins must be a numpy array of shape \\(N, 3\\), got list"),
+        ("0 0 0", np.zeros((1, 3)), TypeError, "origins must be a numpy array \\(or a list of rows\\) of shape \\(N, 3\\), got str"),
+        ([[0, 0, 0], [1, 2]], np.zeros((2, 3)), ValueError, "origins must be rows of three numbers, shape \\(N, 3\\): "),
+        ([[0, 0]], np.zeros((1, 3)), ValueError, "origins must have shape \\(N, 3\\), got \\[1, 2\\]"),
         (np.zeros((4, 2)), np.zeros((4, 3)), ValueError, "origins must have shape \\(N, 3\\), got \\[4, 2\\]"),
         (np.zeros(3), np.zeros((1, 3)), ValueError, "origins must have shape \\(N, 3\\)"),
         (np.zeros((4, 3)), np.zeros((5, 3)), ValueError, "same number of rows, got 4 and 5"),
@@ -173,6 +175,19 @@ def test_python_and_the_command_line_give_the_same_numbers(cli, tmp_path):
 def test_bad_arrays_raise_clear_errors(origins, directions, error, message):
     with pytest.raises(error, match=message):
         scene().intersect(origins, directions)
+
+
+def test_lists_are_rays_too():
+    origins = [[0.0, 0.5, 5.0], [9.0, 9.0, 9.0]]
+    directions = ((0, 0, -1), (0, 0, 1))
+    expected = scene().intersect(np.array(origins), np.array(directions, dtype=np.float64))
+    for o, d in [(origins, directions), (np.array(origins), directions), (origins, np.array(directions, dtype=np.float64))]:
+        got = scene().intersect(o, d)
+        for a, b in zip(got, expected):
+            np.testing.assert_array_equal(a, b)
+    # A list beside a float32 array becomes float32: the answers are float32.
+    t32 = scene().intersect(np.array(origins, dtype=np.float32), directions)[0]
+    assert t32.dtype == np.float32 and np.isfinite(t32[0]) and np.isinf(t32[1])
 
 
 def test_thread_counts_are_bounded():

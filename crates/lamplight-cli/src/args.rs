@@ -34,6 +34,8 @@ pub enum Command {
     Render(RenderArgs),
     /// List the built-in scenes.
     List,
+    /// Describe a scene or mesh file: triangles, bounds, materials, lights, cameras and warnings.
+    Info(InfoArgs),
     /// Cast a batch of rays (.npy arrays) against a mesh: distances to the nearest hits and triangle indices.
     Raycast(crate::raycast::RaycastArgs),
 }
@@ -94,6 +96,14 @@ pub struct RenderArgs {
     /// `variance` (of each pixel's mean: variance.R/G/B), `samples` (per pixel: samples.Y).
     #[arg(long, value_name = "LIST", value_delimiter = ',')]
     pub exr_layers: Vec<ExrLayer>,
+}
+
+/// `lamplight info` arguments.
+#[derive(Debug, Args)]
+pub struct InfoArgs {
+    /// Scene file (.toml), mesh file (.obj, .ply, .gltf, .glb) or built-in scene name.
+    #[arg(value_name = "FILE")]
+    pub file: String,
 }
 
 /// An extra layer of the .exr output.
@@ -249,7 +259,7 @@ mod tests {
         let cli = Cli::try_parse_from(["lamplight", "render"].iter().chain(args)).expect("clap accepts the flags");
         match cli.command {
             Command::Render(render) => render.validate(),
-            Command::List | Command::Raycast(_) => unreachable!(),
+            Command::List | Command::Info(_) | Command::Raycast(_) => unreachable!(),
         }
     }
 

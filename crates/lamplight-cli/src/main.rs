@@ -4,6 +4,7 @@
 //! lamplight render [SCENE|FILE] [-o FILE] [--width W] [--height H] [--spp N]
 //!                  [--max-depth D] [--threads T] [--seed S] [--quiet]
 //! lamplight list
+//! lamplight info FILE
 //! ```
 //!
 //! The binary is thin: it turns arguments into options ([`args`]), builds the
@@ -51,6 +52,7 @@ fn run() -> anyhow::Result<()> {
     match parse_args()?.command {
         Command::Render(render_args) => render_command(render_args.validate()?),
         Command::List => list_command(),
+        Command::Info(info_args) => info_command(&info_args.file),
         Command::Raycast(raycast_args) => raycast::raycast_command(raycast_args),
     }
 }
@@ -81,6 +83,15 @@ fn list_command() -> anyhow::Result<()> {
     Ok(())
 }
 
+fn info_command(file: &str) -> anyhow::Result<()> {
+    let scene = request::SceneRequest::resolve(file).map_err(UsageError::from)?;
+    let text = lamplight_scene::info::describe(&scene).map_err(UsageError::from)?;
+    let mut out = io::stdout().lock();
+    out.write_all(text.as_bytes())?;
+    out.flush()?;
+    Ok(())
+}
+
 fn render_command(job: RenderJob) -> anyhow::Result<()> {
     let RenderJob { scene, output, job, quiet, display, variance_output, variance_in_output } = job;
     // Fail before a long render, not after it, when the file cannot be written.
@@ -89,7 +100,9 @@ fn render_command(job: RenderJob) -> anyhow::Result<()> {
     let build_start = Instant::now();
     let (width, height) = (job.options.width, job.options.height);
     // Scene errors are the user's input: exit code 2, one line naming file and place.
-    let mut built = scene.build().map_err(|e| UsageError(e.0))?;
+    let built = scene.build_with_warnings().map_err(|e| UsageError(e.0))?;
+    print_warnings(&built.warnings);
+    let mut built = built.scene;
     job.prepare(&mut built).map_err(|e| UsageError(e.0))?;
     let build_time = build_start.elapsed();
 
@@ -128,6 +141,13 @@ fn render_command(job: RenderJob) -> anyhow::Result<()> {
         );
     }
     Ok(())
+}
+
+/// Prints the importers' warnings to stderr, one line each (each is given once).
+pub(crate) fn print_warnings(warnings: &[String]) {
+    for warning in warnings {
+        eprintln!("lamplight: warning: {warning}");
+    }
 }
 
 /// A tile progress bar on stderr, only for a person watching a terminal.

@@ -44,7 +44,7 @@ use crate::args::UsageError;
                         s |D[i]| to the nearest hit (Embree's t when D[i] is unit), +inf for a miss. The same numbers \
                         as Python's Scene.intersect.")]
 pub struct RaycastArgs {
-    /// Mesh file (any format `lamplight_scene::import` reads).
+    /// Mesh file: .obj, .ply, .gltf or .glb (every mesh of the file merged in world space, in file order).
     #[arg(long, value_name = "FILE", conflicts_with_all = ["vertices", "indices"])]
     pub mesh: Option<PathBuf>,
     /// Vertex positions, an (V, 3) float32/float64 .npy (with --indices, instead of --mesh).
@@ -205,7 +205,9 @@ type Mesh = (Vec<[f32; 3]>, Vec<[u32; 3]>);
 fn load_mesh(args: &RaycastArgs) -> anyhow::Result<Mesh> {
     match (&args.mesh, &args.vertices, &args.indices) {
         (Some(path), _, _) => {
-            let mesh = lamplight_scene::import::load_mesh(path).map_err(|e| UsageError(e.to_string()))?;
+            let imported = lamplight_scene::import::load(path).map_err(|e| UsageError(e.to_string()))?;
+            crate::print_warnings(&imported.warnings_of(path));
+            let mesh = imported.into_mesh();
             Ok((mesh.positions.iter().map(|p| [p.x as f32, p.y as f32, p.z as f32]).collect(), mesh.indices))
         }
         (None, Some(v), Some(i)) => Ok((npy::read_rows3_f32(v).map_err(npy_error)?, npy::read_rows3_u32(i).map_err(npy_error)?)),

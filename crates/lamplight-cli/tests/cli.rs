@@ -292,3 +292,24 @@ fn radiance_hdr_files_light_the_scene_like_the_same_exr() {
     let message = fails(d, &[&base[..], &["--environment", "bad.hdr", "-o", "c.exr"]].concat(), 2, "bad.hdr");
     assert!(message.contains("not a valid Radiance .hdr file"), "{message}");
 }
+
+/// An OBJ quad with texture coordinates and a line element, both unsupported.
+const WARNED_OBJ: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 1\nf 1 2 3 4\nl 1 3\nl 2 4\n";
+
+#[test]
+fn importer_warnings_are_printed_once_each_to_stderr() {
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    fs::write(dir.join("quad.obj"), WARNED_OBJ).unwrap();
+    let expected = "lamplight: warning: quad.obj: OBJ texture coordinates (vt) ignored: textures are not supported\n\
+                    lamplight: warning: quad.obj: OBJ line elements ignored\n";
+    let err = ok(dir, &["render", "quad.obj", "--width", "16", "--height", "9", "-q"]);
+    assert_eq!(err, expected, "-q keeps the warnings");
+    let err = ok(dir, &["render", "quad.obj", "--width", "16", "--height", "9"]);
+    assert!(err.starts_with(expected) && err.lines().nth(2).is_some_and(|l| l.starts_with("rendered quad 16x9")), "{err}");
+    // A scene file placing the mesh twice reads it once: each warning once.
+    let scene = "[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\nvfov = 40\n[meshes.quad]\nfile = \"quad.obj\"\n\
+                 [[objects]]\ntype = \"mesh\"\nmesh = \"quad\"\n[[objects]]\ntype = \"mesh\"\nmesh = \"quad\"\ntranslate = [1, 0, 0]\n";
+    fs::write(dir.join("twice.toml"), scene).unwrap();
+    assert_eq!(ok(dir, &["render", "twice.toml", "--width", "16", "--height", "9", "-q"]), expected);
+}

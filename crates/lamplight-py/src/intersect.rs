@@ -3,7 +3,9 @@
 //! uses, with the same meaning of every number).
 //!
 //! Origins and directions are `(N, 3)` arrays of float32 or float64 (the same
-//! for both), read in place (no copy, any strides). The rays are traced on a
+//! for both), read in place (no copy, any strides); a list or tuple of
+//! `[x, y, z]` rows is copied into an array first (of the other argument's
+//! float type when that one is an array, else float64). The rays are traced on a
 //! rayon pool with the GIL released. Answers, for ray `o + s d` (`d` of any
 //! non-zero length): `t`, the distance `s |d|` from the origin to the nearest hit
 //! (the input's float type, `+inf` on a miss); the id of the object hit (int64,
@@ -18,7 +20,7 @@ use numpy::ndarray::ArrayView2;
 use numpy::{Element, PyArray1, PyArray2, PyArrayMethods, PyUntypedArray, PyUntypedArrayMethods};
 use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::PyTuple;
+use pyo3::types::{PyList, PyTuple};
 
 /// Two `(N, 3)` numpy arrays read in place as rays.
 struct ArrayRays<'a, T> {
@@ -40,11 +42,25 @@ impl<T: Float> Rays for ArrayRays<'_, T> {
     }
 }
 
+/// `obj` as a numpy array: an array as it is; a list or tuple copied into one of
+/// `other`'s float type when `other` is a float32 array, else float64. Any
+/// other type is left for [`rows`] to name.
+fn as_array<'py>(obj: &Bound<'py, PyAny>, other: &Bound<'py, PyAny>, name: &str) -> PyResult<Bound<'py, PyAny>> {
+    if !(obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>()) {
+        return Ok(obj.clone());
+    }
+    let dtype = if other.downcast::<PyArray2<f32>>().is_ok() { "float32" } else { "float64" };
+    let numpy = obj.py().import("numpy")?;
+    numpy
+        .call_method1("asarray", (obj, dtype))
+        .map_err(|e| PyValueError::new_err(format!("{name} must be rows of three numbers, shape (N, 3): {}", e.value(obj.py()))))
+}
+
 /// Checks that `obj` is an `(N, 3)` numpy array and returns N.
 fn rows(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<usize> {
     let array = obj.downcast::<PyUntypedArray>().map_err(|_| {
         let type_name = obj.get_type().name().map(|n| n.to_string()).unwrap_or_default();
-        PyTypeError::new_err(format!("{name} must be a numpy array of shape (N, 3), got {type_name}"))
+        PyTypeError::new_err(format!("{name} must be a numpy array (or a list of rows) of shape (N, 3), got {type_name}"))
     })?;
     let shape = array.shape();
     if shape.len() != 2 || shape[1] != 3 {
@@ -66,6 +82,7 @@ pub fn intersect<'py>(
     directions: &Bound<'py, PyAny>,
     threads: usize,
 ) -> PyResult<Bound<'py, PyTuple>> {
+    let (origins, directions) = (&as_array(origins, directions, "origins")?, &as_array(directions, origins, "directions")?);
     let n = rows(origins, "origins")?;
     let m = rows(directions, "directions")?;
     if n != m {

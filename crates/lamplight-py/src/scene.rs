@@ -38,6 +38,9 @@ enum Origin {
     Mesh(PathBuf),
 }
 
+/// A kept build: the core scene and its mesh files' warnings.
+type Kept = (Arc<CoreScene>, Arc<Vec<String>>);
+
 /// A scene: made from a built-in name, a scene or mesh file, or a dict, and
 /// built on first use.
 #[pyclass(module = "lamplight._lamplight", frozen)]
@@ -46,7 +49,8 @@ pub struct Scene {
     /// A camera replacing the scene's (`with_camera`): the plain dict and its description.
     camera: Option<(PyObject, Arc<dyn Camera>)>,
     defaults: Defaults,
-    built: Mutex<Option<Arc<CoreScene>>>,
+    /// The core scene once built, and the warnings of the mesh files it read.
+    built: Mutex<Option<Kept>>,
 }
 
 /// The names of the built-in scenes, the default first.
@@ -87,27 +91,52 @@ impl Scene {
 
     /// The core scene (for any image size), built once and kept.
     pub fn core(&self, py: Python<'_>) -> PyResult<Arc<CoreScene>> {
-        if let Some(scene) = self.built.lock().map_err(|_| SceneError::new_err("scene cache poisoned"))?.as_ref() {
-            return Ok(scene.clone());
+        self.core_and_warnings(py).map(|(scene, _)| scene)
+    }
+
+    /// The core scene and its mesh files' warnings, built once and kept. The
+    /// build that is kept gives each warning to Python's `warnings.warn` once.
+    fn core_and_warnings(&self, py: Python<'_>) -> PyResult<Kept> {
+        if let Some(built) = self.built.lock().map_err(|_| SceneError::new_err("scene cache poisoned"))?.as_ref() {
+            return Ok(built.clone());
         }
         // Building reads mesh files and builds BVHs: let other Python threads run.
         // Two threads may both build; the first to finish is kept.
-        let built = Arc::new(py.allow_threads(|| self.build_core())?);
-        let mut kept = self.built.lock().map_err(|_| SceneError::new_err("scene cache poisoned"))?;
-        Ok(kept.get_or_insert(built).clone())
+        let (scene, warnings) = py.allow_threads(|| self.build_core())?;
+        let built = (Arc::new(scene), Arc::new(warnings));
+        let (kept, first) = {
+            let mut kept = self.built.lock().map_err(|_| SceneError::new_err("scene cache poisoned"))?;
+            let first = kept.is_none();
+            (kept.get_or_insert(built).clone(), first)
+        };
+        if first {
+            warn_each(py, &kept.1)?;
+        }
+        Ok(kept)
     }
 
-    fn build_core(&self) -> PyResult<CoreScene> {
-        let mut scene = match &self.origin {
-            Origin::Builtin(b) => (b.build)().map_err(|e| SceneError::new_err(format!("cannot build scene '{}': {e}", b.name)))?,
-            Origin::Toml(file) => build::build(&file.description, &file.source).map_err(load_error)?,
-            Origin::Dict { file, .. } => build::build(&file.description, &file.source).map_err(dict_error)?,
-            Origin::Mesh(path) => imported::load(path).map_err(load_error)?,
+    fn build_core(&self) -> PyResult<(CoreScene, Vec<String>)> {
+        let (mut scene, warnings) = match &self.origin {
+            Origin::Builtin(b) => {
+                ((b.build)().map_err(|e| SceneError::new_err(format!("cannot build scene '{}': {e}", b.name)))?, Vec::new())
+            }
+            Origin::Toml(file) => {
+                let built = build::build_with_warnings(&file.description, &file.source).map_err(load_error)?;
+                (built.scene, built.warnings)
+            }
+            Origin::Dict { file, .. } => {
+                let built = build::build_with_warnings(&file.description, &file.source).map_err(dict_error)?;
+                (built.scene, built.warnings)
+            }
+            Origin::Mesh(path) => {
+                let built = imported::load_with_warnings(path).map_err(load_error)?;
+                (built.scene, built.warnings)
+            }
         };
         if let Some((_, camera)) = &self.camera {
             scene.camera = camera.clone();
         }
-        Ok(scene)
+        Ok((scene, warnings))
     }
 
     fn from_dict_with(py: Python<'_>, dict: &Bound<'_, PyAny>, base_dir: Option<PathBuf>) -> PyResult<Scene> {
@@ -312,6 +341,15 @@ impl Scene {
         self.core(py).map(|_| ())
     }
 
+    /// What the importers skipped in the scene's mesh files (texture
+    /// coordinates, unsupported glTF parts, ...), one line each, `FILE: what`.
+    /// Building the scene (here, or at its first render) also gives each to
+    /// `warnings.warn` once.
+    #[getter]
+    fn warnings(&self, py: Python<'_>) -> PyResult<Vec<String>> {
+        Ok(self.core_and_warnings(py)?.1.as_ref().clone())
+    }
+
     /// Number of objects (placed shapes) in the scene; primitive ids run below it.
     fn object_count(&self, py: Python<'_>) -> PyResult<usize> {
         Ok(self.core(py)?.objects.len())
@@ -366,9 +404,24 @@ impl Scene {
 
     /// A fresh core scene, not cached (a render that changes it, such as one with
     /// its own environment map, takes this).
+    /// Its warnings go to `warnings.warn` unless a kept build gave them already.
     pub fn fresh_core(&self, py: Python<'_>) -> PyResult<CoreScene> {
-        py.allow_threads(|| self.build_core())
+        let (scene, warnings) = py.allow_threads(|| self.build_core())?;
+        if self.built.lock().map_err(|_| SceneError::new_err("scene cache poisoned"))?.is_none() {
+            warn_each(py, &warnings)?;
+        }
+        Ok(scene)
     }
+}
+
+/// Gives each importer warning to Python's `warnings.warn` (a `UserWarning`).
+fn warn_each(py: Python<'_>, warnings: &[String]) -> PyResult<()> {
+    let category = py.get_type::<pyo3::exceptions::PyUserWarning>();
+    for warning in warnings {
+        let message = std::ffi::CString::new(warning.replace('\0', " ")).expect("no NUL left");
+        PyErr::warn(py, category.as_any(), &message, 1)?;
+    }
+    Ok(())
 }
 
 /// Rebuilds a pickled [`Scene`] from `(kind, payload, path, camera)`.

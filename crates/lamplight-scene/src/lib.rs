@@ -4,7 +4,7 @@
 //! by name ([`builtin`]), the image writers ([`image_io`]), the scene file format
 //! ([`description`] types, [`formats::native`] TOML parser, the [`registry`] of
 //! kinds, [`build`] to a core scene, the [`request`] layer shared by the CLI and
-//! Python), the mesh importers ([`import`]), NumPy `.npy` arrays ([`npy`]), the
+//! Python), the mesh importers ([`import`]), what a file holds ([`info`]), NumPy `.npy` arrays ([`npy`]), the
 //! checks every input file passes ([`input`]) and the atomic writes every written
 //! file goes through ([`atomic`]).
 #![deny(missing_docs)]
@@ -20,6 +20,7 @@ pub mod exr_layers;
 pub mod formats;
 pub mod image_io;
 pub mod import;
+pub mod info;
 pub mod input;
 pub mod npy;
 pub mod registry;

@@ -17,7 +17,7 @@ use lamplight_core::film::{Filter, Image};
 use lamplight_core::integrators::{self, IntegratorEntry};
 use lamplight_core::{PixelWindow, RenderControl, RenderOptions, RenderStats, Scene};
 
-use crate::build::{imported, SceneFile};
+use crate::build::{imported, Built, SceneFile};
 use crate::builtin::{self, Builtin};
 use crate::image_io::Format;
 use crate::import;
@@ -168,10 +168,18 @@ impl SceneRequest {
 
     /// Builds the scene (for any image size: the camera applies the aspect when rendering).
     pub fn build(&self) -> Result<Scene, RequestError> {
+        self.build_with_warnings().map(|built| built.scene)
+    }
+
+    /// Builds the scene and keeps the warnings of the mesh files it read
+    /// (`FILE: what`, each once), for the front end to show.
+    pub fn build_with_warnings(&self) -> Result<Built, RequestError> {
         match &self.spec {
-            SceneSpec::Builtin(b) => (b.build)().map_err(|e| bad(format!("cannot build scene '{}': {e}", b.name))),
-            SceneSpec::File(file) => file.build().map_err(|e| bad(e.to_string())),
-            SceneSpec::Mesh(path) => imported::load(path).map_err(|e| bad(e.to_string())),
+            SceneSpec::Builtin(b) => (b.build)()
+                .map(|scene| Built { scene, warnings: Vec::new() })
+                .map_err(|e| bad(format!("cannot build scene '{}': {e}", b.name))),
+            SceneSpec::File(file) => file.build_with_warnings().map_err(|e| bad(e.to_string())),
+            SceneSpec::Mesh(path) => imported::load_with_warnings(path).map_err(|e| bad(e.to_string())),
         }
     }
 }

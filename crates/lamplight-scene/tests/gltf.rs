@@ -289,3 +289,30 @@ fn orthographic_cameras_see_their_window_at_every_aspect() {
         "a.gltf: at cameras[0].orthographic.xmag: expected a positive half-extent"
     );
 }
+
+#[test]
+fn a_metallic_roughness_texture_leaves_the_surface_a_dielectric() {
+    // glTF assets leave metallicFactor at 1 and paint the metal in the texture:
+    // without the texture, the factor alone would make all of it bare metal.
+    let dir = tempfile::tempdir().unwrap();
+    let metal = r#"{"pbrMetallicRoughness": {"baseColorFactor": [1, 0.5, 0.25, 1], "metallicFactor": 1, "roughnessFactor": 0.5}}"#;
+    let textured = r#"{"pbrMetallicRoughness": {"baseColorFactor": [1, 0.5, 0.25, 1], "roughnessFactor": 0.5,
+        "metallicRoughnessTexture": {"index": 0}}}"#;
+    let json = scene_json(Some(&data_uri(&triangle_buffer([0, 1, 2], 0.0))), 3, "");
+    assert!(json.contains(metal));
+    let json = json
+        .replace(metal, textured)
+        .replace(r#""accessors""#, r#""textures": [{"source": 0}], "images": [{"uri": "mr.png"}], "accessors""#);
+    let imported = write_and_load(dir.path(), "mr.gltf", json.as_bytes()).unwrap();
+    let m = imported.instances[0].material.as_ref().unwrap();
+    assert_eq!((m.kd, m.ks, &m.reflection), (Rgb::new(1.0, 0.5, 0.25), Rgb::splat(0.04), &Reflection::None));
+    assert_eq!(
+        imported.warnings[..2],
+        [
+            "glTF metallicRoughnessTexture ignored: textures are not supported".to_string(),
+            "glTF metallicFactor read as 0 where a metallicRoughnessTexture modulates it: without the texture the whole surface \
+             would be bare metal"
+                .to_string(),
+        ]
+    );
+}

@@ -1,67 +1,68 @@
 //! A scene from an imported mesh file (OBJ, PLY, glTF): its meshes, placed as
-//! the file places them, seen by the file's first camera or else by a default
-//! camera framing everything, and lit by the file's lights or else by a default
-//! point light at the camera. Emitting meshes (MTL `Ke`, glTF `emissiveFactor`) are
-//! lights of the file too: they are the path tracer's area lights, and a scene
-//! with one gets no default light.
+//! the file places them, seen by the file's first camera or else by the
+//! viewer's camera framing everything ([`super::viewer`]), and lit by the file's
+//! lights or else by the viewer's lights and neutral surround. Emitting meshes
+//! (MTL `Ke`, glTF `emissiveFactor`) are lights of the file too: they are the
+//! path tracer's area lights, and a scene with one gets no default light.
 
 use std::path::Path;
 use std::sync::Arc;
 
-use lamplight_core::accel::Aabb;
 use lamplight_core::camera::{Camera, Fov, Orthographic, Perspective};
 use lamplight_core::materials::Material;
 use lamplight_core::math::{Rgb, Vec3};
 use lamplight_core::shapes::TriangleMesh;
 use lamplight_core::{Scene, SceneBuilder};
 
+use super::{viewer, Built};
 use crate::error::LoadError;
 use crate::import::{self, Imported, ImportedLight, ImportedProjection};
 
-/// Vertical field of view of the default camera, degrees.
-const DEFAULT_VFOV: f64 = 40.0;
-/// Ambient radiance of an imported scene (its files carry none).
+/// Ambient radiance of an imported scene with lights of its own (its files carry none).
 const AMBIENT: f64 = 0.1;
 
 /// Reads the mesh file at `path` and builds a scene (for any image size).
 pub fn load(path: &Path) -> Result<Scene, LoadError> {
+    load_with_warnings(path).map(|built| built.scene)
+}
+
+/// [`load`], keeping the importer's warnings, each as `PATH: what`.
+pub fn load_with_warnings(path: &Path) -> Result<Built, LoadError> {
     let imported = import::load(path)?;
-    build(path, &imported)
+    let scene = build(path, &imported)?;
+    Ok(Built { scene, warnings: imported.warnings_of(path) })
 }
 
 /// Builds a scene from what an importer read from `path`.
 pub fn build(path: &Path, imported: &Imported) -> Result<Scene, LoadError> {
     let fail = |e: lamplight_core::Error| LoadError::file(path, e.to_string());
-    let mut bounds = Aabb::EMPTY;
     let mut meshes = Vec::with_capacity(imported.meshes.len());
     for data in &imported.meshes {
         let mesh = TriangleMesh::new(data.positions.clone(), data.indices.clone(), data.normals.clone()).map_err(fail)?;
         meshes.push(Arc::new(mesh));
     }
     for placed in &imported.instances {
-        let data =
-            imported.meshes.get(placed.mesh).ok_or_else(|| LoadError::file(path, format!("instance of missing mesh {}", placed.mesh)))?;
-        bounds = data.positions.iter().fold(bounds, |b, p| b.grow(placed.transform.transform_point3(*p)));
+        if imported.meshes.get(placed.mesh).is_none() {
+            return Err(LoadError::file(path, format!("instance of missing mesh {}", placed.mesh)));
+        }
     }
-    if imported.instances.is_empty() || !bounds.is_finite() {
-        return Err(LoadError::file(path, "has no geometry to render"));
-    }
-    let center = bounds.centroid();
-    let radius = (bounds.extent().length() / 2.0).max(1e-9);
-    let (eye, camera): (Vec3, Arc<dyn Camera>) = match imported.cameras.first() {
+    let world_points = imported
+        .instances
+        .iter()
+        .flat_map(|placed| imported.meshes[placed.mesh].positions.iter().map(move |p| placed.transform.transform_point3(*p)));
+    let sphere = viewer::bounding_sphere(world_points).ok_or_else(|| LoadError::file(path, "has no geometry to render"))?;
+    let (eye, target, camera): (Vec3, Vec3, Arc<dyn Camera>) = match imported.cameras.first() {
         Some(c) => match c.projection {
             ImportedProjection::Perspective { vfov_deg } => {
-                (c.eye, Arc::new(Perspective::look_at(c.eye, c.target, c.up, Fov::VerticalDeg(vfov_deg)).map_err(fail)?))
+                (c.eye, c.target, Arc::new(Perspective::look_at(c.eye, c.target, c.up, Fov::VerticalDeg(vfov_deg)).map_err(fail)?))
             }
             ImportedProjection::Orthographic { xmag, ymag } => {
-                (c.eye, Arc::new(Orthographic::look_at(c.eye, c.target, c.up, xmag, ymag).map_err(fail)?))
+                (c.eye, c.target, Arc::new(Orthographic::look_at(c.eye, c.target, c.up, xmag, ymag).map_err(fail)?))
             }
         },
         None => {
-            // Far enough back that the bounding sphere fits the vertical field of view.
-            let distance = radius / (DEFAULT_VFOV.to_radians() / 2.0).sin();
-            let eye = center + Vec3::new(0.5, 0.4, 1.0).normalize() * distance;
-            (eye, Arc::new(Perspective::look_at(eye, center, Vec3::Y, Fov::VerticalDeg(DEFAULT_VFOV)).map_err(fail)?))
+            let (eye, camera) = viewer::camera(sphere).map_err(fail)?;
+            (eye, sphere.center, Arc::new(camera))
         }
     };
     let mut builder = SceneBuilder::with_camera(camera);
@@ -77,10 +78,11 @@ pub fn build(path: &Path, imported: &Imported) -> Result<Scene, LoadError> {
     }
     let emits = imported.instances.iter().any(|p| p.material.as_ref().is_some_and(|m| m.emission.max_element() > 0.0));
     if imported.lights.is_empty() && !emits {
-        // A light at the eye, of intensity d^2 so that it gives about unit irradiance at the model.
-        let distance = (eye - center).length();
-        let light = lamplight_core::lights::PointLight::new(eye, Rgb::splat(distance * distance)).map_err(fail)?;
-        builder.light(light);
+        builder.ambient = Rgb::splat(viewer::AMBIENT);
+        builder.background = Rgb::splat(viewer::SURROUND);
+        for light in viewer::lights(eye, target).map_err(fail)? {
+            builder.light(light);
+        }
     }
     for light in &imported.lights {
         match light {
@@ -99,7 +101,7 @@ mod tests {
     use lamplight_core::math::Mat4;
 
     #[test]
-    fn default_camera_frames_the_model_and_a_light_is_added() {
+    fn default_camera_frames_the_model_and_lights_are_added() {
         let mesh = MeshData { name: None, positions: vec![Vec3::ZERO, Vec3::X, Vec3::Y], indices: vec![[0, 1, 2]], normals: None };
         let imported = Imported {
             meshes: vec![mesh],
@@ -108,7 +110,8 @@ mod tests {
         };
         let scene = build(Path::new("t.obj"), &imported).unwrap();
         assert_eq!(scene.objects.len(), 1);
-        assert_eq!(scene.lights.len(), 1);
+        assert_eq!(scene.lights.len(), 3, "key, fill and rim");
+        assert_eq!((scene.background, scene.ambient), (Rgb::splat(viewer::SURROUND), Rgb::splat(viewer::AMBIENT)));
         let ray = scene.camera.ray(0.5, 0.5, 1, 1, (0.5, 0.5));
         let centre = Vec3::new(0.5, 0.5, 1.0);
         assert!((ray.dir - (centre - ray.origin).normalize()).length() < 1e-12, "looks at the centre");

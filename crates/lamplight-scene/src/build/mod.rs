@@ -19,6 +19,7 @@ pub mod imported;
 mod materials;
 mod nodes;
 mod transform;
+pub mod viewer;
 
 pub use nodes::{MAX_NESTING, MAX_OBJECTS, MESH_PARAMS};
 
@@ -71,6 +72,16 @@ pub const SCENE_PARAMS: &[Param] = &[
     Param::new("background", T::Color, "0", "radiance", "radiance of rays that hit nothing"),
 ];
 
+/// A built core scene and what its importers warned about: the parts of its
+/// mesh files that were not used, one line each, `FILE: what`, each once.
+#[derive(Debug)]
+pub struct Built {
+    /// The scene, for any image size.
+    pub scene: Scene,
+    /// Warnings in the order they were found.
+    pub warnings: Vec<String>,
+}
+
 /// A scene file read and parsed, ready to build at any image size.
 #[derive(Clone, Debug)]
 pub struct SceneFile {
@@ -101,6 +112,11 @@ impl SceneFile {
     /// Builds the core scene (for any image size: the camera applies the aspect when rendering).
     pub fn build(&self) -> Result<Scene, LoadError> {
         build(&self.description, &self.source)
+    }
+
+    /// Builds the core scene and keeps the warnings of the mesh files it read.
+    pub fn build_with_warnings(&self) -> Result<Built, LoadError> {
+        build_with_warnings(&self.description, &self.source)
     }
 }
 
@@ -141,6 +157,11 @@ pub fn settings(desc: &SceneDescription, source: &Source) -> Result<Settings, Lo
 
 /// Builds the core scene (for any image size: the camera applies the aspect when rendering).
 pub fn build(desc: &SceneDescription, source: &Source) -> Result<Scene, LoadError> {
+    build_with_warnings(desc, source).map(|built| built.scene)
+}
+
+/// [`build`], keeping the warnings of the mesh files the scene reads.
+pub fn build_with_warnings(desc: &SceneDescription, source: &Source) -> Result<Built, LoadError> {
     let settings = settings(desc, source)?;
     let camera_node = desc.camera.as_ref().ok_or_else(|| LoadError::file(&source.path, "has no [camera] table, expected one"))?;
     let camera = camera::camera(camera_node).map_err(|e| source.param_error(e))?;
@@ -151,8 +172,9 @@ pub fn build(desc: &SceneDescription, source: &Source) -> Result<Scene, LoadErro
     builder.max_depth = settings.max_depth;
     builder.min_weight = settings.min_weight;
     let materials = materials::add_all(desc, source, &mut builder)?;
-    nodes::add_all(desc, source, &mut builder, materials)?;
-    builder.build().map_err(|e| LoadError::file(&source.path, e.to_string()))
+    let warnings = nodes::add_all(desc, source, &mut builder, materials)?;
+    let scene = builder.build().map_err(|e| LoadError::file(&source.path, e.to_string()))?;
+    Ok(Built { scene, warnings })
 }
 
 fn globals(table: &Table) -> lamplight_core::params::ParamResult<(Rgb, Rgb)> {

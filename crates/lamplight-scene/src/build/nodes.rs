@@ -45,15 +45,18 @@ struct Ctx<'a> {
     names: HashMap<String, Vec<usize>>,
     lights: Vec<(&'a Node, Mat4)>,
     stack: Vec<String>,
+    /// The mesh files' warnings, `FILE: what`.
+    warnings: Vec<String>,
 }
 
-/// Adds every top-level node of `desc` to `builder`.
+/// Adds every top-level node of `desc` to `builder`; returns the warnings of
+/// the mesh files read, each file's once.
 pub(super) fn add_all(
     desc: &SceneDescription,
     source: &Source,
     builder: &mut SceneBuilder,
     materials: BTreeMap<String, usize>,
-) -> Result<(), LoadError> {
+) -> Result<Vec<String>, LoadError> {
     let mut ctx = Ctx {
         desc,
         source,
@@ -65,6 +68,7 @@ pub(super) fn add_all(
         names: HashMap::new(),
         lights: Vec::new(),
         stack: Vec::new(),
+        warnings: Vec::new(),
     };
     // Count first, so that exponential instancing fails at once instead of
     // after allocating millions of objects.
@@ -94,7 +98,7 @@ pub(super) fn add_all(
         let light = light.map_err(|e| source.param_error(e))?;
         ctx.builder.shared_light(light);
     }
-    Ok(())
+    Ok(ctx.warnings)
 }
 
 impl<'a> Ctx<'a> {
@@ -261,6 +265,7 @@ impl<'a> Ctx<'a> {
             return Ok(asset.clone());
         }
         let imported = import::load(&path).map_err(Err)?;
+        self.warnings.extend(imported.warnings_of(&path));
         let mut parts = Vec::new();
         let mut meshes: HashMap<usize, Arc<TriangleMesh>> = HashMap::new();
         for placed in &imported.instances {
@@ -295,7 +300,13 @@ impl<'a> Ctx<'a> {
 pub const MESH_PARAMS: &[lamplight_core::params::Param] = {
     use lamplight_core::params::{Param, ParamType as T};
     &[
-        Param::new("file", T::String, "", "", "an OBJ, PLY or glTF file, relative to the scene file's folder"),
+        Param::new(
+            "file",
+            T::String,
+            "",
+            "",
+            "an OBJ, PLY, glTF or GLB file: an absolute path, or one relative to the scene file's folder (a dict's `base_dir`)",
+        ),
         Param::new("positions", T::Array, "", "", "inline vertex positions, `[x, y, z]` each"),
         Param::new("indices", T::Array, "", "", "inline triangles, `[i, j, k]` vertex indices from 0"),
         Param::new("normals", T::Array, "none", "", "inline per-vertex normals"),

@@ -10,6 +10,7 @@
 //! | highlight | `ks = (1 - m) 0.04 + m B` (the glTF specular colour at normal incidence) |
 //! | `r` | `shininess = clamp(2 / max(r^4, 1e-4) - 2, 1, 10000)`: the Blinn exponent whose lobe matches a GGX lobe of `alpha = r^2` (`n = 2 / alpha^2 - 2`) |
 //! | `m > 0` | mirror `Reflection::Constant(m B (1 - r))`: a conductor tinted by its base colour, fading as it roughens since a sharp mirror of a rough metal would look wrong |
+//! | `metallicRoughnessTexture` | `m = 0`: the texture is unsupported, and the factor alone (1 by default, as such assets leave it) would make the whole surface bare metal, black where no light is mirrored |
 //! | `emissiveFactor` | `emission`; 0 when an `emissiveTexture` modulates it (textures are unsupported, and the factor alone would make the whole surface glow: glTF assets set it to 1 and paint the glowing parts in the texture) |
 //! | `KHR_materials_transmission` `t > 0` | `Material::glass(ior, ..)` (index from `KHR_materials_ior`, default 1.5) with `kd`, `ka` scaled by `1 - t`, shadow rays passing `t B`, and GGX `roughness = r^2` (glTF's `alpha`; rough glass in the path tracer) |
 //!
@@ -64,7 +65,16 @@ pub(super) fn map(m: &gltf::Material, warnings: &mut Warnings) -> Material {
     }
     let [r, g, b, _alpha] = pbr.base_color_factor();
     let base = rgb([r, g, b]).min(Rgb::ONE);
-    let metal = clean(pbr.metallic_factor()).min(1.0);
+    let metal = if pbr.metallic_roughness_texture().is_some() {
+        warnings.once(
+            "glTF metallicFactor read as 0 where a metallicRoughnessTexture modulates it: without the texture the whole surface \
+             would be bare metal"
+                .to_string(),
+        );
+        0.0
+    } else {
+        clean(pbr.metallic_factor()).min(1.0)
+    };
     let rough = clean(pbr.roughness_factor()).min(1.0);
     let kd = (1.0 - metal) * base;
     let ks = Rgb::splat(0.04 * (1.0 - metal)) + metal * base;

@@ -149,6 +149,12 @@ pub fn load_mesh(path: &Path) -> Result<MeshData, LoadError> {
 }
 
 impl Imported {
+    /// The warnings as the front ends show them: `PATH: what`, `path` being the
+    /// file they came from, each once.
+    pub fn warnings_of(&self, path: &Path) -> Vec<String> {
+        self.warnings.iter().map(|w| format!("{}: {w}", path.display())).collect()
+    }
+
     /// Merges every instance into one world-space mesh, in instance order.
     pub fn into_mesh(mut self) -> MeshData {
         // The common case (PLY, one OBJ object): hand the mesh over without copying.

@@ -1,0 +1,138 @@
+//! What a bare mesh gets: the camera and lights of a model viewer, for a mesh
+//! or glTF file that has no camera or no lights of its own.
+//!
+//! - **Framing.** The camera looks at the centre of the model's bounding sphere
+//!   (the centre of its bounding box, and the farthest vertex from it) from a
+//!   three-quarter view: [`AZIMUTH_DEG`] to the right of the front (`+z`),
+//!   [`ELEVATION_DEG`] above, `+y` up (glTF's axes). Its field of view,
+//!   [`VFOV_DEG`], spans the image's shorter side, and it stands where the
+//!   sphere's outline spans [`FILL`] of that side, at any image size.
+//! - **Lighting**, as Blender's and model-viewer's defaults light a model: a
+//!   neutral grey surround of radiance [`SURROUND`], seen as the background
+//!   and lighting every surface through the lecture's ambient term (the ambient
+//!   light is [`AMBIENT`], so that `ka C La` with the importers' `ka = 0.1 kd`
+//!   is what a diffuse surface reflects under an open sky of the surround's
+//!   radiance; the path tracer reads the ambient back as that sky), and three
+//!   directional lights set relative to the camera, so that the model is lit
+//!   the same from any file: a key light from the upper left, a weaker fill
+//!   from the right, and a rim light from behind. Directional lights make the
+//!   lighting independent of the model's size. Their irradiances ([`KEY`],
+//!   [`FILL_LIGHT`], [`RIM`]) and the surround add to less than 1 at any
+//!   surface a diffuse white (`kd * C = 1`) turns to them, so almost nothing
+//!   clips (the tests measure it).
+
+use lamplight_core::camera::{Fov, Perspective};
+use lamplight_core::lights::DirectionalLight;
+use lamplight_core::math::{Rgb, Vec3};
+use lamplight_core::Error;
+
+/// Field of view across the image's shorter side, degrees.
+pub const VFOV_DEG: f64 = 40.0;
+/// Share of the image's shorter side the bounding sphere's outline spans.
+pub const FILL: f64 = 0.8;
+/// Angle of the view to the right of the front (`+z`), degrees.
+pub const AZIMUTH_DEG: f64 = 35.0;
+/// Angle of the view above the horizon, degrees.
+pub const ELEVATION_DEG: f64 = 25.0;
+/// Radiance of the neutral surround (the background), linear.
+pub const SURROUND: f64 = 0.2;
+/// The ambient light `La`: ten times the surround, for the importers' `ka = 0.1 kd`.
+pub const AMBIENT: f64 = SURROUND / 0.1;
+/// Irradiance of the key light.
+pub const KEY: f64 = 0.6;
+/// Irradiance of the fill light.
+pub const FILL_LIGHT: f64 = 0.25;
+/// Irradiance of the rim light.
+pub const RIM: f64 = 0.25;
+
+/// A bounding sphere: centre and radius.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sphere {
+    /// Centre.
+    pub center: Vec3,
+    /// Radius (positive).
+    pub radius: f64,
+}
+
+/// The bounding sphere of `points` about the centre of their bounding box
+/// (`None` for no points or a non-finite one).
+pub fn bounding_sphere(points: impl Iterator<Item = Vec3> + Clone) -> Option<Sphere> {
+    let (lo, hi) = points.clone().fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), p| (lo.min(p), hi.max(p)));
+    if !(lo.is_finite() && hi.is_finite()) {
+        return None;
+    }
+    let center = (lo + hi) / 2.0;
+    let radius = points.map(|p| p.distance_squared(center)).fold(0.0f64, f64::max).sqrt();
+    Some(Sphere { center, radius: radius.max(1e-9 * center.length().max(1.0)) })
+}
+
+/// The viewer's camera: its eye, and the camera framing `sphere`.
+pub fn camera(sphere: Sphere) -> Result<(Vec3, Perspective), Error> {
+    // The outline of a sphere of radius r seen from distance d has half-angle
+    // asin(r / d); its image spans FILL of the side when tan of that angle is
+    // FILL * tan(fov / 2).
+    let half = (FILL * (VFOV_DEG.to_radians() / 2.0).tan()).atan();
+    let distance = sphere.radius / half.sin();
+    let (az, el) = (AZIMUTH_DEG.to_radians(), ELEVATION_DEG.to_radians());
+    let towards_eye = Vec3::new(az.sin() * el.cos(), el.sin(), az.cos() * el.cos());
+    let eye = sphere.center + towards_eye * distance;
+    Ok((eye, Perspective::look_at(eye, sphere.center, Vec3::Y, Fov::SmallerSideDeg(VFOV_DEG))?))
+}
+
+/// The key, fill and rim lights for a camera at `eye` looking at `target`.
+pub fn lights(eye: Vec3, target: Vec3) -> Result<[DirectionalLight; 3], Error> {
+    let forward = (target - eye).normalize();
+    let right = forward.cross(Vec3::Y).normalize();
+    let up = right.cross(forward);
+    // Each light is given by where it comes from, in the camera's frame; it travels the other way.
+    let from = |r: f64, u: f64, f: f64| -(right * r + up * u + forward * f).normalize();
+    Ok([
+        DirectionalLight::new(from(-0.7, 0.8, -0.6), Rgb::splat(KEY))?,
+        DirectionalLight::new(from(1.0, -0.1, -0.5), Rgb::splat(FILL_LIGHT))?,
+        DirectionalLight::new(from(0.3, 0.6, 1.0), Rgb::splat(RIM))?,
+    ])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_sphere_is_centred_on_the_box_and_reaches_the_farthest_point() {
+        let points = [Vec3::ZERO, Vec3::new(2.0, 0.0, 0.0), Vec3::new(1.0, 0.5, 0.0)];
+        let s = bounding_sphere(points.iter().copied()).unwrap();
+        assert_eq!(s.center, Vec3::new(1.0, 0.25, 0.0));
+        assert!((s.radius - (1.0f64 + 0.0625).sqrt()).abs() < 1e-12);
+        assert_eq!(bounding_sphere([].iter().copied()), None);
+        assert_eq!(bounding_sphere([Vec3::new(f64::NAN, 0.0, 0.0)].iter().copied()), None);
+    }
+
+    #[test]
+    fn the_outline_spans_the_fill_of_the_shorter_side() {
+        use lamplight_core::camera::Camera;
+        let sphere = Sphere { center: Vec3::new(1.0, 2.0, 3.0), radius: 2.0 };
+        let (eye, camera) = camera(sphere).unwrap();
+        // The ray to the outline's top edge makes angle asin(r / d) with the view axis.
+        let d = (eye - sphere.center).length();
+        let edge = (sphere.radius / d).asin().tan();
+        let tan_half = (VFOV_DEG.to_radians() / 2.0).tan();
+        assert!((edge / tan_half - FILL).abs() < 1e-12, "{}", edge / tan_half);
+        let centre = camera.ray(32.0, 18.0, 64, 36, (0.5, 0.5));
+        assert!((centre.dir - (sphere.center - eye).normalize()).length() < 1e-12);
+        assert!(eye.y > sphere.center.y && eye.x > sphere.center.x && eye.z > sphere.center.z, "above, right, in front");
+    }
+
+    #[test]
+    fn the_lights_and_the_surround_add_to_less_than_one_on_any_surface() {
+        let lights = lights(Vec3::new(3.0, 2.0, 4.0), Vec3::ZERO).unwrap();
+        // The most irradiance a surface can get is the length of the sum of the
+        // vectors towards the lights it faces; try every subset.
+        let mut most = 0.0f64;
+        for mask in 1..8u32 {
+            let sum: Vec3 = (0..3).filter(|i| mask & (1 << i) != 0).map(|i| -lights[i].direction * lights[i].radiance.x).sum();
+            most = most.max(sum.length());
+        }
+        assert!(most + SURROUND < 0.92, "{most} + {SURROUND}: a diffuse white clips");
+        assert!(lights[0].direction.y < 0.0, "the key light comes from above");
+    }
+}
