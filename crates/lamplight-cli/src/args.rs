@@ -11,6 +11,7 @@ use clap::{Args, Parser, Subcommand};
 use lamplight_core::film::tonemap::ToneMap;
 use lamplight_scene::builtin;
 use lamplight_scene::image_io::Format;
+use lamplight_scene::image_io::Transfer;
 use lamplight_scene::request::{DisplayTransform, Job, Layer, Naming, Request, RequestError, SceneRequest};
 
 /// The `lamplight` command line.
@@ -86,6 +87,9 @@ pub struct RenderArgs {
     /// Tone map for .png/.ppm output: `clamp` or `filmic` (ACES fit).
     #[arg(long, value_name = "NAME", default_value = "clamp")]
     pub tonemap: ToneMap,
+    /// How .png/.ppm store the values: `srgb` (encoded) or `linear` (the numbers as they are, for display-referred scenes such as business-card). Default: the scene's `transfer`, else srgb.
+    #[arg(long, value_name = "NAME")]
+    pub transfer: Option<Transfer>,
     /// Path tracer: light the scene with this equirectangular HDR map (.exr or .hdr), importance-sampled.
     #[arg(long, value_name = "FILE")]
     pub environment: Option<PathBuf>,
@@ -246,7 +250,8 @@ impl RenderArgs {
             }
             distinct_outputs(&[("-o", &output), ("--variance-output", path)])?;
         }
-        let display = DisplayTransform { exposure: self.exposure, tonemap: self.tonemap };
+        let display =
+            DisplayTransform { exposure: self.exposure, tonemap: self.tonemap, transfer: self.transfer.unwrap_or(scene.defaults.transfer) };
         Ok(RenderJob { scene, output, job, quiet: self.quiet, display, variance_output, variance_in_output })
     }
 }

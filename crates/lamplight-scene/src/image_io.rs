@@ -90,8 +90,35 @@ impl Format {
 /// Writes `image` to `path` in the format of its extension, atomically (see the
 /// module docs).
 pub fn write_image(path: &Path, image: &Image) -> Result<(), ImageError> {
+    write_image_as(path, image, Transfer::Srgb)
+}
+
+/// How an 8-bit format (PNG, PPM) stores linear values; EXR keeps the floats.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Transfer {
+    /// sRGB-encoded ([`Image::to_srgb8`]): for scene-referred (physical) radiance.
+    #[default]
+    Srgb,
+    /// The numbers themselves, `round(255 x)` ([`Image::to_linear8`]): for
+    /// display-referred scenes, as POV-Ray's `File_Gamma 1` (Heckbert's card).
+    Linear,
+}
+
+impl std::str::FromStr for Transfer {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Transfer, String> {
+        match s {
+            "srgb" => Ok(Transfer::Srgb),
+            "linear" => Ok(Transfer::Linear),
+            _ => Err(format!("unknown transfer \"{s}\", expected \"srgb\" or \"linear\"")),
+        }
+    }
+}
+
+/// [`write_image`] with the 8-bit formats' `transfer`.
+pub fn write_image_as(path: &Path, image: &Image, transfer: Transfer) -> Result<(), ImageError> {
     let format = Format::from_path(path)?;
-    let bytes = encode(format, image).map_err(|reason| ImageError::Encode { path: path.to_path_buf(), reason })?;
+    let bytes = encode(format, image, transfer).map_err(|reason| ImageError::Encode { path: path.to_path_buf(), reason })?;
     write_atomically(path, &bytes)
 }
 
@@ -104,7 +131,11 @@ pub fn check_writable(path: &Path) -> Result<(), ImageError> {
 }
 
 /// The file's bytes for `image` in `format`.
-fn encode(format: Format, image: &Image) -> Result<Vec<u8>, String> {
+fn encode(format: Format, image: &Image, transfer: Transfer) -> Result<Vec<u8>, String> {
+    let bytes8 = || match transfer {
+        Transfer::Srgb => image.to_srgb8(),
+        Transfer::Linear => image.to_linear8(),
+    };
     let (width, height) = (image.width, image.height);
     if width == 0 || height == 0 {
         return Err(format!("the image is empty ({width}x{height})"));
@@ -116,13 +147,13 @@ fn encode(format: Format, image: &Image) -> Result<Vec<u8>, String> {
         Format::Png => {
             let mut bytes = Vec::new();
             image::codecs::png::PngEncoder::new(&mut bytes)
-                .write_image(&image.to_srgb8(), width, height, image::ExtendedColorType::Rgb8)
+                .write_image(&bytes8(), width, height, image::ExtendedColorType::Rgb8)
                 .map_err(|e| e.to_string())?;
             Ok(bytes)
         }
         Format::Ppm => {
             let mut bytes = format!("P6\n{width} {height}\n255\n").into_bytes();
-            bytes.extend_from_slice(&image.to_srgb8());
+            bytes.extend_from_slice(&bytes8());
             Ok(bytes)
         }
         Format::Exr => {

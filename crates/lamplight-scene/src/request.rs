@@ -99,11 +99,13 @@ pub struct Defaults {
     pub seed: u64,
     /// Integrator.
     pub integrator: &'static IntegratorEntry,
+    /// How PNG and PPM outputs store the values.
+    pub transfer: crate::image_io::Transfer,
 }
 
 /// The program's own settings, for scenes without any.
 pub fn program_defaults() -> Defaults {
-    Defaults { size: (640, 360), spp: 1, seed: 0, integrator: integrators::default_integrator() }
+    Defaults { size: (640, 360), spp: 1, seed: 0, integrator: integrators::default_integrator(), transfer: Default::default() }
 }
 
 /// A scene named and read, with its own settings.
@@ -154,6 +156,7 @@ impl SceneRequest {
             defaults: Defaults {
                 size: b.default_size,
                 integrator: integrators::find(b.integrator).unwrap_or(integrators::default_integrator()),
+                transfer: b.transfer,
                 ..program_defaults()
             },
         }
@@ -162,7 +165,7 @@ impl SceneRequest {
     /// A parsed scene file or dict; its `[render]` settings are checked now.
     pub fn file(file: SceneFile, name: String) -> Result<SceneRequest, RequestError> {
         let s = file.settings().map_err(|e| bad(e.to_string()))?;
-        let defaults = Defaults { size: (s.width, s.height), spp: s.spp, seed: s.seed, integrator: s.integrator };
+        let defaults = Defaults { size: (s.width, s.height), spp: s.spp, seed: s.seed, integrator: s.integrator, transfer: s.transfer };
         Ok(SceneRequest { spec: SceneSpec::File(Box::new(file)), name, defaults })
     }
 
@@ -385,6 +388,8 @@ pub struct DisplayTransform {
     pub exposure: f64,
     /// Tone map.
     pub tonemap: ToneMap,
+    /// How PNG and PPM store the values (the scene's, unless `--transfer`).
+    pub transfer: crate::image_io::Transfer,
 }
 
 /// Writes `rendered` to `path` (the format by extension): EXR keeps linear
@@ -408,9 +413,10 @@ pub fn write(path: &Path, rendered: &Rendered, display: DisplayTransform) -> Res
     }
     if display.exposure == 0.0 && display.tonemap == ToneMap::Clamp {
         // No copy of the image: at 1280x720 one costs a Whitted render some 3 %.
-        return crate::image_io::write_image(path, &rendered.image);
+        return crate::image_io::write_image_as(path, &rendered.image, display.transfer);
     }
-    crate::image_io::write_image(path, &lamplight_core::film::tonemap::apply(&rendered.image, display.exposure, display.tonemap))
+    let mapped = lamplight_core::film::tonemap::apply(&rendered.image, display.exposure, display.tonemap);
+    crate::image_io::write_image_as(path, &mapped, display.transfer)
 }
 
 #[cfg(test)]

@@ -172,3 +172,44 @@ fn glass_in_the_centre_and_ambient_corners() {
     let right = ours[24 * 32 + 22];
     assert!(left[0] > left[2] && right[2] > right[0], "orange {left:?}, cyan {right:?}");
 }
+
+/// The built-in rendered at `n x n` the way `lamplight render business-card -o
+/// card.png` does, its PNG read back as bytes.
+fn card_png(n: u32) -> Vec<u8> {
+    use lamplight_core::film::tonemap::ToneMap;
+    use lamplight_scene::request::{self, DisplayTransform, Naming, Request, SceneRequest};
+    let scene_request = SceneRequest::resolve("business-card").unwrap();
+    let job = Request { width: Some(n), height: Some(n), ..Request::default() }.resolve(&scene_request.defaults, Naming::Flags).unwrap();
+    let rendered = job.run(&scene_request.build().unwrap(), &RenderControl::default()).unwrap();
+    let path = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("card-{}-{n}.png", std::process::id()));
+    let display = DisplayTransform { exposure: 0.0, tonemap: ToneMap::Clamp, transfer: scene_request.defaults.transfer };
+    request::write(&path, &rendered, display).unwrap();
+    let (w, h, bytes) = lamplight_scene::image_io::read_png_srgb8(&path).unwrap();
+    std::fs::remove_file(&path).unwrap();
+    assert_eq!((w, h), (n, n));
+    bytes
+}
+
+/// Every byte of the PNG against the card's printed integer (clamped to 255):
+/// the largest and the mean difference.
+fn png_against(card: &Printout) -> (f64, f64) {
+    let bytes = card_png(card.width);
+    let printed = card.pixels.iter().flatten().map(|&v| v.clamp(0.0, 255.0));
+    let diffs: Vec<f64> = bytes.iter().zip(printed).map(|(&b, p)| (f64::from(b) - p).abs()).collect();
+    (diffs.iter().fold(0.0f64, |a, &b| a.max(b)), diffs.iter().sum::<f64>() / diffs.len() as f64)
+}
+
+#[test]
+fn the_png_holds_the_cards_own_numbers() {
+    // The card's output is display values; the built-in's `transfer` is linear,
+    // so its PNG stores round(255 I), what the card prints (sRGB encoding made
+    // the mean byte 45.7 brighter at 256x256). Ties of the rounding may differ by one.
+    let (worst, mean) = png_against(&parse(REFERENCE_32));
+    assert!(worst <= 1.0 && mean < 0.01, "32x32: worst {worst}, mean {mean}");
+    let Some(card256) = run_card(256, 0) else {
+        eprintln!("no C compiler (cc, gcc): the 256x256 printout is not compared");
+        return;
+    };
+    let (worst, mean) = png_against(&card256);
+    assert!(worst <= 1.0 && mean < 0.01, "256x256: worst {worst}, mean {mean}");
+}

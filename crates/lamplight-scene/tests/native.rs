@@ -85,6 +85,7 @@ fn example_settings_are_the_builtin_defaults() {
         assert_eq!((s.width, s.height), b.default_size, "{}", b.name);
         assert_eq!((s.spp, s.seed), (1, 0));
         assert_eq!(s.integrator.name, b.integrator, "{}: the built-in's default integrator is the file's", b.name);
+        assert_eq!(s.transfer, b.transfer, "{}: the built-in's output transfer is the file's", b.name);
         let request = lamplight_scene::request::SceneRequest::builtin(b);
         let job = lamplight_scene::request::Request::default().resolve(&request.defaults, lamplight_scene::request::Naming::Flags).unwrap();
         assert_eq!(job.options.integrator.name, b.integrator, "{}: `lamplight render {}` uses it", b.name, b.name);

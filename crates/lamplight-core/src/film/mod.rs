@@ -58,6 +58,15 @@ impl Image {
     }
 }
 
+impl Image {
+    /// The pixels as 8-bit values of the linear numbers themselves:
+    /// `round(255 clamp(x, 0, 1))`, NaN as 0 (for display-referred scenes whose
+    /// numbers are already what a screen shows, as POV-Ray's `File_Gamma 1`).
+    pub fn to_linear8(&self) -> Vec<u8> {
+        self.pixels.as_flattened().iter().map(|&c| if c > 0.0 { (c.min(1.0) * 255.0).round() as u8 } else { 0 }).collect()
+    }
+}
+
 /// `round(255 * srgb_encode(x))`, equal to the direct formula for every `f32` input
 /// (NaN gives 0), without a `pow` per value. See [`Srgb8`].
 pub fn srgb8(x: f32) -> u8 {

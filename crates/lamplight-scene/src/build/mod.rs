@@ -40,6 +40,8 @@ pub struct Settings {
     pub seed: u64,
     /// Integrator (default Whitted).
     pub integrator: &'static IntegratorEntry,
+    /// How PNG and PPM outputs store the linear values.
+    pub transfer: crate::image_io::Transfer,
 }
 
 /// Deepest `max_depth` a file may ask for (as the command line's `--max-depth`).
@@ -64,12 +66,25 @@ pub const RENDER_PARAMS: &[Param] = &[
         "",
         "`\"whitted\"` (the lecture's recursive ray tracer) or `\"path\"` (path tracing with NEE and MIS) (`--integrator`)",
     ),
+    Param::new(
+        "transfer",
+        T::String,
+        "\"srgb\"",
+        "",
+        "how PNG and PPM store the values: `\"srgb\"`-encoded, or `\"linear\"` for display-referred numbers (POV-Ray's `File_Gamma 1`) (`--transfer`)",
+    ),
 ];
 
 /// The top-level values.
 pub const SCENE_PARAMS: &[Param] = &[
-    Param::new("ambient", T::Color, "0", "radiance", "ambient radiance `La`; each surface reflects `ka * C * La`"),
-    Param::new("background", T::Color, "0", "radiance", "radiance of rays that hit nothing"),
+    Param::new("ambient", T::Color, "0", "radiance", "ambient radiance `La`; each surface reflects `ka * C * La` (Whitted only)"),
+    Param::new(
+        "background",
+        T::Color,
+        "0",
+        "radiance",
+        "radiance of rays that hit nothing; under path tracing a uniform sky that lights the scene",
+    ),
 ];
 
 /// A built core scene and what its importers warned about: the parts of its
@@ -148,7 +163,11 @@ pub fn settings(desc: &SceneDescription, source: &Source) -> Result<Settings, Lo
                 p.key_error("integrator", format!("unknown integrator \"{name}\", expected {}", integrators::quoted_names()))
             })?,
         };
-        Ok(Settings { width, height, spp, max_depth, min_weight, seed, integrator })
+        let transfer = match p.choice("transfer", &["srgb", "linear"])? {
+            "linear" => crate::image_io::Transfer::Linear,
+            _ => crate::image_io::Transfer::Srgb,
+        };
+        Ok(Settings { width, height, spp, max_depth, min_weight, seed, integrator, transfer })
     };
     let settings = read(&mut p).map_err(|e| source.param_error(e))?;
     p.finish().map_err(|e| source.param_error(e))?;

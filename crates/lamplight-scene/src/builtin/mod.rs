@@ -7,6 +7,8 @@
 
 use lamplight_core::{Error, Scene};
 
+use crate::image_io::Transfer;
+
 mod business_card;
 mod cornell_box;
 mod luxo;
@@ -23,6 +25,8 @@ pub struct Builtin {
     pub default_size: (u32, u32),
     /// The integrator used when none is given (the example file's `integrator`).
     pub integrator: &'static str,
+    /// How PNG and PPM outputs store the values (the example file's `transfer`).
+    pub transfer: Transfer,
     /// Builds the scene.
     pub build: fn() -> Result<Scene, Error>,
 }
@@ -34,6 +38,7 @@ pub const BUILTINS: &[Builtin] = &[
         summary: "the lecture's Homework 2: a paraboloid desk lamp with a light in its focus over a table",
         default_size: (1280, 720),
         integrator: "whitted",
+        transfer: Transfer::Srgb,
         build: luxo::build,
     },
     Builtin {
@@ -41,6 +46,8 @@ pub const BUILTINS: &[Builtin] = &[
         summary: "Paul Heckbert's business-card ray tracer: five spheres, constant weights",
         default_size: (32, 32),
         integrator: "whitted",
+        // The card prints display values: its PNG holds them as they are.
+        transfer: Transfer::Linear,
         build: business_card::build,
     },
     Builtin {
@@ -48,6 +55,7 @@ pub const BUILTINS: &[Builtin] = &[
         summary: "the Cornell box with an area light in the ceiling (Mitsuba 3's cornell_box(), path traced)",
         default_size: (512, 512),
         integrator: "path",
+        transfer: Transfer::Srgb,
         build: cornell_box::build,
     },
     Builtin {
@@ -55,6 +63,7 @@ pub const BUILTINS: &[Builtin] = &[
         summary: "100 spheres of three materials on a checkered floor (POV-Ray comparison scene)",
         default_size: (1280, 720),
         integrator: "whitted",
+        transfer: Transfer::Srgb,
         build: spheres::build,
     },
 ];
