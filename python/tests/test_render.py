@@ -154,3 +154,9 @@ def test_environment_and_exr_layers_equal_the_command_line(cli, tmp_path):
     assert (whitted.layers["samples"] == 2).all(), "every integrator fills the film the layers come from"
     with pytest.raises(ValueError, match="unknown layer 'depth'"):
         lamplight.render("cornell-box", width=8, height=8, integrator="path", exr_layers=["depth"], progress=False)
+
+
+def test_a_scene_says_how_its_pngs_store_values():
+    # Heckbert's card prints display values: its PNGs keep them as they are.
+    assert lamplight.Scene("business-card").defaults()["transfer"] == "linear"
+    assert lamplight.Scene("luxo").defaults()["transfer"] == "srgb"

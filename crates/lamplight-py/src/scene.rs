@@ -82,7 +82,7 @@ impl Scene {
             Origin::Builtin(b) => SceneRequest::builtin(b).defaults,
             Origin::Toml(file) | Origin::Dict { file, .. } => {
                 let s = file.settings().map_err(|e| if matches!(origin, Origin::Dict { .. }) { dict_error(e) } else { load_error(e) })?;
-                Defaults { size: (s.width, s.height), spp: s.spp, seed: s.seed, integrator: s.integrator }
+                Defaults { size: (s.width, s.height), spp: s.spp, seed: s.seed, integrator: s.integrator, transfer: s.transfer }
             }
             Origin::Mesh(_) => program_defaults(),
         };
@@ -320,15 +320,17 @@ impl Scene {
     }
 
     /// The settings a render uses when it does not say: `width`, `height`,
-    /// `spp`, `seed` and `integrator`.
+    /// `spp`, `seed` and `integrator`, and `transfer`, how the scene's PNGs
+    /// store values (`"srgb"` or `"linear"`).
     fn defaults<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let d = PyDict::new(py);
-        let Defaults { size: (width, height), spp, seed, integrator } = self.defaults;
+        let Defaults { size: (width, height), spp, seed, integrator, transfer } = self.defaults;
         d.set_item("width", width)?;
         d.set_item("height", height)?;
         d.set_item("spp", spp)?;
         d.set_item("seed", seed)?;
         d.set_item("integrator", integrator.name)?;
+        d.set_item("transfer", if transfer == lamplight_scene::image_io::Transfer::Linear { "linear" } else { "srgb" })?;
         Ok(d)
     }
 
