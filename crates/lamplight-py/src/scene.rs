@@ -82,7 +82,7 @@ impl Scene {
             Origin::Builtin(b) => SceneRequest::builtin(b).defaults,
             Origin::Toml(file) | Origin::Dict { file, .. } => {
                 let s = file.settings().map_err(|e| if matches!(origin, Origin::Dict { .. }) { dict_error(e) } else { load_error(e) })?;
-                Defaults { size: (s.width, s.height), spp: s.spp, seed: s.seed, integrator: s.integrator, transfer: s.transfer }
+                Defaults::from_settings(&s)
             }
             Origin::Mesh(_) => program_defaults(),
         };

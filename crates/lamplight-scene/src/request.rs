@@ -103,6 +103,13 @@ pub struct Defaults {
     pub transfer: crate::image_io::Transfer,
 }
 
+impl Defaults {
+    /// The settings of a scene file's `[render]` table.
+    pub fn from_settings(s: &crate::build::Settings) -> Defaults {
+        Defaults { size: (s.width, s.height), spp: s.spp, seed: s.seed, integrator: s.integrator, transfer: s.transfer }
+    }
+}
+
 /// The program's own settings, for scenes without any.
 pub fn program_defaults() -> Defaults {
     Defaults { size: (640, 360), spp: 1, seed: 0, integrator: integrators::default_integrator(), transfer: Default::default() }
@@ -165,7 +172,7 @@ impl SceneRequest {
     /// A parsed scene file or dict; its `[render]` settings are checked now.
     pub fn file(file: SceneFile, name: String) -> Result<SceneRequest, RequestError> {
         let s = file.settings().map_err(|e| bad(e.to_string()))?;
-        let defaults = Defaults { size: (s.width, s.height), spp: s.spp, seed: s.seed, integrator: s.integrator, transfer: s.transfer };
+        let defaults = Defaults::from_settings(&s);
         Ok(SceneRequest { spec: SceneSpec::File(Box::new(file)), name, defaults })
     }
 

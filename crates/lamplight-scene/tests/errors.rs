@@ -240,15 +240,10 @@ fn rotate_takes_an_array_of_degrees() {
     assert!((centre - expected).length() < 1e-12, "{centre} vs {expected}");
 }
 
-/// 4 KiB of seeded pseudo-random bytes (a 64-bit LCG's high bytes).
+/// 4 KiB of seeded pseudo-random bytes (the renderer's own generator).
 fn random_bytes(seed: u64) -> Vec<u8> {
-    let mut x = seed;
-    (0..4096)
-        .map(|_| {
-            x = x.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            (x >> 56) as u8
-        })
-        .collect()
+    let mut rng = lamplight_core::sampling::Rng::for_sample(seed, 0, 0);
+    (0..4096).map(|_| (rng.next_u64() >> 56) as u8).collect()
 }
 
 #[test]

@@ -133,10 +133,7 @@ impl Whitted {
                 continue;
             };
             let material = &scene.materials[hit.material];
-            total += weight * direct_light(scene, &ray, &hit, material, counts);
-            if !self.area_lights.is_empty() && material.is_lit() {
-                total += weight * area_light(scene, &self.area_lights, &ray, &hit, material, uniform, counts);
-            }
+            total += weight * direct_light(scene, &self.area_lights, &ray, &hit, material, uniform, counts);
             if depth >= max_depth {
                 continue;
             }
@@ -158,7 +155,17 @@ impl Whitted {
 /// The lecture's `DirectLight`: `Ke + ka*C*La + sum over visible lights of
 /// Lin * (kd*C (L.N) + ks (H.N)^shine)`, skipping lights with `L.N <= 1e-10`.
 /// `Ke` counts on the side the surface emits from ([`Material::emits_towards`]).
-pub fn direct_light(scene: &Scene, ray: &Ray, hit: &Hit, material: &Material, counts: &mut RayCounts) -> Rgb {
+/// The lights are the scene's delta lights and the area lights `area_lights`,
+/// whose points are drawn from `uniform` (16 per light, see the module doc).
+pub fn direct_light(
+    scene: &Scene,
+    area_lights: &[AreaLight],
+    ray: &Ray,
+    hit: &Hit,
+    material: &Material,
+    uniform: &mut dyn FnMut() -> f64,
+    counts: &mut RayCounts,
+) -> Rgb {
     let color = material.color.evaluate(hit.point);
     let emission = if material.emits_towards(hit.front_face) { material.emission } else { Rgb::ZERO };
     let mut radiance = emission + material.ka * color * scene.ambient;
@@ -168,6 +175,9 @@ pub fn direct_light(scene: &Scene, ray: &Ray, hit: &Hit, material: &Material, co
     for light in &scene.lights {
         let Some(sample) = light.illuminate(hit.point) else { continue };
         radiance += lit_by(scene, ray, hit, material, color, sample.wi, sample.distance, sample.radiance, light.own_object(), counts);
+    }
+    if !area_lights.is_empty() {
+        radiance += area_light(scene, area_lights, ray, hit, material, color, uniform, counts);
     }
     radiance
 }
@@ -217,17 +227,18 @@ fn lit_by(
 
 /// The rough model under the area lights `lights`: [`AREA_SAMPLES`] points on
 /// each, stratified on a 4 x 4 grid of the light's sample square and jittered by
-/// `uniform`, each standing for `Lin = Le / (pi pdf N)`.
+/// `uniform`, each standing for `Lin = Le / (pi pdf N)`; `color` is `C` at the hit.
+#[allow(clippy::too_many_arguments)]
 fn area_light(
     scene: &Scene,
     lights: &[AreaLight],
     ray: &Ray,
     hit: &Hit,
     material: &Material,
+    color: Rgb,
     uniform: &mut dyn FnMut() -> f64,
     counts: &mut RayCounts,
 ) -> Rgb {
-    let color = material.color.evaluate(hit.point);
     let mut radiance = Rgb::ZERO;
     let side = (AREA_SAMPLES as f64).sqrt() as u32;
     let scale = 1.0 / (std::f64::consts::PI * AREA_SAMPLES as f64);
