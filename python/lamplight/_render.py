@@ -112,6 +112,7 @@ def render(
     base_dir: Optional[Union[str, "os.PathLike[str]"]] = None,
     environment: Optional[Union[str, "os.PathLike[str]"]] = None,
     exr_layers: Optional[Sequence[str]] = None,
+    clamp: Optional[float] = None,
 ) -> Image:
     """Renders ``scene`` and returns an :class:`Image`: a float32 array
     ``(height, width, 3)`` of linear radiance, the numbers ``lamplight render``
@@ -129,7 +130,9 @@ def render(
     (``"box"``, ``"gaussian"``), ``environment`` (an ``.exr`` or ``.hdr``
     equirectangular map lighting the scene) and ``exr_layers`` (``"variance"``,
     ``"samples"``: kept in ``image.layers`` and written by ``image.save`` to an
-    ``.exr`` file) concern the path tracer.
+    ``.exr`` file) concern the path tracer. ``clamp`` scales every sample
+    whose brightest channel exceeds it down to it: fewer fireflies, but biased
+    (off by default, as ``--clamp``).
     """
     s = as_scene(scene, base_dir)
     _check_ints(width=width, height=height, spp=spp, seed=seed, max_depth=max_depth, threads=threads)
@@ -150,6 +153,7 @@ def render(
             filter,
             os.fspath(environment) if environment is not None else None,
             list(exr_layers) if exr_layers is not None else None,
+            clamp,
         )
     finally:
         close()

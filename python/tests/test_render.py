@@ -91,6 +91,7 @@ def test_ctrl_c_interrupts_a_long_render():
         (dict(threads=5000), ValueError, "threads must be at most 1024"),
         (dict(window=(0, 0, 100, 1)), ValueError, "inside the 32x32 image"),
         (dict(time_limit=-1.0), ValueError, "time_limit must be a positive"),
+        (dict(clamp=0.0), ValueError, "clamp must be a positive number \\(a radiance\\), got 0"),
         (dict(filter="lanczos"), ValueError, "filter must be"),
         (dict(width=1 << 20, height=1 << 20), ValueError, "image 1048576x1048576 is too large \\(at most 268435456 pixels\\)"),
     ],
@@ -160,3 +161,10 @@ def test_a_scene_says_how_its_pngs_store_values():
     # Heckbert's card prints display values: its PNGs keep them as they are.
     assert lamplight.Scene("business-card").defaults()["transfer"] == "linear"
     assert lamplight.Scene("luxo").defaults()["transfer"] == "srgb"
+
+
+def test_clamp_bounds_every_sample():
+    plain = lamplight.render("cornell-box", width=16, height=16, spp=4, progress=False)
+    clamped = lamplight.render("cornell-box", width=16, height=16, spp=4, clamp=0.5, progress=False)
+    assert plain.max() > 1.0, "the lamp is brighter than the clamp"
+    assert clamped.max() <= 0.5

@@ -78,6 +78,9 @@ pub struct RenderArgs {
     /// Path tracer: stop after the last complete pass before this many seconds.
     #[arg(long, value_name = "SECONDS")]
     pub time_limit: Option<f64>,
+    /// Scale every sample whose brightest channel exceeds V down to V: removes fireflies, but biased (darker where it acts). Off by default.
+    #[arg(long, value_name = "V", allow_negative_numbers = true)]
+    pub clamp: Option<f64>,
     /// Path tracer: pixel reconstruction filter, `box` or `gaussian` (sigma 0.5 pixel).
     #[arg(long, value_name = "NAME", default_value = "box")]
     pub filter: String,
@@ -221,6 +224,7 @@ impl RenderArgs {
             seed: self.seed,
             integrator: self.integrator,
             time_limit: self.time_limit,
+            clamp: self.clamp,
             filter: Some(self.filter),
             window: None,
             environment: self.environment,

@@ -57,6 +57,8 @@ fn negative_counts_say_the_value_must_be_positive() {
         (raycast("--threads", "-1"), 2, "invalid value '-1' for '--threads <N>': must be a positive number".into()),
         (raycast("--repeat", "-1"), 2, "invalid value '-1' for '--repeat <K>': must be a positive number".into()),
         (raycast("--repeat", "0"), 2, "--repeat must be at least 1".into()),
+        (small(&["--clamp", "-1"]), 2, "--clamp must be a positive number (a radiance), got -1".into()),
+        (small(&["--clamp", "inf"]), 2, "--clamp must be a positive number (a radiance), got inf".into()),
     ];
     check(d, &cases);
     assert!(entries(d).is_empty());

@@ -47,6 +47,11 @@ pub struct RenderOptions {
     /// Render only this part of the `width x height` image (the result has the
     /// window's size); `None` renders all of it.
     pub window: Option<PixelWindow>,
+    /// Largest channel a sample may have: a brighter sample is scaled down to
+    /// it, hue kept (Cycles' and Mitsuba's clamp). Removes fireflies at the cost
+    /// of bias (the image is darker than the true mean wherever it acts); `None`
+    /// clamps nothing.
+    pub clamp: Option<f64>,
 }
 
 /// A rectangle of pixels of the full image: columns `x0..x0 + width`, rows `y0..y0 + height`.
@@ -82,6 +87,7 @@ impl Default for RenderOptions {
             time_limit: None,
             filter: Filter::Box,
             window: None,
+            clamp: None,
         }
     }
 }
@@ -177,7 +183,7 @@ fn render_in(
     // The camera's window for this image size, worked out once rather than per ray.
     let sized = scene.camera.for_image(options.width, options.height);
     let camera = sized.as_deref().unwrap_or(scene.camera.as_ref());
-    let view = View::new(scene, camera, options.width, options.height, options.spp, options.seed);
+    let view = View::new(scene, camera, options.width, options.height, options.spp, options.seed).with_clamp(options.clamp);
     let schedule = integrator.schedule();
     let spp = options.spp;
     let mut stats = RenderStats { threads: pool.current_num_threads(), ..RenderStats::default() };

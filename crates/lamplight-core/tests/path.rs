@@ -208,3 +208,20 @@ fn time_limit_stops_after_a_complete_pass() {
     assert!(stats.elapsed < std::time::Duration::from_secs(2));
     assert!(image.pixels.iter().all(|p| p.iter().all(|c| c.is_finite())));
 }
+
+#[test]
+fn clamp_scales_bright_samples_down_keeping_their_hue() {
+    // The camera sees only a lamp of radiance (8, 4, 2): clamped at 2, each
+    // sample becomes (2, 1, 0.5); unclamped it stays.
+    let camera = Perspective::look_at(Vec3::new(0.0, 0.0, 3.0), Vec3::ZERO, Vec3::Y, Fov::VerticalDeg(10.0)).unwrap();
+    let mut b = SceneBuilder::new(camera);
+    let lamp = b.material(Material { emission: Rgb::new(8.0, 4.0, 2.0), kd: Rgb::ZERO, ka: Rgb::ZERO, ..Material::default() }).unwrap();
+    b.object(Rectangle::new(Vec3::new(-5.0, -5.0, 0.0), Vec3::new(10.0, 0.0, 0.0), Vec3::new(0.0, 10.0, 0.0)).unwrap(), lamp).unwrap();
+    let scene = b.build().unwrap();
+    let render = |clamp: Option<f64>| {
+        render_image(&scene, &RenderOptions { clamp, ..path_options(4, 4) }, &RenderControl::default()).unwrap().0.get(1, 2)
+    };
+    assert_eq!(render(None), [8.0, 4.0, 2.0]);
+    assert_eq!(render(Some(2.0)), [2.0, 1.0, 0.5]);
+    assert_eq!(render(Some(100.0)), [8.0, 4.0, 2.0], "samples below the clamp are untouched");
+}

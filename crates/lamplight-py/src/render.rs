@@ -44,7 +44,7 @@ type RenderArrays<'py> = (Bound<'py, PyArray3<f32>>, Bound<'py, PyDict>, Bound<'
 /// defaults, through the same request layer as the command line.
 /// `progress(done, total)` is called from this thread.
 #[pyfunction]
-#[pyo3(signature = (scene, width=None, height=None, spp=None, integrator=None, threads=None, seed=None, max_depth=None, window=None, progress=None, time_limit=None, filter=None, environment=None, exr_layers=None))]
+#[pyo3(signature = (scene, width=None, height=None, spp=None, integrator=None, threads=None, seed=None, max_depth=None, window=None, progress=None, time_limit=None, filter=None, environment=None, exr_layers=None, clamp=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn render_array<'py>(
     py: Python<'py>,
@@ -62,6 +62,7 @@ pub fn render_array<'py>(
     filter: Option<String>,
     environment: Option<PathBuf>,
     exr_layers: Option<Vec<String>>,
+    clamp: Option<f64>,
 ) -> PyResult<RenderArrays<'py>> {
     let layers =
         exr_layers.unwrap_or_default().iter().map(|l| l.parse::<Layer>().map_err(PyValueError::new_err)).collect::<PyResult<Vec<_>>>()?;
@@ -83,6 +84,7 @@ pub fn render_array<'py>(
         seed,
         integrator,
         time_limit,
+        clamp,
         filter,
         window,
         environment,

@@ -233,6 +233,8 @@ pub struct Request {
     pub integrator: Option<String>,
     /// Stop after the last complete pass before this many seconds.
     pub time_limit: Option<f64>,
+    /// Largest channel a sample keeps (fireflies; biased), see [`RenderOptions::clamp`].
+    pub clamp: Option<f64>,
     /// Pixel filter name (`box`, `gaussian`).
     pub filter: Option<String>,
     /// Render only `(x0, y0, width, height)` of the image.
@@ -282,6 +284,11 @@ impl Request {
             Some(t) if t.is_finite() && t > 0.0 && t < limits::MAX_TIME_LIMIT => Some(Duration::from_secs_f64(t)),
             Some(t) => return Err(bad(format!("{} must be a positive number of seconds, got {t}", n("time_limit")))),
         };
+        if let Some(c) = self.clamp {
+            if !(c.is_finite() && c > 0.0) {
+                return Err(bad(format!("{} must be a positive number (a radiance), got {c}", n("clamp"))));
+            }
+        }
         let integrator = match &self.integrator {
             None => d.integrator,
             Some(name) => integrators::find(name)
@@ -312,8 +319,19 @@ impl Request {
             }
         }
         let seed = self.seed.unwrap_or(d.seed);
-        let options =
-            RenderOptions { width, height, spp, max_depth: self.max_depth, threads, seed, integrator, time_limit, filter, window };
+        let options = RenderOptions {
+            width,
+            height,
+            spp,
+            max_depth: self.max_depth,
+            threads,
+            seed,
+            integrator,
+            time_limit,
+            filter,
+            window,
+            clamp: self.clamp,
+        };
         Ok(Job { options, environment: self.environment.clone(), layers })
     }
 }

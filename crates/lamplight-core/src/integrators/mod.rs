@@ -78,13 +78,31 @@ pub struct View<'a> {
     pub lens: bool,
     /// The camera's [`Camera::pixel_offset`] (asked once per render).
     pub pixel_offset: f64,
+    /// Largest channel a sample keeps ([`crate::RenderOptions::clamp`]; infinite: no clamp).
+    pub clamp: f64,
 }
 
 impl<'a> View<'a> {
     /// The view of `scene` through `camera` (the scene's, or one made from it by
     /// [`Camera::for_image`] for this size).
     pub fn new(scene: &'a Scene, camera: &'a dyn Camera, width: u32, height: u32, spp: u32, seed: u64) -> View<'a> {
-        View { scene, camera, width, height, spp, seed, lens: camera.uses_lens_sample(), pixel_offset: camera.pixel_offset() }
+        View {
+            scene,
+            camera,
+            width,
+            height,
+            spp,
+            seed,
+            lens: camera.uses_lens_sample(),
+            pixel_offset: camera.pixel_offset(),
+            clamp: f64::INFINITY,
+        }
+    }
+
+    /// The same view with samples clamped to `clamp` in their largest channel
+    /// (`None`: unclamped; see [`crate::RenderOptions::clamp`]).
+    pub fn with_clamp(self, clamp: Option<f64>) -> View<'a> {
+        View { clamp: clamp.unwrap_or(f64::INFINITY), ..self }
     }
 
     /// Index of pixel `(x, y)` in the full image, row-major: the seed of its samples.
@@ -137,8 +155,8 @@ pub trait Integrator: Send + Sync {
     fn schedule(&self) -> Schedule;
 
     /// Adds samples `samples` of pixels `x0..x0 + sums.len()` of row `y` to `sums`, each pixel's in sample order, dropping samples the film does not accept
-    /// ([`crate::film::accepts`]: NaN, infinite or beyond [`crate::film::MAX_RADIANCE`]);
-    /// returns how many were dropped. The render loop calls this once per tile
+    /// ([`crate::film::accepts`]: NaN, infinite or beyond [`crate::film::MAX_RADIANCE`])
+    /// and scaling those above [`View::clamp`] down to it; returns how many were dropped. The render loop calls this once per tile
     /// row: the default body is compiled for each integrator, so its loop calls
     /// [`Integrator::sample`] directly rather than through the trait object
     /// (1.5 % of a Whitted render's instructions went to those calls).
@@ -148,7 +166,8 @@ pub trait Integrator: Send + Sync {
             for s in samples.clone() {
                 let l = self.sample(view, x, y, s, counts);
                 if crate::film::accepts(l) {
-                    sum.add(l);
+                    let peak = l.max_element();
+                    sum.add(if peak > view.clamp { l * (view.clamp / peak) } else { l });
                 } else {
                     nonfinite += 1;
                 }
