@@ -157,6 +157,8 @@ def render(
         )
     finally:
         close()
+    for warning in stats.get("warnings", []):
+        warnings.warn(warning, stacklevel=2)
     image = Image(array)
     image.stats = stats
     image.layers = layers

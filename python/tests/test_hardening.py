@@ -81,3 +81,12 @@ def test_builder_errors_keep_their_key_path(tmp_path, make, message):
     with pytest.raises(lamplight.SceneError) as info:
         lamplight.render(make(tmp_path), width=4, height=4, progress=False)
     assert str(info.value) == message.replace("{tmp}", str(tmp_path))
+
+
+def test_a_scene_without_lights_warns_when_rendered():
+    dark = lamplight.Scene(scene_with())
+    with pytest.warns(UserWarning, match="the scene has no lights"):
+        image = lamplight.render(dark, width=8, height=8, progress=False)
+    assert image.stats["warnings"] == ["the scene has no lights: add a light, an emitting material, a background or an ambient term"]
+    lit = lamplight.Scene(scene_with(objects=[dict(SPHERE), {"type": "point_light", "position": [0, 0, 5], "intensity": 1}]))
+    assert lamplight.render(lit, width=8, height=8, progress=False).stats["warnings"] == []

@@ -104,6 +104,7 @@ fn render_command(job: RenderJob) -> anyhow::Result<()> {
     print_warnings(&built.warnings);
     let mut built = built.scene;
     job.prepare(&mut built).map_err(|e| UsageError(e.0))?;
+    print_warnings(job.light_warning(&built).as_slice());
     let build_time = build_start.elapsed();
 
     let bar = progress_bar(quiet);

@@ -309,7 +309,8 @@ fn importer_warnings_are_printed_once_each_to_stderr() {
     assert!(err.starts_with(expected) && err.lines().nth(2).is_some_and(|l| l.starts_with("rendered quad 16x9")), "{err}");
     // A scene file placing the mesh twice reads it once: each warning once.
     let scene = "[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\nvfov = 40\n[meshes.quad]\nfile = \"quad.obj\"\n\
-                 [[objects]]\ntype = \"mesh\"\nmesh = \"quad\"\n[[objects]]\ntype = \"mesh\"\nmesh = \"quad\"\ntranslate = [1, 0, 0]\n";
+                 [[objects]]\ntype = \"mesh\"\nmesh = \"quad\"\n[[objects]]\ntype = \"mesh\"\nmesh = \"quad\"\ntranslate = [1, 0, 0]\n\
+                 [[objects]]\ntype = \"point_light\"\nposition = [0, 0, 5]\nintensity = 1\n";
     fs::write(dir.join("twice.toml"), scene).unwrap();
     assert_eq!(ok(dir, &["render", "twice.toml", "--width", "16", "--height", "9", "-q"]), expected);
 }

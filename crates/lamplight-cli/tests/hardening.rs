@@ -168,3 +168,44 @@ fn an_interrupt_at_any_moment_leaves_no_temporary_file() {
     }
     assert!(interrupted > 0, "no render lasted 150 ms: the signal was never handled");
 }
+
+#[test]
+fn a_lamp_facing_away_is_reported_once() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    // A floor under a square lamp whose front faces up, away from it.
+    let scene = |two_sided: bool| {
+        format!(
+            "[camera]\neye = [0, 4, 4]\nlook_at = [0, 0, 0]\nvfov = 40\n[materials.lamp]\nemission = 5\nkd = 0\nka = 0\ntwo_sided = {two_sided}\n\
+             [[objects]]\ntype = \"rectangle\"\ncorner = [-5, 0, 5]\nedge_u = [10, 0, 0]\nedge_v = [0, 0, -10]\n\
+             [[objects]]\ntype = \"rectangle\"\ncorner = [-0.5, 2, 5.5]\nedge_u = [0, 0, 1]\nedge_v = [1, 0, 0]\nmaterial = \"lamp\"\n"
+        )
+    };
+    let warning =
+        "lamplight: warning: no light reaches anything the camera sees: emitters send light from their front (outward) side only \
+                   (set `two_sided = true` on the material to emit from both), and point, spot and directional lights light only the side \
+                   of a surface that faces them\n";
+    for (two_sided, expected) in [(false, warning), (true, "")] {
+        fs::write(d.join("s.toml"), scene(two_sided)).unwrap();
+        let out = lamplight(d, &["render", "s.toml", "--width", "16", "--height", "12", "-q", "-o", "s.png"]);
+        assert_eq!(out.status.code(), Some(0));
+        assert_eq!(String::from_utf8_lossy(&out.stderr), expected, "two_sided = {two_sided}");
+    }
+}
+
+#[test]
+fn a_scene_without_lights_says_so() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    fs::write(
+        d.join("dark.toml"),
+        "[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\nvfov = 40\n[[objects]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\n",
+    )
+    .unwrap();
+    let out = lamplight(d, &["render", "dark.toml", "--width", "8", "--height", "8", "-q", "-o", "dark.png"]);
+    assert_eq!(out.status.code(), Some(0));
+    assert_eq!(
+        String::from_utf8_lossy(&out.stderr),
+        "lamplight: warning: the scene has no lights: add a light, an emitting material, a background or an ambient term\n"
+    );
+}

@@ -99,6 +99,7 @@ pub fn render_array<'py>(
         scene.core(py)?
     };
 
+    let warnings: Vec<String> = job.light_warning(&core).into_iter().collect();
     let cancel = Arc::new(AtomicBool::new(false));
     let done = Arc::new(AtomicU64::new(0));
     let total = Arc::new(AtomicU64::new(0));
@@ -169,6 +170,7 @@ pub fn render_array<'py>(
     info.set_item("secondary_rays", stats.rays.secondary)?;
     info.set_item("shadow_rays", stats.rays.shadow)?;
     info.set_item("nonfinite_samples", stats.nonfinite_samples)?;
+    info.set_item("warnings", warnings)?;
     let layers = PyDict::new(py);
     for (layer, image) in &rendered.layers {
         match layer {

@@ -16,6 +16,7 @@ pub mod directional;
 pub mod environment;
 pub mod mesh;
 pub mod point;
+pub mod reach;
 mod set;
 pub mod spot;
 

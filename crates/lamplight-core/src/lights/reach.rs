@@ -1,0 +1,110 @@
+//! Does any light reach what the camera sees? A cheap probe before a render,
+//! so that a scene whose only emitter faces away (one-sided, as in pbrt and
+//! Mitsuba) says so instead of rendering black.
+//!
+//! The probe casts a 16 x 16 grid of camera rays through pixel centres. A first
+//! hit counts as lit when its material emits towards the camera, or when a
+//! delta light or one of 16 points on an area light lies on its side of the
+//! surface with nothing opaque between. A sky (environment or non-black
+//! background under path tracing) and an ambient term light every surface, so
+//! with either the answer is yes without probing.
+
+use super::LightSet;
+use crate::camera::Camera;
+use crate::math::{Rgb, Vec3};
+use crate::ray::offset_origin;
+use crate::scene::{Hit, Scene};
+
+/// Camera rays per side of the probe grid.
+const GRID: u32 = 16;
+/// Points tried on each area light per hit (a 4 x 4 grid of cell centres).
+const AREA_POINTS: u32 = 4;
+
+/// Whether some light reaches some first hit of the camera's rays for a
+/// `width x height` image (see the module doc). `false` also for an empty view.
+pub fn reaches_camera_hits(scene: &Scene, camera: &dyn Camera, width: u32, height: u32) -> bool {
+    let lights = LightSet::new(scene);
+    if lights.environment.is_some() || scene.ambient.max_element() > 0.0 {
+        return true;
+    }
+    for j in 0..GRID {
+        for i in 0..GRID {
+            let x = (i as f64 + 0.5) / GRID as f64 * width as f64;
+            let y = (j as f64 + 0.5) / GRID as f64 * height as f64;
+            let ray = camera.ray(x, y, width, height, (0.5, 0.5));
+            let Some(hit) = scene.first_intersect(&ray, f64::INFINITY) else { continue };
+            if scene.materials[hit.material].emits_towards(hit.front_face) {
+                return true;
+            }
+            for light in &lights.delta {
+                if let Some(s) = light.illuminate(hit.point) {
+                    if s.radiance != Rgb::ZERO && visible(scene, &hit, s.wi, s.distance, light.own_object()) {
+                        return true;
+                    }
+                }
+            }
+            for light in &lights.area {
+                for k in 0..AREA_POINTS * AREA_POINTS {
+                    let u = (((k % AREA_POINTS) as f64 + 0.5) / AREA_POINTS as f64, ((k / AREA_POINTS) as f64 + 0.5) / AREA_POINTS as f64);
+                    if let Some(s) = light.sample(hit.point, u) {
+                        if visible(scene, &hit, s.wi, s.distance, Some(light.object)) {
+                            return true;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    false
+}
+
+/// Whether light from `wi` at `distance` reaches `hit` on the side its ray came from.
+fn visible(scene: &Scene, hit: &Hit, wi: Vec3, distance: f64, own: Option<usize>) -> bool {
+    if hit.geometric_normal.dot(wi) <= 0.0 {
+        return false;
+    }
+    let origin = offset_origin(hit.point, hit.geometric_normal, wi, hit.t, hit.error);
+    scene.transmittance(origin, wi, distance - (origin - hit.point).length(), own) != Rgb::ZERO
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::camera::{Fov, Perspective};
+    use crate::lights::PointLight;
+    use crate::materials::Material;
+    use crate::shapes::Rectangle;
+    use crate::SceneBuilder;
+
+    /// A floor seen from above, lit by a square lamp at height 2 facing `down`
+    /// (or up, away from the floor), or by a point light under the floor.
+    fn scene(lamp_faces_floor: bool, two_sided: bool, point_below: bool) -> Scene {
+        let camera = Perspective::look_at(Vec3::new(0.0, 4.0, 4.0), Vec3::ZERO, Vec3::Y, Fov::VerticalDeg(40.0)).unwrap();
+        let mut b = SceneBuilder::new(camera);
+        let grey = b.material(Material { ka: Rgb::ZERO, ..Material::default() }).unwrap();
+        b.object(Rectangle::horizontal(0.0, -5.0, 5.0, -5.0, 5.0).unwrap(), grey).unwrap();
+        let lamp =
+            b.material(Material { emission: Rgb::splat(5.0), two_sided, kd: Rgb::ZERO, ka: Rgb::ZERO, ..Material::default() }).unwrap();
+        let (u, v) = if lamp_faces_floor { (Vec3::X, Vec3::Z) } else { (Vec3::Z, Vec3::X) };
+        // Behind the camera's view, so the probe sees only the floor.
+        b.object(Rectangle::new(Vec3::new(-0.5, 2.0, 5.5), u, v).unwrap(), lamp).unwrap();
+        if point_below {
+            b.light(PointLight::new(Vec3::new(0.0, -1.0, 0.0), Rgb::ONE).unwrap());
+        }
+        b.ambient = Rgb::ZERO;
+        b.background = Rgb::ZERO;
+        b.build().unwrap()
+    }
+
+    #[test]
+    fn a_lamp_facing_away_lights_nothing_the_camera_sees() {
+        let reach = |s: &Scene| reaches_camera_hits(s, s.camera.as_ref(), 64, 48);
+        assert!(reach(&scene(true, false, false)), "a lamp facing the floor lights it");
+        assert!(!reach(&scene(false, false, false)), "one-sided, facing up: nothing lit");
+        assert!(reach(&scene(false, true, false)), "two-sided: lit");
+        assert!(!reach(&scene(false, false, true)), "a point light under the floor reaches only its back");
+        let mut sky = scene(false, false, false);
+        sky.ambient = Rgb::splat(0.1);
+        assert!(reach(&sky), "an ambient term lights every surface");
+    }
+}
