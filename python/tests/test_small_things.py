@@ -38,6 +38,7 @@ def test_a_scene_file_gives_its_mesh_files_warnings(tmp_path):
     text = (
         '[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\nvfov = 40\n[meshes.quad]\nfile = "quad.obj"\n'
         '[[objects]]\ntype = "mesh"\nmesh = "quad"\n'
+        '[[objects]]\ntype = "point_light"\nposition = [0, 0, 5]\nintensity = 1\n'
     )
     (tmp_path / "s.toml").write_text(text)
     with pytest.warns(UserWarning) as caught:
