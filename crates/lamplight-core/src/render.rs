@@ -48,7 +48,7 @@ pub struct RenderOptions {
     /// window's size); `None` renders all of it.
     pub window: Option<PixelWindow>,
     /// Largest channel a sample may have: a brighter sample is scaled down to
-    /// it, hue kept (Cycles' and Mitsuba's clamp). Removes fireflies at the cost
+    /// it, hue kept (pbrt-v4's film `maxcomponentvalue`). Removes fireflies at the cost
     /// of bias (the image is darker than the true mean wherever it acts); `None`
     /// clamps nothing.
     pub clamp: Option<f64>,
