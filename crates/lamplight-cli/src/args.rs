@@ -75,7 +75,7 @@ pub struct RenderArgs {
     /// [default: the file's, else whitted].
     #[arg(long, value_name = "NAME")]
     pub integrator: Option<String>,
-    /// Path tracer: stop after the last complete pass before this many seconds.
+    /// Path tracer: stop within this many seconds, the last pass shortened to the samples that fit (every pixel gets the same count).
     #[arg(long, value_name = "SECONDS")]
     pub time_limit: Option<f64>,
     /// Scale every sample whose brightest channel exceeds V down to V: removes fireflies, but biased (darker where it acts). Off by default.

@@ -114,12 +114,22 @@ fn render_command(job: RenderJob) -> anyhow::Result<()> {
             bar.set_position(done);
         }
     };
-    let control = RenderControl { progress: &progress, cancel: None };
+    let graceful = signals::Graceful::start();
+    let control = RenderControl { progress: &progress, cancel: None, stop: Some(graceful.stop_flag()) };
     let rendered = job.run(&built, &control);
+    // From here a signal ends the program at once (a second Ctrl-C, or one during the write).
+    drop(graceful);
     if let Some(bar) = &bar {
         bar.finish_and_clear();
     }
+    if signals::stop_requested() && rendered.is_err() {
+        // No pass was complete: nothing to write.
+        eprintln!("lamplight: error: interrupted");
+        std::process::exit(signals::INTERRUPTED);
+    }
     let mut rendered = rendered.with_context(|| format!("cannot render scene '{}'", scene.name))?;
+    // Stopped by a signal with fewer samples than asked: write them, then say so.
+    let stopped_early = signals::stop_requested() && rendered.stats.samples_per_pixel < job.options.spp;
     if let Some(path) = &variance_output {
         let variance = rendered.layers.iter().find(|(l, _)| *l == Layer::Variance).map(|(_, image)| image.clone());
         image_io::write_image(path, &variance.expect("validate asks for the variance layer"))?;
@@ -131,6 +141,15 @@ fn render_command(job: RenderJob) -> anyhow::Result<()> {
     request::write(&output, &rendered, display)?;
 
     let stats = rendered.stats;
+    if stopped_early {
+        eprintln!(
+            "lamplight: interrupted: wrote the last complete pass ({} of {} samples per pixel) to {}",
+            stats.samples_per_pixel,
+            job.options.spp,
+            output.display()
+        );
+        std::process::exit(signals::INTERRUPTED);
+    }
     let summary = Summary { scene: &scene.name, width, height, spp: stats.samples_per_pixel, build_time, stats };
     if !quiet {
         eprintln!("{} -> {}", summary, output.display());

@@ -209,3 +209,36 @@ fn a_scene_without_lights_says_so() {
         "lamplight: warning: the scene has no lights: add a light, an emitting material, a background or an ambient term\n"
     );
 }
+
+/// The first Ctrl-C of a long path-traced render writes the passes already
+/// complete, whole, says so and exits with code 130.
+#[cfg(unix)]
+#[test]
+fn a_first_interrupt_writes_the_last_complete_pass() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    // 2^20 samples would take hours: only the interrupt ends it.
+    let child = Command::new(env!("CARGO_BIN_EXE_lamplight"))
+        .args(["render", "cornell-box", "--width", "32", "--height", "32", "--spp", "1048576", "-o", "out.exr", "-q"])
+        .current_dir(d)
+        .stdin(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(Duration::from_millis(1500));
+    Command::new("kill").args(["-INT", &child.id().to_string()]).status().unwrap();
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(130));
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    let spp: u32 = err
+        .strip_prefix("lamplight: interrupted: wrote the last complete pass (")
+        .and_then(|rest| rest.strip_suffix(" of 1048576 samples per pixel) to out.exr\n"))
+        .unwrap_or_else(|| panic!("stderr: {err}"))
+        .parse()
+        .unwrap();
+    assert!(spp.is_power_of_two(), "complete doubling passes: {spp}");
+    assert_eq!(entries(d), ["out.exr"], "the output and no temporary file");
+    let image = lamplight_scene::image_io::read_exr(&d.join("out.exr")).unwrap();
+    assert_eq!((image.width, image.height), (32, 32));
+    assert!(image.pixels.iter().flatten().any(|&c| c > 0.0), "a rendered image");
+}

@@ -114,11 +114,15 @@ pub struct RenderControl<'a> {
     pub progress: &'a (dyn Fn(u64, u64) + Sync),
     /// When set, remaining tiles are skipped and `render` returns [`Error::Render`].
     pub cancel: Option<&'a AtomicBool>,
+    /// When set, the pass in progress is dropped and `render` returns the passes
+    /// already complete, every pixel with the same sample count (a first Ctrl-C);
+    /// [`Error::Render`] when none is.
+    pub stop: Option<&'a AtomicBool>,
 }
 
 impl Default for RenderControl<'_> {
     fn default() -> Self {
-        RenderControl { progress: &|_, _| {}, cancel: None }
+        RenderControl { progress: &|_, _| {}, cancel: None, stop: None }
     }
 }
 
@@ -126,7 +130,15 @@ impl RenderControl<'_> {
     fn cancelled(&self) -> bool {
         self.cancel.is_some_and(|c| c.load(Ordering::Relaxed))
     }
+
+    fn stopped(&self) -> bool {
+        self.stop.is_some_and(|s| s.load(Ordering::Relaxed))
+    }
 }
+
+/// Most of the time left that a pass shortened to fit a time limit may take by
+/// the previous pass's time per sample: the rest is the margin for its spread.
+const BUDGET_SHARE: f64 = 0.85;
 
 /// A pool of `threads` workers (0: one per core).
 fn thread_pool(threads: usize) -> Result<rayon::ThreadPool, Error> {
@@ -156,8 +168,12 @@ fn checked_depth(scene: &Scene, options: &RenderOptions) -> Result<u32, Error> {
 /// Renders `scene` with `options` into a film of the window's size: per pixel the
 /// sum and sum of squares of its samples, so the mean and its variance follow for
 /// any integrator. Errors on bad sizes, an integrator that cannot be built for the
-/// scene, a thread pool that cannot start, cancellation, and a time limit that
-/// ends before the first pass.
+/// scene, a thread pool that cannot start, cancellation, and a time limit (or a
+/// stop) that ends before the first pass.
+///
+/// With a time limit, a pass that would not fit in the time left (judged by the
+/// previous pass's time per sample) is shortened to the samples that do, so the
+/// budget is used and every pixel still has the same sample count.
 pub fn render(scene: &Scene, options: &RenderOptions, control: &RenderControl) -> Result<(Film, RenderStats), Error> {
     let pool = thread_pool(options.threads)?;
     render_in(&pool, scene, options, control, false)
@@ -196,8 +212,10 @@ fn render_in(
     // spare film and added, so a pass cut short leaves the film untouched.
     let (mut film, mut spare): (Option<Film>, Option<Film>) = (None, None);
     let mut done = 0;
+    // Samples the time left allows the next pass (None: no limit in force).
+    let mut fits: Option<u32> = None;
     while done < spp {
-        let count = schedule.next_pass(done, spp);
+        let count = schedule.next_pass(done, spp).min(fits.unwrap_or(u32::MAX));
         let pass_start = Instant::now();
         // Only the image of one pass is wanted: keep its means, not its sums.
         let new_film = || match (image_only, schedule) {
@@ -212,7 +230,7 @@ fn render_in(
             pass.tiles_mut(count)
                 .enumerate()
                 .map(|(tile, block)| {
-                    if control.cancelled() {
+                    if control.cancelled() || control.stopped() {
                         return None;
                     }
                     if deadline.is_some_and(|d| Instant::now() > d) {
@@ -232,9 +250,11 @@ fn render_in(
         if control.cancelled() {
             return Err(Error::Render("cancelled".into()));
         }
-        if expired.load(Ordering::Relaxed) && results.iter().any(Option::is_none) {
+        let stopped = control.stopped();
+        if (expired.load(Ordering::Relaxed) || stopped) && results.iter().any(Option::is_none) {
             if done == 0 {
-                return Err(Error::Render("the time limit ended before the first pass finished".into()));
+                let why = if stopped { "interrupted" } else { "the time limit ended" };
+                return Err(Error::Render(format!("{why} before the first pass finished")));
             }
             break; // drop the incomplete pass
         }
@@ -251,14 +271,20 @@ fn render_in(
                 spare = Some(pass);
             }
         }
+        if stopped {
+            break;
+        }
         if let Some(d) = deadline {
-            // Do not start a pass that cannot finish: estimate it from this one's
-            // time per sample.
+            // Do not start a pass that cannot finish: shorten it to the samples
+            // this one's time per sample says fit in what is left.
             let now = Instant::now();
-            let next = pass_start.elapsed().mul_f64(schedule.next_pass(done, spp) as f64 / count as f64);
-            if now >= d || now + next > d {
+            let per_sample = pass_start.elapsed().as_secs_f64() / count as f64;
+            let left = d.saturating_duration_since(now).as_secs_f64();
+            let n = (BUDGET_SHARE * left / per_sample.max(1e-9)).floor().min(u32::MAX as f64) as u32;
+            if n == 0 {
                 break;
             }
+            fits = Some(n);
         }
     }
     stats.elapsed = start.elapsed();

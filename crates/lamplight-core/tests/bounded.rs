@@ -18,7 +18,7 @@ fn radiance_beyond_the_films_bound_never_reaches_a_pixel() {
     // 1e18 and, squared, beyond f32.
     b.light(PointLight::new(Vec3::new(0.0, 1e-4, 0.0), Rgb::splat(1e12)).unwrap());
     let scene = b.build().unwrap();
-    let control = RenderControl { progress: &|_, _| {}, cancel: None };
+    let control = RenderControl { progress: &|_, _| {}, cancel: None, stop: None };
     for integrator in INTEGRATORS {
         let options = RenderOptions { width: 9, height: 9, spp: 4, integrator, ..RenderOptions::default() };
         let (image, stats) = render_image(&scene, &options, &control).unwrap();

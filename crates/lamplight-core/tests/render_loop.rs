@@ -102,7 +102,7 @@ fn every_integrator_reports_progress_and_can_be_cancelled_or_timed_out() {
             done.fetch_max(d, Ordering::Relaxed);
             total.store(t, Ordering::Relaxed);
         };
-        render(&scene, &options(integrator, 40, 20, 4), &RenderControl { progress: &progress, cancel: None }).unwrap();
+        render(&scene, &options(integrator, 40, 20, 4), &RenderControl { progress: &progress, cancel: None, stop: None }).unwrap();
         // 3 x 2 tiles, in one pass for Whitted, in passes of 1, 1, 2 for the path tracer.
         let passes = if integrator.name == "whitted" { 1 } else { 3 };
         assert_eq!((done.into_inner(), total.into_inner()), (6 * passes, 6 * passes), "{integrator:?}");

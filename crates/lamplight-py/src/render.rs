@@ -113,7 +113,7 @@ pub fn render_array<'py>(
                     total.store(t, Ordering::Relaxed);
                     done.fetch_max(d, Ordering::Relaxed);
                 };
-                let control = RenderControl { progress: &report, cancel: Some(&cancel) };
+                let control = RenderControl { progress: &report, cancel: Some(&cancel), stop: None };
                 // The receiver may be gone (an error already raised): nothing to tell then.
                 let _ = tx.send(job.run(&core, &control));
             })
