@@ -22,6 +22,15 @@ pub fn read_environment(path: &Path) -> Result<Image, ImageError> {
     decode(path, format, &bytes)
 }
 
+/// Reads an environment map file as the renderer's map (linear RGB with its
+/// sampling distribution); the message names the file.
+pub fn load_map(path: &Path) -> Result<lamplight_core::lights::EnvMap, String> {
+    let map = read_environment(path).map_err(|e| e.to_string())?;
+    let pixels = map.pixels.iter().map(|p| lamplight_core::math::Rgb::new(p[0] as f64, p[1] as f64, p[2] as f64)).collect();
+    lamplight_core::lights::EnvMap::new(map.width as usize, map.height as usize, pixels)
+        .map_err(|e| format!("cannot use '{}' as an environment map: {e}", path.display()))
+}
+
 /// Decodes the bytes of an environment map file named `path` (whose extension
 /// picks the format, and which is only named in errors). The fuzz target and
 /// the property tests enter here.

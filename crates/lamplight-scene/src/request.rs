@@ -373,10 +373,7 @@ impl Job {
     /// Lights `scene` with the job's environment map, if any.
     pub fn prepare(&self, scene: &mut Scene) -> Result<(), RequestError> {
         let Some(path) = &self.environment else { return Ok(()) };
-        let map = crate::env_map::read_environment(path).map_err(|e| bad(e.to_string()))?;
-        let pixels = map.pixels.iter().map(|p| lamplight_core::math::Rgb::new(p[0] as f64, p[1] as f64, p[2] as f64)).collect();
-        let env = lamplight_core::lights::EnvMap::new(map.width as usize, map.height as usize, pixels)
-            .map_err(|e| bad(format!("cannot use '{}' as an environment map: {e}", path.display())))?;
+        let env = crate::env_map::load_map(path).map_err(bad)?;
         scene.environment = Some(std::sync::Arc::new(lamplight_core::lights::Environment::Map(env)));
         Ok(())
     }

@@ -14,6 +14,7 @@ use crate::error::LoadError;
 use crate::formats::native::{self, Source};
 
 pub mod camera;
+pub mod environment;
 pub mod implicit;
 pub mod imported;
 mod materials;
@@ -85,6 +86,7 @@ pub const SCENE_PARAMS: &[Param] = &[
         "radiance",
         "radiance of rays that hit nothing; under path tracing a uniform sky that lights the scene",
     ),
+    Param::new("environment", T::Table, "none", "", "an environment light in place of `background` (see below)"),
 ];
 
 /// A built core scene and what its importers warned about: the parts of its
@@ -185,9 +187,11 @@ pub fn build_with_warnings(desc: &SceneDescription, source: &Source) -> Result<B
     let camera_node = desc.camera.as_ref().ok_or_else(|| LoadError::file(&source.path, "has no [camera] table, expected one"))?;
     let camera = camera::camera(camera_node).map_err(|e| source.param_error(e))?;
     let mut builder = SceneBuilder::with_camera(camera);
-    let (ambient, background) = globals(&desc.globals).map_err(|e| source.param_error(e))?;
+    let dir = source.path.parent().map(Path::to_path_buf).unwrap_or_default();
+    let (ambient, background, environment) = globals(&desc.globals, &dir).map_err(|e| source.param_error(e))?;
     builder.ambient = ambient;
     builder.background = background;
+    builder.environment = environment;
     builder.max_depth = settings.max_depth;
     builder.min_weight = settings.min_weight;
     let materials = materials::add_all(desc, source, &mut builder)?;
@@ -196,7 +200,9 @@ pub fn build_with_warnings(desc: &SceneDescription, source: &Source) -> Result<B
     Ok(Built { scene, warnings })
 }
 
-fn globals(table: &Table) -> lamplight_core::params::ParamResult<(Rgb, Rgb)> {
+type Globals = (Rgb, Rgb, Option<std::sync::Arc<lamplight_core::lights::Environment>>);
+
+fn globals(table: &Table, dir: &Path) -> lamplight_core::params::ParamResult<Globals> {
     let mut p = Params::new("scene", table);
     p.check_keys(SCENE_PARAMS, &[])?;
     let mut colour = |key: &str| -> lamplight_core::params::ParamResult<Rgb> {
@@ -208,6 +214,10 @@ fn globals(table: &Table) -> lamplight_core::params::ParamResult<(Rgb, Rgb)> {
     };
     let ambient = colour("ambient")?;
     let background = colour("background")?;
+    let environment = match p.table("environment")? {
+        Some(env) => Some(environment::read(env, dir)?),
+        None => None,
+    };
     p.finish()?;
-    Ok((ambient, background))
+    Ok((ambient, background, environment))
 }

@@ -14,6 +14,12 @@ use crate::build::{RENDER_PARAMS, SCENE_PARAMS};
 pub fn reference() -> String {
     let mut out = String::new();
     section(&mut out, "Top level values", "", SCENE_PARAMS);
+    section(
+        &mut out,
+        "`environment`",
+        "A sky of a colour or an equirectangular map, at infinity.",
+        crate::build::environment::ENVIRONMENT_PARAMS,
+    );
     section(&mut out, "`[render]`", "", RENDER_PARAMS);
     for k in CAMERAS {
         section(&mut out, &format!("Camera `type = \"{}\"`", k.name), k.summary, k.params);
