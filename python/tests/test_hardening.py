@@ -90,3 +90,16 @@ def test_a_scene_without_lights_warns_when_rendered():
     assert image.stats["warnings"] == ["the scene has no lights: add a light, an emitting material, a background or an ambient term"]
     lit = lamplight.Scene(scene_with(objects=[dict(SPHERE), {"type": "point_light", "position": [0, 0, 5], "intensity": 1}]))
     assert lamplight.render(lit, width=8, height=8, progress=False).stats["warnings"] == []
+
+
+def test_an_implicit_surface_steeper_than_its_bound_warns():
+    loose = {
+        "type": "implicit",
+        "expression": "10 * (sqrt(x*x + y*y + z*z) - 1)",
+        "min": [-1.5, -1.5, -1.5],
+        "max": [1.5, 1.5, 1.5],
+        "lipschitz": 2,
+    }
+    s = lamplight.Scene({"ambient": 0.2, "camera": dict(CAMERA), "objects": [loose]})
+    with pytest.warns(UserWarning, match="implicit surface: f changed by .* above its lipschitz = 2"):
+        lamplight.render(s, width=16, height=16, progress=False)

@@ -128,6 +128,7 @@ fn render_command(job: RenderJob) -> anyhow::Result<()> {
         std::process::exit(signals::INTERRUPTED);
     }
     let mut rendered = rendered.with_context(|| format!("cannot render scene '{}'", scene.name))?;
+    print_warnings(&built.shape_warnings());
     // Stopped by a signal with fewer samples than asked: write them, then say so.
     let stopped_early = signals::stop_requested() && rendered.stats.samples_per_pixel < job.options.spp;
     if let Some(path) = &variance_output {

@@ -242,3 +242,24 @@ fn a_first_interrupt_writes_the_last_complete_pass() {
     assert_eq!((image.width, image.height), (32, 32));
     assert!(image.pixels.iter().flatten().any(|&c| c > 0.0), "a rendered image");
 }
+
+#[test]
+fn an_implicit_surface_steeper_than_its_bound_is_reported() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let scene = |lipschitz: f64| {
+        format!(
+            "ambient = 0.2\n[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\nvfov = 40\n\
+             [[objects]]\ntype = \"implicit\"\nexpression = \"10 * (sqrt(x*x + y*y + z*z) - 1)\"\nmin = [-1.5, -1.5, -1.5]\nmax = [1.5, 1.5, 1.5]\nlipschitz = {lipschitz}\n"
+        )
+    };
+    fs::write(d.join("loose.toml"), scene(2.0)).unwrap();
+    let out = lamplight(d, &["render", "loose.toml", "--width", "24", "--height", "24", "-q", "-o", "loose.png"]);
+    assert_eq!(out.status.code(), Some(0));
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert!(err.starts_with("lamplight: warning: implicit surface: f changed by ") && err.lines().count() == 1, "{err}");
+    assert!(err.contains(" per unit of distance between samples, above its lipschitz = 2: rays may miss parts of the surface; set lipschitz to at least "), "{err}");
+    fs::write(d.join("safe.toml"), scene(10.5)).unwrap();
+    let out = lamplight(d, &["render", "safe.toml", "--width", "24", "--height", "24", "-q", "-o", "safe.png"]);
+    assert_eq!((out.status.code(), String::from_utf8_lossy(&out.stderr).into_owned()), (Some(0), String::new()));
+}

@@ -259,6 +259,20 @@ impl Scene {
         })
     }
 
+    /// What the shapes noticed while rendering ([`crate::shapes::Shape::warnings`]:
+    /// an implicit surface's Lipschitz bound exceeded), each text once, in object order.
+    pub fn shape_warnings(&self) -> Vec<String> {
+        let mut out: Vec<String> = Vec::new();
+        for object in &self.objects {
+            for w in object.shape.warnings() {
+                if !out.contains(&w) {
+                    out.push(w);
+                }
+            }
+        }
+        out
+    }
+
     /// Fraction of light that travels from `origin` a distance `distance` along the
     /// unit `dir` (a shadow ray): 0 if an opaque object lies in between, the product
     /// of the crossed surfaces' `shadow_transmittance` otherwise.

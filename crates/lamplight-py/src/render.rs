@@ -105,7 +105,7 @@ pub fn render_array<'py>(
     let total = Arc::new(AtomicU64::new(0));
     let (tx, rx) = mpsc::channel::<Rendered>();
     {
-        let (cancel, done, total) = (cancel.clone(), done.clone(), total.clone());
+        let (cancel, done, total, core) = (cancel.clone(), done.clone(), total.clone(), core.clone());
         std::thread::Builder::new()
             .name("lamplight-render".into())
             .spawn(move || {
@@ -160,6 +160,8 @@ pub fn render_array<'py>(
         lamplight_core::Error::Render(m) => PyRuntimeError::new_err(m),
         other => PyValueError::new_err(other.to_string()),
     })?;
+    let mut warnings = warnings;
+    warnings.extend(core.shape_warnings());
     let stats = rendered.stats;
     let array = to_array(py, &rendered.image)?;
     let info = PyDict::new(py);

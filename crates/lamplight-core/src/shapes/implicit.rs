@@ -36,6 +36,7 @@
 //! hit. `SurfaceHit::error` is the root tolerance achieved: the bisection
 //! bracket, or `tol` for a touching hit.
 
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
 
 use super::{Shape, SurfaceHit};
@@ -75,6 +76,11 @@ pub struct Implicit {
     tolerance: f64,
     gradient_step: f64,
     max_steps: usize,
+    /// The largest `|f(b) - f(a)| / |b - a|` seen between successive samples of a
+    /// march that exceeded `lipschitz` (`f64` bits; 0: none), as POV-Ray reports
+    /// an isosurface's `max_gradient`. Shared by clones, so a render's copies
+    /// report to one place.
+    steepest: Arc<AtomicU64>,
 }
 
 impl std::fmt::Debug for Implicit {
@@ -112,9 +118,19 @@ impl Implicit {
             tolerance,
             gradient_step: GRADIENT_STEP * diagonal,
             max_steps: DEFAULT_MAX_STEPS,
+            steepest: Arc::new(AtomicU64::new(0)),
         };
         implicit.bounds = implicit.padded(bounds);
         Ok(implicit)
+    }
+
+    /// Keeps `slope`, a secant slope of `f` seen along a ray, when it exceeds the bound.
+    #[inline]
+    fn note_slope(&self, slope: f64) {
+        if slope > self.lipschitz && slope.is_finite() {
+            // Positive finite f64 bits order as the numbers do.
+            self.steepest.fetch_max(slope.to_bits(), Ordering::Relaxed);
+        }
     }
 
     /// The same surface with an analytic gradient instead of central differences.
@@ -223,9 +239,24 @@ impl Shape for Implicit {
         self.bounds
     }
 
+    /// A warning when a march saw `f` change faster than the Lipschitz bound.
+    fn warnings(&self) -> Vec<String> {
+        let steepest = f64::from_bits(self.steepest.load(Ordering::Relaxed));
+        if !(steepest > self.lipschitz && steepest.is_finite()) {
+            return Vec::new();
+        }
+        vec![format!(
+            "implicit surface: f changed by {steepest:.4} per unit of distance between samples, above its lipschitz = {}: \
+             rays may miss parts of the surface; set lipschitz to at least {steepest:.4}",
+            self.lipschitz
+        )]
+    }
+
     fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
         let (t_enter, t_exit) = self.bounds.hit(ray, t_min, t_max)?;
         let radius_of = |v: f64| v.abs() / self.lipschitz;
+        // Sample spacing in distance is `dt |dir|`.
+        let speed = ray.dir.length();
         let mut t = t_enter;
         let mut v = self.value(ray.at(t));
         // The previous accepted sample (t, value).
@@ -240,6 +271,7 @@ impl Shape for Implicit {
             }
             let radius = radius_of(v);
             if let Some((tp, vp)) = previous {
+                self.note_slope((v - vp).abs() / ((t - tp) * speed));
                 if (vp < 0.0) != (v < 0.0) && vp != 0.0 && v != 0.0 {
                     let (root, bracket) = self.bisect(ray, tp, t, vp);
                     return Some(self.surface_hit(ray, root, bracket));
@@ -255,6 +287,12 @@ impl Shape for Implicit {
             // No root within `radius` of t; none before the exit means none at all
             // (tested first: at the exit a small `|f|` is a loose `L`, not a hit).
             if t + radius >= t_exit {
+                // Where the bound jumps past the exit, one sample there shows
+                // whether `f` really stays away from 0 (a missed root would make
+                // it change faster than the bound allows).
+                if t_exit > t {
+                    self.note_slope((self.value(ray.at(t_exit)) - v).abs() / ((t_exit - t) * speed));
+                }
                 return None;
             }
             if previous.is_some_and(|(_, vp)| radius < self.tolerance && radius < radius_of(vp)) {

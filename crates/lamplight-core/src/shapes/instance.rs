@@ -131,6 +131,10 @@ impl Shape for Instance {
         self.shape.primitive_count()
     }
 
+    fn warnings(&self) -> Vec<String> {
+        self.shape.warnings()
+    }
+
     /// The shape's triangles moved by `M`; a mirroring `M` (`det < 0`) reverses the
     /// winding, so two corners swap to keep the outward side counter-clockwise.
     fn triangles(&self) -> Option<Vec<[Vec3; 3]>> {

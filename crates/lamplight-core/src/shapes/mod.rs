@@ -119,4 +119,10 @@ pub trait Shape: Send + Sync + std::fmt::Debug {
     fn triangles(&self) -> Option<Vec<[Vec3; 3]>> {
         None
     }
+
+    /// What the shape noticed while rendering that the user should know (an
+    /// implicit surface whose Lipschitz bound was exceeded), each once; none by default.
+    fn warnings(&self) -> Vec<String> {
+        Vec::new()
+    }
 }

@@ -34,7 +34,8 @@ pub struct SceneDescription {
 }
 
 /// The top-level keys, in the order the reference lists them.
-pub const TOP_LEVEL_KEYS: &[&str] = &["ambient", "background", "environment", "render", "camera", "materials", "meshes", "definitions", "objects"];
+pub const TOP_LEVEL_KEYS: &[&str] =
+    &["ambient", "background", "environment", "render", "camera", "materials", "meshes", "definitions", "objects"];
 
 impl SceneDescription {
     /// Sorts a parsed top-level table into a description. The `scene` label

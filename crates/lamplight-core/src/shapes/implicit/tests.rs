@@ -223,3 +223,35 @@ fn nan_ends_the_march() {
     assert!(ray_hit(&shape, Vec3::new(0.0, 0.0, 5.0), -Vec3::Z).is_none());
     assert!(ray_hit(&shape, Vec3::new(0.0, 0.0, -5.0), Vec3::Z).is_some());
 }
+
+#[test]
+fn a_lipschitz_bound_that_is_exceeded_is_reported_with_the_gradient_seen() {
+    // 10 (|p - c| - R) changes by 10 per unit; declared 2, the marches see it.
+    let steep = |lipschitz: f64| {
+        let f: ImplicitFn = Arc::new(|p: Vec3| 10.0 * ((p - CENTER).length() - RADIUS));
+        Implicit::new(f, Aabb::new(CENTER - Vec3::splat(2.0), CENTER + Vec3::splat(2.0)), lipschitz).unwrap()
+    };
+    // Rays from all around towards points near the centre.
+    let mut rng = Rng::for_sample(4, 0, 0);
+    let rays: Vec<Ray> = (0..200)
+        .map(|_| {
+            let origin = CENTER + unit_vector(&mut rng) * 6.0;
+            Ray::new(origin, (CENTER + unit_vector(&mut rng) * 0.5 - origin).normalize())
+        })
+        .collect();
+    let cast = |shape: &Implicit| rays.iter().filter(|r| shape.intersect(r, 0.0, f64::INFINITY).is_some()).count();
+    let loose = steep(2.0);
+    assert_eq!(cast(&loose), 0, "too small a bound makes the march jump past the surface");
+    let warnings = loose.warnings();
+    assert_eq!(warnings.len(), 1, "{warnings:?}");
+    let seen: f64 = warnings[0].rsplit(' ').next().unwrap().parse().unwrap();
+    assert!(seen > 2.0 && seen <= 10.0 + 1e-9, "a secant slope of 10 |p - c| is at most 10: {}", warnings[0]);
+    assert!(warnings[0].starts_with("implicit surface: f changed by "), "{}", warnings[0]);
+    assert!(warnings[0].contains("above its lipschitz = 2: rays may miss parts of the surface; set lipschitz to at least"));
+    // A clone (as a render's copies are) reports to the same place.
+    assert_eq!(loose.clone().warnings(), warnings);
+    let safe = steep(10.5);
+    assert!(cast(&safe) > 150, "a true bound finds the surface");
+    assert!(safe.warnings().is_empty(), "{:?}", safe.warnings());
+    assert!(sdf_sphere().warnings().is_empty());
+}
