@@ -164,11 +164,12 @@ impl Implicit {
             // No root within `radius` of t; none before the exit means none at all
             // (tested first: at the exit a small `|f|` is a loose `L`, not a hit).
             if t + radius >= t_exit {
-                // Where the bound jumps past the exit, one sample there shows
-                // whether `f` really stays away from 0 (a missed root would make
-                // it change faster than the bound allows).
+                // Where the bound jumps past the exit, one sample half way there
+                // shows whether `f` really stays away from 0 (a root skipped
+                // would make it change faster than the bound allows).
                 if WATCH && t_exit > t {
-                    self.note_change((self.value(ray.at(t_exit)) - v).abs(), (t_exit - t) * speed);
+                    let mid = 0.5 * (t + t_exit);
+                    self.note_change((self.value(ray.at(mid)) - v).abs(), (mid - t) * speed);
                 }
                 return None;
             }
