@@ -153,12 +153,14 @@ def write_image(
     exposure: float = 0.0,
     tonemap: str = "clamp",
     layers: Optional[Dict[str, npt.NDArray[np.float32]]] = None,
+    transfer: str = "srgb",
 ) -> None:
     """Writes ``(H, W, 3)`` float32 linear radiance as ``.png``, ``.ppm`` or ``.exr``
-    (with extra ``layers`` for ``.exr``), atomically."""
+    (with extra ``layers`` for ``.exr``), atomically; ``transfer`` (``"srgb"``,
+    ``"linear"``) is how ``.png``/``.ppm`` store the values."""
 
-def encode_png(array: npt.NDArray[np.float32], exposure: float = 0.0, tonemap: str = "clamp") -> bytes:
-    """PNG bytes of an ``(H, W, 3)`` float32 image (8-bit sRGB)."""
+def encode_png(array: npt.NDArray[np.float32], exposure: float = 0.0, tonemap: str = "clamp", transfer: str = "srgb") -> bytes:
+    """PNG bytes of an ``(H, W, 3)`` float32 image (8-bit, sRGB-encoded or ``transfer="linear"``)."""
 
 def read_exr(path: _Path) -> npt.NDArray[np.float32]:
     """An OpenEXR file's R, G, B as float32 ``(H, W, 3)``."""

@@ -4,7 +4,7 @@ show themselves in Jupyter and save as PNG, PPM or OpenEXR."""
 from __future__ import annotations
 
 import os
-from typing import Union
+from typing import Optional, Union
 
 import numpy as np
 
@@ -55,18 +55,24 @@ class Image(np.ndarray):
     def _repr_png_(self):
         if not self._is_image():
             return None
-        return _lamplight.encode_png(np.ascontiguousarray(self).view(np.ndarray))
+        return _lamplight.encode_png(np.ascontiguousarray(self).view(np.ndarray), 0.0, "clamp", self._transfer(None))
 
-    def to_png(self, exposure: float = 0.0, tonemap: str = "clamp") -> bytes:
-        """The image as PNG file bytes, after ``exposure`` (stops) and ``tonemap`` (``"clamp"`` or ``"filmic"``)."""
-        return _lamplight.encode_png(_plain(self), exposure, tonemap)
+    def _transfer(self, transfer: Optional[str]) -> str:
+        # The render's scene says how its PNGs store values (``[render] transfer``).
+        return transfer if transfer is not None else self.stats.get("transfer", "srgb")
 
-    def save(self, path: PathLike, exposure: float = 0.0, tonemap: str = "clamp") -> None:
+    def to_png(self, exposure: float = 0.0, tonemap: str = "clamp", transfer: Optional[str] = None) -> bytes:
+        """The image as PNG file bytes, after ``exposure`` (stops) and ``tonemap``
+        (``"clamp"`` or ``"filmic"``); ``transfer`` is ``"srgb"`` or ``"linear"``,
+        by default the rendered scene's own (``srgb`` for other arrays)."""
+        return _lamplight.encode_png(_plain(self), exposure, tonemap, self._transfer(transfer))
+
+    def save(self, path: PathLike, exposure: float = 0.0, tonemap: str = "clamp", transfer: Optional[str] = None) -> None:
         """Writes the image to ``path`` (see :func:`save`), with its ``layers``
-        when ``path`` is an ``.exr`` file."""
+        when ``path`` is an ``.exr`` file; ``transfer`` as in :meth:`to_png`."""
         exr = os.fspath(path).lower().endswith(".exr")
         layers = {k: np.ascontiguousarray(v, dtype=np.float32) for k, v in self.layers.items()} if exr and self.layers else None
-        _lamplight.write_image(os.fspath(path), _plain(self), exposure, tonemap, layers)
+        _lamplight.write_image(os.fspath(path), _plain(self), exposure, tonemap, layers, self._transfer(transfer))
 
 
 def _plain(array) -> np.ndarray:
@@ -76,13 +82,14 @@ def _plain(array) -> np.ndarray:
     return np.ascontiguousarray(a, dtype=np.float32).view(np.ndarray)
 
 
-def save(path: PathLike, image, exposure: float = 0.0, tonemap: str = "clamp") -> None:
+def save(path: PathLike, image, exposure: float = 0.0, tonemap: str = "clamp", transfer: str = "srgb") -> None:
     """Writes ``image`` (an array ``(H, W, 3)`` of linear radiance) to ``path``,
     in the format of its extension: ``.png`` and ``.ppm`` are 8-bit sRGB after
     ``exposure`` (stops) and ``tonemap`` (``"clamp"`` or ``"filmic"``), ``.exr``
     is linear float32, unchanged. The file is written to a temporary name and
-    renamed, so a failed write never leaves a broken image."""
-    _lamplight.write_image(os.fspath(path), _plain(image), exposure, tonemap)
+    renamed, so a failed write never leaves a broken image. ``transfer="linear"``
+    stores the values themselves in ``.png``/``.ppm`` (display-referred numbers)."""
+    _lamplight.write_image(os.fspath(path), _plain(image), exposure, tonemap, None, transfer)
 
 
 def read_exr(path: PathLike) -> Image:

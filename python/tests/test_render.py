@@ -168,3 +168,19 @@ def test_clamp_bounds_every_sample():
     clamped = lamplight.render("cornell-box", width=16, height=16, spp=4, clamp=0.5, progress=False)
     assert plain.max() > 1.0, "the lamp is brighter than the clamp"
     assert clamped.max() <= 0.5
+
+
+def test_the_business_cards_png_holds_its_linear_numbers(tmp_path):
+    card = lamplight.render("business-card", progress=False)
+    assert card.stats["transfer"] == "linear"
+    assert card.to_png() != card.to_png(transfer="srgb"), "the sRGB encoding brightens it"
+    with pytest.raises(ValueError, match='transfer must be "srgb" or "linear", got "gamma"'):
+        card.to_png(transfer="gamma")
+    # The saved bytes are round(255 x), the card's own numbers.
+    card.save(tmp_path / "card.ppm")
+    data = (tmp_path / "card.ppm").read_bytes()
+    header = b"P6\n32 32\n255\n"
+    assert data.startswith(header)
+    expected = np.clip(np.asarray(card, dtype=np.float64), 0, 1) * 255
+    saved = np.frombuffer(data[len(header):], dtype=np.uint8).reshape(32, 32, 3)
+    assert np.abs(saved - expected).max() <= 0.5 + 1e-4, "each byte is its value rounded"

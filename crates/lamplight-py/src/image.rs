@@ -8,7 +8,7 @@ use image::ImageEncoder;
 use lamplight_core::film::tonemap::{self, ToneMap};
 use lamplight_core::film::Image;
 use lamplight_scene::exr_layers::ExtraLayer;
-use lamplight_scene::image_io::{self, Format};
+use lamplight_scene::image_io::{self, Format, Transfer};
 use numpy::{PyArray1, PyArray3, PyArrayMethods, PyReadonlyArray3, PyUntypedArrayMethods};
 use pyo3::exceptions::{PyOSError, PyValueError};
 use pyo3::prelude::*;
@@ -29,6 +29,10 @@ fn to_image(array: &PyReadonlyArray3<'_, f32>) -> PyResult<Image> {
     Ok(Image { width, height, pixels })
 }
 
+fn transfer_of(name: &str) -> PyResult<Transfer> {
+    name.parse().map_err(|_| PyValueError::new_err(format!("transfer must be \"srgb\" or \"linear\", got {name:?}")))
+}
+
 fn display(image: Image, exposure: f64, tonemap: &str) -> PyResult<Image> {
     let map: ToneMap =
         tonemap.parse().map_err(|_| PyValueError::new_err(format!("tonemap must be \"clamp\" or \"filmic\", got {tonemap:?}")))?;
@@ -38,12 +42,14 @@ fn display(image: Image, exposure: f64, tonemap: &str) -> PyResult<Image> {
     Ok(if exposure == 0.0 && map == ToneMap::Clamp { image } else { tonemap::apply(&image, exposure, map) })
 }
 
-/// Writes `array` to `path` by its extension (`.png`, `.ppm`: 8-bit sRGB after
-/// `exposure` and `tonemap`; `.exr`: linear float, unchanged, with the extra
+/// Writes `array` to `path` by its extension (`.png`, `.ppm`: 8-bit after
+/// `exposure` and `tonemap`, sRGB-encoded or, with `transfer="linear"`, the
+/// values as they are; `.exr`: linear float, unchanged, with the extra
 /// `layers` of a render, `{"variance": (H, W, 3), "samples": (H, W)}`, beside
 /// the image as `lamplight render --exr-layers` writes them), atomically.
 #[pyfunction]
-#[pyo3(signature = (path, array, exposure=0.0, tonemap="clamp", layers=None))]
+#[pyo3(signature = (path, array, exposure=0.0, tonemap="clamp", layers=None, transfer="srgb"))]
+#[allow(clippy::too_many_arguments)]
 pub fn write_image(
     py: Python<'_>,
     path: PathBuf,
@@ -51,7 +57,9 @@ pub fn write_image(
     exposure: f64,
     tonemap: &str,
     layers: Option<Bound<'_, pyo3::types::PyDict>>,
+    transfer: &str,
 ) -> PyResult<()> {
+    let transfer = transfer_of(transfer)?;
     let format = Format::from_path(&path).map_err(|e| PyValueError::new_err(e.to_string()))?;
     let mut image = to_image(&array)?;
     let mut extra = Vec::new();
@@ -78,7 +86,7 @@ pub fn write_image(
     }
     let written = py.allow_threads(|| {
         if extra.is_empty() {
-            image_io::write_image(&path, &image)
+            image_io::write_image_as(&path, &image, transfer)
         } else {
             lamplight_scene::exr_layers::write_exr_with_layers(&path, &image, &extra)
         }
@@ -86,14 +94,23 @@ pub fn write_image(
     written.map_err(|e| PyOSError::new_err(e.to_string()))
 }
 
-/// PNG file bytes of `array` (8-bit sRGB after `exposure` and `tonemap`).
+/// PNG file bytes of `array` (8-bit after `exposure` and `tonemap`, sRGB-encoded
+/// or, with `transfer="linear"`, the values as they are).
 #[pyfunction]
-#[pyo3(signature = (array, exposure=0.0, tonemap="clamp"))]
-pub fn encode_png<'py>(py: Python<'py>, array: PyReadonlyArray3<'_, f32>, exposure: f64, tonemap: &str) -> PyResult<Bound<'py, PyBytes>> {
+#[pyo3(signature = (array, exposure=0.0, tonemap="clamp", transfer="srgb"))]
+pub fn encode_png<'py>(
+    py: Python<'py>,
+    array: PyReadonlyArray3<'_, f32>,
+    exposure: f64,
+    tonemap: &str,
+    transfer: &str,
+) -> PyResult<Bound<'py, PyBytes>> {
+    let transfer = transfer_of(transfer)?;
     let image = display(to_image(&array)?, exposure, tonemap)?;
+    let bytes8 = if transfer == Transfer::Linear { image.to_linear8() } else { image.to_srgb8() };
     let mut bytes = Vec::new();
     image::codecs::png::PngEncoder::new(&mut bytes)
-        .write_image(&image.to_srgb8(), image.width, image.height, image::ExtendedColorType::Rgb8)
+        .write_image(&bytes8, image.width, image.height, image::ExtendedColorType::Rgb8)
         .map_err(|e| PyValueError::new_err(format!("cannot encode PNG: {e}")))?;
     Ok(PyBytes::new(py, &bytes))
 }

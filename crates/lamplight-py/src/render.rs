@@ -173,6 +173,9 @@ pub fn render_array<'py>(
     info.set_item("shadow_rays", stats.rays.shadow)?;
     info.set_item("nonfinite_samples", stats.nonfinite_samples)?;
     info.set_item("warnings", warnings)?;
+    // How the scene's PNGs store values, for `Image.save` and `to_png`.
+    let transfer = if scene.settings().transfer == lamplight_scene::image_io::Transfer::Linear { "linear" } else { "srgb" };
+    info.set_item("transfer", transfer)?;
     let layers = PyDict::new(py);
     for (layer, image) in &rendered.layers {
         match layer {
