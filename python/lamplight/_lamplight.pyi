@@ -131,6 +131,9 @@ def render_array(
     environment: Optional[str] = None,
     exr_layers: Optional[List[str]] = None,
     clamp: Optional[float] = None,
+    antialias: Optional[Union[bool, float]] = None,
+    noise_threshold: Optional[float] = None,
+    min_spp: Optional[int] = None,
 ) -> Tuple[npt.NDArray[np.float32], Dict[str, Any], Dict[str, npt.NDArray[np.float32]]]:
     """The render under :func:`lamplight.render`: a float32 array ``(h, w, 3)``,
     a dict of statistics and a dict of the extra layers asked for. Settings left

@@ -113,6 +113,9 @@ def render(
     environment: Optional[Union[str, "os.PathLike[str]"]] = None,
     exr_layers: Optional[Sequence[str]] = None,
     clamp: Optional[float] = None,
+    antialias: Optional[Union[bool, float]] = None,
+    noise_threshold: Optional[float] = None,
+    min_spp: Optional[int] = None,
 ) -> Image:
     """Renders ``scene`` and returns an :class:`Image`: a float32 array
     ``(height, width, 3)`` of linear radiance, the numbers ``lamplight render``
@@ -133,9 +136,19 @@ def render(
     ``.exr`` file) concern the path tracer. ``clamp`` scales every sample
     whose brightest channel exceeds it down to it: fewer fireflies, but biased
     (off by default, as ``--clamp``).
+
+    Sampling is adaptive unless ``spp`` says otherwise. Whitted renders
+    without an ``spp`` (here or in the scene) are anti-aliased as POV-Ray's
+    ``+A`` does: 16 samples in each pixel whose colour differs from a
+    neighbour's by more than ``antialias`` (a threshold, 0.3 by default;
+    ``False`` turns it off). ``noise_threshold`` (the path tracer, Cycles'
+    adaptive sampling) stops each pixel once the relative standard error of
+    its mean is below it, after ``min_spp`` samples (16); ``spp`` is then the
+    most a pixel takes (1024 by default). ``image.stats["mean_samples_per_pixel"]``
+    says what was spent, and ``exr_layers=["samples"]`` where.
     """
     s = as_scene(scene, base_dir)
-    _check_ints(width=width, height=height, spp=spp, seed=seed, max_depth=max_depth, threads=threads)
+    _check_ints(width=width, height=height, spp=spp, seed=seed, max_depth=max_depth, threads=threads, min_spp=min_spp)
     callback, close = progress_reporter(progress)
     try:
         array, stats, layers = _lamplight.render_array(
@@ -154,6 +167,9 @@ def render(
             os.fspath(environment) if environment is not None else None,
             list(exr_layers) if exr_layers is not None else None,
             clamp,
+            antialias,
+            noise_threshold,
+            min_spp,
         )
     finally:
         close()

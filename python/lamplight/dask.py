@@ -193,17 +193,20 @@ def _render_frame(payload, digest: str, camera: Optional[dict], options: Dict[st
     return array
 
 
-def _options(scene: Scene, width, height, spp, integrator, seed, max_depth, threads, filter) -> Dict[str, Any]:
-    width, height, spp, integrator, seed = resolve(scene, width, height, spp, integrator, seed)
+def _options(scene: Scene, width, height, spp, integrator, seed, max_depth, threads, filter, sampling) -> Dict[str, Any]:
+    width, height, _, integrator, seed = resolve(scene, width, height, spp, integrator, seed)
     return dict(
         width=width,
         height=height,
+        # As given, not resolved: the scene's own (adaptive) sampling then
+        # resolves on the worker as it does locally.
         spp=spp,
         integrator=integrator,
         seed=seed,
         max_depth=max_depth,
         threads=threads,
         filter=filter,
+        **sampling,
     )
 
 
@@ -241,6 +244,9 @@ def render(
     progress=None,
     retries: int = 2,
     base_dir=None,
+    antialias=None,
+    noise_threshold=None,
+    min_spp=None,
 ) -> Image:
     """Renders ``scene`` on the cluster of ``client`` (a ``distributed.Client``),
     one task per tile, and returns the same :class:`~lamplight.Image`, byte for
@@ -252,9 +258,13 @@ def render(
     sends mesh files from here instead of reading them on the workers.
     ``progress`` reports finished tiles as for ``lamplight.render``; ``retries``
     re-runs a task that raised (a worker that died is handled by Dask anyway).
+    ``antialias``, ``noise_threshold`` and ``min_spp`` are as for
+    ``lamplight.render``: adaptive sampling decides per pixel from the pixel and
+    its neighbours, so the tiles stitch to the local image.
     """
     s = as_scene(scene, base_dir)
-    options = _options(s, width, height, spp, integrator, seed, max_depth, threads, filter)
+    sampling = dict(antialias=antialias, noise_threshold=noise_threshold, min_spp=min_spp)
+    options = _options(s, width, height, spp, integrator, seed, max_depth, threads, filter, sampling)
     windows = tile_windows(options["width"], options["height"], tiles)
     payload = shipped(s) if ship_meshes else s
     digest = _digest(payload)
@@ -289,6 +299,9 @@ def render_frames(
     progress=None,
     retries: int = 2,
     base_dir=None,
+    antialias=None,
+    noise_threshold=None,
+    min_spp=None,
 ) -> List[Image]:
     """Renders the frames of an animation on the cluster, one task per frame,
     and returns one :class:`~lamplight.Image` per frame, in order.
@@ -313,7 +326,8 @@ def render_frames(
         index = list(range(len(frames)))
     if not frames:
         return []
-    options = [_options(s, width, height, spp, integrator, seed, max_depth, threads, filter) for s, _ in frames]
+    sampling = dict(antialias=antialias, noise_threshold=noise_threshold, min_spp=min_spp)
+    options = [_options(s, width, height, spp, integrator, seed, max_depth, threads, filter, sampling) for s, _ in frames]
     if cameras is not None and width is None and height is None:
         # A camera path keeps one size: the scene's.
         options = [options[0]] * len(frames)

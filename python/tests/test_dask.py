@@ -106,7 +106,7 @@ def test_meshes_are_read_on_workers_or_shipped(client, tmp_path):
         f.unlink()
     (folder / "meshes").rmdir()
     [remote] = client.scatter([payload], broadcast=True, hash=False)
-    options = dict(width=32, height=24, spp=1, integrator="whitted", seed=0, max_depth=None, threads=1, filter="box")
+    options = dict(width=32, height=24, spp=None, integrator="whitted", seed=0, max_depth=None, threads=1, filter="box")
     tile = client.submit(lamplight.dask._render_tile, remote, "shipped-test", options, (0, 0, 32, 24)).result()
     assert tile.tobytes() == expected.tobytes()
 

@@ -19,6 +19,11 @@ from conftest import EXAMPLES
         ("luxo", dict(width=48, height=27, spp=1, seed=3)),
         ("cornell-box", dict(width=24, height=24, spp=4, integrator="path")),
         (str(EXAMPLES / "business-card.toml"), dict(width=40, height=40, spp=1)),
+        # Adaptive sampling: Whitted's default anti-aliasing, a threshold, and
+        # the path tracer's noise threshold.
+        ("spheres", dict(width=48, height=27)),
+        ("luxo", dict(width=48, height=27, antialias=0.1)),
+        ("cornell-box", dict(width=16, height=16, spp=64, noise_threshold=0.2, min_spp=4)),
     ],
 )
 def test_render_equals_the_command_lines_exr(cli, tmp_path, scene, args):
@@ -161,6 +166,30 @@ def test_a_scene_says_how_its_pngs_store_values():
     # Heckbert's card prints display values: its PNGs keep them as they are.
     assert lamplight.Scene("business-card").defaults()["transfer"] == "linear"
     assert lamplight.Scene("luxo").defaults()["transfer"] == "srgb"
+
+
+def test_sampling_is_adaptive_unless_spp_says_otherwise():
+    # Whitted without spp: 16 samples where neighbours differ, one elsewhere.
+    aa = lamplight.render("spheres", width=64, height=36, exr_layers=["samples"], progress=False)
+    one = lamplight.render("spheres", width=64, height=36, spp=1, progress=False)
+    sixteen = lamplight.render("spheres", width=64, height=36, spp=16, progress=False)
+    counts = aa.layers["samples"]
+    assert set(np.unique(counts)) == {1.0, 16.0}
+    refined = counts == 16
+    assert np.array_equal(aa[refined], sixteen[refined]) and np.array_equal(aa[~refined], one[~refined])
+    assert aa.stats["samples_per_pixel"] == 16
+    assert aa.stats["mean_samples_per_pixel"] == pytest.approx(1 + 15 * refined.mean() + refined.mean(), rel=1e-9)
+    assert np.array_equal(lamplight.render("spheres", width=64, height=36, antialias=False, progress=False), one)
+    # The path tracer's noise threshold: per-pixel counts, fewer than spp in all.
+    noisy = lamplight.render(
+        "cornell-box", width=16, height=16, integrator="path", spp=128, noise_threshold=0.1, exr_layers=["samples"], progress=False
+    )
+    counts = noisy.layers["samples"]
+    assert counts.min() >= 16 and counts.max() <= 128 and counts.mean() < 128
+    with pytest.raises(ValueError, match=r"^noise_threshold is for the path tracer \(integrator path\); whitted takes its samples in one pass$"):
+        lamplight.render("spheres", width=8, height=8, noise_threshold=0.1, progress=False)
+    with pytest.raises(ValueError, match=r"^antialias must be True, False or a threshold >= 0 \(POV-Ray's 0.3\), got -1$"):
+        lamplight.render("spheres", width=8, height=8, antialias=-1, progress=False)
 
 
 def test_clamp_bounds_every_sample():

@@ -12,7 +12,7 @@ use lamplight_core::film::tonemap::ToneMap;
 use lamplight_scene::builtin;
 use lamplight_scene::image_io::Format;
 use lamplight_scene::image_io::Transfer;
-use lamplight_scene::request::{DisplayTransform, Job, Layer, Naming, Request, RequestError, SceneRequest};
+use lamplight_scene::request::{AntialiasRequest, DisplayTransform, Job, Layer, Naming, Request, RequestError, SceneRequest};
 
 /// The `lamplight` command line.
 #[derive(Debug, Parser)]
@@ -56,9 +56,22 @@ pub struct RenderArgs {
     /// Image height in pixels [default: the scene's; with only --width, keeps the scene's aspect].
     #[arg(long, value_name = "H", allow_negative_numbers = true, value_parser = count::<u32>)]
     pub height: Option<u32>,
-    /// Samples per pixel, stratified and jittered when more than one [default: the file's, else 1].
+    /// Samples per pixel, stratified and jittered when more than one: fixed supersampling
+    /// [default: the file's; else Whitted anti-aliases adaptively and path takes 1].
     #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = count::<u32>)]
     pub spp: Option<u32>,
+    /// Whitted: adaptive anti-aliasing (POV-Ray's +A): 16 samples in each pixel whose colour differs
+    /// from a neighbour's by more than T (summed over channels); `on` (T = 0.3) or `off`
+    /// [default: on unless --spp or the file's spp is given].
+    #[arg(long, value_name = "T|on|off", allow_negative_numbers = true)]
+    pub antialias: Option<AntialiasRequest>,
+    /// Path tracer: stop sampling a pixel once the relative standard error of its mean is below E
+    /// (Cycles' noise threshold, e.g. 0.01); --spp is then the most a pixel takes [default: 1024].
+    #[arg(long, value_name = "E", allow_negative_numbers = true)]
+    pub noise_threshold: Option<f64>,
+    /// Path tracer with --noise-threshold: samples every pixel takes before any stops [default: 16].
+    #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = count::<u32>)]
+    pub min_spp: Option<u32>,
     /// Ray depth limit, 1 to 64, camera ray = 1 [default: the scene's].
     #[arg(long, value_name = "D", allow_negative_numbers = true, value_parser = count::<u32>)]
     pub max_depth: Option<u32>,
@@ -219,6 +232,9 @@ impl RenderArgs {
             width: self.width,
             height: self.height,
             spp: self.spp,
+            antialias: self.antialias,
+            noise_threshold: self.noise_threshold,
+            min_spp: self.min_spp,
             max_depth: self.max_depth,
             threads: Some(self.threads),
             seed: self.seed,
@@ -280,6 +296,8 @@ mod tests {
         assert_eq!(job.output, PathBuf::from(format!("{}.png", first.name)));
         assert_eq!((job.job.options.width, job.job.options.height), first.default_size);
         assert_eq!((job.job.options.spp, job.job.options.max_depth, job.job.options.threads, job.job.options.seed), (1, None, 0, 0));
+        // The default render is anti-aliased, as POV-Ray's +A.
+        assert_eq!(job.job.options.adaptive, Some(lamplight_core::Adaptive::Antialias(lamplight_core::Antialias::default())));
         assert!(!job.quiet);
     }
 

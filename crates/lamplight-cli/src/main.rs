@@ -151,7 +151,15 @@ fn render_command(job: RenderJob) -> anyhow::Result<()> {
         );
         std::process::exit(signals::INTERRUPTED);
     }
-    let summary = Summary { scene: &scene.name, width, height, spp: stats.samples_per_pixel, build_time, stats };
+    let summary = Summary {
+        scene: &scene.name,
+        width,
+        height,
+        spp: stats.samples_per_pixel,
+        adaptive: job.options.adaptive.is_some(),
+        build_time,
+        stats,
+    };
     if !quiet {
         eprintln!("{} -> {}", summary, output.display());
     } else if stats.nonfinite_samples > 0 {
@@ -190,18 +198,26 @@ struct Summary<'a> {
     width: u32,
     height: u32,
     spp: u32,
+    /// Whether pixels took different sample counts.
+    adaptive: bool,
     build_time: Duration,
     stats: RenderStats,
 }
 
 impl std::fmt::Display for Summary<'_> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let Summary { scene, width, height, spp, build_time, stats } = self;
+        let Summary { scene, width, height, spp, adaptive, build_time, stats } = self;
         let rays = &stats.rays;
         let seconds = stats.elapsed.as_secs_f64();
+        let spp = if *adaptive {
+            let mean = stats.pixel_samples as f64 / (*width as f64 * *height as f64).max(1.0);
+            format!("{mean:.2} spp adaptive (at most {spp})")
+        } else {
+            format!("{spp} spp")
+        };
         write!(
             f,
-            "rendered {scene} {width}x{height}, {spp} spp in {} (scene built in {}): \
+            "rendered {scene} {width}x{height}, {spp} in {} (scene built in {}): \
              {} rays ({} camera, {} secondary, {} shadow), {} rays/s, {} thread{}",
             duration(stats.elapsed),
             duration(*build_time),
@@ -268,8 +284,10 @@ mod tests {
             elapsed: Duration::from_millis(420),
             threads: 2,
             samples_per_pixel: 1,
+            pixel_samples: 1280 * 720,
         };
-        let mut summary = Summary { scene: "luxo", width: 1280, height: 720, spp: 1, build_time: Duration::from_millis(10), stats };
+        let mut summary =
+            Summary { scene: "luxo", width: 1280, height: 720, spp: 1, adaptive: false, build_time: Duration::from_millis(10), stats };
         assert_eq!(
             summary.to_string(),
             "rendered luxo 1280x720, 1 spp in 420.0 ms (scene built in 10.0 ms): 3.1 M rays (900.0 k camera, 400.0 k secondary, \
@@ -278,5 +296,10 @@ mod tests {
         summary.stats.threads = 1;
         summary.stats.nonfinite_samples = 3;
         assert!(summary.to_string().ends_with(", 1 thread, 3 nonfinite samples set to black"), "{summary}");
+        // Adaptive: the mean count and the most any pixel took.
+        summary.adaptive = true;
+        summary.spp = 16;
+        summary.stats.pixel_samples = 1280 * 720 * 3 / 2;
+        assert!(summary.to_string().starts_with("rendered luxo 1280x720, 1.50 spp adaptive (at most 16) in 420.0 ms"), "{summary}");
     }
 }

@@ -99,7 +99,9 @@ fn defaults_render_the_first_scene_to_its_name() {
     assert_eq!(entries(dir.path()), ["luxo.png"]);
     let (w, h, _) = read_png_srgb8(&dir.path().join("luxo.png")).unwrap();
     assert_eq!((w, h), (32, 18), "height follows the scene's 16:9 default");
-    assert!(err.contains("rendered luxo 32x18, 1 spp") && err.trim_end().ends_with("-> luxo.png"), "{err}");
+    // The default render is anti-aliased adaptively (POV-Ray's +A).
+    assert!(err.contains("rendered luxo 32x18, ") && err.contains(" spp adaptive (at most 16) in "), "{err}");
+    assert!(err.trim_end().ends_with("-> luxo.png"), "{err}");
 }
 
 #[test]
@@ -108,7 +110,7 @@ fn piped_stderr_gets_the_summary_and_no_progress_bar() {
     let err = ok(dir.path(), &args(&["--threads", "2"]));
     assert!(!err.contains('\x1b') && !err.contains('\r'), "no terminal control codes: {err:?}");
     assert_eq!(err.lines().count(), 1, "{err}");
-    assert!(err.starts_with("rendered spheres 64x36, 1 spp in "), "{err}");
+    assert!(err.starts_with("rendered spheres 64x36, ") && err.contains(" spp adaptive (at most 16) in "), "{err}");
     assert!(err.contains(" camera, ") && err.contains(" shadow), ") && err.contains("2 threads -> spheres.png"), "{err}");
 
     let out = lamplight(dir.path(), &args(&["--quiet"]));

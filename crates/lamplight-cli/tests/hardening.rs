@@ -59,6 +59,28 @@ fn negative_counts_say_the_value_must_be_positive() {
         (raycast("--repeat", "0"), 2, "--repeat must be at least 1".into()),
         (small(&["--clamp", "-1"]), 2, "--clamp must be a positive number (a radiance), got -1".into()),
         (small(&["--clamp", "inf"]), 2, "--clamp must be a positive number (a radiance), got inf".into()),
+        (
+            small(&["--antialias", "-0.3"]),
+            2,
+            "invalid value '-0.3' for '--antialias <T|on|off>': expected `on`, `off` or a threshold >= 0 (POV-Ray's 0.3), got '-0.3'".into(),
+        ),
+        (
+            small(&["--antialias", "0.3", "--spp", "4"]),
+            2,
+            "give --spp (fixed supersampling, 4 samples everywhere) or --antialias (adaptive: 16 samples where neighbours differ), not both"
+                .into(),
+        ),
+        (
+            small(&["--noise-threshold", "0.01"]),
+            2,
+            "--noise-threshold is for the path tracer (--integrator path); whitted takes its samples in one pass".into(),
+        ),
+        (
+            small(&["--integrator", "path", "--noise-threshold", "-1"]),
+            2,
+            "--noise-threshold must be a positive number (a relative error, e.g. 0.01), got -1".into(),
+        ),
+        (small(&["--integrator", "path", "--min-spp", "-1"]), 2, "invalid value '-1' for '--min-spp <N>': must be a positive number".into()),
     ];
     check(d, &cases);
     assert!(entries(d).is_empty());

@@ -46,7 +46,8 @@ pub mod scene;
 pub mod shapes;
 
 pub use error::Error;
-pub use render::{render, render_image, PixelWindow, RenderControl, RenderOptions, RenderStats};
+pub use render::adaptive;
+pub use render::{render, render_image, Adaptive, Antialias, NoiseThreshold, PixelWindow, RenderControl, RenderOptions, RenderStats};
 pub use scene::{Scene, SceneBuilder};
 
 /// The types most programs need.

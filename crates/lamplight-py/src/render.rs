@@ -44,7 +44,7 @@ type RenderArrays<'py> = (Bound<'py, PyArray3<f32>>, Bound<'py, PyDict>, Bound<'
 /// defaults, through the same request layer as the command line.
 /// `progress(done, total)` is called from this thread.
 #[pyfunction]
-#[pyo3(signature = (scene, width=None, height=None, spp=None, integrator=None, threads=None, seed=None, max_depth=None, window=None, progress=None, time_limit=None, filter=None, environment=None, exr_layers=None, clamp=None))]
+#[pyo3(signature = (scene, width=None, height=None, spp=None, integrator=None, threads=None, seed=None, max_depth=None, window=None, progress=None, time_limit=None, filter=None, environment=None, exr_layers=None, clamp=None, antialias=None, noise_threshold=None, min_spp=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn render_array<'py>(
     py: Python<'py>,
@@ -63,6 +63,9 @@ pub fn render_array<'py>(
     environment: Option<PathBuf>,
     exr_layers: Option<Vec<String>>,
     clamp: Option<f64>,
+    antialias: Option<Bound<'py, PyAny>>,
+    noise_threshold: Option<f64>,
+    min_spp: Option<Bound<'py, PyAny>>,
 ) -> PyResult<RenderArrays<'py>> {
     let layers =
         exr_layers.unwrap_or_default().iter().map(|l| l.parse::<Layer>().map_err(PyValueError::new_err)).collect::<PyResult<Vec<_>>>()?;
@@ -79,6 +82,9 @@ pub fn render_array<'py>(
         width,
         height,
         spp,
+        antialias: antialias_arg(antialias.as_ref())?,
+        noise_threshold,
+        min_spp: whole("min_spp", min_spp.as_ref(), 1, limits::MAX_SPP.into(), "")?,
         max_depth: whole("max_depth", max_depth.as_ref(), 1, limits::MAX_DEPTH.into(), "")?,
         threads: Some(threads_arg(threads.as_ref())?),
         seed,
@@ -168,6 +174,9 @@ pub fn render_array<'py>(
     info.set_item("seconds", stats.elapsed.as_secs_f64())?;
     info.set_item("threads", stats.threads)?;
     info.set_item("samples_per_pixel", stats.samples_per_pixel)?;
+    info.set_item("pixel_samples", stats.pixel_samples)?;
+    let pixels = (rendered.image.width as f64 * rendered.image.height as f64).max(1.0);
+    info.set_item("mean_samples_per_pixel", stats.pixel_samples as f64 / pixels)?;
     info.set_item("camera_rays", stats.rays.camera)?;
     info.set_item("secondary_rays", stats.rays.secondary)?;
     info.set_item("shadow_rays", stats.rays.shadow)?;
@@ -223,6 +232,23 @@ fn size_spp_seed(
         whole("spp", spp.as_ref(), 1, limits::MAX_SPP.into(), "")?,
         whole("seed", seed.as_ref(), 0, u64::MAX.into(), "")?,
     ))
+}
+
+/// `antialias` as Python gave it: `True`, `False` or a threshold `>= 0`.
+fn antialias_arg(value: Option<&Bound<'_, PyAny>>) -> PyResult<Option<request::AntialiasRequest>> {
+    let Some(value) = value else { return Ok(None) };
+    if let Ok(on) = value.downcast::<pyo3::types::PyBool>() {
+        let on = on.is_true();
+        return Ok(Some(if on {
+            request::AntialiasRequest::On { threshold: lamplight_core::Antialias::default().threshold }
+        } else {
+            request::AntialiasRequest::Off
+        }));
+    }
+    match value.extract::<f64>() {
+        Ok(t) if t.is_finite() && t >= 0.0 => Ok(Some(request::AntialiasRequest::On { threshold: t })),
+        _ => Err(PyValueError::new_err(format!("antialias must be True, False or a threshold >= 0 (POV-Ray's 0.3), got {value}"))),
+    }
 }
 
 /// `threads` as Python gave it (`None` or 0: every core), checked ([`whole`]).

@@ -324,7 +324,7 @@ impl Scene {
     /// store values (`"srgb"` or `"linear"`).
     fn defaults<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let d = PyDict::new(py);
-        let Defaults { size: (width, height), spp, seed, integrator, transfer } = self.defaults;
+        let Defaults { size: (width, height), spp, seed, integrator, transfer, .. } = self.defaults;
         d.set_item("width", width)?;
         d.set_item("height", height)?;
         d.set_item("spp", spp)?;

@@ -83,12 +83,18 @@ fn example_settings_are_the_builtin_defaults() {
     for b in builtin::BUILTINS {
         let s = SceneFile::read(&example(b.name)).unwrap().settings().unwrap();
         assert_eq!((s.width, s.height), b.default_size, "{}", b.name);
-        assert_eq!((s.spp, s.seed), (1, 0));
+        // No spp but the card's (one ray a pixel): the default render is the
+        // request layer's (anti-aliased Whitted).
+        assert_eq!((s.spp, s.seed), (b.spp, 0), "{}", b.name);
         assert_eq!(s.integrator.name, b.integrator, "{}: the built-in's default integrator is the file's", b.name);
         assert_eq!(s.transfer, b.transfer, "{}: the built-in's output transfer is the file's", b.name);
         let request = lamplight_scene::request::SceneRequest::builtin(b);
         let job = lamplight_scene::request::Request::default().resolve(&request.defaults, lamplight_scene::request::Naming::Flags).unwrap();
         assert_eq!(job.options.integrator.name, b.integrator, "{}: `lamplight render {}` uses it", b.name, b.name);
+        let file = lamplight_scene::request::SceneRequest::resolve(example(b.name).to_str().unwrap()).unwrap();
+        let from_file =
+            lamplight_scene::request::Request::default().resolve(&file.defaults, lamplight_scene::request::Naming::Flags).unwrap();
+        assert_eq!(from_file.options, job.options, "{}: the file and the built-in render alike", b.name);
     }
 }
 

@@ -65,6 +65,10 @@ pub struct Film {
     squares: Option<Vec<Stored>>,
     /// The means alone (then `sums` is empty), for a one-pass image-only render.
     means: Option<Vec<[f32; 3]>>,
+    /// Samples of each pixel, where an adaptive render gave pixels different
+    /// counts; `None` while every pixel holds `samples`.
+    counts: Option<Vec<u32>>,
+    /// Samples per pixel (with `counts`, the most any pixel holds).
     samples: u32,
 }
 
@@ -73,7 +77,7 @@ impl Film {
     pub fn new(width: u32, height: u32) -> Film {
         let tiles_x = width.div_ceil(TILE);
         let tiles = tiles_x as usize * height.div_ceil(TILE) as usize;
-        Film { width, height, tiles_x, sums: vec![[0.0; 3]; tiles * TILE_PIXELS], squares: None, means: None, samples: 0 }
+        Film { width, height, tiles_x, sums: vec![[0.0; 3]; tiles * TILE_PIXELS], squares: None, means: None, counts: None, samples: 0 }
     }
 
     /// A film that keeps only the means of one pass of samples (see the module
@@ -81,7 +85,16 @@ impl Film {
     pub(crate) fn means_only(width: u32, height: u32) -> Film {
         let tiles_x = width.div_ceil(TILE);
         let tiles = tiles_x as usize * height.div_ceil(TILE) as usize;
-        Film { width, height, tiles_x, sums: Vec::new(), squares: None, means: Some(vec![[0.0; 3]; tiles * TILE_PIXELS]), samples: 0 }
+        Film {
+            width,
+            height,
+            tiles_x,
+            sums: Vec::new(),
+            squares: None,
+            means: Some(vec![[0.0; 3]; tiles * TILE_PIXELS]),
+            counts: None,
+            samples: 0,
+        }
     }
 
     /// Width in pixels.
@@ -94,17 +107,49 @@ impl Film {
         self.height
     }
 
-    /// Samples per pixel accumulated.
+    /// Samples per pixel accumulated: after an adaptive render, the most any
+    /// pixel holds ([`Film::samples_at`] gives each pixel's).
     pub fn samples(&self) -> u32 {
         self.samples
+    }
+
+    /// Samples the pixel at column `x`, row `y` holds.
+    pub fn samples_at(&self, x: u32, y: u32) -> u32 {
+        let i = self.index(x, y);
+        self.counts.as_ref().map_or(self.samples, |c| c[i])
+    }
+
+    /// Each pixel's sample count, row-major (the `samples` layer).
+    pub fn sample_counts(&self) -> Vec<f32> {
+        let mut counts = Vec::with_capacity(self.width as usize * self.height as usize);
+        for y in 0..self.height {
+            counts.extend((0..self.width).map(|x| self.samples_at(x, y) as f32));
+        }
+        counts
+    }
+
+    /// Whether pixels hold different sample counts (an adaptive render).
+    pub fn is_adaptive(&self) -> bool {
+        self.counts.is_some()
+    }
+
+    /// Index in storage of the pixel at column `x`, row `y`; panics outside the film.
+    fn index(&self, x: u32, y: u32) -> usize {
+        assert!(x < self.width && y < self.height, "pixel ({x}, {y}) outside the {}x{} film", self.width, self.height);
+        let tile = (y / TILE) as usize * self.tiles_x as usize + (x / TILE) as usize;
+        tile * TILE_PIXELS + ((y % TILE) * TILE + x % TILE) as usize
+    }
+
+    /// Samples of the pixel at storage index `i`.
+    #[inline]
+    fn count(&self, i: usize) -> u32 {
+        self.counts.as_ref().map_or(self.samples, |c| c[i])
     }
 
     /// The sums of the pixel at column `x`, row `y` (from the top). Panics outside
     /// the film, as indexing does. (A means-only film gives `n` times its mean.)
     pub fn get(&self, x: u32, y: u32) -> PixelSum {
-        assert!(x < self.width && y < self.height, "pixel ({x}, {y}) outside the {}x{} film", self.width, self.height);
-        let tile = (y / TILE) as usize * self.tiles_x as usize + (x / TILE) as usize;
-        let i = tile * TILE_PIXELS + ((y % TILE) * TILE + x % TILE) as usize;
+        let i = self.index(x, y);
         if let Some(means) = &self.means {
             let sum = Rgb::new(means[i][0] as f64, means[i][1] as f64, means[i][2] as f64) * self.samples.max(1) as f64;
             return PixelSum { sum, sum_sq: Rgb::ZERO };
@@ -118,24 +163,25 @@ impl Film {
         if let Some(means) = &self.means {
             return self.develop(|i| means[i]);
         }
-        let n = self.samples.max(1) as f64;
         self.develop(|i| {
-            let m = rgb(&self.sums[i]) / n;
+            let m = rgb(&self.sums[i]) / self.count(i).max(1) as f64;
             [m.x as f32, m.y as f32, m.z as f32]
         })
     }
 
     /// Variance of each pixel's mean, per channel: the sample variance
-    /// `(sum_sq / n - mean^2) n / (n - 1)`, clamped at 0 against rounding, over `n`.
-    /// Black with fewer than two samples.
+    /// `(sum_sq / n - mean^2) n / (n - 1)`, clamped at 0 against rounding, over `n`,
+    /// `n` the pixel's own sample count. Black with fewer than two samples.
     pub fn variance(&self) -> Image {
-        let n = self.samples as f64;
-        let Some(squares) = self.squares.as_ref().filter(|_| n >= 2.0) else {
+        let Some(squares) = self.squares.as_ref().filter(|_| self.samples >= 2) else {
             return Image::new(self.width, self.height);
         };
         self.develop(|i| {
-            let mean = rgb(&self.sums[i]) / n;
-            let var = ((rgb(&squares[i]) / n - mean * mean) * (n / (n - 1.0))).max(Rgb::ZERO) / n;
+            let n = self.count(i) as f64;
+            if n < 2.0 {
+                return [0.0; 3];
+            }
+            let var = variance_of_mean(rgb(&self.sums[i]), rgb(&squares[i]), n);
             [var.x as f32, var.y as f32, var.z as f32]
         })
     }
@@ -191,7 +237,8 @@ impl Film {
     }
 
     /// Adds the samples of `pass` (a film of the same size) to this one, pixel by
-    /// pixel in the order the samples were taken.
+    /// pixel in the order the samples were taken. A pass that sampled only some
+    /// pixels (zeros elsewhere) is counted by [`Film::add_counts`] first.
     pub(crate) fn add(&mut self, pass: &Film) {
         debug_assert_eq!((self.width, self.height), (pass.width, pass.height));
         debug_assert!(self.means.is_none() && pass.means.is_none(), "a means-only film holds one pass");
@@ -214,13 +261,54 @@ impl Film {
         self.sums.par_chunks_mut(TILE_PIXELS).zip(pass.sums.par_chunks(TILE_PIXELS)).for_each(|(mine, theirs)| {
             mine.iter_mut().zip(theirs).for_each(|(m, t)| add(m, *t));
         });
-        self.samples += pass.samples;
+        if self.counts.is_none() {
+            // Otherwise `add_counts` has already counted this pass.
+            self.samples += pass.samples;
+        }
     }
 
     /// Records that every pixel now holds `samples` samples.
     pub(crate) fn set_samples(&mut self, samples: u32) {
         self.samples = samples;
     }
+
+    /// Records that the pixels `active` marks (row-major, one per pixel) took
+    /// `count` more samples in the pass just added and the others none.
+    pub(crate) fn add_counts(&mut self, active: &[bool], count: u32) {
+        debug_assert_eq!(active.len(), self.width as usize * self.height as usize);
+        if self.counts.is_none() {
+            self.counts = Some(vec![self.samples; self.sums.len().max(self.means.as_ref().map_or(0, Vec::len))]);
+        }
+        let (width, tiles_x) = (self.width, self.tiles_x as usize);
+        let counts = self.counts.as_mut().expect("made above");
+        for (k, _) in active.iter().enumerate().filter(|(_, a)| **a) {
+            let (x, y) = (k as u32 % width, k as u32 / width);
+            let tile = (y / TILE) as usize * tiles_x + (x / TILE) as usize;
+            let i = tile * TILE_PIXELS + ((y % TILE) * TILE + x % TILE) as usize;
+            counts[i] += count;
+            self.samples = self.samples.max(counts[i]);
+        }
+    }
+
+    /// Sets the pixel at column `x`, row `y` to the sums of `count` samples
+    /// (composing an adaptive render; the film must keep sums, not means only).
+    pub(crate) fn set_pixel(&mut self, x: u32, y: u32, sum: PixelSum, count: u32) {
+        debug_assert!(self.means.is_none());
+        let i = self.index(x, y);
+        let len = self.sums.len();
+        let samples = self.samples;
+        self.sums[i] = sum.sum.to_array();
+        self.squares.get_or_insert_with(|| vec![[0.0; 3]; len])[i] = sum.sum_sq.to_array();
+        self.counts.get_or_insert_with(|| vec![samples; len])[i] = count;
+        self.samples = self.samples.max(count);
+    }
+}
+
+/// Variance of the mean of `n` samples with sums `sum` and `sum_sq`, per channel:
+/// `(sum_sq / n - mean^2) n / (n - 1) / n`, clamped at 0 against rounding.
+pub(crate) fn variance_of_mean(sum: Rgb, sum_sq: Rgb, n: f64) -> Rgb {
+    let mean = sum / n;
+    ((sum_sq / n - mean * mean) * (n / (n - 1.0))).max(Rgb::ZERO) / n
 }
 
 /// One tile's pixels of a film, written by the worker rendering that tile.

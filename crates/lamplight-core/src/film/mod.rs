@@ -5,7 +5,7 @@ mod accumulated;
 mod filter;
 pub mod tonemap;
 
-pub(crate) use accumulated::TileBlock;
+pub(crate) use accumulated::{variance_of_mean, TileBlock};
 pub use accumulated::{Film, PixelSum, TILE};
 pub use filter::Filter;
 

@@ -197,6 +197,9 @@ pub struct IntegratorEntry {
     pub summary: &'static str,
     /// Builds the integrator for a scene.
     pub build: BuildIntegrator,
+    /// How its integrators schedule their samples ([`Integrator::schedule`]),
+    /// known before one is built: which adaptive sampling fits it.
+    pub schedule: Schedule,
 }
 
 impl fmt::Debug for IntegratorEntry {

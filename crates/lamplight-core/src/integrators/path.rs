@@ -31,6 +31,7 @@ pub const ENTRY: IntegratorEntry = IntegratorEntry {
     name: "path",
     summary: "unidirectional path tracing with next-event estimation, MIS and Russian roulette",
     build: build_path,
+    schedule: Schedule::Doubling,
 };
 
 fn build_path(scene: &Scene, settings: &IntegratorSettings) -> Result<Box<dyn Integrator>, Error> {

@@ -32,6 +32,7 @@ pub const ENTRY: IntegratorEntry = IntegratorEntry {
     name: "whitted",
     summary: "recursive (Whitted) ray tracing: the lecture's trace, with shadows, mirror reflection and refraction",
     build: build_whitted,
+    schedule: Schedule::OnePass,
 };
 
 fn build_whitted(scene: &Scene, settings: &IntegratorSettings) -> Result<Box<dyn Integrator>, Error> {

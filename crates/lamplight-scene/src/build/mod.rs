@@ -31,8 +31,15 @@ pub struct Settings {
     pub width: u32,
     /// Height in pixels (default 360).
     pub height: u32,
-    /// Samples per pixel (default 1).
-    pub spp: u32,
+    /// Samples per pixel; `None` when the file does not say (then the default
+    /// render is adaptive: anti-aliased Whitted, or one sample).
+    pub spp: Option<u32>,
+    /// `antialias` and `antialias_threshold`, when given.
+    pub antialias: Option<crate::request::AntialiasRequest>,
+    /// `noise_threshold`, when given.
+    pub noise_threshold: Option<f64>,
+    /// `min_spp`, when given.
+    pub min_spp: Option<u32>,
     /// Depth limit (default 5).
     pub max_depth: u32,
     /// Weight cut-off (default 0).
@@ -56,7 +63,35 @@ pub const MAX_SPP: u32 = 1 << 20;
 pub const RENDER_PARAMS: &[Param] = &[
     Param::new("width", T::Integer, "640", "pixels, >= 1", "image width (`--width`)"),
     Param::new("height", T::Integer, "360", "pixels, >= 1; width x height <= 2^28", "image height (`--height`)"),
-    Param::new("spp", T::Integer, "1", "1 to 2^20", "samples per pixel (`--spp`)"),
+    Param::new(
+        "spp",
+        T::Integer,
+        "none",
+        "1 to 2^20",
+        "samples per pixel, stratified and jittered (`--spp`); without it Whitted anti-aliases adaptively, path takes 1",
+    ),
+    Param::new(
+        "antialias",
+        T::Bool,
+        "true",
+        "",
+        "adaptive anti-aliasing of one-pass (Whitted) renders without `spp`: 16 samples where a neighbour differs (POV-Ray's `+A`) (`--antialias`)",
+    ),
+    Param::new(
+        "antialias_threshold",
+        T::Number,
+        "0.3",
+        ">= 0",
+        "difference from a neighbour, summed over channels, that refines a pixel (POV-Ray's `Antialias_Threshold`)",
+    ),
+    Param::new(
+        "noise_threshold",
+        T::Number,
+        "none",
+        "> 0",
+        "path tracer: a pixel stops once its relative standard error is below this (Cycles' noise threshold) (`--noise-threshold`)",
+    ),
+    Param::new("min_spp", T::Integer, "16", "1 to spp", "path tracer with `noise_threshold`: samples before any pixel stops (`--min-spp`)"),
     Param::new("max_depth", T::Integer, "5", "1 to 64, camera ray = 1", "ray depth limit (`--max-depth`)"),
     Param::new("min_weight", T::Number, "0", ">= 0", "secondary rays of weight <= this are not traced"),
     Param::new("seed", T::Integer, "0", ">= 0", "seed of the per-sample random numbers (`--seed`)"),
@@ -152,7 +187,21 @@ pub fn settings(desc: &SceneDescription, source: &Source) -> Result<Settings, Lo
         if width == 0 || height == 0 || width as u64 * height as u64 > MAX_PIXELS {
             return Err(p.error(format!("image size {width}x{height} must be at least 1x1 and at most {MAX_PIXELS} pixels")));
         }
-        let spp = p.integer("spp", 1..=MAX_SPP as i64)?.unwrap_or(1) as u32;
+        let spp = p.integer("spp", 1..=MAX_SPP as i64)?.map(|v| v as u32);
+        let threshold = p.number("antialias_threshold")?;
+        if threshold.is_some_and(|t| !(t >= 0.0)) {
+            return Err(p.key_error("antialias_threshold", format!("must be a non-negative number, got {}", threshold.unwrap_or_default())));
+        }
+        let antialias = match (p.boolean("antialias")?, threshold) {
+            (Some(false), _) => Some(crate::request::AntialiasRequest::Off),
+            (None, None) => None,
+            (_, t) => Some(crate::request::AntialiasRequest::On { threshold: t.unwrap_or(lamplight_core::Antialias::default().threshold) }),
+        };
+        let noise_threshold = p.number("noise_threshold")?;
+        if noise_threshold.is_some_and(|t| !(t > 0.0)) {
+            return Err(p.key_error("noise_threshold", format!("must be a positive number, got {}", noise_threshold.unwrap_or_default())));
+        }
+        let min_spp = p.integer("min_spp", 1..=MAX_SPP as i64)?.map(|v| v as u32);
         let max_depth = p.integer("max_depth", 1..=MAX_DEPTH_LIMIT as i64)?.unwrap_or(5) as u32;
         let min_weight = p.number_or("min_weight", 0.0)?;
         if min_weight < 0.0 {
@@ -169,7 +218,7 @@ pub fn settings(desc: &SceneDescription, source: &Source) -> Result<Settings, Lo
             "linear" => crate::image_io::Transfer::Linear,
             _ => crate::image_io::Transfer::Srgb,
         };
-        Ok(Settings { width, height, spp, max_depth, min_weight, seed, integrator, transfer })
+        Ok(Settings { width, height, spp, antialias, noise_threshold, min_spp, max_depth, min_weight, seed, integrator, transfer })
     };
     let settings = read(&mut p).map_err(|e| source.param_error(e))?;
     p.finish().map_err(|e| source.param_error(e))?;

@@ -27,6 +27,9 @@ pub struct Builtin {
     pub integrator: &'static str,
     /// How PNG and PPM outputs store the values (the example file's `transfer`).
     pub transfer: Transfer,
+    /// Samples per pixel when none is given (the example file's `spp`); `None`
+    /// leaves it to the request layer (adaptive anti-aliasing under Whitted).
+    pub spp: Option<u32>,
     /// Builds the scene.
     pub build: fn() -> Result<Scene, Error>,
 }
@@ -39,6 +42,7 @@ pub const BUILTINS: &[Builtin] = &[
         default_size: (1280, 720),
         integrator: "whitted",
         transfer: Transfer::Srgb,
+        spp: None,
         build: luxo::build,
     },
     Builtin {
@@ -48,6 +52,7 @@ pub const BUILTINS: &[Builtin] = &[
         integrator: "whitted",
         // The card prints display values: its PNG holds them as they are.
         transfer: Transfer::Linear,
+        spp: Some(1),
         build: business_card::build,
     },
     Builtin {
@@ -56,6 +61,7 @@ pub const BUILTINS: &[Builtin] = &[
         default_size: (512, 512),
         integrator: "path",
         transfer: Transfer::Srgb,
+        spp: None,
         build: cornell_box::build,
     },
     Builtin {
@@ -64,6 +70,7 @@ pub const BUILTINS: &[Builtin] = &[
         default_size: (1280, 720),
         integrator: "whitted",
         transfer: Transfer::Srgb,
+        spp: None,
         build: spheres::build,
     },
 ];

@@ -10,6 +10,11 @@
 //! render there, so an image can be split across machines and stitched back.
 //! With a time limit, a pass that would not finish in time is not started and a
 //! pass cut short is dropped: the film is always that of the last complete pass.
+//!
+//! [`Adaptive`] sampling ([`adaptive`]) spends samples only where a pixel needs
+//! them: POV-Ray's anti-aliasing for one-pass integrators, Cycles' noise
+//! threshold for the path tracer. Both decide from deterministic sums, so they
+//! keep every promise above.
 
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::{Duration, Instant};
@@ -20,6 +25,9 @@ use crate::film::{Film, Filter, Image, PixelSum, TileBlock, TILE};
 use crate::integrators::{self, Integrator, IntegratorEntry, IntegratorSettings, RayCounts, Schedule, View};
 use crate::scene::Scene;
 use crate::Error;
+
+pub mod adaptive;
+pub use adaptive::{Adaptive, Antialias, NoiseThreshold};
 
 /// What to render and how.
 #[derive(Clone, Debug, PartialEq)]
@@ -52,6 +60,9 @@ pub struct RenderOptions {
     /// of bias (the image is darker than the true mean wherever it acts); `None`
     /// clamps nothing.
     pub clamp: Option<f64>,
+    /// Extra samples only where pixels need them ([`Adaptive`]); `None` gives
+    /// every pixel `spp` samples.
+    pub adaptive: Option<Adaptive>,
 }
 
 /// A rectangle of pixels of the full image: columns `x0..x0 + width`, rows `y0..y0 + height`.
@@ -88,6 +99,7 @@ impl Default for RenderOptions {
             filter: Filter::Box,
             window: None,
             clamp: None,
+            adaptive: None,
         }
     }
 }
@@ -104,8 +116,12 @@ pub struct RenderStats {
     pub elapsed: Duration,
     /// Threads used.
     pub threads: usize,
-    /// Samples per pixel actually taken (fewer than asked when a time limit stopped the render).
+    /// Samples per pixel actually taken (fewer than asked when a time limit
+    /// stopped the render; after adaptive sampling, the most any pixel took).
     pub samples_per_pixel: u32,
+    /// Samples taken over all pixels of the image (`pixel_samples / pixels` is
+    /// the mean per pixel; adaptive sampling takes fewer than `spp` per pixel).
+    pub pixel_samples: u64,
 }
 
 /// Progress reports and cancellation for a running render.
@@ -194,8 +210,57 @@ fn render_in(
     image_only: bool,
 ) -> Result<(Film, RenderStats), Error> {
     let max_depth = checked_depth(scene, options)?;
-    let window = options.pixel_window();
     let integrator = (options.integrator.build)(scene, &IntegratorSettings { max_depth, filter: options.filter })?;
+    let schedule = integrator.schedule();
+    match options.adaptive {
+        Some(Adaptive::Antialias(aa)) => {
+            if schedule != Schedule::OnePass {
+                return Err(Error::invalid(
+                    "antialias",
+                    format!(
+                        "is for one-pass integrators (whitted); the {} integrator takes spp samples per pixel",
+                        options.integrator.name
+                    ),
+                ));
+            }
+            adaptive::antialias(pool, scene, options, control, integrator.as_ref(), aa)
+        }
+        Some(Adaptive::NoiseThreshold(noise)) => {
+            if schedule != Schedule::Doubling {
+                return Err(Error::invalid(
+                    "noise_threshold",
+                    format!("needs a progressive integrator (path); {} takes all its samples in one pass", options.integrator.name),
+                ));
+            }
+            passes(pool, scene, options, control, integrator.as_ref(), Sampled { image_only, only: None, noise: Some(noise) })
+        }
+        None => passes(pool, scene, options, control, integrator.as_ref(), Sampled { image_only, only: None, noise: None }),
+    }
+}
+
+/// What [`passes`] samples besides `options`.
+#[derive(Clone, Copy)]
+struct Sampled<'a> {
+    /// Keep only the mean image (the film need not hold sums).
+    image_only: bool,
+    /// Sample only the pixels marked (row-major over the window).
+    only: Option<&'a [bool]>,
+    /// Stop sampling pixels that have converged.
+    noise: Option<NoiseThreshold>,
+}
+
+/// The passes of a render with a built integrator: every pixel of the window
+/// (or those `sampled.only` marks) gets `options.spp` samples, fewer where a
+/// noise threshold finds it converged or a time limit or stop ends the render.
+fn passes(
+    pool: &rayon::ThreadPool,
+    scene: &Scene,
+    options: &RenderOptions,
+    control: &RenderControl,
+    integrator: &dyn Integrator,
+    sampled: Sampled,
+) -> Result<(Film, RenderStats), Error> {
+    let window = options.pixel_window();
     // The camera's window for this image size, worked out once rather than per ray.
     let sized = scene.camera.for_image(options.width, options.height);
     let camera = sized.as_deref().unwrap_or(scene.camera.as_ref());
@@ -208,6 +273,8 @@ fn render_in(
     let tiles_done = AtomicU64::new(0);
     let tiles_per_pass = window.width.div_ceil(TILE) as u64 * window.height.div_ceil(TILE) as u64;
     let total_tiles = tiles_per_pass * schedule.pass_count(spp) as u64;
+    // Pixels still sampled, row-major over the window; `None`: all of them.
+    let mut active: Option<Vec<bool>> = sampled.only.map(<[bool]>::to_vec);
     // The first complete pass becomes the film; later ones are rendered into a
     // spare film and added, so a pass cut short leaves the film untouched.
     let (mut film, mut spare): (Option<Film>, Option<Film>) = (None, None);
@@ -218,7 +285,7 @@ fn render_in(
         let count = schedule.next_pass(done, spp).min(fits.unwrap_or(u32::MAX));
         let pass_start = Instant::now();
         // Only the image of one pass is wanted: keep its means, not its sums.
-        let new_film = || match (image_only, schedule) {
+        let new_film = || match (sampled.image_only && active.is_none(), schedule) {
             (true, Schedule::OnePass) => Film::means_only(window.width, window.height),
             _ => Film::new(window.width, window.height),
         };
@@ -226,7 +293,8 @@ fn render_in(
         pass.prepare_pass(count);
         let tiles_x = pass.tiles_x();
         let expired = AtomicBool::new(false);
-        let results: Vec<Option<(RayCounts, u64)>> = pool.install(|| {
+        let mask = active.as_deref();
+        let results: Vec<Option<TileOutcome>> = pool.install(|| {
             pass.tiles_mut(count)
                 .enumerate()
                 .map(|(tile, block)| {
@@ -241,7 +309,7 @@ fn render_in(
                     let (x0, y0) = (window.x0 + tx * TILE, window.y0 + ty * TILE);
                     let x1 = (x0 + TILE).min(window.x0 + window.width);
                     let y1 = (y0 + TILE).min(window.y0 + window.height);
-                    let out = render_tile(integrator.as_ref(), &view, block, (x0, y0, x1, y1), done, count);
+                    let out = render_tile(integrator, &view, block, (x0, y0, x1, y1), done, count, mask.map(|m| (m, window)));
                     (control.progress)(tiles_done.fetch_add(1, Ordering::Relaxed) + 1, total_tiles);
                     Some(out)
                 })
@@ -258,21 +326,43 @@ fn render_in(
             }
             break; // drop the incomplete pass
         }
-        for (counts, nonfinite) in results.into_iter().flatten() {
-            stats.rays.add(&counts);
-            stats.nonfinite_samples += nonfinite;
+        for outcome in results.into_iter().flatten() {
+            stats.rays.add(&outcome.counts);
+            stats.nonfinite_samples += outcome.nonfinite;
+            stats.pixel_samples += outcome.samples;
         }
         done += count;
-        pass.set_samples(count);
-        match film.as_mut() {
-            None => film = Some(pass),
-            Some(film) => {
+        match (film.as_mut(), active.as_deref()) {
+            (None, None) => {
+                pass.set_samples(count);
+                film = Some(pass);
+            }
+            (None, Some(mask)) => {
+                pass.set_samples(0);
+                pass.add_counts(mask, count);
+                film = Some(pass);
+            }
+            (Some(film), mask) => {
+                if let Some(mask) = mask {
+                    film.add_counts(mask, count);
+                }
+                pass.set_samples(count);
                 pool.install(|| film.add(&pass));
                 spare = Some(pass);
             }
         }
         if stopped {
             break;
+        }
+        if let (Some(noise), Some(film)) = (sampled.noise, film.as_ref()) {
+            if done >= noise.min_samples && done < spp {
+                let still = adaptive::unconverged(pool, film, active.as_deref(), noise.threshold);
+                let any = still.iter().any(|a| *a);
+                active = Some(still);
+                if !any {
+                    break;
+                }
+            }
         }
         if let Some(d) = deadline {
             // Do not start a pass that cannot finish: shorten it to the samples
@@ -288,15 +378,25 @@ fn render_in(
         }
     }
     stats.elapsed = start.elapsed();
-    stats.samples_per_pixel = done;
     // `spp >= 1`, and a render without a complete pass returned above.
     let film = film.ok_or_else(|| Error::Render("no pass finished".into()))?;
+    stats.samples_per_pixel = film.samples();
     Ok((film, stats))
 }
 
+/// What one tile of one pass did.
+struct TileOutcome {
+    counts: RayCounts,
+    /// Samples dropped as NaN, infinite or too bright.
+    nonfinite: u64,
+    /// Samples taken.
+    samples: u64,
+}
+
 /// Samples `first..first + count` of every pixel of the tile covering columns
-/// `x0..x1` and rows `y0..y1` of the full image, each pixel's summed in sample
-/// order into `block`; returns the ray counts and the non-finite samples (dropped).
+/// `x0..x1` and rows `y0..y1` of the full image (only those `mask` marks, row-major
+/// over its window, when given; the others stay zero), each pixel's summed in
+/// sample order into `block`.
 fn render_tile(
     integrator: &dyn Integrator,
     view: &View,
@@ -304,18 +404,41 @@ fn render_tile(
     (x0, y0, x1, y1): (u32, u32, u32, u32),
     first: u32,
     count: u32,
-) -> (RayCounts, u64) {
-    let mut counts = RayCounts::default();
-    let mut nonfinite = 0;
+    mask: Option<(&[bool], PixelWindow)>,
+) -> TileOutcome {
+    let mut outcome = TileOutcome { counts: RayCounts::default(), nonfinite: 0, samples: 0 };
     let mut row = [PixelSum::default(); TILE as usize];
     let width = (x1 - x0) as usize;
+    let samples = first..first + count;
     for y in y0..y1 {
         let sums = &mut row[..width];
         sums.fill(PixelSum::default());
-        nonfinite += integrator.sample_row(view, (x0, y), first..first + count, &mut counts, sums);
+        match mask {
+            None => {
+                outcome.nonfinite += integrator.sample_row(view, (x0, y), samples.clone(), &mut outcome.counts, sums);
+                outcome.samples += width as u64 * count as u64;
+            }
+            Some((mask, window)) => {
+                let start = (y - window.y0) as usize * window.width as usize + (x0 - window.x0) as usize;
+                let marked = &mask[start..start + width];
+                // Each run of marked pixels in one call, as an unmasked row is.
+                let mut i = 0;
+                while i < width {
+                    if !marked[i] {
+                        i += 1;
+                        continue;
+                    }
+                    let run = marked[i..].iter().take_while(|m| **m).count();
+                    let at = (x0 + i as u32, y);
+                    outcome.nonfinite += integrator.sample_row(view, at, samples.clone(), &mut outcome.counts, &mut sums[i..i + run]);
+                    outcome.samples += run as u64 * count as u64;
+                    i += run;
+                }
+            }
+        }
         for (x, sum) in (x0..x1).zip(sums.iter()) {
             block.set(x - x0, y - y0, *sum);
         }
     }
-    (counts, nonfinite)
+    outcome
 }

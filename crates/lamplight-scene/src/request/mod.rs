@@ -22,6 +22,9 @@ use crate::builtin::{self, Builtin};
 use crate::image_io::Format;
 use crate::import;
 
+mod sampling;
+pub use sampling::{AntialiasRequest, NOISE_DEFAULT_SPP};
+
 /// The limits every front end enforces, in one place.
 pub mod limits {
     /// Deepest ray depth. Whitted tracing may spawn a reflected and a refracted
@@ -93,8 +96,14 @@ pub enum SceneSpec {
 pub struct Defaults {
     /// Image size.
     pub size: (u32, u32),
-    /// Samples per pixel.
-    pub spp: u32,
+    /// Samples per pixel, when the scene says.
+    pub spp: Option<u32>,
+    /// Adaptive anti-aliasing, when the scene says.
+    pub antialias: Option<AntialiasRequest>,
+    /// The path tracer's noise threshold, when the scene gives one.
+    pub noise_threshold: Option<f64>,
+    /// Samples before a noise threshold stops pixels, when the scene says.
+    pub min_spp: Option<u32>,
     /// Seed.
     pub seed: u64,
     /// Integrator.
@@ -106,13 +115,31 @@ pub struct Defaults {
 impl Defaults {
     /// The settings of a scene file's `[render]` table.
     pub fn from_settings(s: &crate::build::Settings) -> Defaults {
-        Defaults { size: (s.width, s.height), spp: s.spp, seed: s.seed, integrator: s.integrator, transfer: s.transfer }
+        Defaults {
+            size: (s.width, s.height),
+            spp: s.spp,
+            antialias: s.antialias,
+            noise_threshold: s.noise_threshold,
+            min_spp: s.min_spp,
+            seed: s.seed,
+            integrator: s.integrator,
+            transfer: s.transfer,
+        }
     }
 }
 
 /// The program's own settings, for scenes without any.
 pub fn program_defaults() -> Defaults {
-    Defaults { size: (640, 360), spp: 1, seed: 0, integrator: integrators::default_integrator(), transfer: Default::default() }
+    Defaults {
+        size: (640, 360),
+        spp: None,
+        antialias: None,
+        noise_threshold: None,
+        min_spp: None,
+        seed: 0,
+        integrator: integrators::default_integrator(),
+        transfer: Default::default(),
+    }
 }
 
 /// A scene named and read, with its own settings.
@@ -164,6 +191,7 @@ impl SceneRequest {
                 size: b.default_size,
                 integrator: integrators::find(b.integrator).unwrap_or(integrators::default_integrator()),
                 transfer: b.transfer,
+                spp: b.spp,
                 ..program_defaults()
             },
         }
@@ -221,8 +249,14 @@ pub struct Request {
     pub width: Option<u32>,
     /// Image height.
     pub height: Option<u32>,
-    /// Samples per pixel.
+    /// Samples per pixel (fixed supersampling; the most a noise threshold takes).
     pub spp: Option<u32>,
+    /// Adaptive anti-aliasing (one-pass integrators).
+    pub antialias: Option<AntialiasRequest>,
+    /// Relative standard error at which the path tracer stops a pixel.
+    pub noise_threshold: Option<f64>,
+    /// Samples before a noise threshold stops any pixel.
+    pub min_spp: Option<u32>,
     /// Depth limit.
     pub max_depth: Option<u32>,
     /// Worker threads (0: every core).
@@ -262,9 +296,10 @@ impl Request {
         let n = |k: &str| naming.name(k);
         let d = defaults;
         let (width, height) = image_size(self.width, self.height, d.size, naming)?;
-        let spp = self.spp.unwrap_or(d.spp);
-        if !(1..=limits::MAX_SPP).contains(&spp) {
-            return Err(bad(format!("{} must be between 1 and {}, got {spp}", n("spp"), limits::MAX_SPP)));
+        if let Some(spp) = self.spp {
+            if !(1..=limits::MAX_SPP).contains(&spp) {
+                return Err(bad(format!("{} must be between 1 and {}, got {spp}", n("spp"), limits::MAX_SPP)));
+            }
         }
         if let Some(depth) = self.max_depth {
             if !(1..=limits::MAX_DEPTH).contains(&depth) {
@@ -318,6 +353,7 @@ impl Request {
                 layers.push(*layer);
             }
         }
+        let (spp, adaptive) = sampling::resolve(self, d, integrator, naming)?;
         let seed = self.seed.unwrap_or(d.seed);
         let options = RenderOptions {
             width,
@@ -331,6 +367,7 @@ impl Request {
             filter,
             window,
             clamp: self.clamp,
+            adaptive,
         };
         Ok(Job { options, environment: self.environment.clone(), layers })
     }
@@ -411,7 +448,7 @@ impl Job {
                 Layer::Variance => (Layer::Variance, film.variance()),
                 Layer::Samples => {
                     let mut image = Image::new(film.width(), film.height());
-                    image.pixels.iter_mut().for_each(|p| *p = [film.samples() as f32; 3]);
+                    image.pixels.iter_mut().zip(film.sample_counts()).for_each(|(p, n)| *p = [n; 3]);
                     (Layer::Samples, image)
                 }
             })
