@@ -142,9 +142,10 @@ def render(
     ``+A`` does: 16 samples in each pixel whose colour differs from a
     neighbour's by more than ``antialias`` (a threshold, 0.3 by default;
     ``False`` turns it off). ``noise_threshold`` (the path tracer, Cycles'
-    adaptive sampling) stops each pixel once the relative standard error of
-    its mean is below it, after ``min_spp`` samples (16); ``spp`` is then the
-    most a pixel takes (1024 by default). ``image.stats["mean_samples_per_pixel"]``
+    adaptive sampling) stops each pixel once its noise (the standard error of
+    its mean over the square root of its brightness) is below it at two checks
+    in a row, after ``min_spp`` samples (16); ``spp`` is then the most a pixel
+    takes (1024 by default). ``image.stats["mean_samples_per_pixel"]``
     says what was spent, and ``exr_layers=["samples"]`` where.
     """
     s = as_scene(scene, base_dir)

@@ -65,8 +65,8 @@ pub struct RenderArgs {
     /// [default: on unless --spp or the file's spp is given].
     #[arg(long, value_name = "T|on|off", allow_negative_numbers = true)]
     pub antialias: Option<AntialiasRequest>,
-    /// Path tracer: stop sampling a pixel once the relative standard error of its mean is below E
-    /// (Cycles' noise threshold, e.g. 0.01); --spp is then the most a pixel takes [default: 1024].
+    /// Path tracer: stop sampling a pixel once its noise (the standard error of its mean over the square root
+    /// of its brightness, Cycles' measure) is below E, e.g. 0.01; --spp is then the most a pixel takes [default: 1024].
     #[arg(long, value_name = "E", allow_negative_numbers = true)]
     pub noise_threshold: Option<f64>,
     /// Path tracer with --noise-threshold: samples every pixel takes before any stops [default: 16].

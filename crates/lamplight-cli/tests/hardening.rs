@@ -78,7 +78,7 @@ fn negative_counts_say_the_value_must_be_positive() {
         (
             small(&["--integrator", "path", "--noise-threshold", "-1"]),
             2,
-            "--noise-threshold must be a positive number (a relative error, e.g. 0.01), got -1".into(),
+            "--noise-threshold must be a positive number (a noise level, e.g. 0.01), got -1".into(),
         ),
         (small(&["--integrator", "path", "--min-spp", "-1"]), 2, "invalid value '-1' for '--min-spp <N>': must be a positive number".into()),
     ];

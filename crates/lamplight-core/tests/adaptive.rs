@@ -6,7 +6,7 @@
 
 use std::sync::Arc;
 
-use lamplight_core::adaptive::{refine_mask, relative_error};
+use lamplight_core::adaptive::{pixel_error, refine_mask};
 use lamplight_core::film::{Film, Image};
 use lamplight_core::integrators::IntegratorEntry;
 use lamplight_core::lights::Environment;
@@ -110,7 +110,8 @@ fn antialiasing_is_refused_for_the_path_tracer_and_noise_threshold_for_whitted()
 fn a_noise_threshold_stops_each_pixel_once_its_error_is_below_it() {
     let noise = NoiseThreshold { threshold: 0.05, min_samples: 8 };
     let spp = 128;
-    let (film, stats) = film(&options("path", spp, Some(Adaptive::NoiseThreshold(noise))));
+    let film_of = film;
+    let (film, stats) = film_of(&options("path", spp, Some(Adaptive::NoiseThreshold(noise))));
     let mut counts = std::collections::BTreeMap::new();
     for y in 0..H {
         for x in 0..W {
@@ -118,7 +119,7 @@ fn a_noise_threshold_stops_each_pixel_once_its_error_is_below_it() {
             *counts.entry(n).or_insert(0u32) += 1;
             // Checked after the passes of 1, 1, 2, 4, ... samples: a power of two.
             assert!(n.is_power_of_two() && (noise.min_samples..=spp).contains(&n), "pixel ({x}, {y}): {n} samples");
-            let error = relative_error(film.get(x, y), n);
+            let error = pixel_error(film.get(x, y), n);
             if n < spp {
                 assert!(error < noise.threshold, "pixel ({x}, {y}) stopped at {n} samples with error {error}");
             }
@@ -143,6 +144,19 @@ fn a_noise_threshold_stops_each_pixel_once_its_error_is_below_it() {
         }
     }
     assert!(compared > 0, "no pixel stopped at 16 samples: {counts:?}");
+    // A pixel stops after two checks in a row below the threshold: one that
+    // stopped at 32 samples was below it at 16 too.
+    let (at16, _) = film_of(&options("path", 16, None));
+    let mut checked = 0;
+    for y in 0..H {
+        for x in 0..W {
+            if film.samples_at(x, y) == 32 {
+                assert!(pixel_error(at16.get(x, y), 16) < noise.threshold, "pixel ({x}, {y}) stopped at 32 without a first check at 16");
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked > 0, "no pixel stopped at 32 samples: {counts:?}");
     // Threads and windows do not change a byte.
     let with = |threads, window| {
         render(

@@ -275,6 +275,7 @@ fn passes(
     let total_tiles = tiles_per_pass * schedule.pass_count(spp) as u64;
     // Pixels still sampled, row-major over the window; `None`: all of them.
     let mut active: Option<Vec<bool>> = sampled.only.map(<[bool]>::to_vec);
+    let mut convergence = adaptive::Convergence::new(window.width as usize * window.height as usize);
     // The first complete pass becomes the film; later ones are rendered into a
     // spare film and added, so a pass cut short leaves the film untouched.
     let (mut film, mut spare): (Option<Film>, Option<Film>) = (None, None);
@@ -355,8 +356,9 @@ fn passes(
             break;
         }
         if let (Some(noise), Some(film)) = (sampled.noise, film.as_ref()) {
-            if done >= noise.min_samples && done < spp {
-                let still = adaptive::unconverged(pool, film, active.as_deref(), noise.threshold);
+            if done >= (noise.min_samples / 2).max(2) && done < spp {
+                let may_stop = done >= noise.min_samples;
+                let still = convergence.check(pool, film, active.as_deref(), noise.threshold, may_stop);
                 let any = still.iter().any(|a| *a);
                 active = Some(still);
                 if !any {

@@ -89,7 +89,7 @@ pub const RENDER_PARAMS: &[Param] = &[
         T::Number,
         "none",
         "> 0",
-        "path tracer: a pixel stops once its relative standard error is below this (Cycles' noise threshold) (`--noise-threshold`)",
+        "path tracer: a pixel stops once its noise (standard error of its mean over the square root of its brightness) is below this, twice in a row (Cycles' noise threshold) (`--noise-threshold`)",
     ),
     Param::new("min_spp", T::Integer, "16", "1 to spp", "path tracer with `noise_threshold`: samples before any pixel stops (`--min-spp`)"),
     Param::new("max_depth", T::Integer, "5", "1 to 64, camera ray = 1", "ray depth limit (`--max-depth`)"),

@@ -61,7 +61,7 @@ pub(super) fn resolve(
     }
     if let Some(threshold) = r.noise_threshold.or(d.noise_threshold) {
         if !(threshold.is_finite() && threshold > 0.0) {
-            return Err(bad(format!("{} must be a positive number (a relative error, e.g. 0.01), got {threshold}", n("noise_threshold"))));
+            return Err(bad(format!("{} must be a positive number (a noise level, e.g. 0.01), got {threshold}", n("noise_threshold"))));
         }
         if one_pass {
             return Err(bad(format!(

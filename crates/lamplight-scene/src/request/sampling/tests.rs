@@ -85,7 +85,7 @@ fn contradictions_are_refused_with_what_to_do() {
     let path = || Request { integrator: Some("path".into()), ..Request::default() };
     assert_eq!(
         resolved(Request { noise_threshold: Some(0.0), ..path() }, &plain).unwrap_err(),
-        "--noise-threshold must be a positive number (a relative error, e.g. 0.01), got 0"
+        "--noise-threshold must be a positive number (a noise level, e.g. 0.01), got 0"
     );
     assert_eq!(
         resolved(Request { noise_threshold: Some(0.01), spp: Some(64), min_spp: Some(128), ..path() }, &plain).unwrap_err(),
