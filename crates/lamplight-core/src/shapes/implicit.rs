@@ -320,7 +320,7 @@ impl Shape for Implicit {
     }
 
     /// One ray in 16, chosen by its own bits (deterministic), watches how fast
-    /// `f` changes ([`Implicit::march`]): a bound too small shows on many rays,
+    /// `f` changes (`Implicit::march`): a bound too small shows on many rays,
     /// and watching every one cost 10 % of an implicit render.
     fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
         if (ray.dir.x.to_bits() ^ ray.dir.y.to_bits()) & 0xf0 == 0 {
