@@ -33,6 +33,7 @@ pub mod batch;
 pub mod bsdfs;
 pub mod camera;
 mod error;
+pub mod explain;
 pub mod film;
 pub mod integrators;
 pub mod lights;

@@ -25,6 +25,18 @@ pub fn accepts(l: crate::math::Rgb) -> bool {
     l.is_finite() && l.abs().max_element() <= MAX_RADIANCE
 }
 
+/// What the film keeps of sample radiance `l`: `None` if it does not accept it
+/// ([`accepts`]), else `l`, scaled by `clamp / max(l)` when its largest channel
+/// exceeds `clamp` (hue kept; see [`crate::RenderOptions::clamp`]).
+#[inline]
+pub fn kept(l: crate::math::Rgb, clamp: f64) -> Option<crate::math::Rgb> {
+    if !accepts(l) {
+        return None;
+    }
+    let peak = l.max_element();
+    Some(if peak > clamp { l * (clamp / peak) } else { l })
+}
+
 /// A linear RGB image, row-major from the top-left pixel.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Image {

@@ -23,6 +23,7 @@ use crate::Error;
 
 mod path;
 mod simple_path;
+pub mod trace;
 mod whitted;
 
 pub use path::{power_heuristic, unoccluded, PathTracer};
@@ -151,6 +152,13 @@ pub trait Integrator: Send + Sync {
     /// go to `counts`. The same arguments give the same value on any thread.
     fn sample(&self, view: &View, x: u32, y: u32, index: u32, counts: &mut RayCounts) -> Rgb;
 
+    /// [`Integrator::sample`] telling `trace` what it does ([`trace`]): the same
+    /// code, so the same value. The default records nothing.
+    fn sample_traced(&self, view: &View, x: u32, y: u32, index: u32, counts: &mut RayCounts, trace: &mut dyn trace::Trace) -> Rgb {
+        let _ = trace;
+        self.sample(view, x, y, index, counts)
+    }
+
     /// How the render loop schedules the samples.
     fn schedule(&self) -> Schedule;
 
@@ -164,12 +172,9 @@ pub trait Integrator: Send + Sync {
         let mut nonfinite = 0;
         for (x, sum) in (x0..).zip(sums.iter_mut()) {
             for s in samples.clone() {
-                let l = self.sample(view, x, y, s, counts);
-                if crate::film::accepts(l) {
-                    let peak = l.max_element();
-                    sum.add(if peak > view.clamp { l * (view.clamp / peak) } else { l });
-                } else {
-                    nonfinite += 1;
+                match crate::film::kept(self.sample(view, x, y, s, counts), view.clamp) {
+                    Some(l) => sum.add(l),
+                    None => nonfinite += 1,
                 }
             }
         }

@@ -15,6 +15,7 @@
 //! lecture's shadows, glass blocks them (light through glass arrives along
 //! refracted BSDF paths), so nothing is counted twice.
 
+use super::trace::{NeeMiss, NeeSample, NoTrace, PathEnd, PathTrace, Trace};
 use super::{Integrator, IntegratorEntry, IntegratorSettings, RayCounts, Schedule, View};
 use crate::bsdfs::{bsdf_for, Bsdf, Frame};
 use crate::film::Filter;
@@ -111,6 +112,18 @@ impl PathTracer {
 
     /// Radiance along camera ray `ray`, drawing sample values from `sampler`.
     pub fn li(&self, scene: &Scene, camera_ray: &Ray, sampler: &mut PixelSampler, counts: &mut RayCounts) -> Rgb {
+        self.li_traced(scene, camera_ray, sampler, counts, &mut NoTrace)
+    }
+
+    /// [`PathTracer::li`], telling `trace` each vertex, light sample and BSDF sample.
+    fn li_traced<T: PathTrace + ?Sized>(
+        &self,
+        scene: &Scene,
+        camera_ray: &Ray,
+        sampler: &mut PixelSampler,
+        counts: &mut RayCounts,
+        trace: &mut T,
+    ) -> Rgb {
         counts.camera += 1;
         let mut radiance = Rgb::ZERO;
         let mut beta = Rgb::ONE;
@@ -125,13 +138,19 @@ impl PathTracer {
             // drawn before the ray is traced: the hashing needs no hit and overlaps
             // the intersection's latency. Unused if the path ends here.
             let (u_light, u_bsdf) = (sampler.peek_2d(1), sampler.peek_2d(3));
+            trace.segment(depth, &ray, beta);
             let Some(hit) = scene.first_intersect(&ray, f64::INFINITY) else {
                 if let Some(env) = &self.lights.environment {
                     let w = if prev_delta { 1.0 } else { power_heuristic(prev_pdf, p_pick * env.pdf(ray.dir)) };
-                    radiance += beta * env.radiance(ray.dir) * w;
+                    let le = env.radiance(ray.dir);
+                    let contribution = beta * le * w;
+                    trace.emitted(le, w, contribution);
+                    radiance += contribution;
                 }
+                trace.end(PathEnd::Escaped);
                 break;
             };
+            trace.path_hit(scene, &hit);
             let material = &scene.materials[hit.material];
             if material.emits_towards(hit.front_face) {
                 let w = match self.lights.area_light_of(hit.object) {
@@ -145,9 +164,12 @@ impl PathTracer {
                     // Delta paths, and emitters that light sampling cannot reach.
                     _ => 1.0,
                 };
-                radiance += beta * material.emission * w;
+                let contribution = beta * material.emission * w;
+                trace.emitted(material.emission, w, contribution);
+                radiance += contribution;
             }
             if depth >= self.max_depth {
+                trace.end(PathEnd::MaxDepth);
                 break;
             }
             let textured;
@@ -159,6 +181,7 @@ impl PathTracer {
                 }
             };
             if bsdf.is_black() {
+                trace.end(PathEnd::BlackBsdf);
                 break;
             }
             let frame = Frame::new(hit.normal);
@@ -186,23 +209,32 @@ impl PathTracer {
                 (s, wi, offset_origin(hit.point, hit.geometric_normal, wi, hit.t, hit.error))
             });
             if let Some((u_pick, u_light)) = light_values {
-                radiance += beta * self.sample_light(scene, &hit, bsdf, &frame, wo, u_pick, u_light, counts);
+                let contribution = beta * self.sample_light(scene, &hit, bsdf, &frame, wo, u_pick, u_light, counts, trace);
+                trace.nee_contribution(contribution);
+                radiance += contribution;
             }
-            let Some((s, wi, origin)) = next else { break };
+            let Some((s, wi, origin)) = next else {
+                trace.end(PathEnd::NoSample);
+                break;
+            };
             // The shading normal may disagree with the geometry: keep the side the
             // geometric normal says, or light would leak through the surface.
             if (wi.dot(hit.geometric_normal) > 0.0) != (s.wi.z > 0.0) || s.weight == Rgb::ZERO {
+                trace.end(PathEnd::WrongSide);
                 break;
             }
             beta *= s.weight;
+            trace.bsdf_sample(&s, wi, beta);
             prev_pdf = s.pdf;
             prev_delta = s.delta;
             if depth >= self.rr_depth {
                 let survive = beta.max_element().min(1.0);
                 if !(u_rr < survive) {
+                    trace.end(PathEnd::Roulette { survive, u: u_rr });
                     break;
                 }
                 beta *= 1.0 / survive;
+                trace.survived(survive, beta);
             }
             counts.secondary += 1;
             ray = Ray { origin, dir: wi };
@@ -212,7 +244,7 @@ impl PathTracer {
 
     /// One light sample at `hit`, MIS-weighted against the BSDF.
     #[allow(clippy::too_many_arguments)]
-    fn sample_light(
+    fn sample_light<T: PathTrace + ?Sized>(
         &self,
         scene: &Scene,
         hit: &Hit,
@@ -222,23 +254,31 @@ impl PathTracer {
         u_pick: f64,
         u: (f64, f64),
         counts: &mut RayCounts,
+        trace: &mut T,
     ) -> Rgb {
-        let Some(picked) = self.lights.pick(u_pick) else { return Rgb::ZERO };
+        let Some(picked) = self.lights.pick(u_pick) else {
+            trace.nee_miss(NeeMiss::NoLight);
+            return Rgb::ZERO;
+        };
         let p_pick = self.lights.pick_probability();
         let Some(crate::lights::LiSample { wi, distance, radiance: li, pdf: light_pdf, own_object: own, ends_on_own }) =
             picked.sample_li(hit.point, u)
         else {
+            trace.nee_miss(NeeMiss::NoSample);
             return Rgb::ZERO;
         };
         if li == Rgb::ZERO {
+            trace.nee_miss(NeeMiss::NoSample);
             return Rgb::ZERO;
         }
         let wi_local = frame.to_local(wi);
         if (wi.dot(hit.geometric_normal) > 0.0) != (wi_local.z > 0.0) {
+            trace.nee_miss(NeeMiss::WrongSide);
             return Rgb::ZERO;
         }
         let f = bsdf.f(wo, wi_local);
         if f == Rgb::ZERO {
+            trace.nee_miss(NeeMiss::BlackBsdf);
             return Rgb::ZERO;
         }
         counts.shadow += 1;
@@ -255,18 +295,22 @@ impl PathTracer {
             unoccluded(scene, origin, wi, remaining, own)
         };
         if !visible {
+            trace.nee_miss(NeeMiss::Blocked);
             return Rgb::ZERO;
         }
         let cos = wi_local.z.abs();
-        match light_pdf {
+        let (value, bsdf_pdf, mis_weight) = match light_pdf {
             // Scalars first: one division instead of one per channel.
-            None => f * li * (cos / p_pick),
+            None => (f * li * (cos / p_pick), 0.0, 1.0),
             Some(pdf) => {
                 let pl = p_pick * pdf;
-                let w = power_heuristic(pl, bsdf.pdf(wo, wi_local));
-                f * li * (cos * w / pl)
+                let bsdf_pdf = bsdf.pdf(wo, wi_local);
+                let w = power_heuristic(pl, bsdf_pdf);
+                (f * li * (cos * w / pl), bsdf_pdf, w)
             }
-        }
+        };
+        trace.nee(&NeeSample { light: picked, pick_probability: p_pick, wi, distance, li, light_pdf, f, cos, bsdf_pdf, mis_weight, value });
+        value
     }
 }
 
@@ -277,14 +321,25 @@ impl Integrator for PathTracer {
     /// camera that takes one), and the path's vertices use the rest. Its passes
     /// double, so a render of `2N` samples continues one of `N`.
     fn sample(&self, view: &View, x: u32, y: u32, index: u32, counts: &mut RayCounts) -> Rgb {
-        let mut sampler = PixelSampler::new(view.seed, view.pixel_index(x, y), index);
-        let (dx, dy) = self.filter.sample(sampler.get_2d());
-        let lens = if view.lens { sampler.get_2d() } else { (0.5, 0.5) };
-        let ray = view.camera.ray(x as f64 + 0.5 + dx, y as f64 + 0.5 + dy, view.width, view.height, lens);
-        self.li(view.scene, &ray, &mut sampler, counts)
+        self.sample_with(view, x, y, index, counts, &mut NoTrace)
+    }
+
+    fn sample_traced(&self, view: &View, x: u32, y: u32, index: u32, counts: &mut RayCounts, trace: &mut dyn Trace) -> Rgb {
+        self.sample_with(view, x, y, index, counts, trace)
     }
 
     fn schedule(&self) -> Schedule {
         Schedule::Doubling
+    }
+}
+
+impl PathTracer {
+    /// [`Integrator::sample`], telling `trace` what it does.
+    fn sample_with<T: PathTrace + ?Sized>(&self, view: &View, x: u32, y: u32, index: u32, counts: &mut RayCounts, trace: &mut T) -> Rgb {
+        let mut sampler = PixelSampler::new(view.seed, view.pixel_index(x, y), index);
+        let (dx, dy) = self.filter.sample(sampler.get_2d());
+        let lens = if view.lens { sampler.get_2d() } else { (0.5, 0.5) };
+        let ray = view.camera.ray(x as f64 + 0.5 + dx, y as f64 + 0.5 + dy, view.width, view.height, lens);
+        self.li_traced(view.scene, &ray, &mut sampler, counts, trace)
     }
 }

@@ -18,6 +18,7 @@
 
 use std::mem::MaybeUninit;
 
+use super::trace::{LightRef, LightTerm, NoTrace, ReflectionWeight, Trace, Unlit, WhittedTrace};
 use super::{Integrator, IntegratorEntry, IntegratorSettings, RayCounts, Schedule, View};
 use crate::lights::{AreaLight, LightSet};
 use crate::materials::{fresnel_conductor, fresnel_dielectric, Material, Reflection, Refraction};
@@ -77,6 +78,21 @@ impl Integrator for Whitted {
     /// shifted by `pixel_offset - 0.5`) and jittered by the sample's own generator,
     /// which then draws the lens sample if the camera takes one.
     fn sample(&self, view: &View, x: u32, y: u32, index: u32, counts: &mut RayCounts) -> Rgb {
+        self.sample_with(view, x, y, index, counts, &mut NoTrace)
+    }
+
+    fn sample_traced(&self, view: &View, x: u32, y: u32, index: u32, counts: &mut RayCounts, trace: &mut dyn Trace) -> Rgb {
+        self.sample_with(view, x, y, index, counts, trace)
+    }
+
+    fn schedule(&self) -> Schedule {
+        Schedule::OnePass
+    }
+}
+
+impl Whitted {
+    /// [`Integrator::sample`], telling `trace` what it does.
+    fn sample_with<T: WhittedTrace + ?Sized>(&self, view: &View, x: u32, y: u32, index: u32, counts: &mut RayCounts, trace: &mut T) -> Rgb {
         let offset = view.pixel_offset;
         // Made only when a value is drawn: a single pinhole sample needs none.
         let mut rng = None;
@@ -91,15 +107,9 @@ impl Integrator for Whitted {
         };
         let lens = if view.lens { (uniform(), uniform()) } else { (0.5, 0.5) };
         let ray = view.camera.ray(x as f64 + dx, y as f64 + dy, view.width, view.height, lens);
-        self.trace_with(view.scene, &ray, &mut uniform, counts)
+        self.trace_traced(view.scene, &ray, &mut uniform, counts, trace)
     }
 
-    fn schedule(&self) -> Schedule {
-        Schedule::OnePass
-    }
-}
-
-impl Whitted {
     /// The tracer for `scene` (its area lights are collected here).
     pub fn new(scene: &Scene, max_depth: u32, min_weight: f64) -> Whitted {
         Whitted { max_depth, min_weight, area_lights: LightSet::new(scene).area }
@@ -115,6 +125,18 @@ impl Whitted {
     /// [`Whitted::trace`] with the values of `[0, 1)` for area light points drawn
     /// from `uniform` (called only when the scene has area lights).
     pub fn trace_with(&self, scene: &Scene, ray: &Ray, uniform: &mut dyn FnMut() -> f64, counts: &mut RayCounts) -> Rgb {
+        self.trace_traced(scene, ray, uniform, counts, &mut NoTrace)
+    }
+
+    /// [`Whitted::trace_with`], telling `trace` each ray, hit, term and weight.
+    fn trace_traced<T: WhittedTrace + ?Sized>(
+        &self,
+        scene: &Scene,
+        ray: &Ray,
+        uniform: &mut dyn FnMut() -> f64,
+        counts: &mut RayCounts,
+        trace: &mut T,
+    ) -> Rgb {
         counts.camera += 1;
         let mut total = Rgb::ZERO;
         // Depth-first: each ray taken off the list adds at most two one level deeper,
@@ -129,22 +151,33 @@ impl Whitted {
             // SAFETY: entries below `pending` were written before (each push writes
             // `work[pending]` and then increments it).
             let Pending { ray, weight, depth } = unsafe { work[pending].assume_init_read() };
+            trace.ray(&ray, weight, depth);
             let Some(hit) = scene.first_intersect(&ray, f64::INFINITY) else {
-                total += weight * scene.environment.as_ref().map_or(scene.background, |env| env.radiance(ray.dir));
+                let sky = scene.environment.as_ref().map_or(scene.background, |env| env.radiance(ray.dir));
+                let contribution = weight * sky;
+                trace.miss(sky, contribution);
+                total += contribution;
                 continue;
             };
+            trace.hit(scene, &hit);
             let material = &scene.materials[hit.material];
-            total += weight * direct_light(scene, &self.area_lights, &ray, &hit, material, uniform, counts);
+            let direct = direct_light(scene, &self.area_lights, &ray, &hit, material, uniform, counts, trace);
+            let contribution = weight * direct;
+            trace.direct(direct, contribution);
+            total += contribution;
             if depth >= max_depth {
+                trace.depth_cutoff();
                 continue;
             }
-            for (dir, w) in smooth_directions(&ray, &hit, material) {
+            for (dir, w) in smooth_directions(&ray, &hit, material, trace) {
                 let w = weight * w;
                 if max_component(w) <= self.min_weight {
+                    trace.branch(&Ray { origin: hit.point, dir }, w, depth + 1, false);
                     continue;
                 }
                 counts.secondary += 1;
                 let origin = offset_origin(hit.point, hit.geometric_normal, dir, hit.t, hit.error);
+                trace.branch(&Ray { origin, dir }, w, depth + 1, true);
                 work[pending].write(Pending { ray: Ray { origin, dir }, weight: w, depth: depth + 1 });
                 pending += 1;
             }
@@ -158,7 +191,9 @@ impl Whitted {
 /// `Ke` counts on the side the surface emits from ([`Material::emits_towards`]).
 /// The lights are the scene's delta lights and the area lights `area_lights`,
 /// whose points are drawn from `uniform` (16 per light, see the module doc).
-pub fn direct_light(
+/// Each term is told to `trace`.
+#[allow(clippy::too_many_arguments)]
+pub fn direct_light<T: WhittedTrace + ?Sized>(
     scene: &Scene,
     area_lights: &[AreaLight],
     ray: &Ray,
@@ -166,19 +201,27 @@ pub fn direct_light(
     material: &Material,
     uniform: &mut dyn FnMut() -> f64,
     counts: &mut RayCounts,
+    trace: &mut T,
 ) -> Rgb {
     let color = material.color.evaluate(hit.point);
     let emission = if material.emits_towards(hit.front_face) { material.emission } else { Rgb::ZERO };
-    let mut radiance = emission + material.ka * color * scene.ambient;
+    let ambient = material.ka * color * scene.ambient;
+    trace.surface(color, emission, ambient);
+    let mut radiance = emission + ambient;
     if !material.is_lit() {
         return radiance;
     }
-    for light in &scene.lights {
-        let Some(sample) = light.illuminate(hit.point) else { continue };
-        radiance += lit_by(scene, ray, hit, material, color, sample.wi, sample.distance, sample.radiance, light.own_object(), counts);
+    for (i, light) in scene.lights.iter().enumerate() {
+        trace.light(LightRef::Delta(i));
+        let Some(sample) = light.illuminate(hit.point) else {
+            trace.unlit(Unlit::NotReached);
+            continue;
+        };
+        radiance +=
+            lit_by(scene, ray, hit, material, color, sample.wi, sample.distance, sample.radiance, light.own_object(), counts, trace);
     }
     if !area_lights.is_empty() {
-        radiance += area_light(scene, area_lights, ray, hit, material, color, uniform, counts);
+        radiance += area_light(scene, area_lights, ray, hit, material, color, uniform, counts, trace);
     }
     radiance
 }
@@ -188,7 +231,7 @@ pub fn direct_light(
 /// (H.N)^shine)` times the shadow ray's transmittance (`own` does not block).
 #[allow(clippy::too_many_arguments)]
 #[inline]
-fn lit_by(
+fn lit_by<T: WhittedTrace + ?Sized>(
     scene: &Scene,
     ray: &Ray,
     hit: &Hit,
@@ -199,10 +242,12 @@ fn lit_by(
     lin: Rgb,
     own: Option<usize>,
     counts: &mut RayCounts,
+    trace: &mut T,
 ) -> Rgb {
     let n = hit.normal;
     let cos_light = n.dot(wi);
     if cos_light <= MIN_COSINE || hit.geometric_normal.dot(wi) <= 0.0 {
+        trace.unlit(Unlit::Below(cos_light));
         return Rgb::ZERO;
     }
     // The unshadowed reflection first: a light whose contribution could not
@@ -214,23 +259,39 @@ fn lit_by(
         if cos_half > 0.0 && material.ks != Rgb::ZERO { material.ks * blinn_power(cos_half, material.shininess) } else { Rgb::ZERO };
     let reflected = diffuse + specular;
     if max_component(reflected) < NEGLIGIBLE {
+        trace.unlit(Unlit::Negligible);
         return Rgb::ZERO;
     }
     counts.shadow += 1;
     let origin = offset_origin(hit.point, hit.geometric_normal, wi, hit.t, hit.error);
     let remaining = distance - (origin - hit.point).length();
     let visible = scene.transmittance(origin, wi, remaining, own);
-    if visible == Rgb::ZERO {
-        return Rgb::ZERO;
-    }
-    lin * visible * reflected
+    let radiance = if visible == Rgb::ZERO { Rgb::ZERO } else { lin * visible * reflected };
+    trace.lit(
+        scene,
+        &LightTerm {
+            wi,
+            distance,
+            lin,
+            cos_light,
+            cos_half,
+            diffuse,
+            specular,
+            shadow: Ray { origin, dir: wi },
+            shadow_length: remaining,
+            own,
+            visible,
+            radiance,
+        },
+    );
+    radiance
 }
 
 /// The rough model under the area lights `lights`: [`AREA_SAMPLES`] points on
 /// each, stratified on a 4 x 4 grid of the light's sample square and jittered by
 /// `uniform`, each standing for `Lin = Le / (pi pdf N)`; `color` is `C` at the hit.
 #[allow(clippy::too_many_arguments)]
-fn area_light(
+fn area_light<T: WhittedTrace + ?Sized>(
     scene: &Scene,
     lights: &[AreaLight],
     ray: &Ray,
@@ -239,6 +300,7 @@ fn area_light(
     color: Rgb,
     uniform: &mut dyn FnMut() -> f64,
     counts: &mut RayCounts,
+    trace: &mut T,
 ) -> Rgb {
     let mut radiance = Rgb::ZERO;
     let side = (AREA_SAMPLES as f64).sqrt() as u32;
@@ -247,9 +309,13 @@ fn area_light(
         for k in 0..AREA_SAMPLES {
             let (jx, jy) = (uniform(), uniform());
             let u = (((k % side) as f64 + jx) / side as f64, ((k / side) as f64 + jy) / side as f64);
-            let Some(s) = light.sample(hit.point, u) else { continue };
+            trace.light(LightRef::Area { object: light.object, sample: k });
+            let Some(s) = light.sample(hit.point, u) else {
+                trace.unlit(Unlit::NotReached);
+                continue;
+            };
             let lin = s.radiance * (scale / s.pdf);
-            radiance += lit_by(scene, ray, hit, material, color, s.wi, s.distance, lin, Some(light.object), counts);
+            radiance += lit_by(scene, ray, hit, material, color, s.wi, s.distance, lin, Some(light.object), counts, trace);
         }
     }
     radiance
@@ -300,26 +366,50 @@ pub fn refract(d: Vec3, n: Vec3, eta: f64) -> Option<Vec3> {
     Some((d * eta + n * (eta * c - k.sqrt())).normalize())
 }
 
-/// The reflected and refracted directions with their weights (at most two).
-fn smooth_directions(ray: &Ray, hit: &Hit, material: &Material) -> impl Iterator<Item = (Vec3, Rgb)> {
+/// The reflected and refracted directions with their weights (at most two),
+/// announced to `trace` in that order.
+fn smooth_directions<T: WhittedTrace + ?Sized>(
+    ray: &Ray,
+    hit: &Hit,
+    material: &Material,
+    trace: &mut T,
+) -> impl Iterator<Item = (Vec3, Rgb)> {
     let n = hit.normal;
     let cos_i = (-ray.dir.dot(n)).clamp(0.0, 1.0);
     // Relative index n_t / n_i for a boundary of index `ior`, entered from outside
     // when the ray is on the front face.
     let relative = |ior: f64| if hit.front_face { ior } else { 1.0 / ior };
-    let reflection = match &material.reflection {
-        Reflection::None => Rgb::ZERO,
-        Reflection::Constant(w) => *w,
-        Reflection::Dielectric { ior, min, max } => Rgb::splat(min + (max - min) * fresnel_dielectric(cos_i, relative(*ior))),
-        Reflection::Conductor { eta, k } => fresnel_conductor(cos_i, *eta, *k),
+    let (reflection, how) = match &material.reflection {
+        Reflection::None => (Rgb::ZERO, ReflectionWeight::Constant),
+        Reflection::Constant(w) => (*w, ReflectionWeight::Constant),
+        Reflection::Dielectric { ior, min, max } => {
+            let fresnel = fresnel_dielectric(cos_i, relative(*ior));
+            (Rgb::splat(min + (max - min) * fresnel), ReflectionWeight::Dielectric { fresnel })
+        }
+        Reflection::Conductor { eta, k } => (fresnel_conductor(cos_i, *eta, *k), ReflectionWeight::Conductor),
     };
+    if reflection != Rgb::ZERO {
+        trace.reflection(how, reflection);
+    }
     let refraction = match &material.refraction {
         Refraction::None => None,
         Refraction::Fresnel { ior } => {
             let eta = relative(*ior);
-            refract(ray.dir, n, 1.0 / eta).map(|t| (t, Rgb::splat(1.0 - fresnel_dielectric(cos_i, eta))))
+            let refracted = refract(ray.dir, n, 1.0 / eta).map(|t| {
+                let fresnel = fresnel_dielectric(cos_i, eta);
+                trace.refraction(Some(fresnel), Some(Rgb::splat(1.0 - fresnel)));
+                (t, Rgb::splat(1.0 - fresnel))
+            });
+            if refracted.is_none() {
+                trace.refraction(None, None);
+            }
+            refracted
         }
-        Refraction::Constant { ior, weight } => refract(ray.dir, n, 1.0 / relative(*ior)).map(|t| (t, *weight)),
+        Refraction::Constant { ior, weight } => {
+            let refracted = refract(ray.dir, n, 1.0 / relative(*ior)).map(|t| (t, *weight));
+            trace.refraction(None, refracted.map(|(_, w)| w));
+            refracted
+        }
     };
     let reflected = (reflection != Rgb::ZERO).then(|| (reflect(ray.dir, n), reflection));
     reflected.into_iter().chain(refraction.filter(|(_, w)| *w != Rgb::ZERO))

@@ -209,8 +209,7 @@ fn render_in(
     control: &RenderControl,
     image_only: bool,
 ) -> Result<(Film, RenderStats), Error> {
-    let max_depth = checked_depth(scene, options)?;
-    let integrator = (options.integrator.build)(scene, &IntegratorSettings { max_depth, filter: options.filter })?;
+    let integrator = integrator_for(scene, options)?;
     let schedule = integrator.schedule();
     match options.adaptive {
         Some(Adaptive::Antialias(aa)) => {
@@ -264,7 +263,7 @@ fn passes(
     // The camera's window for this image size, worked out once rather than per ray.
     let sized = scene.camera.for_image(options.width, options.height);
     let camera = sized.as_deref().unwrap_or(scene.camera.as_ref());
-    let view = View::new(scene, camera, options.width, options.height, options.spp, options.seed).with_clamp(options.clamp);
+    let view = view_of(scene, camera, options);
     let schedule = integrator.schedule();
     let spp = options.spp;
     let mut stats = RenderStats { threads: pool.current_num_threads(), ..RenderStats::default() };
@@ -384,6 +383,18 @@ fn passes(
     let film = film.ok_or_else(|| Error::Render("no pass finished".into()))?;
     stats.samples_per_pixel = film.samples();
     Ok((film, stats))
+}
+
+/// The integrator `options` ask for, built for `scene` (sizes and depth checked).
+pub(crate) fn integrator_for(scene: &Scene, options: &RenderOptions) -> Result<Box<dyn Integrator>, Error> {
+    let max_depth = checked_depth(scene, options)?;
+    (options.integrator.build)(scene, &IntegratorSettings { max_depth, filter: options.filter })
+}
+
+/// The view of the render of `scene` with `options` through `camera` (the
+/// scene's camera sized for the image, [`crate::camera::Camera::for_image`]).
+pub(crate) fn view_of<'a>(scene: &'a Scene, camera: &'a dyn crate::camera::Camera, options: &RenderOptions) -> View<'a> {
+    View::new(scene, camera, options.width, options.height, options.spp, options.seed).with_clamp(options.clamp)
 }
 
 /// What one tile of one pass did.

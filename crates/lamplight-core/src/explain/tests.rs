@@ -1,0 +1,160 @@
+//! The explanation adds up: on a scene with a mirror, glass, a checker-free
+//! floor, a point light and an area light, every pixel's recorded contributions
+//! sum to its sample's radiance bit for bit, and the pixel to the render's.
+
+use super::*;
+use crate::integrators::trace::LightRef;
+use crate::prelude::*;
+use crate::RenderControl;
+
+fn scene() -> Scene {
+    let camera = Perspective::look_at(Vec3::new(0.0, 1.5, 6.0), Vec3::new(0.0, 0.5, 0.0), Vec3::Y, Fov::VerticalDeg(45.0)).unwrap();
+    let mut b = SceneBuilder::new(camera);
+    let floor = b.material(Material::plastic(Rgb::new(0.8, 0.7, 0.6), 0.1, 0.8, 0.2, 20.0)).unwrap();
+    let glass = b.material(Material::glass(1.5, 0.5, 60.0)).unwrap();
+    let mirror = b.material(Material::metal(Metal::Silver, 0.0, 1.0)).unwrap();
+    let lamp = b.material(Material { emission: Rgb::splat(4.0), kd: Rgb::ZERO, ka: Rgb::ZERO, ..Material::default() }).unwrap();
+    b.object(Plane::new(Vec3::ZERO, Vec3::Y).unwrap(), floor).unwrap();
+    b.object(Sphere::new(Vec3::new(-0.8, 0.7, 0.0), 0.7).unwrap(), glass).unwrap();
+    b.object(Sphere::new(Vec3::new(0.9, 0.6, -0.5), 0.6).unwrap(), mirror).unwrap();
+    b.object(Rectangle::new(Vec3::new(-0.5, 3.0, -0.5), Vec3::new(0.0, 0.0, 1.0), Vec3::new(1.0, 0.0, 0.0)).unwrap(), lamp).unwrap();
+    b.light(PointLight::new(Vec3::new(3.0, 4.0, 3.0), Rgb::splat(30.0)).unwrap());
+    b.ambient = Rgb::splat(0.2);
+    b.background = Rgb::new(0.1, 0.2, 0.4);
+    b.build().unwrap()
+}
+
+fn options(integrator: &str, spp: u32) -> RenderOptions {
+    RenderOptions { width: 24, height: 16, spp, seed: 7, integrator: integrator.parse().unwrap(), threads: 1, ..RenderOptions::default() }
+}
+
+/// The contributions sum to each sample's radiance exactly, and the pixel is the render's.
+fn adds_up(integrator: &str, spp: u32) -> (usize, usize) {
+    let scene = scene();
+    let o = options(integrator, spp);
+    let (image, _) = crate::render_image(&scene, &o, &RenderControl::default()).unwrap();
+    let (mut reflected, mut refracted) = (0, 0);
+    for y in 0..o.height {
+        for x in 0..o.width {
+            let e = explain(&scene, &o, x, y, None).unwrap();
+            assert_eq!(e.samples.len(), spp as usize);
+            for s in &e.samples {
+                assert_eq!(s.contribution_sum(), s.radiance, "({x}, {y}) sample {}", s.index);
+                if let Record::RayTree(root) = &s.record {
+                    let (a, b) = count(root);
+                    reflected += a;
+                    refracted += b;
+                    terms_add_up(root);
+                }
+            }
+            assert_eq!(e.pixel_f32(), image.get(x, y), "{integrator} pixel ({x}, {y})");
+        }
+    }
+    (reflected, refracted)
+}
+
+/// Reflected and refracted rays in the tree.
+fn count(n: &RayNode) -> (usize, usize) {
+    let own = match n.kind {
+        RayKind::Reflected => (1, 0),
+        RayKind::Refracted => (0, 1),
+        RayKind::Camera => (0, 0),
+    };
+    n.children.iter().map(count).fold(own, |a, b| (a.0 + b.0, a.1 + b.1))
+}
+
+/// `Ke + ka C La + the lights' terms`, summed as the tracer sums them (area
+/// points first within their light), is each hit's direct light, and the
+/// contribution is the weight times it.
+fn terms_add_up(n: &RayNode) {
+    if let RayOutcome::Hit(s) = &n.outcome {
+        let mut direct = s.emission + s.ambient;
+        let mut area = Rgb::ZERO;
+        for l in &s.lights {
+            let r = match &l.outcome {
+                LightOutcome::Lit { term, .. } => term.radiance,
+                LightOutcome::Unlit(_) => Rgb::ZERO,
+            };
+            match l.light {
+                LightRef::Delta(_) => direct += r,
+                LightRef::Area { .. } => area += r,
+            }
+        }
+        if s.lights.iter().any(|l| matches!(l.light, LightRef::Area { .. })) {
+            direct += area;
+        }
+        assert_eq!(direct, s.direct);
+        assert_eq!(n.weight * s.direct, s.contribution);
+    }
+    n.children.iter().for_each(terms_add_up);
+}
+
+#[test]
+fn whitted_trees_add_up_to_the_render() {
+    let (reflected, refracted) = adds_up("whitted", 1);
+    assert!(reflected > 20 && refracted > 20, "the image shows mirror and glass: {reflected} {refracted}");
+    adds_up("whitted", 4);
+}
+
+#[test]
+fn paths_add_up_to_the_render() {
+    adds_up("path", 1);
+    adds_up("path", 6);
+}
+
+#[test]
+fn one_sample_is_the_renders_sample() {
+    let scene = scene();
+    let o = options("path", 8);
+    let all = explain(&scene, &o, 10, 9, None).unwrap();
+    let one = explain(&scene, &o, 10, 9, Some(5)).unwrap();
+    assert_eq!(one.samples, all.samples[5..6]);
+    assert_eq!(one.pixel, all.pixel);
+}
+
+#[test]
+fn glass_hit_shows_fresnel_and_both_rays() {
+    let scene = scene();
+    let o = options("whitted", 1);
+    // Find a camera ray that hits the glass sphere (object 1).
+    let tree = (0..o.width)
+        .flat_map(|x| (0..o.height).map(move |y| (x, y)))
+        .find_map(|(x, y)| match explain(&scene, &o, x, y, None).unwrap().samples.remove(0).record {
+            Record::RayTree(root) => match &root.outcome {
+                RayOutcome::Hit(s) if s.hit.object == 1 => Some(root),
+                _ => None,
+            },
+            _ => None,
+        })
+        .expect("some pixel sees the glass");
+    let RayOutcome::Hit(s) = &tree.outcome else { unreachable!() };
+    assert!(s.hit.front_face && !s.hit.flipped);
+    let Some((crate::integrators::trace::ReflectionWeight::Dielectric { fresnel }, w)) = s.reflection else { panic!("{:?}", s.reflection) };
+    assert!(fresnel > 0.0 && fresnel < 1.0);
+    assert_eq!(s.refraction.unwrap().1.unwrap(), Rgb::splat(1.0 - fresnel));
+    assert_eq!(w.x, fresnel, "min 0, max 1");
+    let kinds: Vec<RayKind> = tree.children.iter().map(|c| c.kind).collect();
+    assert_eq!(kinds, [RayKind::Reflected, RayKind::Refracted]);
+    assert!(!tree.children[0].inside && tree.children[1].inside, "the refracted ray is inside the glass");
+    let text = explain(&scene, &o, 0, 0, None).unwrap().to_string();
+    assert!(text.starts_with("pixel (0, 0) of 24x16, whitted integrator, 1 sample per pixel"), "{text}");
+}
+
+#[test]
+fn bad_pixels_and_samples_are_refused() {
+    let scene = scene();
+    let o = options("whitted", 2);
+    assert_eq!(explain(&scene, &o, 24, 0, None).unwrap_err().to_string(), "invalid pixel: (24, 0) is outside the 24x16 image");
+    assert_eq!(
+        explain(&scene, &o, 0, 0, Some(2)).unwrap_err().to_string(),
+        "invalid sample: 2 does not exist: the pixel has 2 samples (0 to 1)"
+    );
+}
+
+#[test]
+fn kind_names_come_from_the_debug_text() {
+    assert_eq!(kind_name(&Sphere::new(Vec3::ZERO, 1.0).unwrap()), "Sphere");
+    let placed =
+        crate::shapes::placed(std::sync::Arc::new(Sphere::new(Vec3::ZERO, 1.0).unwrap()), &Mat4::from_scale(Vec3::splat(2.0))).unwrap();
+    assert_eq!(kind_name(&*placed), "Sphere (instance)");
+}

@@ -1,0 +1,240 @@
+//! The explanation as an indented tree for a reader: each ray with its hit, the
+//! lecture's terms there and what the hit adds to the pixel; the children
+//! indented below. Numbers have 4 decimals (the JSON has them in full).
+
+use std::fmt::{self, Write};
+
+use super::{HitInfo, NeeRecord, PathRecord, PixelExplanation, Record};
+use super::{LightOutcome, LightRecord, RayKind, RayNode, RayOutcome};
+use crate::integrators::trace::{LightRef, PathEnd, ReflectionWeight, Unlit};
+use crate::math::{Rgb, Vec3};
+
+/// `(x, y, z)` with 4 decimals.
+fn v(x: Vec3) -> String {
+    format!("({:.4}, {:.4}, {:.4})", x.x, x.y, x.z)
+}
+
+pub(super) fn write_pixel(f: &mut fmt::Formatter<'_>, p: &PixelExplanation) -> fmt::Result {
+    writeln!(
+        f,
+        "pixel ({}, {}) of {}x{}, {} integrator, {} sample{} per pixel, max depth {}, seed {}",
+        p.x,
+        p.y,
+        p.width,
+        p.height,
+        p.integrator,
+        p.spp,
+        if p.spp == 1 { "" } else { "s" },
+        p.max_depth,
+        p.seed
+    )?;
+    writeln!(f, "pixel value (linear, before tone mapping): {}", v(p.pixel))?;
+    for s in &p.samples {
+        writeln!(f)?;
+        writeln!(f, "sample {}: radiance {} = the sum of its {} contributions", s.index, v(s.radiance), s.contributions.len())?;
+        match s.film_value {
+            Some(l) if l != s.radiance => writeln!(f, "  the film keeps {} (clamped)", v(l))?,
+            None => writeln!(f, "  the film drops it (not finite)")?,
+            _ => {}
+        }
+        match &s.record {
+            Record::RayTree(root) => write_ray(f, root, "")?,
+            Record::Path(path) => write_path(f, path)?,
+            Record::Nothing => writeln!(f, "  (this integrator records nothing)")?,
+        }
+    }
+    if p.samples.len() > 1 {
+        writeln!(f)?;
+        writeln!(f, "pixel = sum of the {} samples' film values / {} = {}", p.samples.len(), p.spp, v(p.pixel))?;
+    }
+    Ok(())
+}
+
+fn hit_lines(h: &HitInfo) -> [String; 2] {
+    let side = if h.front_face { "front face (outside, entering)" } else { "back face (inside, leaving): normals flipped to face the ray" };
+    [
+        format!("hit object {} ({}), material {}, at t = {:.4}, point {}", h.object, h.object_kind, h.material, h.t, v(h.point)),
+        format!("normal: geometric {}, shading {}; {side}", v(h.geometric_normal), v(h.shading_normal)),
+    ]
+}
+
+fn write_ray(f: &mut fmt::Formatter<'_>, n: &RayNode, indent: &str) -> fmt::Result {
+    let kind = match n.kind {
+        RayKind::Camera => "camera ray",
+        RayKind::Reflected => "reflected ray",
+        RayKind::Refracted => "refracted ray",
+    };
+    let side = if n.inside { "inside" } else { "outside" };
+    writeln!(f, "{indent}- {kind}, depth {}, {side}: origin {}, direction {}", n.depth, v(n.ray.origin), v(n.ray.dir))?;
+    let inner = format!("{indent}    ");
+    let i = inner.as_str();
+    if n.kind != RayKind::Camera {
+        writeln!(f, "{i}weight from above: {}", v(n.weight))?;
+    }
+    match &n.outcome {
+        RayOutcome::Dropped => writeln!(f, "{i}not traced: its weight is at or below the scene's min_weight")?,
+        RayOutcome::Miss { radiance, contribution } => {
+            writeln!(f, "{i}misses everything: sky {}", v(*radiance))?;
+            writeln!(f, "{i}contribution = weight x sky = {}", v(*contribution))?;
+        }
+        RayOutcome::Hit(s) => {
+            for line in hit_lines(&s.hit) {
+                writeln!(f, "{i}{line}")?;
+            }
+            writeln!(f, "{i}colour C = {}", v(s.color))?;
+            if s.emission != Rgb::ZERO {
+                writeln!(f, "{i}emission Ke = {}", v(s.emission))?;
+            }
+            writeln!(f, "{i}ambient ka*C*La = {}", v(s.ambient))?;
+            write_lights(f, &s.lights, i)?;
+            writeln!(f, "{i}direct light = {}", v(s.direct))?;
+            writeln!(f, "{i}contribution = weight x direct = {}", v(s.contribution))?;
+            match &s.reflection {
+                Some((ReflectionWeight::Dielectric { fresnel }, w)) => {
+                    writeln!(f, "{i}reflection: Fresnel F = {fresnel:.4}, weight {}", v(*w))?
+                }
+                Some((ReflectionWeight::Conductor, w)) => writeln!(f, "{i}reflection: conductor Fresnel, weight {}", v(*w))?,
+                Some((ReflectionWeight::Constant, w)) => writeln!(f, "{i}reflection: constant weight {}", v(*w))?,
+                None => {}
+            }
+            match &s.refraction {
+                Some((_, None)) => writeln!(f, "{i}refraction: total internal reflection")?,
+                Some((Some(fresnel), Some(w))) => writeln!(f, "{i}refraction: 1 - F = {:.4}, weight {}", 1.0 - fresnel, v(*w))?,
+                Some((None, Some(w))) => writeln!(f, "{i}refraction: constant weight {}", v(*w))?,
+                None => {}
+            }
+            if s.depth_cutoff {
+                writeln!(f, "{i}depth limit reached: no reflected or refracted ray")?;
+            }
+        }
+    }
+    for child in &n.children {
+        write_ray(f, child, i)?;
+    }
+    Ok(())
+}
+
+fn write_lights(f: &mut fmt::Formatter<'_>, lights: &[LightRecord], i: &str) -> fmt::Result {
+    let mut k = 0;
+    while k < lights.len() {
+        let l = &lights[k];
+        match l.light {
+            LightRef::Delta(index) => {
+                writeln!(f, "{i}light {index} ({}): {}", l.kind, light_text(&l.outcome))?;
+                k += 1;
+            }
+            LightRef::Area { object, .. } => {
+                // The points of one area light, summarised on one line.
+                let end = lights[k..]
+                    .iter()
+                    .position(|m| !matches!(m.light, LightRef::Area { object: o, .. } if o == object))
+                    .map_or(lights.len(), |p| k + p);
+                let points = &lights[k..end];
+                let (mut lit, mut blocked, mut sum, mut by) = (0, 0, Rgb::ZERO, Vec::new());
+                for p in points {
+                    if let LightOutcome::Lit { term, blockers } = &p.outcome {
+                        if term.visible == Rgb::ZERO {
+                            blocked += 1;
+                        } else {
+                            lit += 1;
+                        }
+                        sum += term.radiance;
+                        for b in blockers {
+                            if !by.contains(b) {
+                                by.push(*b);
+                            }
+                        }
+                    }
+                }
+                let mut line =
+                    format!("{i}area light, object {object} ({}): {} points, {lit} lit, {blocked} shadowed", l.kind, points.len());
+                if !by.is_empty() {
+                    let _ = write!(line, " (by object {})", by.iter().map(|b| b.to_string()).collect::<Vec<_>>().join(", "));
+                }
+                writeln!(f, "{line}; adds {}", v(sum))?;
+                k = end;
+            }
+        }
+    }
+    Ok(())
+}
+
+fn light_text(o: &LightOutcome) -> String {
+    match o {
+        LightOutcome::Unlit(Unlit::NotReached) => "sends nothing here".into(),
+        LightOutcome::Unlit(Unlit::Below(cos)) => format!("below the surface (L.N = {cos:.4}): nothing"),
+        LightOutcome::Unlit(Unlit::Negligible) => "negligible highlight: nothing, no shadow ray".into(),
+        LightOutcome::Lit { term: t, blockers } => {
+            let shadow = if t.visible == Rgb::ONE {
+                "shadow ray clear".to_string()
+            } else if t.visible == Rgb::ZERO {
+                format!("shadow ray BLOCKED by object {}", blockers.last().map_or("?".into(), |b| b.to_string()))
+            } else {
+                format!("shadow ray dimmed to {} by objects {blockers:?}", v(t.visible))
+            };
+            format!(
+                "L.N = {:.4}, H.N = {:.4}, Lin = {}; kd C (L.N)+ = {}, ks ((H.N)+)^shine = {}; {shadow}; adds {}",
+                t.cos_light,
+                t.cos_half,
+                v(t.lin),
+                v(t.diffuse),
+                v(t.specular),
+                v(t.radiance)
+            )
+        }
+    }
+}
+
+fn write_path(f: &mut fmt::Formatter<'_>, p: &PathRecord) -> fmt::Result {
+    for x in &p.vertices {
+        let kind = if x.depth == 1 { "camera ray" } else { "bounce" };
+        writeln!(f, "  - {kind} {}: origin {}, direction {}, throughput {}", x.depth, v(x.ray.origin), v(x.ray.dir), v(x.beta))?;
+        let i = "      ";
+        match &x.hit {
+            Some(h) => {
+                for line in hit_lines(h) {
+                    writeln!(f, "{i}{line}")?;
+                }
+            }
+            None => writeln!(f, "{i}misses everything")?,
+        }
+        if let Some((le, w, c)) = x.emitted {
+            writeln!(f, "{i}emission Le = {}, MIS weight {w:.4}: contribution throughput x Le x w = {}", v(le), v(c))?;
+        }
+        match &x.nee {
+            None => {}
+            Some(NeeRecord::Miss(why)) => writeln!(f, "{i}light sample: nothing ({why:?})")?,
+            Some(NeeRecord::Sample { light, pick_probability, wi, li, light_pdf, f: fv, cos, bsdf_pdf, mis_weight, value, .. }) => {
+                let pdf = light_pdf.map_or("delta light".to_string(), |p| format!("pdf {p:.4}, BSDF pdf {bsdf_pdf:.4}"));
+                writeln!(
+                    f,
+                    "{i}light sample: {light} (picked with p = {pick_probability:.4}) towards {}, Li = {}, f = {}, |cos| = {cos:.4}, {pdf}, MIS weight {mis_weight:.4}: value {}",
+                    v(*wi),
+                    v(*li),
+                    v(*fv),
+                    v(*value)
+                )?;
+            }
+        }
+        if let Some(c) = x.nee_contribution {
+            writeln!(f, "{i}contribution throughput x light sample = {}", v(c))?;
+        }
+        if let Some((s, wi, beta)) = &x.bsdf {
+            let pdf = if s.delta { "delta lobe".to_string() } else { format!("pdf {:.4}", s.pdf) };
+            writeln!(f, "{i}BSDF sample: direction {}, f|cos|/pdf = {}, {pdf}; throughput now {}", v(*wi), v(s.weight), v(*beta))?;
+        }
+        if let Some((survive, beta)) = x.survived {
+            writeln!(f, "{i}Russian roulette: survived with p = {survive:.4}, throughput now {}", v(beta))?;
+        }
+    }
+    let end = match p.end {
+        Some(PathEnd::Escaped) => "it left the scene".to_string(),
+        Some(PathEnd::MaxDepth) => "the depth limit".to_string(),
+        Some(PathEnd::BlackBsdf) => "the surface scatters nothing".to_string(),
+        Some(PathEnd::NoSample) => "the BSDF sample failed".to_string(),
+        Some(PathEnd::WrongSide) => "the sample went below the geometric surface".to_string(),
+        Some(PathEnd::Roulette { survive, u }) => format!("Russian roulette (u = {u:.4} >= survival {survive:.4})"),
+        None => "?".to_string(),
+    };
+    writeln!(f, "  path ends: {end}")
+}
