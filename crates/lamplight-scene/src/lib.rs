@@ -15,6 +15,7 @@ pub mod builtin;
 pub mod description;
 pub mod env_map;
 mod error;
+pub mod explain;
 pub mod expr;
 pub mod exr_layers;
 pub mod formats;
