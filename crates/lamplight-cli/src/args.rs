@@ -39,17 +39,33 @@ pub enum Command {
     Info(InfoArgs),
     /// Cast a batch of rays (.npy arrays) against a mesh: distances to the nearest hits and triangle indices.
     Raycast(crate::raycast::RaycastArgs),
+    /// Show why a pixel has its colour: the ray tree of each sample (Whitted) or its paths (path tracer).
+    Explain(ExplainArgs),
 }
 
-/// `lamplight render` flags, as typed.
+/// `lamplight explain` flags: the scene and render settings of `render`, and the pixel.
 #[derive(Debug, Args)]
-pub struct RenderArgs {
+pub struct ExplainArgs {
+    /// The scene and how it is rendered, as for `render`.
+    #[command(flatten)]
+    pub render: SceneArgs,
+    /// The pixel: column and row from the top-left corner, `X,Y`.
+    #[arg(long, value_name = "X,Y", value_parser = pixel)]
+    pub pixel: (u32, u32),
+    /// Only this sample of the pixel (0 to spp - 1) [default: every sample].
+    #[arg(long, value_name = "K", allow_negative_numbers = true, value_parser = count::<u32>)]
+    pub sample: Option<u32>,
+    /// Print the tree as JSON instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// What `render` and `explain` share: the scene and the settings that decide each pixel's value.
+#[derive(Debug, Args)]
+pub struct SceneArgs {
     /// Built-in scene (see `lamplight list`), scene file (.toml) or mesh file (.obj, .ply, .gltf, .glb).
     #[arg(value_name = "SCENE", default_value = builtin::BUILTINS[0].name)]
     pub scene: String,
-    /// Output file; the extension picks the format (.png, .ppm, .exr) [default: SCENE.png].
-    #[arg(short, long, value_name = "FILE")]
-    pub output: Option<PathBuf>,
     /// Image width in pixels [default: the scene's; with only --height, keeps the scene's aspect].
     #[arg(long, value_name = "W", allow_negative_numbers = true, value_parser = count::<u32>)]
     pub width: Option<u32>,
@@ -75,28 +91,98 @@ pub struct RenderArgs {
     /// Ray depth limit, 1 to 64, camera ray = 1 [default: the scene's].
     #[arg(long, value_name = "D", allow_negative_numbers = true, value_parser = count::<u32>)]
     pub max_depth: Option<u32>,
-    /// Worker threads; 0 uses all cores. The image does not depend on it.
-    #[arg(long, value_name = "T", default_value_t = 0, allow_negative_numbers = true, value_parser = count::<usize>)]
-    pub threads: usize,
     /// Seed of the per-sample random numbers [default: the file's, else 0].
     #[arg(long, value_name = "S", allow_negative_numbers = true, value_parser = count::<u64>)]
     pub seed: Option<u64>,
-    /// No progress bar and no summary line.
-    #[arg(short, long)]
-    pub quiet: bool,
     /// How light is computed: `whitted` (the lecture's ray tracer) or `path` (path tracing with NEE and MIS)
     /// [default: the file's, else whitted].
     #[arg(long, value_name = "NAME")]
     pub integrator: Option<String>,
-    /// Path tracer: stop within this many seconds, the last pass shortened to the samples that fit (every pixel gets the same count).
-    #[arg(long, value_name = "SECONDS")]
-    pub time_limit: Option<f64>,
     /// Scale every sample whose brightest channel exceeds V down to V: removes fireflies, but biased (darker where it acts). Off by default.
     #[arg(long, value_name = "V", allow_negative_numbers = true)]
     pub clamp: Option<f64>,
     /// Path tracer: pixel reconstruction filter, `box` or `gaussian` (sigma 0.5 pixel).
     #[arg(long, value_name = "NAME", default_value = "box")]
     pub filter: String,
+    /// Path tracer: light the scene with this equirectangular HDR map (.exr or .hdr), importance-sampled.
+    #[arg(long, value_name = "FILE")]
+    pub environment: Option<PathBuf>,
+}
+
+impl SceneArgs {
+    /// The request these flags make (no time limit, window or layers).
+    pub fn request(&self, threads: usize) -> Request {
+        Request {
+            width: self.width,
+            height: self.height,
+            spp: self.spp,
+            antialias: self.antialias,
+            noise_threshold: self.noise_threshold,
+            min_spp: self.min_spp,
+            max_depth: self.max_depth,
+            threads: Some(threads),
+            seed: self.seed,
+            integrator: self.integrator.clone(),
+            time_limit: None,
+            clamp: self.clamp,
+            filter: Some(self.filter.clone()),
+            window: None,
+            environment: self.environment.clone(),
+            layers: Vec::new(),
+        }
+    }
+}
+
+/// `X,Y` as two whole numbers.
+fn pixel(text: &str) -> Result<(u32, u32), String> {
+    let message = || "must be the pixel's column and row as X,Y, two whole numbers such as 320,180".to_string();
+    let (x, y) = text.split_once(',').ok_or_else(message)?;
+    let whole = |s: &str| s.trim().parse::<u32>().map_err(|_| message());
+    Ok((whole(x)?, whole(y)?))
+}
+
+/// An explain request, checked and with every default resolved.
+#[derive(Debug)]
+pub struct ExplainJob {
+    /// The scene.
+    pub scene: SceneRequest,
+    /// The render whose pixel is explained.
+    pub job: Job,
+    /// The pixel.
+    pub pixel: (u32, u32),
+    /// The one sample asked for.
+    pub sample: Option<u32>,
+    /// JSON rather than text.
+    pub json: bool,
+}
+
+impl ExplainArgs {
+    /// Reads the scene and resolves the render settings as `render` does.
+    pub fn validate(self) -> Result<ExplainJob, UsageError> {
+        let scene = SceneRequest::resolve(&self.render.scene)?;
+        let job = self.render.request(1).resolve(&scene.defaults, Naming::Flags)?;
+        Ok(ExplainJob { scene, job, pixel: self.pixel, sample: self.sample, json: self.json })
+    }
+}
+
+/// `lamplight render` flags, as typed.
+#[derive(Debug, Args)]
+pub struct RenderArgs {
+    /// The scene and the settings that decide each pixel's value.
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Output file; the extension picks the format (.png, .ppm, .exr) [default: SCENE.png].
+    #[arg(short, long, value_name = "FILE")]
+    pub output: Option<PathBuf>,
+    /// Worker threads; 0 uses all cores. The image does not depend on it.
+    #[arg(long, value_name = "T", default_value_t = 0, allow_negative_numbers = true, value_parser = count::<usize>)]
+    pub threads: usize,
+    /// No progress bar and no summary line.
+    #[arg(short, long)]
+    pub quiet: bool,
+    /// Path tracer: stop within this many seconds, the last pass shortened to the samples that fit (every pixel gets the same count).
+    #[arg(long, value_name = "SECONDS")]
+    pub time_limit: Option<f64>,
     /// Exposure in stops for .png/.ppm output (the image is scaled by 2^EV).
     #[arg(long, value_name = "EV", default_value_t = 0.0, allow_negative_numbers = true)]
     pub exposure: f64,
@@ -106,9 +192,6 @@ pub struct RenderArgs {
     /// How .png/.ppm store the values: `srgb` (encoded) or `linear` (the numbers as they are, for display-referred scenes such as business-card). Default: the scene's `transfer`, else srgb.
     #[arg(long, value_name = "NAME")]
     pub transfer: Option<Transfer>,
-    /// Path tracer: light the scene with this equirectangular HDR map (.exr or .hdr), importance-sampled.
-    #[arg(long, value_name = "FILE")]
-    pub environment: Option<PathBuf>,
     /// Also write the per-pixel variance of the image's mean to this .exr file.
     #[arg(long, value_name = "FILE")]
     pub variance_output: Option<PathBuf>,
@@ -224,26 +307,12 @@ impl RenderArgs {
     /// the scene crate's request layer (shared with Python): flags override the
     /// file's settings, which override the program's defaults.
     pub fn validate(self) -> Result<RenderJob, UsageError> {
-        let scene = SceneRequest::resolve(&self.scene)?;
+        let scene = SceneRequest::resolve(&self.scene.scene)?;
         if !self.exposure.is_finite() {
             return Err(usage("--exposure must be a finite number"));
         }
         let request = Request {
-            width: self.width,
-            height: self.height,
-            spp: self.spp,
-            antialias: self.antialias,
-            noise_threshold: self.noise_threshold,
-            min_spp: self.min_spp,
-            max_depth: self.max_depth,
-            threads: Some(self.threads),
-            seed: self.seed,
-            integrator: self.integrator,
             time_limit: self.time_limit,
-            clamp: self.clamp,
-            filter: Some(self.filter),
-            window: None,
-            environment: self.environment,
             layers: self
                 .exr_layers
                 .iter()
@@ -252,6 +321,7 @@ impl RenderArgs {
                     ExrLayer::Samples => Layer::Samples,
                 })
                 .collect(),
+            ..self.scene.request(self.threads)
         };
         let mut job = request.resolve(&scene.defaults, Naming::Flags)?;
         let output = self.output.unwrap_or_else(|| PathBuf::from(format!("{}.png", scene.name)));
@@ -284,7 +354,7 @@ mod tests {
         let cli = Cli::try_parse_from(["lamplight", "render"].iter().chain(args)).expect("clap accepts the flags");
         match cli.command {
             Command::Render(render) => render.validate(),
-            Command::List | Command::Info(_) | Command::Raycast(_) => unreachable!(),
+            Command::List | Command::Info(_) | Command::Raycast(_) | Command::Explain(_) => unreachable!(),
         }
     }
 

@@ -29,7 +29,7 @@ use lamplight_core::{RenderControl, RenderStats};
 use lamplight_scene::request::{self, Layer};
 use lamplight_scene::{builtin, image_io};
 
-use crate::args::{Cli, Command, RenderJob, UsageError};
+use crate::args::{Cli, Command, ExplainJob, RenderJob, UsageError};
 
 fn main() -> ExitCode {
     signals::install();
@@ -54,6 +54,7 @@ fn run() -> anyhow::Result<()> {
         Command::List => list_command(),
         Command::Info(info_args) => info_command(&info_args.file),
         Command::Raycast(raycast_args) => raycast::raycast_command(raycast_args),
+        Command::Explain(explain_args) => explain_command(explain_args.validate()?),
     }
 }
 
@@ -169,6 +170,24 @@ fn render_command(job: RenderJob) -> anyhow::Result<()> {
             lamplight_core::film::MAX_RADIANCE
         );
     }
+    Ok(())
+}
+
+/// Prints the ray tree (or paths) of one pixel, as text or JSON, to stdout.
+fn explain_command(job: ExplainJob) -> anyhow::Result<()> {
+    let ExplainJob { scene, job, pixel, sample, json } = job;
+    let built = scene.build_with_warnings().map_err(|e| UsageError(e.0))?;
+    print_warnings(&built.warnings);
+    let mut built = built.scene;
+    job.prepare(&mut built).map_err(|e| UsageError(e.0))?;
+    let explained = lamplight_scene::explain::explain(&built, &job, pixel, sample, request::Naming::Flags).map_err(UsageError::from)?;
+    let mut out = io::stdout().lock();
+    if json {
+        writeln!(out, "{}", serde_json::to_string_pretty(&explained.to_json())?)?;
+    } else {
+        write!(out, "{explained}")?;
+    }
+    out.flush()?;
     Ok(())
 }
 

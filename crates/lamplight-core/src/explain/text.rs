@@ -146,8 +146,12 @@ fn write_lights(f: &mut fmt::Formatter<'_>, lights: &[LightRecord], i: &str) -> 
                         }
                     }
                 }
-                let mut line =
-                    format!("{i}area light, object {object} ({}): {} points, {lit} lit, {blocked} shadowed", l.kind, points.len());
+                let unlit = points.len() - lit - blocked;
+                let mut line = format!(
+                    "{i}area light, object {object} ({}): {} points, {lit} lit, {blocked} shadowed, {unlit} below the surface or unreached",
+                    l.kind,
+                    points.len()
+                );
                 if !by.is_empty() {
                     let _ = write!(line, " (by object {})", by.iter().map(|b| b.to_string()).collect::<Vec<_>>().join(", "));
                 }

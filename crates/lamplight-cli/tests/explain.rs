@@ -1,0 +1,94 @@
+//! `lamplight explain` end to end: the tree as text and JSON, the JSON's pixel
+//! equal to the rendered EXR's, and bad input as one line with exit code 2.
+
+use std::path::Path;
+use std::process::{Command, Output, Stdio};
+
+use lamplight_scene::image_io::read_exr;
+
+fn lamplight(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_lamplight")).args(args).current_dir(dir).stdin(Stdio::null()).output().expect("the binary runs")
+}
+
+fn stdout_of(dir: &Path, args: &[&str]) -> String {
+    let out = lamplight(dir, args);
+    assert!(out.status.success(), "lamplight {args:?}: {}", String::from_utf8_lossy(&out.stderr));
+    String::from_utf8(out.stdout).unwrap()
+}
+
+#[test]
+fn the_json_pixel_is_the_rendered_pixel_and_the_contributions_add_up() {
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    for (integrator, spp) in [("whitted", "1"), ("whitted", "4"), ("path", "4")] {
+        let size = ["--width", "48", "--height", "27", "--integrator", integrator, "--spp", spp];
+        let mut render = vec!["render", "luxo", "-q", "-o", "a.exr"];
+        render.extend(size);
+        stdout_of(dir, &render);
+        let image = read_exr(&dir.join("a.exr")).unwrap();
+        for (x, y) in [(20, 14), (21, 18), (30, 10), (0, 0)] {
+            let pixel = format!("{x},{y}");
+            let mut args = vec!["explain", "luxo", "--pixel", &pixel, "--json"];
+            args.extend(size);
+            let json: serde_json::Value = serde_json::from_str(&stdout_of(dir, &args)).unwrap();
+            let value: Vec<f32> = json["value_f32"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap() as f32).collect();
+            assert_eq!(value, image.get(x, y), "{integrator} {spp} ({x}, {y})");
+            for sample in json["samples"].as_array().unwrap() {
+                let mut sum = [0.0f64; 3];
+                for c in sample["contributions"].as_array().unwrap() {
+                    for (s, v) in sum.iter_mut().zip(c.as_array().unwrap()) {
+                        *s += v.as_f64().unwrap();
+                    }
+                }
+                let radiance: Vec<f64> = sample["radiance"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+                assert_eq!(sum.to_vec(), radiance, "JSON numbers round-trip, so the sum is exact");
+            }
+        }
+    }
+}
+
+#[test]
+fn text_shows_the_tree() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = stdout_of(dir.path(), &["explain", "luxo", "--width", "64", "--pixel", "28,24"]);
+    assert!(text.starts_with("pixel (28, 24) of 64x36, whitted integrator, 1 sample per pixel, max depth 5, seed 0\n"), "{text}");
+    for needle in ["- camera ray, depth 1, outside", "reflection: Fresnel F = ", "- refracted ray, depth 2, inside", "depth limit reached"]
+    {
+        assert!(text.contains(needle), "{needle}: {text}");
+    }
+    let one = stdout_of(dir.path(), &["explain", "cornell-box", "--width", "32", "--spp", "4", "--sample", "2", "--pixel", "16,16"]);
+    assert!(one.contains("path integrator, 4 samples per pixel") && one.contains("\nsample 2: ") && !one.contains("\nsample 1: "), "{one}");
+    assert!(one.contains("light sample: "), "{one}");
+}
+
+#[test]
+fn bad_input_is_one_line_and_exit_code_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases: &[(&[&str], &str)] = &[
+        (&["--pixel", "64,0"], "--pixel 64,0 is outside the 64x36 image (x from 0 to 63, y from 0 to 35)"),
+        (
+            &["--pixel", "3"],
+            "invalid value '3' for '--pixel <X,Y>': must be the pixel's column and row as X,Y, two whole numbers such as 320,180",
+        ),
+        (
+            &["--pixel", "a,b"],
+            "invalid value 'a,b' for '--pixel <X,Y>': must be the pixel's column and row as X,Y, two whole numbers such as 320,180",
+        ),
+        (
+            &["--pixel", "1,1", "--sample", "1"],
+            "--sample 1 does not exist: the render takes 1 sample per pixel, numbered 0 to 0 (more with --spp)",
+        ),
+        (&["--pixel", "1,1", "--sample", "-1"], "invalid value '-1' for '--sample <K>': must be a positive number"),
+        (&["--pixel", "1,1", "--max-depth", "0"], "--max-depth must be between 1 and 64, got 0 (work grows as 2^depth)"),
+    ];
+    for (extra, message) in cases {
+        let mut args = vec!["explain", "spheres", "--width", "64"];
+        args.extend_from_slice(extra);
+        let out = lamplight(dir.path(), &args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        assert_eq!(String::from_utf8_lossy(&out.stderr), format!("lamplight: error: {message}\n"), "{args:?}");
+        assert!(out.stdout.is_empty());
+    }
+    let out = lamplight(dir.path(), &["explain", "nowhere", "--pixel", "1,1"]);
+    assert_eq!(out.status.code(), Some(2));
+}
