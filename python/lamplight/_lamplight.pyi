@@ -71,6 +71,32 @@ class Scene:
         to ``warnings.warn`` (a ``UserWarning``) once."""
     def object_count(self) -> int:
         """Placed shapes in the scene: object ids run from 0 below this."""
+    def explain(
+        self,
+        x: int,
+        y: int,
+        sample: Optional[int] = None,
+        width: Optional[int] = None,
+        height: Optional[int] = None,
+        spp: Optional[int] = None,
+        integrator: Optional[str] = None,
+        seed: Optional[int] = None,
+        max_depth: Optional[int] = None,
+        clamp: Optional[float] = None,
+        filter: Optional[str] = None,
+        environment: Optional[_Path] = None,
+    ) -> Dict[str, Any]:
+        """Why pixel ``(x, y)`` of the render these settings make has its colour.
+
+        Every sample of the pixel (or only ``sample``, 0 to ``spp - 1``), as the
+        render computes it: for Whitted the ray tree (each ray with its hit,
+        the lecture's terms, the Fresnel weights and the rays it spawned), for
+        the path tracer each path's vertices (BSDF samples, pdfs, throughput,
+        light samples with their MIS weights). Plain dicts and lists, the same
+        as ``lamplight explain --json`` prints: ``samples[k]["contributions"]``
+        summed in order is ``samples[k]["radiance"]``, and ``value_f32`` is
+        the rendered pixel. See ``docs/explain.md``.
+        """
     def intersect(
         self,
         origins: Union[npt.NDArray[_Float], List[List[float]]],

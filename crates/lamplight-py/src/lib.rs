@@ -10,6 +10,7 @@
 use pyo3::prelude::*;
 
 pub mod convert;
+pub mod explain;
 pub mod image;
 pub mod intersect;
 pub mod kinds;

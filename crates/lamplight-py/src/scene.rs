@@ -372,6 +372,30 @@ impl Scene {
         crate::intersect::intersect(py, &scene, origins, directions, threads)
     }
 
+    /// Why pixel `(x, y)` has its colour: the ray tree of each sample (Whitted)
+    /// or its paths (path tracer), as dicts and lists; see the type stubs.
+    #[pyo3(signature = (x, y, sample=None, width=None, height=None, spp=None, integrator=None, seed=None, max_depth=None, clamp=None, filter=None, environment=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn explain<'py>(
+        &self,
+        py: Python<'py>,
+        x: Bound<'py, PyAny>,
+        y: Bound<'py, PyAny>,
+        sample: Option<Bound<'py, PyAny>>,
+        width: Option<Bound<'py, PyAny>>,
+        height: Option<Bound<'py, PyAny>>,
+        spp: Option<Bound<'py, PyAny>>,
+        integrator: Option<String>,
+        seed: Option<Bound<'py, PyAny>>,
+        max_depth: Option<Bound<'py, PyAny>>,
+        clamp: Option<f64>,
+        filter: Option<String>,
+        environment: Option<PathBuf>,
+    ) -> PyResult<PyObject> {
+        let args = crate::explain::ExplainArgs { x, y, sample, width, height, spp, integrator, seed, max_depth, clamp, filter, environment };
+        crate::explain::explain(py, self, args)
+    }
+
     fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(PyObject, Bound<'py, PyTuple>)> {
         let from_state = py.import("lamplight._lamplight")?.getattr("scene_from_state")?.unbind();
         let camera = self.camera(py)?;
