@@ -84,6 +84,22 @@ pub struct Scene {
     /// Per material of constant colour: its path-tracing BSDF seen from the back
     /// (`[0]`) and from the front (`[1]`), built once (see [`Scene::bsdf`]).
     bsdfs: Vec<Option<[Bsdf; 2]>>,
+    names: Names,
+}
+
+/// The names a scene file gave objects and materials (for `explain`; nothing renders by them).
+#[derive(Clone, Debug, Default)]
+struct Names {
+    objects: Vec<Option<String>>,
+    materials: Vec<Option<String>>,
+}
+
+/// Sets `list[i] = name`, growing the list as needed.
+fn set_name(list: &mut Vec<Option<String>>, i: usize, name: &str) {
+    if list.len() <= i {
+        list.resize(i + 1, None);
+    }
+    list[i] = Some(name.to_string());
 }
 
 /// An object as the BVH sees it: its index and whether it stops shadow rays, kept
@@ -112,6 +128,7 @@ pub struct SceneBuilder {
     pub max_depth: u32,
     /// Weight cut-off, 0.
     pub min_weight: f64,
+    names: Names,
 }
 
 impl SceneBuilder {
@@ -132,7 +149,18 @@ impl SceneBuilder {
             camera,
             max_depth: 5,
             min_weight: 0.0,
+            names: Names::default(),
         }
+    }
+
+    /// Gives object `object` the name `name` (shown by [`crate::explain`]).
+    pub fn name_object(&mut self, object: usize, name: &str) {
+        set_name(&mut self.names.objects, object, name);
+    }
+
+    /// Gives material `material` the name `name` (shown by [`crate::explain`]).
+    pub fn name_material(&mut self, material: usize, name: &str) {
+        set_name(&mut self.names.materials, material, name);
     }
 
     /// Adds a material after checking its numbers; returns its index.
@@ -217,11 +245,22 @@ impl SceneBuilder {
             camera: self.camera,
             max_depth: self.max_depth,
             min_weight: self.min_weight,
+            names: self.names,
         })
     }
 }
 
 impl Scene {
+    /// The name the scene gave object `object`, if any.
+    pub fn object_name(&self, object: usize) -> Option<&str> {
+        self.names.objects.get(object).and_then(Option::as_deref)
+    }
+
+    /// The name the scene gave material `material`, if any.
+    pub fn material_name(&self, material: usize) -> Option<&str> {
+        self.names.materials.get(material).and_then(Option::as_deref)
+    }
+
     /// The nearest hit with `0 < t < t_max`, normal turned against the ray.
     pub fn first_intersect(&self, ray: &Ray, t_max: f64) -> Option<Hit> {
         let mut best: Option<(usize, crate::shapes::SurfaceHit)> = None;

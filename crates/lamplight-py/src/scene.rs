@@ -392,7 +392,8 @@ impl Scene {
         filter: Option<String>,
         environment: Option<PathBuf>,
     ) -> PyResult<PyObject> {
-        let args = crate::explain::ExplainArgs { x, y, sample, width, height, spp, integrator, seed, max_depth, clamp, filter, environment };
+        let args =
+            crate::explain::ExplainArgs { x, y, sample, width, height, spp, integrator, seed, max_depth, clamp, filter, environment };
         crate::explain::explain(py, self, args)
     }
 

@@ -39,10 +39,14 @@ pub struct HitInfo {
     pub point: Vec3,
     /// Index of the object hit.
     pub object: usize,
+    /// Its name in the scene file, if it has one.
+    pub object_name: Option<String>,
     /// Its shape's kind (`Sphere`, `Quadric`, `TriangleMesh (instance)`, ...).
     pub object_kind: String,
     /// Index of its material.
     pub material: usize,
+    /// The material's name in the scene file, if it has one.
+    pub material_name: Option<String>,
     /// Geometric normal, turned to face the ray.
     pub geometric_normal: Vec3,
     /// Shading normal, turned to face the ray.
@@ -60,8 +64,10 @@ impl HitInfo {
             t: hit.t,
             point: hit.point,
             object: hit.object,
+            object_name: scene.object_name(hit.object).map(str::to_string),
             object_kind: kind_name(&*scene.objects[hit.object].shape),
             material: hit.material,
+            material_name: scene.material_name(hit.material).map(str::to_string),
             geometric_normal: hit.geometric_normal,
             shading_normal: hit.normal,
             front_face: hit.front_face,

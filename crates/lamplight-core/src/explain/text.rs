@@ -53,7 +53,16 @@ pub(super) fn write_pixel(f: &mut fmt::Formatter<'_>, p: &PixelExplanation) -> f
 fn hit_lines(h: &HitInfo) -> [String; 2] {
     let side = if h.front_face { "front face (outside, entering)" } else { "back face (inside, leaving): normals flipped to face the ray" };
     [
-        format!("hit object {} ({}), material {}, at t = {:.4}, point {}", h.object, h.object_kind, h.material, h.t, v(h.point)),
+        format!(
+            "hit object {}{} ({}), material {}{}, at t = {:.4}, point {}",
+            h.object,
+            h.object_name.as_ref().map_or(String::new(), |n| format!(" \"{n}\"")),
+            h.object_kind,
+            h.material,
+            h.material_name.as_ref().map_or(String::new(), |n| format!(" \"{n}\"")),
+            h.t,
+            v(h.point)
+        ),
         format!("normal: geometric {}, shading {}; {side}", v(h.geometric_normal), v(h.shading_normal)),
     ]
 }

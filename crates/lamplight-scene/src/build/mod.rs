@@ -244,6 +244,9 @@ pub fn build_with_warnings(desc: &SceneDescription, source: &Source) -> Result<B
     builder.max_depth = settings.max_depth;
     builder.min_weight = settings.min_weight;
     let materials = materials::add_all(desc, source, &mut builder)?;
+    for (name, &index) in &materials {
+        builder.name_material(index, name);
+    }
     let warnings = nodes::add_all(desc, source, &mut builder, materials)?;
     let scene = builder.build().map_err(|e| LoadError::file(&source.path, e.to_string()))?;
     Ok(Built { scene, warnings })

@@ -191,6 +191,7 @@ impl<'a> Ctx<'a> {
         let index = self.builder.shared_object(shape, material).map_err(|e| e.to_string())?;
         if let Some(name) = &n.name {
             self.names.entry(name.clone()).or_default().push(index);
+            self.builder.name_object(index, name);
         }
         Ok(())
     }
