@@ -3,6 +3,8 @@ pixel and to the command line's --json output."""
 
 import json
 import os
+import re
+import shlex
 import subprocess
 
 import numpy as np
@@ -61,3 +63,20 @@ def test_the_same_tree_as_the_command_line():
     args = ["--width", "48", "--spp", "2", "--pixel", "21,18", "--json"]
     out = subprocess.run([_cli(), "explain", "luxo", *args], check=True, capture_output=True, text=True).stdout
     assert json.loads(out) == lamplight.Scene("luxo").explain(21, 18, width=48, spp=2)
+
+
+def test_the_docs_examples_are_what_the_program_prints(monkeypatch):
+    """docs/explain.md quotes real output: each `$ lamplight explain ...` block
+    is what the command prints now, and its Python example runs."""
+    from conftest import ROOT
+
+    text = (ROOT / "docs" / "explain.md").read_text()
+    for block in re.findall(r"```python\n(.*?)```", text, flags=re.S):
+        exec(compile(block, "docs/explain.md", "exec"), {})
+    if not _cli():
+        pytest.skip("LAMPLIGHT_CLI names no lamplight binary")
+    quoted = re.findall(r"^\$ lamplight (explain [^\n]*)\n(.*?)(?=^\$ |^```)", text, flags=re.S | re.M)
+    assert len(quoted) >= 5
+    for command, output in quoted:
+        run = subprocess.run([_cli(), *shlex.split(command)], capture_output=True, text=True)
+        assert run.stdout + run.stderr == output, command

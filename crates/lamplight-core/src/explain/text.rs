@@ -31,7 +31,8 @@ pub(super) fn write_pixel(f: &mut fmt::Formatter<'_>, p: &PixelExplanation) -> f
     writeln!(f, "pixel value (linear, before tone mapping): {}", v(p.pixel))?;
     for s in &p.samples {
         writeln!(f)?;
-        writeln!(f, "sample {}: radiance {} = the sum of its {} contributions", s.index, v(s.radiance), s.contributions.len())?;
+        let n = s.contributions.len();
+        writeln!(f, "sample {}: radiance {} = the sum of its {n} contribution{}", s.index, v(s.radiance), if n == 1 { "" } else { "s" })?;
         match s.film_value {
             Some(l) if l != s.radiance => writeln!(f, "  the film keeps {} (clamped)", v(l))?,
             None => writeln!(f, "  the film drops it (not finite)")?,
@@ -129,7 +130,11 @@ fn write_lights(f: &mut fmt::Formatter<'_>, lights: &[LightRecord], i: &str) -> 
         let l = &lights[k];
         match l.light {
             LightRef::Delta(index) => {
-                writeln!(f, "{i}light {index} ({}): {}", l.kind, light_text(&l.outcome))?;
+                let lines = light_lines(&l.outcome);
+                writeln!(f, "{i}light {index} ({}): {}", l.kind, lines[0])?;
+                for line in &lines[1..] {
+                    writeln!(f, "{i}{line}")?;
+                }
                 k += 1;
             }
             LightRef::Area { object, .. } => {
@@ -172,11 +177,12 @@ fn write_lights(f: &mut fmt::Formatter<'_>, lights: &[LightRecord], i: &str) -> 
     Ok(())
 }
 
-fn light_text(o: &LightOutcome) -> String {
+/// The light's line and, when its shadow ray was traced, two more for its terms.
+fn light_lines(o: &LightOutcome) -> Vec<String> {
     match o {
-        LightOutcome::Unlit(Unlit::NotReached) => "sends nothing here".into(),
-        LightOutcome::Unlit(Unlit::Below(cos)) => format!("below the surface (L.N = {cos:.4}): nothing"),
-        LightOutcome::Unlit(Unlit::Negligible) => "negligible highlight: nothing, no shadow ray".into(),
+        LightOutcome::Unlit(Unlit::NotReached) => vec!["sends nothing here".into()],
+        LightOutcome::Unlit(Unlit::Below(cos)) => vec![format!("below the surface (L.N = {cos:.4}): nothing")],
+        LightOutcome::Unlit(Unlit::Negligible) => vec!["negligible highlight: nothing, no shadow ray".into()],
         LightOutcome::Lit { term: t, blockers } => {
             let shadow = if t.visible == Rgb::ONE {
                 "shadow ray clear".to_string()
@@ -185,15 +191,11 @@ fn light_text(o: &LightOutcome) -> String {
             } else {
                 format!("shadow ray dimmed to {} by objects {blockers:?}", v(t.visible))
             };
-            format!(
-                "L.N = {:.4}, H.N = {:.4}, Lin = {}; kd C (L.N)+ = {}, ks ((H.N)+)^shine = {}; {shadow}; adds {}",
-                t.cos_light,
-                t.cos_half,
-                v(t.lin),
-                v(t.diffuse),
-                v(t.specular),
-                v(t.radiance)
-            )
+            vec![
+                format!("L.N = {:.4}, H.N = {:.4}, Lin = {}", t.cos_light, t.cos_half, v(t.lin)),
+                format!("  kd C (L.N)+ = {}, ks ((H.N)+)^shine = {}", v(t.diffuse), v(t.specular)),
+                format!("  {shadow}: adds Lin x (diffuse + specular) = {}", v(t.radiance)),
+            ]
         }
     }
 }
@@ -218,15 +220,10 @@ fn write_path(f: &mut fmt::Formatter<'_>, p: &PathRecord) -> fmt::Result {
             None => {}
             Some(NeeRecord::Miss(why)) => writeln!(f, "{i}light sample: nothing ({why:?})")?,
             Some(NeeRecord::Sample { light, pick_probability, wi, li, light_pdf, f: fv, cos, bsdf_pdf, mis_weight, value, .. }) => {
-                let pdf = light_pdf.map_or("delta light".to_string(), |p| format!("pdf {p:.4}, BSDF pdf {bsdf_pdf:.4}"));
-                writeln!(
-                    f,
-                    "{i}light sample: {light} (picked with p = {pick_probability:.4}) towards {}, Li = {}, f = {}, |cos| = {cos:.4}, {pdf}, MIS weight {mis_weight:.4}: value {}",
-                    v(*wi),
-                    v(*li),
-                    v(*fv),
-                    v(*value)
-                )?;
+                writeln!(f, "{i}light sample: {light} (picked with p = {pick_probability:.4}) towards {}, Li = {}", v(*wi), v(*li))?;
+                let pdf = light_pdf.map_or("a delta light (no MIS)".to_string(), |p| format!("light pdf {p:.4}, BSDF pdf {bsdf_pdf:.4}"));
+                writeln!(f, "{i}  f = {}, |cos| = {cos:.4}, {pdf}, MIS weight {mis_weight:.4}", v(*fv))?;
+                writeln!(f, "{i}  value f Li |cos| w / (p pdf) = {}", v(*value))?;
             }
         }
         if let Some(c) = x.nee_contribution {
