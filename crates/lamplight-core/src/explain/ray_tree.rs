@@ -101,8 +101,8 @@ pub enum LightOutcome {
     /// Its terms and shadow ray; `blockers` are the objects that dimmed or
     /// stopped the shadow ray, nearest first (empty when clear).
     Lit {
-        /// The terms.
-        term: LightTerm,
+        /// The terms (boxed: an unlit light is a few bytes).
+        term: Box<LightTerm>,
         /// Objects on the shadow ray that are not clear, up to the first opaque one.
         blockers: Vec<usize>,
     },
@@ -256,7 +256,7 @@ impl WhittedTrace for RayTree {
 
     fn lit(&mut self, scene: &Scene, term: &LightTerm) {
         let blockers = if term.visible == Rgb::ONE { Vec::new() } else { blockers(scene, &term.shadow, term.shadow_length, term.own) };
-        self.push_light(String::new(), LightOutcome::Lit { term: *term, blockers });
+        self.push_light(String::new(), LightOutcome::Lit { term: Box::new(*term), blockers });
     }
 
     fn direct(&mut self, direct: Rgb, contribution: Rgb) {
