@@ -2,7 +2,7 @@
 //! a path-traced pixel, recorded while the integrator computes them.
 //!
 //! [`explain`] builds the render's integrator, view and camera exactly as
-//! [`crate::render()`] does and calls [`Integrator::sample_traced`] for the
+//! [`crate::render()`] does and calls [`crate::integrators::Integrator::sample_traced`] for the
 //! pixel's samples, with the render's seeds (sample `k` of pixel `(x, y)` draws
 //! from `(seed, y * width + x, k)`), so sample `k` here is the render's sample
 //! `k`. The recorders ([`RayTree`] for Whitted, [`PathRecord`] for the path

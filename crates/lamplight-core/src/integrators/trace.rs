@@ -28,7 +28,7 @@ pub enum LightRef {
     Area {
         /// The emitting object.
         object: usize,
-        /// Index of the stratified point (0 to [`super::whitted::AREA_SAMPLES`] - 1).
+        /// Index of the stratified point (0 to [`super::Whitted`]'s 16 area samples - 1).
         sample: u32,
     },
 }
