@@ -85,6 +85,9 @@ class Scene:
         clamp: Optional[float] = None,
         filter: Optional[str] = None,
         environment: Optional[_Path] = None,
+        antialias: Optional[Union[bool, float]] = None,
+        noise_threshold: Optional[float] = None,
+        min_spp: Optional[int] = None,
     ) -> Dict[str, Any]:
         """Why pixel ``(x, y)`` of the render these settings make has its colour.
 
@@ -94,8 +97,8 @@ class Scene:
         the path tracer each path's vertices (BSDF samples, pdfs, throughput,
         light samples with their MIS weights). Plain dicts and lists, the same
         as ``lamplight explain --json`` prints: ``samples[k]["contributions"]``
-        summed in order is ``samples[k]["radiance"]``, and ``value_f32`` is
-        the rendered pixel. See ``docs/explain.md``.
+        summed in order is ``samples[k]["radiance"]``, and ``value`` is
+        the rendered pixel (``sampling``: how adaptive sampling chose its samples). See ``docs/explain.md``.
         """
     def intersect(
         self,

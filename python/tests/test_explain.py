@@ -17,15 +17,16 @@ def _cli():
     return os.environ.get("LAMPLIGHT_CLI")
 
 
-@pytest.mark.parametrize("integrator,spp", [("whitted", 1), ("whitted", 4), ("path", 4)])
+# spp None: Whitted's default adaptive anti-aliasing (16 samples where neighbours differ).
+@pytest.mark.parametrize("integrator,spp", [("whitted", None), ("whitted", 1), ("whitted", 4), ("path", 4)])
 def test_contributions_add_up_to_the_rendered_pixel(integrator, spp):
     scene = lamplight.Scene("luxo")
     settings = dict(width=48, height=27, spp=spp, integrator=integrator)
     image = np.asarray(lamplight.render(scene, **settings))
     for x, y in [(20, 14), (21, 18), (30, 10), (0, 0)]:
         tree = scene.explain(x, y, **settings)
-        assert tree["value_f32"] == [float(v) for v in image[y, x]]
-        assert len(tree["samples"]) == spp
+        assert tree["value"] == [float(v) for v in image[y, x]]
+        assert len(tree["samples"]) == tree["spp"]
         for sample in tree["samples"]:
             # Summed in the integrator's order, the contributions are the sample's radiance exactly.
             total = [0.0, 0.0, 0.0]
@@ -33,6 +34,17 @@ def test_contributions_add_up_to_the_rendered_pixel(integrator, spp):
                 total = [t + v for t, v in zip(total, c)]
             assert total == sample["radiance"]
         json.dumps(tree)
+
+
+def test_the_noise_threshold_is_explained_as_rendered():
+    scene = lamplight.Scene("cornell-box")
+    settings = dict(width=24, height=24, spp=32, noise_threshold=0.1, min_spp=4)
+    image = np.asarray(lamplight.render(scene, **settings))
+    for x, y in [(3, 3), (12, 12), (12, 20), (20, 5)]:
+        tree = scene.explain(x, y, **settings)
+        assert tree["value"] == [float(v) for v in image[y, x]]
+        assert 4 <= tree["spp"] <= 32 and len(tree["samples"]) == tree["spp"]
+        assert tree["sampling"]["noise_threshold"]["threshold"] == 0.1
 
 
 def test_a_glass_pixel_shows_both_rays():
@@ -52,7 +64,7 @@ def test_one_sample_and_bad_input():
     assert "path" in one["samples"][0]
     with pytest.raises(ValueError, match=r"^pixel \(32, 0\) is outside the 32x32 image \(x from 0 to 31, y from 0 to 31\)$"):
         scene.explain(32, 0, width=32)
-    with pytest.raises(ValueError, match=r"^sample 4 does not exist: the render takes 4 samples per pixel, numbered 0 to 3 \(more with spp\)$"):
+    with pytest.raises(ValueError, match=r"^sample 4 does not exist: the render takes 4 samples at pixel \(0, 0\), numbered 0 to 3$"):
         scene.explain(0, 0, sample=4, width=32, spp=4)
     with pytest.raises(TypeError, match="x must be an int"):
         scene.explain(1.5, 0)

@@ -42,6 +42,12 @@ pub struct ExplainArgs<'py> {
     pub filter: Option<String>,
     /// Environment map.
     pub environment: Option<PathBuf>,
+    /// Adaptive anti-aliasing: `True`, `False` or a threshold.
+    pub antialias: Option<Bound<'py, PyAny>>,
+    /// The path tracer's noise threshold.
+    pub noise_threshold: Option<f64>,
+    /// Samples before the noise threshold stops a pixel.
+    pub min_spp: Option<Bound<'py, PyAny>>,
 }
 
 /// Explains the pixel: a dict (see `lamplight.Scene.explain` in the stubs).
@@ -56,6 +62,9 @@ pub fn explain(py: Python<'_>, scene: &Scene, a: ExplainArgs<'_>) -> PyResult<Py
         width: whole("width", a.width.as_ref(), 1, u32::MAX.into(), "")?,
         height: whole("height", a.height.as_ref(), 1, u32::MAX.into(), "")?,
         spp: whole("spp", a.spp.as_ref(), 1, limits::MAX_SPP.into(), "")?,
+        antialias: crate::render::antialias_arg(a.antialias.as_ref())?,
+        noise_threshold: a.noise_threshold,
+        min_spp: whole("min_spp", a.min_spp.as_ref(), 1, limits::MAX_SPP.into(), "")?,
         max_depth: whole("max_depth", a.max_depth.as_ref(), 1, limits::MAX_DEPTH.into(), "")?,
         seed: whole("seed", a.seed.as_ref(), 0, u64::MAX.into(), "")?,
         integrator: a.integrator,

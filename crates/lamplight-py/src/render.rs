@@ -235,7 +235,7 @@ fn size_spp_seed(
 }
 
 /// `antialias` as Python gave it: `True`, `False` or a threshold `>= 0`.
-fn antialias_arg(value: Option<&Bound<'_, PyAny>>) -> PyResult<Option<request::AntialiasRequest>> {
+pub fn antialias_arg(value: Option<&Bound<'_, PyAny>>) -> PyResult<Option<request::AntialiasRequest>> {
     let Some(value) = value else { return Ok(None) };
     if let Ok(on) = value.downcast::<pyo3::types::PyBool>() {
         let on = on.is_true();

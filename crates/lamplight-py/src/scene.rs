@@ -374,7 +374,7 @@ impl Scene {
 
     /// Why pixel `(x, y)` has its colour: the ray tree of each sample (Whitted)
     /// or its paths (path tracer), as dicts and lists; see the type stubs.
-    #[pyo3(signature = (x, y, sample=None, width=None, height=None, spp=None, integrator=None, seed=None, max_depth=None, clamp=None, filter=None, environment=None))]
+    #[pyo3(signature = (x, y, sample=None, width=None, height=None, spp=None, integrator=None, seed=None, max_depth=None, clamp=None, filter=None, environment=None, antialias=None, noise_threshold=None, min_spp=None))]
     #[allow(clippy::too_many_arguments)]
     fn explain<'py>(
         &self,
@@ -391,9 +391,27 @@ impl Scene {
         clamp: Option<f64>,
         filter: Option<String>,
         environment: Option<PathBuf>,
+        antialias: Option<Bound<'py, PyAny>>,
+        noise_threshold: Option<f64>,
+        min_spp: Option<Bound<'py, PyAny>>,
     ) -> PyResult<PyObject> {
-        let args =
-            crate::explain::ExplainArgs { x, y, sample, width, height, spp, integrator, seed, max_depth, clamp, filter, environment };
+        let args = crate::explain::ExplainArgs {
+            x,
+            y,
+            sample,
+            width,
+            height,
+            spp,
+            integrator,
+            seed,
+            max_depth,
+            clamp,
+            filter,
+            environment,
+            antialias,
+            noise_threshold,
+            min_spp,
+        };
         crate::explain::explain(py, self, args)
     }
 

@@ -9,7 +9,9 @@ use lamplight_core::Scene;
 use crate::request::{Job, Naming, RequestError};
 
 /// Explains pixel `(x, y)` (every sample, or only `sample`) of the render `job`
-/// asks for of `scene` (prepared, as for [`Job::run`]).
+/// asks for of `scene` (prepared, as for [`Job::run`]). Sample indices run
+/// below the samples the render takes at that pixel, which adaptive sampling
+/// decides ([`lamplight_core::explain::plan`]).
 pub fn explain(
     scene: &Scene,
     job: &Job,
@@ -26,18 +28,17 @@ pub fn explain(
         };
         return Err(RequestError(format!("{asked} is outside the {w}x{h} image (x from 0 to {}, y from 0 to {})", w - 1, h - 1)));
     }
-    if let Some(k) = sample {
-        if k >= o.spp {
-            let (s, spp) = (naming.name("sample"), naming.name("spp"));
-            return Err(RequestError(format!(
-                "{s} {k} does not exist: the render takes {} sample{} per pixel, numbered 0 to {} (more with {spp})",
-                o.spp,
-                if o.spp == 1 { "" } else { "s" },
-                o.spp - 1
-            )));
-        }
+    let plan = lamplight_core::explain::plan(scene, o, x, y).map_err(|e| RequestError(e.to_string()))?;
+    if let Some(k) = sample.filter(|k| *k >= plan.samples) {
+        let n = plan.samples;
+        return Err(RequestError(format!(
+            "{} {k} does not exist: the render takes {n} sample{} at pixel ({x}, {y}), numbered 0 to {}",
+            naming.name("sample"),
+            if n == 1 { "" } else { "s" },
+            n - 1
+        )));
     }
-    lamplight_core::explain::explain(scene, o, x, y, sample).map_err(|e| RequestError(e.to_string()))
+    plan.explain(scene, sample).map_err(|e| RequestError(e.to_string()))
 }
 
 #[cfg(test)]
@@ -55,11 +56,11 @@ mod tests {
         assert_eq!(err((0, 40), None, Naming::Keywords), "pixel (0, 40) is outside the 32x32 image (x from 0 to 31, y from 0 to 31)");
         assert_eq!(
             err((0, 0), Some(2), Naming::Flags),
-            "--sample 2 does not exist: the render takes 2 samples per pixel, numbered 0 to 1 (more with --spp)"
+            "--sample 2 does not exist: the render takes 2 samples at pixel (0, 0), numbered 0 to 1"
         );
         assert_eq!(
             err((0, 0), Some(5), Naming::Keywords),
-            "sample 5 does not exist: the render takes 2 samples per pixel, numbered 0 to 1 (more with spp)"
+            "sample 5 does not exist: the render takes 2 samples at pixel (0, 0), numbered 0 to 1"
         );
         assert_eq!(explain(&built, &job, (3, 4), Some(1), Naming::Flags).unwrap().samples.len(), 1);
     }

@@ -21,10 +21,16 @@ fn secondary(n: &RayNode) -> (usize, usize) {
 /// Explains every `stride`-th pixel of a small render of `name`; returns the
 /// reflected and refracted rays seen.
 fn check(name: &str, integrator: &str, spp: u32, stride: u32) -> (usize, usize) {
+    check_request(name, Request { spp: Some(spp), integrator: Some(integrator.into()), ..Request::default() }, stride)
+}
+
+/// [`check`] for any request (adaptive sampling when it asks for it).
+fn check_request(name: &str, request: Request, stride: u32) -> (usize, usize) {
+    let integrator = request.integrator.clone().unwrap_or_default();
+    let integrator = integrator.as_str();
     let scene = SceneRequest::resolve(name).unwrap();
     let width = if name == "business-card" { 32 } else { 40 };
-    let request =
-        Request { width: Some(width), spp: Some(spp), integrator: Some(integrator.into()), threads: Some(1), ..Request::default() };
+    let request = Request { width: Some(width), threads: Some(1), ..request };
     let job = request.resolve(&scene.defaults, Naming::Flags).unwrap();
     let built = scene.build().unwrap();
     let rendered = job.run(&built, &RenderControl::default()).unwrap();
@@ -61,6 +67,18 @@ fn whitted_trees_add_up_on_every_builtin() {
 fn stratified_whitted_samples_add_up() {
     for b in BUILTINS {
         check(b.name, "whitted", 4, 7);
+    }
+}
+
+#[test]
+fn adaptive_sampling_is_explained_as_rendered() {
+    for b in BUILTINS {
+        // Whitted's default: anti-aliased where neighbours differ.
+        let whitted = Request { integrator: Some("whitted".into()), ..Request::default() };
+        check_request(b.name, whitted, 3);
+        let path =
+            Request { integrator: Some("path".into()), spp: Some(32), noise_threshold: Some(0.1), min_spp: Some(4), ..Request::default() };
+        check_request(b.name, path, 13);
     }
 }
 

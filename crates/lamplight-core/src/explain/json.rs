@@ -4,7 +4,7 @@
 
 use serde_json::{json, Value};
 
-use super::{HitInfo, NeeRecord, PathRecord, PixelExplanation, Record, SampleExplanation};
+use super::{HitInfo, NeeRecord, PathRecord, PixelExplanation, Record, SampleExplanation, Sampling};
 use super::{LightOutcome, LightRecord, RayKind, RayNode, RayOutcome};
 use crate::integrators::trace::{LightRef, PathEnd, ReflectionWeight, Unlit};
 use crate::math::Vec3;
@@ -23,10 +23,22 @@ pub(super) fn pixel(p: &PixelExplanation) -> Value {
         "spp": p.spp,
         "seed": p.seed,
         "max_depth": p.max_depth,
-        "value": v(p.pixel),
-        "value_f32": p.pixel_f32(),
+        "value": p.pixel,
+        "sampling": sampling(&p.sampling),
         "samples": p.samples.iter().map(sample).collect::<Vec<_>>(),
     })
+}
+
+fn sampling(s: &Sampling) -> Value {
+    match *s {
+        Sampling::Fixed => json!("fixed"),
+        Sampling::Antialias { threshold, refined, samples } => {
+            json!({ "antialias": { "threshold": threshold, "refined": refined, "samples": samples } })
+        }
+        Sampling::NoiseThreshold { threshold, min_samples, max_samples } => {
+            json!({ "noise_threshold": { "threshold": threshold, "min_samples": min_samples, "max_samples": max_samples } })
+        }
+    }
 }
 
 fn sample(s: &SampleExplanation) -> Value {

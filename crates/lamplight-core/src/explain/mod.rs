@@ -17,7 +17,7 @@ use std::fmt;
 
 use crate::film::{self, PixelSum};
 use crate::integrators::trace::{PathTrace, WhittedTrace};
-use crate::integrators::{RayCounts, Schedule};
+use crate::integrators::RayCounts;
 use crate::math::{Rgb, Vec3};
 use crate::scene::{Hit, Scene};
 use crate::{Error, RenderOptions};
@@ -123,24 +123,26 @@ pub struct PixelExplanation {
     pub width: u32,
     /// Image height.
     pub height: u32,
-    /// Samples per pixel of the render.
+    /// Samples the render takes at this pixel.
     pub spp: u32,
+    /// How they were chosen (fixed, or adaptive sampling's decision).
+    pub sampling: Sampling,
     /// Seed.
     pub seed: u64,
     /// Depth limit in force.
     pub max_depth: u32,
     /// The samples explained: all of them, or the one asked for.
     pub samples: Vec<SampleExplanation>,
-    /// The film's value of the pixel, `sum / spp` of all its samples summed as
+    /// The film's value of the pixel, `sum / n` of its `n` samples summed as
     /// the render sums them (in sample order within a pass, passes added in
-    /// order), before any tone map; as `f32`, it is the rendered image's pixel.
-    pub pixel: Rgb,
+    /// order), before any tone map, as the rendered image stores it (`f32`).
+    pub pixel: [f32; 3],
 }
 
 impl PixelExplanation {
     /// The pixel as the rendered image stores it (`f32`).
     pub fn pixel_f32(&self) -> [f32; 3] {
-        [self.pixel.x as f32, self.pixel.y as f32, self.pixel.z as f32]
+        self.pixel
     }
 
     /// The explanation as JSON (the same tree as the text).
@@ -156,61 +158,184 @@ impl fmt::Display for PixelExplanation {
     }
 }
 
-/// Explains pixel `(x, y)` of the render of `scene` with `options`: every
-/// sample, or only sample `sample`. Errors as [`crate::render()`] does on bad
-/// options, and on a pixel outside the image or a sample index `>= spp`.
-pub fn explain(scene: &Scene, options: &RenderOptions, x: u32, y: u32, sample: Option<u32>) -> Result<PixelExplanation, Error> {
+/// How the render chose the pixel's samples.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Sampling {
+    /// `spp` samples, as every pixel.
+    Fixed,
+    /// Adaptive anti-aliasing ([`crate::Antialias`]): a one-sample probe of the
+    /// pixel and its neighbours decided whether it takes `samples` samples.
+    Antialias {
+        /// Largest colour difference from a neighbour that leaves one sample.
+        threshold: f64,
+        /// A neighbour differs by more: the pixel was refined.
+        refined: bool,
+        /// Samples of a refined pixel.
+        samples: u32,
+    },
+    /// Cycles' noise threshold ([`crate::NoiseThreshold`]): the pixel stopped
+    /// after the first pass (from `min_samples` on) that left its relative error below `threshold`.
+    NoiseThreshold {
+        /// Relative standard error at which a pixel stops.
+        threshold: f64,
+        /// Samples before any pixel stops.
+        min_samples: u32,
+        /// The most a pixel takes (`spp`).
+        max_samples: u32,
+    },
+}
+
+/// A pixel of a render, with the samples the render gives it worked out
+/// ([`plan`]); [`PixelPlan::explain`] records them.
+pub struct PixelPlan {
+    integrator: Box<dyn crate::integrators::Integrator>,
+    camera: Option<Box<dyn crate::camera::Camera>>,
+    /// The options the pixel's samples are taken with (adaptive sampling resolved).
+    options: RenderOptions,
+    x: u32,
+    y: u32,
+    /// How the samples were chosen.
+    pub sampling: Sampling,
+    /// Samples the render takes at the pixel.
+    pub samples: u32,
+    /// The pixel's film value, as [`PixelExplanation::pixel`].
+    pub pixel: [f32; 3],
+}
+
+/// Works out the samples the render of `scene` with `options` takes at pixel
+/// `(x, y)`, as its render loop does (adaptive sampling included). Errors as
+/// [`crate::render()`] does on bad options, and on a pixel outside the image.
+pub fn plan(scene: &Scene, options: &RenderOptions, x: u32, y: u32) -> Result<PixelPlan, Error> {
     let integrator = crate::render::integrator_for(scene, options)?;
-    let (width, height, spp) = (options.width, options.height, options.spp);
+    let (width, height) = (options.width, options.height);
     if x >= width || y >= height {
         return Err(Error::invalid("pixel", format!("({x}, {y}) is outside the {width}x{height} image")));
     }
-    if let Some(k) = sample {
-        if k >= spp {
-            return Err(Error::invalid("sample", format!("{k} does not exist: the pixel has {spp} samples (0 to {})", spp - 1)));
+    let camera = scene.camera.for_image(width, height);
+    let fixed = RenderOptions { adaptive: None, time_limit: None, window: None, ..options.clone() };
+    let mut plan = PixelPlan { integrator, camera, options: fixed, x, y, sampling: Sampling::Fixed, samples: 0, pixel: [0.0; 3] };
+    match options.adaptive {
+        None => {}
+        Some(crate::Adaptive::Antialias(aa)) => {
+            // The render's probe: one sample at the pixel and at its neighbours.
+            let probe_options = RenderOptions { spp: 1, ..plan.options.clone() };
+            let here = crate::PixelWindow { x0: x, y0: y, width: 1, height: 1 };
+            let around = crate::render::adaptive::grown(here, width, height);
+            let mut probe = film::Image::new(around.width, around.height);
+            for (i, p) in probe.pixels.iter_mut().enumerate() {
+                let (px, py) = (around.x0 + i as u32 % around.width, around.y0 + i as u32 / around.width);
+                *p = plan.film_value(scene, &probe_options, px, py, None, &mut |_| {}).0;
+            }
+            let refined = crate::render::adaptive::refine_mask(&probe, around, here, aa.threshold)[0];
+            plan.options.spp = if refined { aa.samples } else { 1 };
+            plan.sampling = Sampling::Antialias { threshold: aa.threshold, refined, samples: aa.samples };
+        }
+        Some(crate::Adaptive::NoiseThreshold(noise)) => {
+            plan.sampling =
+                Sampling::NoiseThreshold { threshold: noise.threshold, min_samples: noise.min_samples, max_samples: options.spp };
         }
     }
-    let sized = scene.camera.for_image(width, height);
-    let camera = sized.as_deref().unwrap_or(scene.camera.as_ref());
-    let view = crate::render::view_of(scene, camera, options);
-    let mut counts = RayCounts::default();
-    let mut samples = Vec::new();
-    // The film's sums, pass by pass as the render loop makes them.
-    let mut film_sum = PixelSum::default();
-    let schedule = integrator.schedule();
-    let mut done = 0;
-    while done < spp {
-        let count = schedule.next_pass(done, spp);
-        let mut pass = PixelSum::default();
-        for k in done..done + count {
-            let wanted = sample.is_none_or(|s| s == k);
-            let radiance = if wanted {
-                let mut recorder = Recorder::default();
-                let radiance = integrator.sample_traced(&view, x, y, k, &mut counts, &mut recorder);
-                let (contributions, mut record) = recorder.finish();
-                if let Record::RayTree(root) = &mut record {
-                    root.name_lights(scene);
+    let (pixel, samples) = plan.film_value(scene, &plan.options.clone(), x, y, None, &mut |_| {});
+    plan.samples = samples;
+    plan.pixel = pixel;
+    Ok(plan)
+}
+
+impl PixelPlan {
+    /// The film's value of pixel `(px, py)` rendered with `options` (`sum / n`
+    /// of its samples summed as the render loop sums them: in sample order within
+    /// a pass, passes added in order, stopping where the noise threshold stops)
+    /// and its sample count `n`; `sample(k, radiance)` sees each sample, and
+    /// those `record` names are traced into `recorded`.
+    fn film_value(
+        &self,
+        scene: &Scene,
+        options: &RenderOptions,
+        px: u32,
+        py: u32,
+        record: Option<Option<u32>>,
+        recorded: &mut dyn FnMut(SampleExplanation),
+    ) -> ([f32; 3], u32) {
+        let camera = self.camera.as_deref().unwrap_or(scene.camera.as_ref());
+        let view = crate::render::view_of(scene, camera, options);
+        let integrator = self.integrator.as_ref();
+        let mut counts = RayCounts::default();
+        let schedule = integrator.schedule();
+        let mut film_sum = PixelSum::default();
+        let spp = options.spp;
+        let mut done = 0;
+        while done < spp {
+            let count = schedule.next_pass(done, spp);
+            let mut pass = PixelSum::default();
+            for k in done..done + count {
+                let wanted = record.is_some_and(|only| only.is_none_or(|s| s == k));
+                let radiance = if wanted {
+                    let mut recorder = Recorder::default();
+                    let radiance = integrator.sample_traced(&view, px, py, k, &mut counts, &mut recorder);
+                    let (contributions, mut record) = recorder.finish();
+                    if let Record::RayTree(root) = &mut record {
+                        root.name_lights(scene);
+                    }
+                    let film_value = film::kept(radiance, view.clamp);
+                    recorded(SampleExplanation { index: k, radiance, film_value, contributions, record });
+                    radiance
+                } else {
+                    integrator.sample(&view, px, py, k, &mut counts)
+                };
+                if let Some(l) = film::kept(radiance, view.clamp) {
+                    pass.add(l);
                 }
-                samples.push(SampleExplanation { index: k, radiance, film_value: film::kept(radiance, view.clamp), contributions, record });
-                radiance
+            }
+            if done == 0 {
+                film_sum = pass;
             } else {
-                integrator.sample(&view, x, y, k, &mut counts)
-            };
-            if let Some(l) = film::kept(radiance, view.clamp) {
-                pass.add(l);
+                film_sum.sum += pass.sum;
+                film_sum.sum_sq += pass.sum_sq;
+            }
+            done += count;
+            if let Sampling::NoiseThreshold { threshold, min_samples, .. } = self.sampling {
+                if done >= min_samples && done < spp && crate::adaptive::relative_error(film_sum, done) < threshold {
+                    break;
+                }
             }
         }
-        if done == 0 {
-            film_sum = pass;
-        } else {
-            film_sum.sum += pass.sum;
-        }
-        done += count;
+        let m = film_sum.sum / done.max(1) as f64;
+        ([m.x as f32, m.y as f32, m.z as f32], done)
     }
-    debug_assert!(matches!(schedule, Schedule::OnePass | Schedule::Doubling));
-    let max_depth = options.max_depth.unwrap_or(scene.max_depth);
-    let pixel = film_sum.sum / spp as f64;
-    Ok(PixelExplanation { integrator: options.integrator.name, x, y, width, height, spp, seed: options.seed, max_depth, samples, pixel })
+
+    /// Records every sample of the pixel, or only `sample` (which must be below [`PixelPlan::samples`]).
+    pub fn explain(&self, scene: &Scene, sample: Option<u32>) -> Result<PixelExplanation, Error> {
+        if let Some(k) = sample {
+            if k >= self.samples {
+                let n = self.samples;
+                return Err(Error::invalid("sample", format!("{k} does not exist: the pixel takes {n} samples (0 to {})", n - 1)));
+            }
+        }
+        let mut samples = Vec::new();
+        let (_, n) = self.film_value(scene, &self.options, self.x, self.y, Some(sample), &mut |s| samples.push(s));
+        debug_assert_eq!(n, self.samples);
+        let o = &self.options;
+        Ok(PixelExplanation {
+            integrator: o.integrator.name,
+            x: self.x,
+            y: self.y,
+            width: o.width,
+            height: o.height,
+            spp: self.samples,
+            sampling: self.sampling,
+            seed: o.seed,
+            max_depth: o.max_depth.unwrap_or(scene.max_depth),
+            samples,
+            pixel: self.pixel,
+        })
+    }
+}
+
+/// Explains pixel `(x, y)` of the render of `scene` with `options`: every
+/// sample the render takes there, or only sample `sample` ([`plan`], then
+/// [`PixelPlan::explain`]).
+pub fn explain(scene: &Scene, options: &RenderOptions, x: u32, y: u32, sample: Option<u32>) -> Result<PixelExplanation, Error> {
+    plan(scene, options, x, y)?.explain(scene, sample)
 }
 
 /// Records whichever integrator calls it.

@@ -30,14 +30,18 @@ fn options(integrator: &str, spp: u32) -> RenderOptions {
 
 /// The contributions sum to each sample's radiance exactly, and the pixel is the render's.
 fn adds_up(integrator: &str, spp: u32) -> (usize, usize) {
+    adds_up_with(options(integrator, spp))
+}
+
+fn adds_up_with(o: RenderOptions) -> (usize, usize) {
+    let integrator = o.integrator.name;
     let scene = scene();
-    let o = options(integrator, spp);
     let (image, _) = crate::render_image(&scene, &o, &RenderControl::default()).unwrap();
     let (mut reflected, mut refracted) = (0, 0);
     for y in 0..o.height {
         for x in 0..o.width {
             let e = explain(&scene, &o, x, y, None).unwrap();
-            assert_eq!(e.samples.len(), spp as usize);
+            assert_eq!(e.samples.len(), e.spp as usize);
             for s in &e.samples {
                 assert_eq!(s.contribution_sum(), s.radiance, "({x}, {y}) sample {}", s.index);
                 if let Record::RayTree(root) = &s.record {
@@ -103,6 +107,25 @@ fn paths_add_up_to_the_render() {
 }
 
 #[test]
+fn adaptive_anti_aliasing_is_explained_as_rendered() {
+    let o = RenderOptions { adaptive: Some(crate::Adaptive::Antialias(crate::Antialias::default())), ..options("whitted", 1) };
+    adds_up_with(o.clone());
+    let scene = scene();
+    let counts: Vec<u32> = (0..o.width).map(|x| plan(&scene, &o, x, 8).unwrap().samples).collect();
+    assert!(counts.contains(&16) && counts.contains(&1), "{counts:?}");
+}
+
+#[test]
+fn the_noise_threshold_is_explained_as_rendered() {
+    let noise = crate::NoiseThreshold { threshold: 0.3, min_samples: 4 };
+    let o = RenderOptions { adaptive: Some(crate::Adaptive::NoiseThreshold(noise)), ..options("path", 64) };
+    adds_up_with(o.clone());
+    let scene = scene();
+    let counts: Vec<u32> = (0..o.width * o.height).map(|i| plan(&scene, &o, i % o.width, i / o.width).unwrap().samples).collect();
+    assert!(counts.iter().any(|n| *n < 64) && counts.iter().all(|n| *n >= 4), "{counts:?}");
+}
+
+#[test]
 fn one_sample_is_the_renders_sample() {
     let scene = scene();
     let o = options("path", 8);
@@ -137,7 +160,7 @@ fn glass_hit_shows_fresnel_and_both_rays() {
     assert_eq!(kinds, [RayKind::Reflected, RayKind::Refracted]);
     assert!(!tree.children[0].inside && tree.children[1].inside, "the refracted ray is inside the glass");
     let text = explain(&scene, &o, 0, 0, None).unwrap().to_string();
-    assert!(text.starts_with("pixel (0, 0) of 24x16, whitted integrator, 1 sample per pixel"), "{text}");
+    assert!(text.starts_with("pixel (0, 0) of 24x16, whitted integrator, 1 sample here"), "{text}");
 }
 
 #[test]
@@ -147,7 +170,7 @@ fn bad_pixels_and_samples_are_refused() {
     assert_eq!(explain(&scene, &o, 24, 0, None).unwrap_err().to_string(), "invalid pixel: (24, 0) is outside the 24x16 image");
     assert_eq!(
         explain(&scene, &o, 0, 0, Some(2)).unwrap_err().to_string(),
-        "invalid sample: 2 does not exist: the pixel has 2 samples (0 to 1)"
+        "invalid sample: 2 does not exist: the pixel takes 2 samples (0 to 1)"
     );
 }
 

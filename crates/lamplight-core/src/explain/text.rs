@@ -4,7 +4,7 @@
 
 use std::fmt::{self, Write};
 
-use super::{HitInfo, NeeRecord, PathRecord, PixelExplanation, Record};
+use super::{HitInfo, NeeRecord, PathRecord, PixelExplanation, Record, Sampling};
 use super::{LightOutcome, LightRecord, RayKind, RayNode, RayOutcome};
 use crate::integrators::trace::{LightRef, PathEnd, ReflectionWeight, Unlit};
 use crate::math::{Rgb, Vec3};
@@ -17,7 +17,7 @@ fn v(x: Vec3) -> String {
 pub(super) fn write_pixel(f: &mut fmt::Formatter<'_>, p: &PixelExplanation) -> fmt::Result {
     writeln!(
         f,
-        "pixel ({}, {}) of {}x{}, {} integrator, {} sample{} per pixel, max depth {}, seed {}",
+        "pixel ({}, {}) of {}x{}, {} integrator, {} sample{} here, max depth {}, seed {}",
         p.x,
         p.y,
         p.width,
@@ -28,7 +28,22 @@ pub(super) fn write_pixel(f: &mut fmt::Formatter<'_>, p: &PixelExplanation) -> f
         p.max_depth,
         p.seed
     )?;
-    writeln!(f, "pixel value (linear, before tone mapping): {}", v(p.pixel))?;
+    let pixel = Vec3::new(p.pixel[0] as f64, p.pixel[1] as f64, p.pixel[2] as f64);
+    writeln!(f, "pixel value (linear, before tone mapping): {}", v(pixel))?;
+    match p.sampling {
+        Sampling::Fixed => {}
+        Sampling::Antialias { threshold, refined: true, samples } => {
+            writeln!(f, "adaptive anti-aliasing: a neighbour's colour differs by more than {threshold}, so the pixel takes {samples} samples")?
+        }
+        Sampling::Antialias { threshold, refined: false, .. } => {
+            writeln!(f, "adaptive anti-aliasing: no neighbour's colour differs by more than {threshold}, so the pixel takes one sample")?
+        }
+        Sampling::NoiseThreshold { threshold, min_samples, max_samples } => writeln!(
+            f,
+            "noise threshold {threshold}: {} of at most {max_samples} samples (a pixel stops after a pass, from {min_samples} samples on, that leaves its relative error below it)",
+            p.spp
+        )?,
+    }
     for s in &p.samples {
         writeln!(f)?;
         let n = s.contributions.len();
@@ -46,7 +61,7 @@ pub(super) fn write_pixel(f: &mut fmt::Formatter<'_>, p: &PixelExplanation) -> f
     }
     if p.samples.len() > 1 {
         writeln!(f)?;
-        writeln!(f, "pixel = sum of the {} samples' film values / {} = {}", p.samples.len(), p.spp, v(p.pixel))?;
+        writeln!(f, "pixel = sum of the {} samples' film values / {} = {}", p.samples.len(), p.spp, v(pixel))?;
     }
     Ok(())
 }

@@ -170,7 +170,7 @@ pub fn refine_mask(probe: &Image, around: PixelWindow, window: PixelWindow, thre
 }
 
 /// The window grown by one pixel on each side, inside the `width x height` image.
-fn grown(w: PixelWindow, width: u32, height: u32) -> PixelWindow {
+pub(crate) fn grown(w: PixelWindow, width: u32, height: u32) -> PixelWindow {
     let (x0, y0) = (w.x0.saturating_sub(1), w.y0.saturating_sub(1));
     let x1 = (w.x0 + w.width + 1).min(width);
     let y1 = (w.y0 + w.height + 1).min(height);
