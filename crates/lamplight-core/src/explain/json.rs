@@ -155,7 +155,7 @@ fn light(l: &LightRecord) -> Value {
                 "length": t.shadow_length,
                 "transmittance": v(t.visible),
                 "blocked": t.visible == crate::math::Rgb::ZERO,
-                "blocked_by": blockers,
+                "blocked_by": blockers.iter().map(|b| json!({ "object": b.object, "name": b.name, "kind": b.kind })).collect::<Vec<_>>(),
             });
             out["radiance"] = v(t.radiance);
         }

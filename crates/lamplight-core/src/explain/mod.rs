@@ -28,7 +28,7 @@ mod ray_tree;
 mod text;
 
 pub use path_record::{NeeRecord, PathRecord, PathVertex};
-pub use ray_tree::{LightOutcome, LightRecord, RayKind, RayNode, RayOutcome, RayTree, ShadingRecord};
+pub use ray_tree::{LightOutcome, LightRecord, ObjectRef, RayKind, RayNode, RayOutcome, RayTree, ShadingRecord};
 
 /// A ray's hit as the explanation shows it.
 #[derive(Clone, Debug, PartialEq)]

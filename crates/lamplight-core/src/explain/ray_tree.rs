@@ -104,8 +104,38 @@ pub enum LightOutcome {
         /// The terms (boxed: an unlit light is a few bytes).
         term: Box<LightTerm>,
         /// Objects on the shadow ray that are not clear, up to the first opaque one.
-        blockers: Vec<usize>,
+        blockers: Vec<ObjectRef>,
     },
+}
+
+/// A scene object as the explanation names it: index, the scene file's name, kind.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ObjectRef {
+    /// Index in the scene.
+    pub object: usize,
+    /// Its name in the scene file, if any.
+    pub name: Option<String>,
+    /// Its shape's kind.
+    pub kind: String,
+}
+
+impl ObjectRef {
+    /// Object `object` of `scene`.
+    pub fn new(scene: &Scene, object: usize) -> ObjectRef {
+        let name = scene.object_name(object).map(str::to_string);
+        ObjectRef { object, name, kind: super::kind_name(&*scene.objects[object].shape) }
+    }
+}
+
+impl std::fmt::Display for ObjectRef {
+    /// `object 95 (Sphere)`, `object 0 "s0" (Sphere)`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "object {}", self.object)?;
+        if let Some(name) = &self.name {
+            write!(f, " {name:?}")?;
+        }
+        write!(f, " ({})", self.kind)
+    }
 }
 
 /// The recorder of a Whitted sample: nodes in the order made, linked by index.
@@ -174,7 +204,7 @@ impl RayTree {
 /// The objects a shadow ray from `ray.origin` over `length` crosses that are
 /// not clear (`shadow_transmittance` below 1), nearest first, up to the first
 /// opaque one; it ends where it first meets `own` (as [`Scene::transmittance`]).
-fn blockers(scene: &Scene, ray: &Ray, length: f64, own: Option<usize>) -> Vec<usize> {
+fn blockers(scene: &Scene, ray: &Ray, length: f64, own: Option<usize>) -> Vec<ObjectRef> {
     let mut found = Vec::new();
     let mut origin = ray.origin;
     let mut remaining = length;
@@ -185,7 +215,7 @@ fn blockers(scene: &Scene, ray: &Ray, length: f64, own: Option<usize>) -> Vec<us
         }
         let transmittance = scene.materials[h.material].shadow_transmittance;
         if transmittance != Rgb::ONE {
-            found.push(h.object);
+            found.push(ObjectRef::new(scene, h.object));
         }
         if transmittance == Rgb::ZERO {
             break;

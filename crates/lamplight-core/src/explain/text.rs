@@ -170,7 +170,7 @@ fn write_lights(f: &mut fmt::Formatter<'_>, lights: &[LightRecord], i: &str) -> 
                         sum += term.radiance;
                         for b in blockers {
                             if !by.contains(b) {
-                                by.push(*b);
+                                by.push(b.clone());
                             }
                         }
                     }
@@ -182,7 +182,7 @@ fn write_lights(f: &mut fmt::Formatter<'_>, lights: &[LightRecord], i: &str) -> 
                     points.len()
                 );
                 if !by.is_empty() {
-                    let _ = write!(line, " (by object {})", by.iter().map(|b| b.to_string()).collect::<Vec<_>>().join(", "));
+                    let _ = write!(line, " (by {})", by.iter().map(|b| b.to_string()).collect::<Vec<_>>().join(", "));
                 }
                 writeln!(f, "{line}; adds {}", v(sum))?;
                 k = end;
@@ -202,9 +202,10 @@ fn light_lines(o: &LightOutcome) -> Vec<String> {
             let shadow = if t.visible == Rgb::ONE {
                 "shadow ray clear".to_string()
             } else if t.visible == Rgb::ZERO {
-                format!("shadow ray BLOCKED by object {}", blockers.last().map_or("?".into(), |b| b.to_string()))
+                format!("shadow ray BLOCKED by {}", blockers.last().map_or("?".into(), |b| b.to_string()))
             } else {
-                format!("shadow ray dimmed to {} by objects {blockers:?}", v(t.visible))
+                let by: Vec<String> = blockers.iter().map(|b| b.to_string()).collect();
+                format!("shadow ray dimmed to {} by {}", v(t.visible), by.join(", "))
             };
             vec![
                 format!("L.N = {:.4}, H.N = {:.4}, Lin = {}", t.cos_light, t.cos_half, v(t.lin)),
