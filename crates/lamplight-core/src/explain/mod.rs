@@ -176,7 +176,7 @@ pub enum Sampling {
         samples: u32,
     },
     /// Cycles' noise threshold ([`crate::NoiseThreshold`]): the pixel stopped
-    /// after the first pass (from `min_samples` on) that left its relative error below `threshold`.
+    /// where the render's checks of its error against `threshold` stopped it.
     NoiseThreshold {
         /// Relative standard error at which a pixel stops.
         threshold: f64,
@@ -264,6 +264,8 @@ impl PixelPlan {
         let mut counts = RayCounts::default();
         let schedule = integrator.schedule();
         let mut film_sum = PixelSum::default();
+        // The noise threshold's checks in a row below it.
+        let mut below = 0;
         let spp = options.spp;
         let mut done = 0;
         while done < spp {
@@ -296,8 +298,12 @@ impl PixelPlan {
             }
             done += count;
             if let Sampling::NoiseThreshold { threshold, min_samples, .. } = self.sampling {
-                if done >= min_samples && done < spp && crate::adaptive::relative_error(film_sum, done) < threshold {
-                    break;
+                // The render's rule, check for check.
+                let noise = crate::NoiseThreshold { threshold, min_samples };
+                if let Some(may_stop) = noise.check_after(done, spp) {
+                    if !crate::render::adaptive::keeps_sampling(&mut below, film_sum, done, threshold, may_stop) {
+                        break;
+                    }
                 }
             }
         }

@@ -40,7 +40,7 @@ pub(super) fn write_pixel(f: &mut fmt::Formatter<'_>, p: &PixelExplanation) -> f
         }
         Sampling::NoiseThreshold { threshold, min_samples, max_samples } => writeln!(
             f,
-            "noise threshold {threshold}: {} of at most {max_samples} samples (a pixel stops after a pass, from {min_samples} samples on, that leaves its relative error below it)",
+            "noise threshold {threshold}: {} of at most {max_samples} samples (a pixel stops, from {min_samples} samples on, once its error is below the threshold at two checks in a row)",
             p.spp
         )?,
     }

@@ -102,6 +102,24 @@ pub fn pixel_error(sum: PixelSum, n: u32) -> f64 {
 /// stop at `min_samples`.
 pub const CHECKS_IN_A_ROW: u8 = 2;
 
+impl NoiseThreshold {
+    /// Whether the render checks the pixels after `done` of `spp` samples
+    /// (from half of `min_samples` on, before the last pass) and, if so, whether
+    /// a pixel may stop then (from `min_samples` on).
+    pub(crate) fn check_after(&self, done: u32, spp: u32) -> Option<bool> {
+        (done >= (self.min_samples / 2).max(2) && done < spp).then_some(done >= self.min_samples)
+    }
+}
+
+/// One pixel's check after `n` samples with sums `sum`: `below` (the checks in
+/// a row its error was below `threshold`) counts up or starts again; whether
+/// the pixel goes on sampling (it stops after [`CHECKS_IN_A_ROW`], if `may_stop`).
+pub(crate) fn keeps_sampling(below: &mut u8, sum: PixelSum, n: u32, threshold: f64, may_stop: bool) -> bool {
+    let converged = pixel_error(sum, n) < threshold;
+    *below = if converged { *below + 1 } else { 0 };
+    *below < CHECKS_IN_A_ROW || !may_stop
+}
+
 /// Which pixels a noise threshold still samples, check after check.
 pub(super) struct Convergence {
     /// Per pixel (row-major), the checks in a row its error was below the threshold.
@@ -134,9 +152,7 @@ impl Convergence {
                         continue;
                     }
                     let (x, y) = (x as u32, y as u32);
-                    let converged = pixel_error(film.get(x, y), film.samples_at(x, y)) < threshold;
-                    *below = if converged { *below + 1 } else { 0 };
-                    *out = *below < CHECKS_IN_A_ROW || !may_stop;
+                    *out = keeps_sampling(below, film.get(x, y), film.samples_at(x, y), threshold, may_stop);
                 }
             });
         });

@@ -355,8 +355,7 @@ fn passes(
             break;
         }
         if let (Some(noise), Some(film)) = (sampled.noise, film.as_ref()) {
-            if done >= (noise.min_samples / 2).max(2) && done < spp {
-                let may_stop = done >= noise.min_samples;
+            if let Some(may_stop) = noise.check_after(done, spp) {
                 let still = convergence.check(pool, film, active.as_deref(), noise.threshold, may_stop);
                 let any = still.iter().any(|a| *a);
                 active = Some(still);
