@@ -259,6 +259,13 @@ impl Scene {
         })
     }
 
+    /// The surface coordinates of `hit` ([`Shape::surface_coords`]), computed
+    /// now: only materials that read them ask.
+    pub fn surface_coords(&self, hit: &Hit) -> crate::shapes::SurfaceCoords {
+        let outward = if hit.front_face { hit.geometric_normal } else { -hit.geometric_normal };
+        self.objects[hit.object].shape.surface_coords(hit.point, outward, hit.primitive)
+    }
+
     /// What the shapes noticed while rendering ([`crate::shapes::Shape::warnings`]:
     /// an implicit surface's Lipschitz bound exceeded), each text once, in object order.
     pub fn shape_warnings(&self) -> Vec<String> {
