@@ -34,10 +34,7 @@ fn quads_negative_indices_and_materials() {
     assert_eq!(mirror.refraction, Refraction::None);
     assert_eq!(
         imported.warnings,
-        vec![
-            "MTL texture maps (map_*, bump, disp, decal, refl) ignored".to_string(),
-            "OBJ texture coordinates (vt) ignored: textures are not supported".to_string()
-        ]
+        vec!["MTL texture maps (map_*, bump, disp, decal, refl) ignored".to_string()]
     );
     // Merged in file order.
     let merged = imported.into_mesh();
