@@ -10,7 +10,7 @@ use crate::accel::{Aabb, Bvh, Costs};
 use crate::bsdfs::{bsdf_for, Bsdf};
 use crate::camera::Camera;
 use crate::lights::Light;
-use crate::materials::{Material, Texture};
+use crate::materials::{Material, ShadingPoint};
 use crate::math::{max_abs, Rgb, Vec3};
 use crate::ray::{Ray, OFFSET_SCALE};
 use crate::shapes::Shape;
@@ -200,7 +200,7 @@ impl SceneBuilder {
         let bsdfs = self
             .materials
             .iter()
-            .map(|m| matches!(m.color, Texture::Constant(_)).then(|| [bsdf_for(m, Vec3::ZERO, false), bsdf_for(m, Vec3::ZERO, true)]))
+            .map(|m| m.is_constant().then(|| [bsdf_for(m, Vec3::ZERO, false), bsdf_for(m, Vec3::ZERO, true)]))
             .collect();
         Ok(Scene {
             bsdfs,
@@ -349,15 +349,44 @@ impl Scene {
         result
     }
 
-    /// The path tracer's BSDF of material `material` at `point`, for a ray that
-    /// arrived on the front side when `front_face` ([`bsdf_for`]). Materials of one
-    /// colour have it built once with the scene: making it per hit (scaling the
-    /// lobes so they conserve energy) was an eighth of the path tracer's time.
+    /// The path tracer's BSDF at `hit`, whose material evaluated there
+    /// ([`Scene::material_at`]) is `material` ([`bsdf_for`]). Constant materials
+    /// have it built once with the scene: making it per hit (scaling the lobes so
+    /// they conserve energy) was an eighth of the path tracer's time.
     #[inline]
-    pub fn bsdf(&self, material: usize, point: Vec3, front_face: bool) -> Cow<'_, Bsdf> {
-        match self.prebuilt_bsdf(material, front_face) {
+    pub fn bsdf(&self, hit: &Hit, material: &Material) -> Cow<'_, Bsdf> {
+        match self.prebuilt_bsdf(hit.material, hit.front_face) {
             Some(bsdf) => Cow::Borrowed(bsdf),
-            None => Cow::Owned(bsdf_for(&self.materials[material], point, front_face)),
+            None => Cow::Owned(bsdf_for(material, hit.point, hit.front_face)),
+        }
+    }
+
+    /// What textures are evaluated at for `hit`: its point, and its surface
+    /// coordinates and vertex colour when the material reads them (computed
+    /// only then, [`Scene::surface_coords`]).
+    #[inline]
+    pub fn shading_point(&self, hit: &Hit) -> ShadingPoint {
+        let mut at = ShadingPoint::at(hit.point);
+        if self.materials[hit.material].needs_coords() {
+            let c = self.surface_coords(hit);
+            at.uv = c.uv;
+            at.color = c.color;
+        }
+        at
+    }
+
+    /// The material of `hit` with its textures evaluated there
+    /// ([`Material::at`]; borrowed for a constant material).
+    #[inline]
+    pub fn material_at(&self, hit: &Hit) -> Cow<'_, Material> {
+        let material = &self.materials[hit.material];
+        // A prebuilt BSDF marks a constant material, one load instead of three tests.
+        if matches!(self.bsdfs.get(hit.material), Some(Some(_))) {
+            return Cow::Borrowed(material);
+        }
+        match material.at(&self.shading_point(hit)) {
+            Cow::Owned(m) => Cow::Owned(m),
+            Cow::Borrowed(_) => Cow::Borrowed(material),
         }
     }
 

@@ -131,7 +131,7 @@ impl PathTracer {
                 }
                 break;
             };
-            let material = &scene.materials[hit.material];
+            let material = &*scene.material_at(&hit);
             if material.emits_towards(hit.front_face) {
                 let w = match self.lights.area_light_of(hit.object) {
                     Some(light) if !prev_delta => {

@@ -36,14 +36,14 @@ impl SimplePath {
                 }
                 break;
             };
-            let material = &scene.materials[hit.material];
+            let material = &*scene.material_at(&hit);
             if material.emits_towards(hit.front_face) {
                 radiance += beta * material.emission;
             }
             if depth >= self.max_depth {
                 break;
             }
-            let bsdf = scene.bsdf(hit.material, hit.point, hit.front_face);
+            let bsdf = scene.bsdf(&hit, material);
             let frame = Frame::new(hit.normal);
             let wo = frame.to_local(-ray.dir);
             let u_lobe = sampler.get_1d();

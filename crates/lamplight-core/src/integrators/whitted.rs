@@ -132,7 +132,7 @@ impl Whitted {
                 total += weight * scene.environment.as_ref().map_or(scene.background, |env| env.radiance(ray.dir));
                 continue;
             };
-            let material = &scene.materials[hit.material];
+            let material = &*scene.material_at(&hit);
             total += weight * direct_light(scene, &self.area_lights, &ray, &hit, material, uniform, counts);
             if depth >= max_depth {
                 continue;
@@ -166,7 +166,9 @@ pub fn direct_light(
     uniform: &mut dyn FnMut() -> f64,
     counts: &mut RayCounts,
 ) -> Rgb {
-    let color = material.color.evaluate(hit.point);
+    // The material as evaluated at the hit (`Scene::material_at`): its colour is
+    // constant, or the 3D checker, which needs only the point.
+    let color = material.color.evaluate(&crate::materials::ShadingPoint::at(hit.point));
     let emission = if material.emits_towards(hit.front_face) { material.emission } else { Rgb::ZERO };
     let mut radiance = emission + material.ka * color * scene.ambient;
     if !material.is_lit() {
