@@ -112,3 +112,64 @@ fn bad_texture_tables_name_their_key() {
         "e.toml:7:12: material \"m\": metallic: must be between 0 and 1, got 2"
     );
 }
+
+/// The base colour the camera sees on the model, pixel by pixel: the textured
+/// colour at each camera ray's hit (through UVs, the image and its sampler), and
+/// the mean of the texture itself.
+fn seen_and_texture_means(file: &str) -> Option<([f64; 3], [f64; 3], usize)> {
+    let data = common::shared_data("gltf_samples_show_their_texture_colours")?;
+    let path = data.join(file);
+    let scene = lamplight_scene::build::imported::load(&path).unwrap_or_else(|e| panic!("{e}"));
+    let (w, h) = (64u32, 64u32);
+    let mut sum = [0.0; 3];
+    let mut n = 0;
+    for y in 0..h {
+        for x in 0..w {
+            let ray = scene.camera.ray(x as f64, y as f64, w, h, (0.5, 0.5));
+            let Some(hit) = scene.first_intersect(&ray, f64::INFINITY) else { continue };
+            let c = scene.material_at(&hit).color.constant().unwrap();
+            for k in 0..3 {
+                sum[k] += c[k];
+            }
+            n += 1;
+        }
+    }
+    // The texture's own mean, decoded as the importer decodes it: the image of the material's base colour.
+    let image = scene.materials.iter().find_map(|m| image_of(&m.color)).expect("a textured base colour");
+    let (tw, th) = image.size();
+    let mut mean = [0.0; 3];
+    for y in 0..th {
+        for x in 0..tw {
+            let t = image.texel(0, x, y);
+            for k in 0..3 {
+                mean[k] += f64::from(t[k]) / (tw * th) as f64;
+            }
+        }
+    }
+    Some((sum.map(|s| s / n as f64), mean, n))
+}
+
+#[test]
+fn gltf_samples_show_their_texture_colours() {
+    // Absolute tolerances per channel: the box shows its whole texture on every
+    // face (measured within 0.025); the duck's camera sees part of its atlas (the
+    // yellow body, not all of the eyes and beak: within 0.08).
+    for (file, tolerance) in [("gltf/BoxTextured.glb", 0.04), ("gltf/Duck.glb", 0.1)] {
+        let Some((seen, texture, pixels)) = seen_and_texture_means(file) else { return };
+        println!("{file}: {pixels} pixels, seen mean {seen:.3?}, texture mean {texture:.3?}");
+        assert!(pixels > 200, "{file}: the model covers {pixels} pixels");
+        for k in 0..3 {
+            assert!((seen[k] - texture[k]).abs() <= tolerance, "{file} channel {k}: seen {seen:?}, texture {texture:?}");
+        }
+    }
+}
+
+/// The image inside a (possibly scaled) image texture.
+fn image_of(t: &lamplight_core::materials::Texture) -> Option<std::sync::Arc<lamplight_core::materials::ImageData>> {
+    use lamplight_core::materials::Texture;
+    match t {
+        Texture::Image(i) => Some(i.image.clone()),
+        Texture::Scale(f) => f.iter().find_map(image_of),
+        _ => None,
+    }
+}

@@ -8,10 +8,11 @@
 //!
 //! | lecture | from |
 //! |---|---|
-//! | `kd` (times `C`), `ka` | `1 - m`, `0.1 (1 - m)` |
+//! | `kd` (times `C`) | `1 - m` |
 //! | `ks` | `0.04 (1 - m) + m C`, the specular colour at normal incidence |
 //! | `shininess` | `clamp(2 / max(r^4, 1e-4) - 2, 1, 10000)`: the Blinn exponent of GGX `alpha = r^2` |
 //! | mirror | `m C (1 - r)`: a metal mirrors its base colour, fading as it roughens |
+//! | `ka` (times `C`) | `0.1 ((1 - m) + m r)`: the diffuse part, and the part of a metal's reflection its roughness spreads, both under the ambient light (the importers' `ka = 0.1 kd` convention), so that under a uniform surround the terms add to `C` |
 //!
 //! | parameter | type | default | meaning |
 //! |---|---|---|---|
@@ -65,7 +66,7 @@ pub fn derive_lecture_terms(m: &mut Material) {
     let base = m.color.constant().unwrap_or(Rgb::ONE).clamp(Rgb::ZERO, Rgb::ONE);
     let r = m.roughness.clamp(0.0, 1.0);
     m.kd = Rgb::splat(1.0 - metal);
-    m.ka = 0.1 * m.kd;
+    m.ka = Rgb::splat(0.1 * ((1.0 - metal) + metal * r));
     m.ks = Rgb::splat(0.04 * (1.0 - metal)) + metal * base;
     m.shininess = shininess(r);
     m.reflection = if metal > 0.0 { Reflection::Constant(metal * base * (1.0 - r)) } else { Reflection::None };

@@ -36,6 +36,7 @@ use lamplight_core::materials::Material;
 use lamplight_core::math::{Mat4, Rgb, Vec3};
 use lamplight_core::shapes::VertexAttributes;
 
+use super::gltf_images::GltfImages;
 use super::{gltf_material, Imported, ImportedCamera, ImportedLight, ImportedMesh, ImportedProjection, MeshData, Warnings};
 use crate::error::LoadError;
 
@@ -46,7 +47,14 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
     check_position_accessors(path, &root)?;
     let document = gltf::Document::from_json(root).map_err(|e| gltf_error(path, bytes, e))?;
     let buffers = load_buffers(path, &document, blob)?;
-    let mut reader = Reader { path, buffers, warnings: Warnings::default(), primitives: HashMap::new(), materials: HashMap::new() };
+    let mut reader = Reader {
+        path,
+        buffers,
+        warnings: Warnings::default(),
+        primitives: HashMap::new(),
+        materials: HashMap::new(),
+        images: GltfImages::new(path),
+    };
     let mut out = Imported::default();
     if document.animations().next().is_some() {
         reader.warnings.once("glTF animations ignored".to_string());
@@ -134,7 +142,9 @@ struct Reader<'p> {
     warnings: Warnings,
     /// glTF mesh index -> (index into `Imported::meshes`, material) per triangle primitive.
     primitives: HashMap<usize, Vec<(usize, Option<Material>)>>,
-    materials: HashMap<usize, Material>,
+    /// (glTF material index, whether the primitive has vertex colours) -> material.
+    materials: HashMap<(usize, bool), Material>,
+    images: GltfImages<'p>,
 }
 
 impl Reader<'_> {
@@ -261,9 +271,19 @@ impl Reader<'_> {
                 (None, _) => None,
             };
             let triangles = indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect();
+            let attributes_have_colors = attributes.colors.is_some();
             out.meshes.push(MeshData { name, positions, indices: triangles, normals, attributes });
             let material = match p.material().index() {
-                Some(m) => Some(self.materials.entry(m).or_insert_with(|| gltf_material::map(&p.material(), &mut self.warnings)).clone()),
+                Some(m) => {
+                    let key = (m, attributes_have_colors);
+                    if !self.materials.contains_key(&key) {
+                        let (buffers, images) = (&self.buffers, &mut self.images);
+                        let mut load = |image: &gltf::Image, srgb: bool| images.load(image, buffers, srgb);
+                        let material = gltf_material::map(&p.material(), key.1, &mut load, &mut self.warnings)?;
+                        self.materials.insert(key, material);
+                    }
+                    Some(self.materials[&key].clone())
+                }
                 None => None,
             };
             list.push((out.meshes.len() - 1, material));
@@ -404,12 +424,14 @@ impl Reader<'_> {
     }
 }
 
+/// Standard base64 that accepts data URIs with or without padding.
+pub(super) fn base64_engine() -> GeneralPurpose {
+    GeneralPurpose::new(&base64::alphabet::STANDARD, GeneralPurposeConfig::new().with_decode_padding_mode(DecodePaddingMode::Indifferent))
+}
+
 /// The bytes of every buffer: the GLB chunk, a `data:` URI, or a file beside `path`.
 fn load_buffers(path: &Path, document: &gltf::Document, mut blob: Option<Vec<u8>>) -> Result<Vec<Vec<u8>>, LoadError> {
-    let engine = GeneralPurpose::new(
-        &base64::alphabet::STANDARD,
-        GeneralPurposeConfig::new().with_decode_padding_mode(DecodePaddingMode::Indifferent),
-    );
+    let engine = base64_engine();
     let mut out = Vec::new();
     for buffer in document.buffers() {
         let at = format!("buffers[{}]", buffer.index());

@@ -18,6 +18,7 @@ use lamplight_core::shapes::VertexAttributes;
 use crate::error::LoadError;
 
 mod gltf;
+mod gltf_images;
 mod gltf_material;
 mod mtl;
 mod obj;
