@@ -375,6 +375,37 @@ impl Scene {
         at
     }
 
+    /// Shades `hit`, seen from the unit direction `wo`: the material with its
+    /// textures evaluated there ([`Material::at`]), and the shading normal
+    /// turned by the material's normal map ([`crate::materials::normal_map`]).
+    /// The surface coordinates are computed once, and only when the material
+    /// reads them.
+    #[inline]
+    pub fn shade(&self, hit: &mut Hit, wo: Vec3) -> Cow<'_, Material> {
+        let material = &self.materials[hit.material];
+        // A prebuilt BSDF marks a constant material, one load instead of three tests.
+        let constant = matches!(self.bsdfs.get(hit.material), Some(Some(_)));
+        if constant && material.normal_map.is_none() {
+            return Cow::Borrowed(material);
+        }
+        let mut at = ShadingPoint::at(hit.point);
+        let coords = material.needs_coords().then(|| self.surface_coords(hit));
+        if let Some(c) = &coords {
+            at.uv = c.uv;
+            at.color = c.color;
+        }
+        if let (Some(map), Some(c)) = (&material.normal_map, &coords) {
+            hit.normal = map.apply(&at, c, hit.normal, hit.geometric_normal, wo);
+        }
+        if constant {
+            return Cow::Borrowed(material);
+        }
+        match material.at(&at) {
+            Cow::Owned(m) => Cow::Owned(m),
+            Cow::Borrowed(_) => Cow::Borrowed(material),
+        }
+    }
+
     /// The material of `hit` with its textures evaluated there
     /// ([`Material::at`]; borrowed for a constant material).
     #[inline]

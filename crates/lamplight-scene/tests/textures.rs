@@ -24,9 +24,14 @@ fn write_png(dir: &Path) {
 /// The rectangle `[0, 4] x [0, 2]` in `z = 0` (so `(u, v) = (x / 4, y / 2)`)
 /// seen by an orthographic camera one pixel per texel, with `material`.
 fn render_quad(dir: &Path, material: &str, integrator: &str, spp: u32) -> Image {
+    render_lit_quad(dir, material, integrator, spp, "[0, 0, -1]")
+}
+
+/// [`render_quad`] lit by a directional light travelling along `light`.
+fn render_lit_quad(dir: &Path, material: &str, integrator: &str, spp: u32, light: &str) -> Image {
     let text = format!(
         "[render]\nintegrator = \"{integrator}\"\n[camera]\ntype = \"orthographic\"\neye = [2, 1, 10]\nlook_at = [2, 1, 0]\nhalf_width = 2\nhalf_height = 1\n\
-         [[objects]]\ntype = \"directional_light\"\ndirection = [0, 0, -1]\nradiance = 1\n\
+         [[objects]]\ntype = \"directional_light\"\ndirection = {light}\nradiance = 1\n\
          [materials.m]\n{material}\n\
          [[objects]]\ntype = \"rectangle\"\ncorner = [0, 0, 0]\nedge_u = [4, 0, 0]\nedge_v = [0, 2, 0]\nmaterial = \"m\"\n"
     );
@@ -172,4 +177,25 @@ fn image_of(t: &lamplight_core::materials::Texture) -> Option<std::sync::Arc<lam
         Texture::Scale(f) => f.iter().find_map(image_of),
         _ => None,
     }
+}
+
+#[test]
+fn a_normal_map_turns_the_shading_normal() {
+    let dir = tempfile::tempdir().unwrap();
+    // Light from 45 degrees towards +x: a flat diffuse quad receives cos 45; a
+    // map of texel (1, 0.5, 1), the normal (1, 0, 1) / sqrt 2, faces the light.
+    let light = "[-1, 0, -1]";
+    let flat = render_lit_quad(dir.path(), "kd = 1\nka = 0\ncolor = 1", "whitted", 1, light);
+    let mapped = render_lit_quad(dir.path(), "kd = 1\nka = 0\ncolor = 1\nnormal_map = [1, 0.5, 1]", "whitted", 1, light);
+    let tilted_away = render_lit_quad(dir.path(), "kd = 1\nka = 0\ncolor = 1\nnormal_map = [0, 0.5, 1]", "whitted", 1, light);
+    let (f, m, a) = (flat.get(1, 1)[0], mapped.get(1, 1)[0], tilted_away.get(1, 1)[0]);
+    assert!((m / f - std::f32::consts::SQRT_2).abs() < 1e-5, "mapped {m} flat {f}");
+    assert!(a.abs() < 1e-6, "a normal turned away from the light is dark: {a}");
+    // glTF's normalTexture.scale: 0 is the flat surface.
+    let none = render_lit_quad(dir.path(), "kd = 1\nka = 0\ncolor = 1\nnormal_map = [1, 0.5, 1]\nnormal_scale = 0", "whitted", 1, light);
+    assert!((none.get(1, 1)[0] - f).abs() < 1e-6);
+    // The path tracer sees the same tilt (direct light from a delta light only, at 1 spp).
+    let path_flat = render_lit_quad(dir.path(), "kd = 1\nka = 0\ncolor = 1", "path", 1, light);
+    let path_mapped = render_lit_quad(dir.path(), "kd = 1\nka = 0\ncolor = 1\nnormal_map = [1, 0.5, 1]", "path", 1, light);
+    assert!((path_mapped.get(1, 1)[0] / path_flat.get(1, 1)[0] - std::f32::consts::SQRT_2).abs() < 1e-4);
 }

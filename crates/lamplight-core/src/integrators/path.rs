@@ -124,14 +124,14 @@ impl PathTracer {
             // drawn before the ray is traced: the hashing needs no hit and overlaps
             // the intersection's latency. Unused if the path ends here.
             let (u_light, u_bsdf) = (sampler.peek_2d(1), sampler.peek_2d(3));
-            let Some(hit) = scene.first_intersect(&ray, f64::INFINITY) else {
+            let Some(mut hit) = scene.first_intersect(&ray, f64::INFINITY) else {
                 if let Some(env) = &self.lights.environment {
                     let w = if prev_delta { 1.0 } else { power_heuristic(prev_pdf, p_pick * env.pdf(ray.dir)) };
                     radiance += beta * env.radiance(ray.dir) * w;
                 }
                 break;
             };
-            let material = &*scene.material_at(&hit);
+            let material = &*scene.shade(&mut hit, -ray.dir);
             if material.emits_towards(hit.front_face) {
                 let w = match self.lights.area_light_of(hit.object) {
                     Some(light) if !prev_delta => {

@@ -30,13 +30,13 @@ impl SimplePath {
         let mut beta = Rgb::ONE;
         let mut ray = *camera_ray;
         for depth in 1..=self.max_depth {
-            let Some(hit) = scene.first_intersect(&ray, f64::INFINITY) else {
+            let Some(mut hit) = scene.first_intersect(&ray, f64::INFINITY) else {
                 if let Some(env) = &self.lights.environment {
                     radiance += beta * env.radiance(ray.dir);
                 }
                 break;
             };
-            let material = &*scene.material_at(&hit);
+            let material = &*scene.shade(&mut hit, -ray.dir);
             if material.emits_towards(hit.front_face) {
                 radiance += beta * material.emission;
             }

@@ -128,11 +128,11 @@ impl Whitted {
             // SAFETY: entries below `pending` were written before (each push writes
             // `work[pending]` and then increments it).
             let Pending { ray, weight, depth } = unsafe { work[pending].assume_init_read() };
-            let Some(hit) = scene.first_intersect(&ray, f64::INFINITY) else {
+            let Some(mut hit) = scene.first_intersect(&ray, f64::INFINITY) else {
                 total += weight * scene.environment.as_ref().map_or(scene.background, |env| env.radiance(ray.dir));
                 continue;
             };
-            let material = &*scene.material_at(&hit);
+            let material = &*scene.shade(&mut hit, -ray.dir);
             total += weight * direct_light(scene, &self.area_lights, &ray, &hit, material, uniform, counts);
             if depth >= max_depth {
                 continue;

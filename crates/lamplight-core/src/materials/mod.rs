@@ -14,6 +14,7 @@ pub mod combine;
 mod fresnel;
 pub mod image;
 mod metals;
+pub mod normal_map;
 pub mod pbr;
 pub mod phong;
 pub mod texture;
@@ -24,6 +25,7 @@ pub mod uv_transform;
 pub use fresnel::{fresnel_conductor, fresnel_conductor_channel, fresnel_dielectric};
 pub use metals::Metal;
 pub use image::{ImageData, ImageLoader, ImageTexture};
+pub use normal_map::NormalMap;
 pub use pbr::Pbr;
 pub use texture::{ShadingPoint, Texture, TextureKind, Textures};
 pub use textured::Slot;
@@ -135,6 +137,8 @@ pub struct Material {
     /// The glTF metallic-roughness model ([`pbr`]), which then decides the path
     /// tracer's BSDF; the lecture's fields above are its Whitted approximation.
     pub pbr: Option<Pbr>,
+    /// A tangent-space normal map ([`normal_map`]), applied where the surface is shaded.
+    pub normal_map: Option<NormalMap>,
 }
 
 impl Default for Material {
@@ -154,6 +158,7 @@ impl Default for Material {
             roughness: 0.0,
             textures: None,
             pbr: None,
+            normal_map: None,
         }
     }
 }
@@ -209,6 +214,7 @@ impl Material {
     /// Whether evaluating the material needs the hit's surface coordinates.
     pub fn needs_coords(&self) -> bool {
         self.color.needs_coords()
+            || self.normal_map.is_some()
             || self.textures.as_ref().is_some_and(|t| t.iter().any(|(_, t)| t.needs_coords()))
             || self.pbr.as_ref().is_some_and(Pbr::needs_coords)
     }

@@ -22,6 +22,7 @@
 //! | `emission` | colour or texture | 0 | emitted radiance |
 //! | `emission_strength` | number | 1 | multiplies `emission` (`KHR_materials_emissive_strength`) |
 //! | `two_sided` | boolean | false | emit from both sides |
+//! | `normal_map`, `normal_scale` | texture, number | none, 1 | a tangent-space normal map ([`super::normal_map`]) |
 //!
 //! Occlusion textures are not read: a path tracer computes the occlusion they
 //! approximate.
@@ -98,6 +99,8 @@ pub const KIND: MaterialKind = Kind {
         Param::new("emission", T::Texture, "0", "radiance", "emitted radiance"),
         Param::new("emission_strength", T::Number, "1", ">= 0", "multiplies `emission` (`KHR_materials_emissive_strength`)"),
         Param::new("two_sided", T::Bool, "false", "", "emit from both sides of the surface, not only the front"),
+        super::normal_map::NORMAL_MAP_PARAMS[0],
+        super::normal_map::NORMAL_MAP_PARAMS[1],
     ],
     build,
 };
@@ -127,6 +130,7 @@ fn build(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Material> {
     };
     let mut m = material(base, metallic, roughness, emission, maps);
     m.two_sided = p.boolean("two_sided")?.unwrap_or(false);
+    m.normal_map = super::normal_map::read(p, textures)?;
     m.validate().map_err(|e| p.core_error(e))?;
     Ok(m)
 }

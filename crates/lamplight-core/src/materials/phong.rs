@@ -16,6 +16,7 @@
 //! | `{ type = "fresnel", ior = N }` | refraction weighted `1 - F` |
 //! | `{ type = "constant", ior = N, weight = COLOUR }` | refraction with a constant weight |
 
+use super::normal_map::{self, NORMAL_MAP_PARAMS};
 use super::textured::{color_param, scalar_param, Slot};
 use super::{Material, MaterialKind, Metal, Reflection, Refraction};
 use crate::params::{Kind, Param, ParamResult, ParamType as T, Params};
@@ -55,6 +56,8 @@ pub const KIND: MaterialKind = Kind {
             "fraction of light a shadow ray keeps crossing this surface (clear glass: 1; a texture applies where the surface is shaded, not to shadow rays)",
         ),
         Param::new("roughness", T::ScalarTexture, "0", "0 to 1", "GGX roughness of Fresnel glass and conductors in the path tracer"),
+        NORMAL_MAP_PARAMS[0],
+        NORMAL_MAP_PARAMS[1],
     ],
     build,
 };
@@ -84,6 +87,7 @@ fn build(p: &mut Params<'_>, textures: &super::Textures<'_>) -> ParamResult<Mate
         roughness: scalar_param(p, textures, "roughness", d.roughness, Slot::Roughness, &mut maps)?,
         textures: None,
         pbr: None,
+        normal_map: normal_map::read(p, textures)?,
     };
     let material = Material { textures: (!maps.is_empty()).then(|| maps.into()), ..material };
     material.validate().map_err(|e| p.core_error(e))?;

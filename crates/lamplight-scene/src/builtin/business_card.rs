@@ -159,6 +159,7 @@ pub fn build() -> Result<Scene, Error> {
             roughness: 0.0,
             textures: None,
             pbr: None,
+            normal_map: None,
         })?;
         let center = Vec3::from_array(s.center);
         let index = scene.object(Sphere::new(center, s.radius)?, material)?;

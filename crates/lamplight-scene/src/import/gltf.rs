@@ -272,7 +272,7 @@ impl Reader<'_> {
             };
             let triangles = indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect();
             let attributes_have_colors = attributes.colors.is_some();
-            out.meshes.push(MeshData { name, positions, indices: triangles, normals, attributes });
+            let mut data = MeshData { name, positions, indices: triangles, normals, attributes };
             let material = match p.material().index() {
                 Some(m) => {
                     let key = (m, attributes_have_colors);
@@ -286,6 +286,11 @@ impl Reader<'_> {
                 }
                 None => None,
             };
+            // A normal map needs tangents: the file's, else MikkTSpace's.
+            if material.as_ref().is_some_and(|m| m.normal_map.is_some()) && !super::tangents::generate(&mut data) {
+                self.warnings.once("glTF normalTexture on a primitive without TEXCOORD_0: its tangents follow the faces".to_string());
+            }
+            out.meshes.push(data);
             list.push((out.meshes.len() - 1, material));
         }
         Ok(list)

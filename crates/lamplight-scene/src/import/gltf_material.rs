@@ -8,6 +8,7 @@
 //! | `metallicFactor` x `metallicRoughnessTexture`.b, `roughnessFactor` x its .g (linear) | `metallic`, `roughness` |
 //! | `emissiveFactor` x `emissiveTexture` (sRGB) x `KHR_materials_emissive_strength` | `emission` (an emitting surface with a texture is not sampled as an area light) |
 //! | sampler `wrapS`, `minFilter`/`magFilter` | `wrap`; `nearest` for NEAREST filters, `trilinear` for mipmapped ones, else `bilinear` |
+//! | `normalTexture`, its `scale` | the normal map (linear; the tangents from `TANGENT`, else MikkTSpace) |
 //! | `KHR_texture_transform` | the texture's UV transform, in lamplight's `v`-up convention (`F T R S F`, `F(u, v) = (u, 1 - v)`) |
 //! | `KHR_materials_transmission` `t > 0` | `Material::glass(ior, ..)` (index from `KHR_materials_ior`, default 1.5) with `kd`, `ka` scaled by `1 - t`, shadow rays passing `t B`, and GGX `roughness = r^2` (textures not read) |
 //!
@@ -19,7 +20,7 @@
 use std::sync::Arc;
 
 use lamplight_core::materials::image::{Channel, Filter, Wrap};
-use lamplight_core::materials::{pbr, ImageData, ImageTexture, Material, Slot, Texture, UvTransform};
+use lamplight_core::materials::{pbr, ImageData, ImageTexture, Material, NormalMap, Slot, Texture, UvTransform};
 use lamplight_core::math::Rgb;
 
 use super::Warnings;
@@ -109,9 +110,6 @@ pub(super) fn map(
     warnings: &mut Warnings,
 ) -> Result<Material, LoadError> {
     let pbr_json = m.pbr_metallic_roughness();
-    if m.normal_texture().is_some() {
-        warnings.once("glTF normalTexture ignored: normal maps are not supported yet".to_string());
-    }
     if m.transmission().is_some_and(|t| t.transmission_texture().is_some()) {
         warnings.once("glTF transmissionTexture ignored: the transmission factor is used".to_string());
     }
@@ -167,7 +165,13 @@ pub(super) fn map(
         }
         _ => emissive,
     };
-    Ok(pbr::material(base, metal, rough, emission, maps))
+    let mut material = pbr::material(base, metal, rough, emission, maps);
+    if let Some(n) = m.normal_texture() {
+        let texture = image_texture(&n.texture(), n.tex_coord(), None, false, Channel::Rgb, load, warnings)?;
+        let scale = if n.scale().is_finite() { f64::from(n.scale()) } else { 1.0 };
+        material.normal_map = Some(NormalMap { texture, scale });
+    }
+    Ok(material)
 }
 
 #[cfg(test)]

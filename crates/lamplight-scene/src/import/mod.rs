@@ -23,6 +23,7 @@ mod gltf_material;
 mod mtl;
 mod obj;
 mod ply;
+mod tangents;
 
 /// Triangle mesh data as read from a file (indices in the file's face order,
 /// polygons triangulated as fans).
