@@ -92,6 +92,8 @@ pub struct Scene {
 struct PrimRef {
     object: u32,
     opaque: bool,
+    /// Its material cuts holes ([`crate::materials::alpha`]).
+    masked: bool,
 }
 
 /// Collects objects, materials and lights, then builds a [`Scene`].
@@ -186,7 +188,8 @@ impl SceneBuilder {
         let mut boxes = Vec::new();
         for (i, object) in self.objects.iter().enumerate() {
             let b = object.shape.bounds();
-            let prim = PrimRef { object: i as u32, opaque: self.materials[object.material].shadow_transmittance == Rgb::ZERO };
+            let material = &self.materials[object.material];
+            let prim = PrimRef { object: i as u32, opaque: material.shadow_transmittance == Rgb::ZERO, masked: material.alpha.is_some() };
             if b.is_finite() {
                 bounded.push(prim);
                 boxes.push(b);
@@ -228,15 +231,15 @@ impl Scene {
         let mut closest = t_max;
         for prim in &self.unbounded {
             let i = prim.object as usize;
-            if let Some(h) = self.objects[i].shape.intersect(ray, 0.0, closest) {
+            if let Some(h) = self.hit_object(prim, ray, closest) {
                 closest = h.t;
                 best = Some((i, h));
             }
         }
         self.bvh.traverse(ray.origin, ray.dir, 0.0, closest, |prim, t_max| {
-            let i = self.bounded[prim as usize].object as usize;
-            let h = self.objects[i].shape.intersect(ray, 0.0, t_max)?;
-            best = Some((i, h));
+            let prim = &self.bounded[prim as usize];
+            let h = self.hit_object(prim, ray, t_max)?;
+            best = Some((prim.object as usize, h));
             Some(h.t)
         });
         let (object, h) = best?;
@@ -257,6 +260,19 @@ impl Scene {
             error: h.error,
             primitive: h.primitive,
         })
+    }
+
+    /// The nearest hit of one object in `(0, t_max)`, past its cut-outs.
+    #[inline]
+    fn hit_object(&self, prim: &PrimRef, ray: &Ray, t_max: f64) -> Option<crate::shapes::SurfaceHit> {
+        let object = &self.objects[prim.object as usize];
+        // The flag first: unmasked objects never load their material here.
+        if prim.masked {
+            if let Some(mask) = &self.materials[object.material].alpha {
+                return crate::materials::alpha::first_covered(&*object.shape, mask, ray, 0.0, t_max);
+            }
+        }
+        object.shape.intersect(ray, 0.0, t_max)
     }
 
     /// The surface coordinates of `hit` ([`Shape::surface_coords`]), computed
@@ -309,7 +325,13 @@ impl Scene {
         let ray = Ray { origin, dir };
         let ignore = ignore.map_or(u32::MAX, |i| i as u32);
         let blocks = |prim: &PrimRef| -> bool {
-            prim.opaque && prim.object != ignore && self.objects[prim.object as usize].shape.intersect_p(&ray, 0.0, distance)
+            prim.opaque
+                && prim.object != ignore
+                && if prim.masked {
+                    self.hit_object(prim, &ray, distance).is_some()
+                } else {
+                    self.objects[prim.object as usize].shape.intersect_p(&ray, 0.0, distance)
+                }
         };
         if self.unbounded.iter().any(blocks) {
             return Rgb::ZERO;

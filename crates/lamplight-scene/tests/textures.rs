@@ -199,3 +199,25 @@ fn a_normal_map_turns_the_shading_normal() {
     let path_mapped = render_lit_quad(dir.path(), "kd = 1\nka = 0\ncolor = 1\nnormal_map = [1, 0.5, 1]", "path", 1, light);
     assert!((path_mapped.get(1, 1)[0] / path_flat.get(1, 1)[0] - std::f32::consts::SQRT_2).abs() < 1e-4);
 }
+
+#[test]
+fn cut_outs_let_camera_and_shadow_rays_through() {
+    // The quad's left half (u < 0.5) is cut out by a two-cell UV checker; behind
+    // it, a glowing quad.
+    let text = "[camera]\ntype = \"orthographic\"\neye = [2, 1, 10]\nlook_at = [2, 1, 0]\nhalf_width = 2\nhalf_height = 1\n\
+        [materials.glow]\nkd = 0\nka = 0\nemission = 1\n\
+        [materials.cut]\nkd = 0\nka = 0\nalpha = { type = \"uv_checker\", even = 0, odd = 1, uv_scale = [2, 1] }\nalpha_cutoff = 0.5\n\
+        [[objects]]\ntype = \"rectangle\"\ncorner = [0, 0, 0]\nedge_u = [4, 0, 0]\nedge_v = [0, 2, 0]\nmaterial = \"glow\"\n\
+        [[objects]]\ntype = \"rectangle\"\ncorner = [0, 0, 1]\nedge_u = [4, 0, 0]\nedge_v = [0, 2, 0]\nmaterial = \"cut\"\n";
+    let scene = SceneFile::parse(Path::new("s.toml"), text).unwrap().build().unwrap_or_else(|e| panic!("{e}"));
+    let options = RenderOptions { width: 4, height: 2, threads: 1, ..RenderOptions::default() };
+    let image = render_image(&scene, &options, &RenderControl::default()).unwrap().0;
+    for y in 0..2 {
+        assert_eq!((image.get(0, y), image.get(1, y)), ([1.0; 3], [1.0; 3]), "seen through the hole");
+        assert_eq!((image.get(2, y), image.get(3, y)), ([0.0; 3], [0.0; 3]), "the covered half");
+    }
+    // Shadow rays from the glowing quad's surface upwards: through the hole, blocked elsewhere.
+    use lamplight_core::math::Vec3;
+    assert_eq!(scene.transmittance(Vec3::new(0.5, 1.0, 0.5), Vec3::Z, 5.0, None), lamplight_core::math::Rgb::ONE);
+    assert_eq!(scene.transmittance(Vec3::new(3.5, 1.0, 0.5), Vec3::Z, 5.0, None), lamplight_core::math::Rgb::ZERO);
+}

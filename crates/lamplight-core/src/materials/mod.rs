@@ -10,6 +10,7 @@
 //! lights in shadow, and `R`, `T` are the weights of [`Reflection`] and
 //! [`Refraction`].
 
+pub mod alpha;
 pub mod combine;
 mod fresnel;
 pub mod image;
@@ -139,6 +140,8 @@ pub struct Material {
     pub pbr: Option<Pbr>,
     /// A tangent-space normal map ([`normal_map`]), applied where the surface is shaded.
     pub normal_map: Option<NormalMap>,
+    /// A cut-out mask ([`alpha`]): where it is below its cutoff the surface is not there.
+    pub alpha: Option<alpha::AlphaMask>,
 }
 
 impl Default for Material {
@@ -159,6 +162,7 @@ impl Default for Material {
             textures: None,
             pbr: None,
             normal_map: None,
+            alpha: None,
         }
     }
 }

@@ -23,6 +23,7 @@
 //! | `emission_strength` | number | 1 | multiplies `emission` (`KHR_materials_emissive_strength`) |
 //! | `two_sided` | boolean | false | emit from both sides |
 //! | `normal_map`, `normal_scale` | texture, number | none, 1 | a tangent-space normal map ([`super::normal_map`]) |
+//! | `alpha`, `alpha_cutoff` | number or texture, number | none, 0.5 | a cut-out mask ([`super::alpha`]) |
 //!
 //! Occlusion textures are not read: a path tracer computes the occlusion they
 //! approximate.
@@ -101,6 +102,8 @@ pub const KIND: MaterialKind = Kind {
         Param::new("two_sided", T::Bool, "false", "", "emit from both sides of the surface, not only the front"),
         super::normal_map::NORMAL_MAP_PARAMS[0],
         super::normal_map::NORMAL_MAP_PARAMS[1],
+        super::alpha::ALPHA_PARAMS[0],
+        super::alpha::ALPHA_PARAMS[1],
     ],
     build,
 };
@@ -131,6 +134,7 @@ fn build(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Material> {
     let mut m = material(base, metallic, roughness, emission, maps);
     m.two_sided = p.boolean("two_sided")?.unwrap_or(false);
     m.normal_map = super::normal_map::read(p, textures)?;
+    m.alpha = super::alpha::read(p, textures)?;
     m.validate().map_err(|e| p.core_error(e))?;
     Ok(m)
 }

@@ -12,6 +12,8 @@
 //! | `KHR_texture_transform` | the texture's UV transform, in lamplight's `v`-up convention (`F T R S F`, `F(u, v) = (u, 1 - v)`) |
 //! | `KHR_materials_transmission` `t > 0` | `Material::glass(ior, ..)` (index from `KHR_materials_ior`, default 1.5) with `kd`, `ka` scaled by `1 - t`, shadow rays passing `t B`, and GGX `roughness = r^2` (textures not read) |
 //!
+//! | `alphaMode` `MASK`, `alphaCutoff`; `BLEND` | a cut-out of base colour alpha x `baseColorTexture` alpha ([`lamplight_core::materials::alpha`]); `BLEND` as `MASK` at 0.5, with a warning |
+//!
 //! `occlusionTexture` is not read: the path tracer computes the occlusion it
 //! stands for. Texture coordinates other than `TEXCOORD_0` are read as
 //! `TEXCOORD_0` (a warning says so). Numbers are clamped to their valid range
@@ -20,6 +22,7 @@
 use std::sync::Arc;
 
 use lamplight_core::materials::image::{Channel, Filter, Wrap};
+use lamplight_core::materials::alpha::AlphaMask;
 use lamplight_core::materials::{pbr, ImageData, ImageTexture, Material, NormalMap, Slot, Texture, UvTransform};
 use lamplight_core::math::Rgb;
 
@@ -113,10 +116,7 @@ pub(super) fn map(
     if m.transmission().is_some_and(|t| t.transmission_texture().is_some()) {
         warnings.once("glTF transmissionTexture ignored: the transmission factor is used".to_string());
     }
-    if m.alpha_mode() != gltf::material::AlphaMode::Opaque {
-        warnings.once("glTF alphaMode BLEND/MASK ignored: surfaces are opaque".to_string());
-    }
-    let [r, g, b, _alpha] = pbr_json.base_color_factor();
+    let [r, g, b, alpha_factor] = pbr_json.base_color_factor();
     let base_factor = rgb([r, g, b]).min(Rgb::ONE);
     let metal = clean(pbr_json.metallic_factor()).min(1.0);
     let rough = clean(pbr_json.roughness_factor()).min(1.0);
@@ -137,6 +137,14 @@ pub(super) fn map(
             ..glass
         });
     }
+    let cutoff = match m.alpha_mode() {
+        gltf::material::AlphaMode::Opaque => None,
+        gltf::material::AlphaMode::Mask => Some(m.alpha_cutoff().map_or(0.5, |c| clean(c).min(1.0))),
+        gltf::material::AlphaMode::Blend => {
+            warnings.once("glTF alphaMode BLEND read as MASK with cutoff 0.5: blending is not done".to_string());
+            Some(0.5)
+        }
+    };
     let mut texture = |info: Option<gltf::texture::Info>, srgb: bool, channel: Channel| -> Result<Option<Texture>, LoadError> {
         match info {
             None => Ok(None),
@@ -165,7 +173,15 @@ pub(super) fn map(
         }
         _ => emissive,
     };
+    let alpha = match cutoff {
+        None => None,
+        Some(cutoff) => {
+            let coverage = texture(pbr_json.base_color_texture(), true, Channel::One(3))?;
+            Some(AlphaMask { texture: scaled(coverage, Rgb::splat(clean(alpha_factor).min(1.0))), cutoff })
+        }
+    };
     let mut material = pbr::material(base, metal, rough, emission, maps);
+    material.alpha = alpha;
     if let Some(n) = m.normal_texture() {
         let texture = image_texture(&n.texture(), n.tex_coord(), None, false, Channel::Rgb, load, warnings)?;
         let scale = if n.scale().is_finite() { f64::from(n.scale()) } else { 1.0 };

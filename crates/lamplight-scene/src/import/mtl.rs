@@ -22,13 +22,14 @@
 //! | `map_Ks FILE` | `ks` = `Ks x` the image (sRGB) |
 //! | `map_Ns FILE` | `shininess` = `Ns x` the image's first channel (linear) |
 //! | `norm FILE` (with `-bm s`) | a tangent-space normal map of scale `s` |
+//! | `map_d FILE` | a cut-out where the image's first channel (linear) is below 0.5 |
 //!
 //! `Tr` follows the specification (`Tr = 1 - d`); whichever of `d`/`Tr` comes
 //! last wins. A map statement's options (`-s`, `-o`, `-bm`, `-clamp`, ...) are
 //! read past (`-bm` is the normal map's scale, `-clamp on` its wrap mode) and
 //! its file is found beside the `.mtl`; a file that cannot be read is reported
 //! as a warning naming it and its line, and the material is kept without it.
-//! Height bump maps (`bump`, `map_Bump`), `map_d` (cut-outs), `map_Ka`,
+//! Height bump maps (`bump`, `map_Bump`), `map_Ka`,
 //! `disp`, `decal`, `refl` and other statements are not supported: each kind is
 //! reported once as a warning.
 
@@ -37,6 +38,7 @@ use std::path::Path;
 
 use std::sync::Arc;
 
+use lamplight_core::materials::alpha::AlphaMask;
 use lamplight_core::materials::image::{Channel, Filter, Wrap};
 use lamplight_core::materials::{ImageData, ImageTexture, Material, NormalMap, Reflection, Refraction, Slot, Texture, UvTransform};
 use lamplight_core::math::Rgb;
@@ -59,6 +61,7 @@ struct MtlValues {
     map_ks: Option<Texture>,
     map_ns: Option<Texture>,
     norm: Option<NormalMap>,
+    map_d: Option<Texture>,
 }
 
 /// A map statement's file and options: `(file, -bm value, -clamp on)`.
@@ -106,7 +109,7 @@ pub(super) fn parse(path: &Path, text: &str, warnings: &mut Warnings) -> Result<
             continue;
         }
         let is_map = keyword.starts_with("map_") || matches!(keyword, "bump" | "disp" | "decal" | "refl" | "norm");
-        let read_map = matches!(keyword, "map_Kd" | "map_Ks" | "map_Ns" | "norm");
+        let read_map = matches!(keyword, "map_Kd" | "map_Ks" | "map_Ns" | "norm" | "map_d");
         if read_map {
             let Some((_, values)) = current.as_mut() else {
                 return Err(LoadError::at(path, line_no, w[0].0, format!("`{keyword}` before any `newmtl`")));
@@ -132,13 +135,14 @@ pub(super) fn parse(path: &Path, text: &str, warnings: &mut Warnings) -> Result<
                 },
             };
             if let Some(image) = image {
-                let channel = if keyword == "map_Ns" { Channel::One(0) } else { Channel::Rgb };
+                let channel = if matches!(keyword, "map_Ns" | "map_d") { Channel::One(0) } else { Channel::Rgb };
                 let wrap = if clamp { Wrap::Clamp } else { Wrap::Repeat };
                 let texture = Texture::Image(Arc::new(ImageTexture { image, wrap, filter: Filter::Bilinear, transform: UvTransform::IDENTITY, channel }));
                 match keyword {
                     "map_Kd" => values.map_kd = Some(texture),
                     "map_Ks" => values.map_ks = Some(texture),
                     "map_Ns" => values.map_ns = Some(texture),
+                    "map_d" => values.map_d = Some(texture),
                     _ => values.norm = Some(NormalMap { texture, scale: bm }),
                 }
             }
@@ -147,7 +151,7 @@ pub(super) fn parse(path: &Path, text: &str, warnings: &mut Warnings) -> Result<
         let known = matches!(keyword, "Ka" | "Kd" | "Ks" | "Ke" | "Ns" | "Ni" | "d" | "Tr" | "illum");
         if !known {
             let what = if is_map {
-                format!("MTL {keyword} ignored: only map_Kd, map_Ks, map_Ns and norm maps are read")
+                format!("MTL {keyword} ignored: only map_Kd, map_Ks, map_Ns, map_d and norm maps are read")
             } else {
                 format!("MTL statement `{keyword}` ignored")
             };
@@ -222,6 +226,7 @@ fn to_material(v: &MtlValues) -> Material {
         shininess: ns,
         emission: v.ke.unwrap_or(Rgb::ZERO),
         normal_map: v.norm.clone(),
+        alpha: v.map_d.clone().map(|texture| AlphaMask { texture, cutoff: 0.5 }),
         ..Material::default()
     };
     if let Some(t) = &v.map_kd {
@@ -301,7 +306,7 @@ mod tests {
         assert_eq!(m.normal_map.as_ref().map(|n| n.scale), Some(2.0));
         let warnings = w.into_vec();
         assert!(warnings[0].starts_with("MTL map_Ks at line 5 ignored: cannot read texture") && warnings[0].contains("missing.png"), "{warnings:?}");
-        assert_eq!(warnings[1], "MTL bump ignored: only map_Kd, map_Ks, map_Ns and norm maps are read");
+        assert_eq!(warnings[1], "MTL bump ignored: only map_Kd, map_Ks, map_Ns, map_d and norm maps are read");
     }
 
     #[test]
