@@ -76,6 +76,8 @@ pub struct Scene {
     bvh: Bvh,
     /// Objects in the BVH, in BVH primitive order.
     bounded: Vec<PrimRef>,
+    /// Some material has a trilinear texture ([`Scene::uses_footprints`]).
+    uses_footprints: bool,
     /// Objects with infinite bounds (infinite planes, unclipped quadrics), tested one by one.
     unbounded: Vec<PrimRef>,
     /// Some material dims shadow rays without blocking them (transmittance strictly
@@ -205,7 +207,9 @@ impl SceneBuilder {
             .iter()
             .map(|m| m.is_constant().then(|| [bsdf_for(m, Vec3::ZERO, false), bsdf_for(m, Vec3::ZERO, true)]))
             .collect();
+        let uses_footprints = self.materials.iter().any(Material::uses_footprint);
         Ok(Scene {
+            uses_footprints,
             bsdfs,
             bvh: Bvh::build_with(&boxes, Costs::OBJECTS),
             bounded,
@@ -260,6 +264,12 @@ impl Scene {
             error: h.error,
             primitive: h.primitive,
         })
+    }
+
+    /// Whether some material reads a footprint (a trilinear image texture), so
+    /// that the Whitted tracer follows its camera rays' cones.
+    pub fn uses_footprints(&self) -> bool {
+        self.uses_footprints
     }
 
     /// The nearest hit of one object in `(0, t_max)`, past its cut-outs.
@@ -397,13 +407,14 @@ impl Scene {
         at
     }
 
-    /// Shades `hit`, seen from the unit direction `wo`: the material with its
+    /// Shades `hit`, seen from the unit direction `wo` by a ray whose pixel
+    /// footprint there is `footprint` wide (0: unknown): the material with its
     /// textures evaluated there ([`Material::at`]), and the shading normal
     /// turned by the material's normal map ([`crate::materials::normal_map`]).
     /// The surface coordinates are computed once, and only when the material
     /// reads them.
     #[inline]
-    pub fn shade(&self, hit: &mut Hit, wo: Vec3) -> Cow<'_, Material> {
+    pub fn shade(&self, hit: &mut Hit, wo: Vec3, footprint: f64) -> Cow<'_, Material> {
         let material = &self.materials[hit.material];
         // A prebuilt BSDF marks a constant material, one load instead of three tests.
         let constant = matches!(self.bsdfs.get(hit.material), Some(Some(_)));
@@ -415,6 +426,9 @@ impl Scene {
         if let Some(c) = &coords {
             at.uv = c.uv;
             at.color = c.color;
+            if footprint > 0.0 {
+                (at.duv_dx, at.duv_dy) = footprint_in_uv(c, hit.geometric_normal, wo, footprint);
+            }
         }
         if let (Some(map), Some(c)) = (&material.normal_map, &coords) {
             hit.normal = map.apply(&at, c, hit.normal, hit.geometric_normal, wo);
@@ -463,6 +477,28 @@ impl Scene {
     pub fn primitive_count(&self) -> usize {
         self.objects.iter().map(|o| o.shape.primitive_count()).sum()
     }
+}
+
+/// A footprint `width` wide at a surface seen along `-wo`, as changes of
+/// `(u, v)` along its two axes: the long one in the plane of the view and the
+/// normal `ng`, stretched by `1 / cos` (to at most 100x), and the one across it
+/// (ray cones' elliptical footprint). Each world step `a` in the tangent plane
+/// becomes the least-squares `(du, dv)` of `a = du dp/du + dv dp/dv`.
+fn footprint_in_uv(c: &crate::shapes::SurfaceCoords, ng: Vec3, wo: Vec3, width: f64) -> ([f64; 2], [f64; 2]) {
+    let cos = ng.dot(wo).abs().max(0.01);
+    let along = (wo - ng * ng.dot(wo)).try_normalize().unwrap_or_else(|| crate::math::orthonormal_basis(ng).0);
+    let across = ng.cross(along);
+    let (a, b) = (c.dpdu, c.dpdv);
+    let (aa, ab, bb) = (a.dot(a), a.dot(b), b.dot(b));
+    let det = aa * bb - ab * ab;
+    if !(det > 0.0 && det.is_finite()) {
+        return ([0.0; 2], [0.0; 2]);
+    }
+    let solve = |v: Vec3| {
+        let (av, bv) = (a.dot(v), b.dot(v));
+        [(bb * av - ab * bv) / det, (aa * bv - ab * av) / det]
+    };
+    (solve(along * (width / cos)), solve(across * width))
 }
 
 #[cfg(test)]

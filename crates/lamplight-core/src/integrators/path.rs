@@ -131,7 +131,7 @@ impl PathTracer {
                 }
                 break;
             };
-            let material = &*scene.shade(&mut hit, -ray.dir);
+            let material = &*scene.shade(&mut hit, -ray.dir, 0.0);
             if material.emits_towards(hit.front_face) {
                 let w = match self.lights.area_light_of(hit.object) {
                     Some(light) if !prev_delta => {

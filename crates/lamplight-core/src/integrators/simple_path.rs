@@ -36,7 +36,7 @@ impl SimplePath {
                 }
                 break;
             };
-            let material = &*scene.shade(&mut hit, -ray.dir);
+            let material = &*scene.shade(&mut hit, -ray.dir, 0.0);
             if material.emits_towards(hit.front_face) {
                 radiance += beta * material.emission;
             }

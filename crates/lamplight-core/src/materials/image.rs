@@ -59,11 +59,19 @@ struct Level {
 }
 
 /// A decoded image with its MIP pyramid, shared by textures.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, PartialEq)]
 pub struct ImageData {
     levels: Vec<Level>,
     /// `u8` value -> linear value of the colour channels (sRGB decode or `/ 255`).
     table: Vec<f32>,
+}
+
+impl std::fmt::Debug for ImageData {
+    /// The size, not the texels (a material's debug text stays short).
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let (w, h) = self.size();
+        write!(f, "ImageData({w}x{h}, {} levels)", self.levels.len())
+    }
 }
 
 impl ImageData {

@@ -215,6 +215,13 @@ impl Material {
         self.textures.is_none() && self.color.constant().is_some() && self.pbr.as_ref().is_none_or(Pbr::is_constant)
     }
 
+    /// Whether some texture of the material is filtered over the pixel footprint.
+    pub fn uses_footprint(&self) -> bool {
+        self.color.uses_footprint()
+            || self.textures.as_ref().is_some_and(|t| t.iter().any(|(_, t)| t.uses_footprint()))
+            || self.normal_map.as_ref().is_some_and(|n| n.texture.uses_footprint())
+    }
+
     /// Whether evaluating the material needs the hit's surface coordinates.
     pub fn needs_coords(&self) -> bool {
         self.color.needs_coords()

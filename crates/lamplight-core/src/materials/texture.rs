@@ -192,6 +192,16 @@ impl Texture {
         }
     }
 
+    /// Whether a lookup reads the footprint (a trilinear image somewhere inside).
+    pub fn uses_footprint(&self) -> bool {
+        match self {
+            Texture::Image(i) => i.filter == super::image::Filter::Trilinear,
+            Texture::Scale(f) => f.iter().any(Texture::uses_footprint),
+            Texture::Mix(f) => f.iter().any(Texture::uses_footprint),
+            _ => false,
+        }
+    }
+
     /// The constant colour, if the texture is one.
     pub fn constant(&self) -> Option<Rgb> {
         match self {
