@@ -87,10 +87,8 @@ pub fn decode_texture(name: &Path, bytes: &[u8], srgb: bool) -> Result<ImageData
     check_image_size(width.into(), height.into(), bytes.len() as u64).map_err(fail)?;
     let decoded = reader().map_err(|e| fail(e.to_string()))?.decode().map_err(|e| fail(format!("not a valid image: {e}")))?;
     let (w, h) = (decoded.width() as usize, decoded.height() as usize);
-    let eight_bit = matches!(
-        decoded.color(),
-        image::ColorType::L8 | image::ColorType::La8 | image::ColorType::Rgb8 | image::ColorType::Rgba8
-    );
+    let eight_bit =
+        matches!(decoded.color(), image::ColorType::L8 | image::ColorType::La8 | image::ColorType::Rgb8 | image::ColorType::Rgba8);
     let float = matches!(decoded.color(), image::ColorType::Rgb32F | image::ColorType::Rgba32F);
     let data = if eight_bit {
         let rgba = decoded.into_rgba8();

@@ -295,7 +295,9 @@ fn a_metallic_roughness_texture_drives_metallic_and_roughness() {
     // glTF assets leave metallicFactor at 1 and paint the metal in the texture
     // (blue: metallic, green: roughness, linear); the factors multiply it.
     let dir = tempfile::tempdir().unwrap();
-    image::RgbImage::from_fn(2, 1, |x, _| image::Rgb(if x == 0 { [0, 128, 0] } else { [0, 64, 255] })).save(dir.path().join("mr.png")).unwrap();
+    image::RgbImage::from_fn(2, 1, |x, _| image::Rgb(if x == 0 { [0, 128, 0] } else { [0, 64, 255] }))
+        .save(dir.path().join("mr.png"))
+        .unwrap();
     let metal = r#"{"pbrMetallicRoughness": {"baseColorFactor": [1, 0.5, 0.25, 1], "metallicFactor": 1, "roughnessFactor": 0.5}}"#;
     let textured = r#"{"pbrMetallicRoughness": {"baseColorFactor": [1, 0.5, 0.25, 1], "roughnessFactor": 0.5,
         "metallicRoughnessTexture": {"index": 0}}}"#;
@@ -307,7 +309,10 @@ fn a_metallic_roughness_texture_drives_metallic_and_roughness() {
     let imported = write_and_load(dir.path(), "mr.gltf", json.as_bytes()).unwrap();
     let m = imported.instances[0].material.as_ref().unwrap();
     assert!(!imported.warnings.iter().any(|w| w.contains("metallicRoughnessTexture")), "{:?}", imported.warnings);
-    let at = |u: f64| m.at(&lamplight_core::materials::ShadingPoint { uv: [u, 0.5], ..lamplight_core::materials::ShadingPoint::at(Vec3::ZERO) }).into_owned();
+    let at = |u: f64| {
+        m.at(&lamplight_core::materials::ShadingPoint { uv: [u, 0.5], ..lamplight_core::materials::ShadingPoint::at(Vec3::ZERO) })
+            .into_owned()
+    };
     let (dielectric, metallic) = (at(0.25), at(0.75));
     assert_eq!(dielectric.pbr.as_ref().unwrap().metallic, 0.0);
     assert!((dielectric.roughness - 0.5 * 128.0 / 255.0).abs() < 1e-6, "{}", dielectric.roughness);

@@ -61,7 +61,12 @@ fn every_texel_reads_back_through_a_render() {
         }
     }
     // Linear: the texel's value divided by 255, undecoded.
-    let image = render_quad(dir.path(), "kd = 0\nka = 0\nemission = { type = \"image\", file = \"t.png\", color_space = \"linear\" }", "whitted", 1);
+    let image = render_quad(
+        dir.path(),
+        "kd = 0\nka = 0\nemission = { type = \"image\", file = \"t.png\", color_space = \"linear\" }",
+        "whitted",
+        1,
+    );
     assert!((image.get(1, 1)[1] - 110.0 / 255.0).abs() < 1e-6, "{:?}", image.get(1, 1));
 }
 
@@ -112,10 +117,7 @@ fn bad_texture_tables_name_their_key() {
         error("kd = { type = \"image\", file = \"t.png\", wrap = \"tile\" }"),
         "e.toml:6:47: material \"m\": kd: wrap: unknown value \"tile\", expected \"repeat\", \"mirror\" or \"clamp\""
     );
-    assert_eq!(
-        error("type = \"pbr\"\nmetallic = 2"),
-        "e.toml:7:12: material \"m\": metallic: must be between 0 and 1, got 2"
-    );
+    assert_eq!(error("type = \"pbr\"\nmetallic = 2"), "e.toml:7:12: material \"m\": metallic: must be between 0 and 1, got 2");
 }
 
 /// The base colour the camera sees on the model, pixel by pixel: the textured
@@ -253,7 +255,9 @@ fn high_frequency(a: &Image, rows: std::ops::Range<u32>) -> f64 {
 fn a_receding_checker_floor_shows_no_moire_at_one_sample() {
     let dir = tempfile::tempdir().unwrap();
     // 64 x 64 texels in 8 x 8 checks, tiled 200 times across a floor 1000 units deep.
-    image::RgbImage::from_fn(64, 64, |x, y| image::Rgb(if (x / 8 + y / 8) % 2 == 0 { [255; 3] } else { [0; 3] })).save(dir.path().join("c.png")).unwrap();
+    image::RgbImage::from_fn(64, 64, |x, y| image::Rgb(if (x / 8 + y / 8) % 2 == 0 { [255; 3] } else { [0; 3] }))
+        .save(dir.path().join("c.png"))
+        .unwrap();
     let render = |filter: &str, spp: u32| {
         let text = format!(
             "[camera]\neye = [0, 1, 0]\nlook_at = [0, 0.75, -10]\nvfov = 40\n\
@@ -271,7 +275,8 @@ fn a_receding_checker_floor_shows_no_moire_at_one_sample() {
     // The far half of the floor, above the image's middle and below the horizon.
     let far = 16..32;
     let (e_aliased, e_filtered) = (rmse(&aliased, &reference, far.clone()), rmse(&filtered, &reference, far.clone()));
-    let (hf_ref, hf_aliased, hf_filtered) = (high_frequency(&reference, far.clone()), high_frequency(&aliased, far.clone()), high_frequency(&filtered, far));
+    let (hf_ref, hf_aliased, hf_filtered) =
+        (high_frequency(&reference, far.clone()), high_frequency(&aliased, far.clone()), high_frequency(&filtered, far));
     println!("far floor: RMSE against 64 spp: bilinear {e_aliased:.4}, trilinear {e_filtered:.4}; HF energy: 64 spp {hf_ref:.3}, bilinear {hf_aliased:.3}, trilinear {hf_filtered:.3}");
     assert!(e_filtered < 0.5 * e_aliased, "trilinear {e_filtered} vs bilinear {e_aliased}");
     // Near the camera the checks are larger than pixels: trilinear keeps them (no
@@ -282,5 +287,8 @@ fn a_receding_checker_floor_shows_no_moire_at_one_sample() {
     assert!(n_filtered < 0.15, "the near checks survive: {n_filtered}");
     // Isotropic trilinear filtering blurs the far floor fully (pbrt's and GPUs'
     // trilinear do the same at grazing angles); what matters is no aliased energy.
-    assert!(hf_filtered < 2.0 * hf_ref && hf_aliased > 4.0 * hf_ref, "HF energy: reference {hf_ref}, bilinear {hf_aliased}, trilinear {hf_filtered}");
+    assert!(
+        hf_filtered < 2.0 * hf_ref && hf_aliased > 4.0 * hf_ref,
+        "HF energy: reference {hf_ref}, bilinear {hf_aliased}, trilinear {hf_filtered}"
+    );
 }

@@ -140,7 +140,8 @@ fn glossy_pdf_integrates_to_one_over_the_sphere() {
 fn metallic_roughness_stays_below_one_in_the_furnace() {
     for metallic in [0.0, 0.5, 1.0] {
         for roughness in [0.05, 0.5, 1.0] {
-            let m = crate::materials::pbr::material(crate::materials::Texture::Constant(Rgb::ONE), metallic, roughness, Rgb::ZERO, Vec::new());
+            let m =
+                crate::materials::pbr::material(crate::materials::Texture::Constant(Rgb::ONE), metallic, roughness, Rgb::ZERO, Vec::new());
             let bsdf = bsdf_for(&m, Vec3::ZERO, true);
             for k in 0..=8 {
                 let theta = (k as f64 * 10.0).to_radians();

@@ -73,7 +73,11 @@ mod tests {
         let at = ShadingPoint { color: Some(Rgb::new(0.5, 1.0, 0.0)), ..ShadingPoint::at(Vec3::ZERO) };
         let scaled = Texture::Scale(Arc::new([Texture::VertexColor, Texture::Constant(Rgb::new(2.0, 0.5, 1.0))]));
         assert_eq!(scaled.evaluate(&at), Rgb::new(1.0, 0.5, 0.0));
-        let mixed = Texture::Mix(Arc::new([Texture::Constant(Rgb::ZERO), Texture::Constant(Rgb::ONE), Texture::Constant(Rgb::new(0.25, 0.5, 1.0))]));
+        let mixed = Texture::Mix(Arc::new([
+            Texture::Constant(Rgb::ZERO),
+            Texture::Constant(Rgb::ONE),
+            Texture::Constant(Rgb::new(0.25, 0.5, 1.0)),
+        ]));
         assert_eq!(mixed.evaluate(&at), Rgb::new(0.25, 0.5, 1.0));
         assert_eq!(Texture::VertexColor.evaluate(&ShadingPoint::at(Vec3::ZERO)), Rgb::ONE);
         assert!(scaled.needs_coords() && !Texture::Constant(Rgb::ONE).needs_coords());

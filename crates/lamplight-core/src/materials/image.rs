@@ -144,7 +144,9 @@ impl ImageData {
         let texels = match &src.texels {
             Texels::F32(_) => Texels::F32(linear),
             // Re-encode through the table's inverse so that the level stays 8-bit.
-            Texels::U8(_) => Texels::U8(linear.iter().map(|t| [self.encode(t[0]), self.encode(t[1]), self.encode(t[2]), (t[3] * 255.0).round() as u8]).collect()),
+            Texels::U8(_) => Texels::U8(
+                linear.iter().map(|t| [self.encode(t[0]), self.encode(t[1]), self.encode(t[2]), (t[3] * 255.0).round() as u8]).collect(),
+            ),
         };
         Some(Level { width: w, height: h, texels })
     }
@@ -326,7 +328,13 @@ pub const KIND: TextureKind = Kind {
             "`\"srgb\"` (colours: 8- and 16-bit values decoded from sRGB) or `\"linear\"` (data); HDR and EXR are linear",
         ),
         Param::new("wrap", T::String, "\"repeat\"", "", "outside `[0, 1]`: `\"repeat\"`, `\"mirror\"` or `\"clamp\"`"),
-        Param::new("filter", T::String, "\"bilinear\"", "", "`\"nearest\"`, `\"bilinear\"` or `\"trilinear\"` (MIP-mapped by the camera rays' footprint)"),
+        Param::new(
+            "filter",
+            T::String,
+            "\"bilinear\"",
+            "",
+            "`\"nearest\"`, `\"bilinear\"` or `\"trilinear\"` (MIP-mapped by the camera rays' footprint)",
+        ),
         Param::new("channel", T::String, "\"rgb\"", "", "`\"rgb\"`, or `\"r\"`, `\"g\"`, `\"b\"`, `\"a\"` as a grey value"),
         UV_PARAMS[0],
         UV_PARAMS[1],
@@ -428,7 +436,13 @@ mod tests {
     #[test]
     fn srgb_texels_are_decoded() {
         let image = ImageData::new(1, 1, Texels::U8(vec![[188, 255, 0, 255]]), true).unwrap();
-        let t = ImageTexture { image: Arc::new(image), wrap: Wrap::Repeat, filter: Filter::Nearest, transform: UvTransform::IDENTITY, channel: Channel::Rgb };
+        let t = ImageTexture {
+            image: Arc::new(image),
+            wrap: Wrap::Repeat,
+            filter: Filter::Nearest,
+            transform: UvTransform::IDENTITY,
+            channel: Channel::Rgb,
+        };
         let c = t.evaluate(&at(0.5, 0.5));
         assert!((c.x - 0.5).abs() < 3e-3 && c.y == 1.0 && c.z == 0.0, "{c}");
         assert!(ImageData::new(2, 2, Texels::U8(vec![[0; 4]; 3]), true).is_err());

@@ -24,8 +24,8 @@ pub mod uv_checker;
 pub mod uv_transform;
 
 pub use fresnel::{fresnel_conductor, fresnel_conductor_channel, fresnel_dielectric};
-pub use metals::Metal;
 pub use image::{ImageData, ImageLoader, ImageTexture};
+pub use metals::Metal;
 pub use normal_map::NormalMap;
 pub use pbr::Pbr;
 pub use texture::{ShadingPoint, Texture, TextureKind, Textures};

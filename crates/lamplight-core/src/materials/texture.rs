@@ -289,7 +289,8 @@ mod tests {
         // error above or below it, and both sides must give the same square.
         let t = Texture::Checker { size: 1.0, even: Rgb::ONE, odd: Rgb::ZERO, offset: Vec3::ZERO };
         for (x, z) in [(0.5, 0.5), (1.5, 0.5), (-0.5, 0.5), (-0.5, -0.5), (1e5 + 0.5, -3e5 + 0.5)] {
-            let colours: Vec<Rgb> = [-1e-17, -1e-12, -1e-10, 0.0, 1e-17, 1e-12].iter().map(|&y| t.evaluate(&ShadingPoint::at(Vec3::new(x, y, z)))).collect();
+            let colours: Vec<Rgb> =
+                [-1e-17, -1e-12, -1e-10, 0.0, 1e-17, 1e-12].iter().map(|&y| t.evaluate(&ShadingPoint::at(Vec3::new(x, y, z)))).collect();
             assert!(colours.iter().all(|c| *c == colours[0]), "({x}, {z}): {colours:?}");
         }
         // Cells still alternate, and a point a visible distance below the floor is in the cell below.

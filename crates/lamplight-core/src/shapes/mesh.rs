@@ -277,7 +277,13 @@ impl Shape for TriangleMesh {
             let [t0, t1, t2] = idx.map(|i| t[i]);
             let xyz = |t: [f64; 4]| Vec3::new(t[0], t[1], t[2]);
             // The sign is per vertex (a mirrored UV island): the nearest corner's.
-            let nearest = if b[0] >= b[1] && b[0] >= b[2] { t0 } else if b[1] >= b[2] { t1 } else { t2 };
+            let nearest = if b[0] >= b[1] && b[0] >= b[2] {
+                t0
+            } else if b[1] >= b[2] {
+                t1
+            } else {
+                t2
+            };
             let w = if nearest[3] < 0.0 { -1.0 } else { 1.0 };
             (xyz(t0) * b[0] + xyz(t1) * b[1] + xyz(t2) * b[2]).try_normalize().map(|t| (t, w))
         });

@@ -32,13 +32,13 @@ pub use named::Sheets;
 
 use super::surface::Meridian;
 use super::{Shape, SurfaceCoords, SurfaceHit};
-use uv::Revolution;
 use crate::accel::Aabb;
 use crate::math::{solve_quadratic, Mat4, Vec3};
 use crate::ray::Ray;
 use crate::Error;
 use form::{Affine, Form};
 use glam::DMat3;
+use uv::Revolution;
 
 /// A quadric surface with optional clip regions; see the module documentation.
 #[derive(Clone, Debug, PartialEq)]

@@ -101,7 +101,13 @@ mod tests {
 
     #[test]
     fn default_camera_frames_the_model_and_lights_are_added() {
-        let mesh = MeshData { name: None, positions: vec![Vec3::ZERO, Vec3::X, Vec3::Y], indices: vec![[0, 1, 2]], normals: None, ..MeshData::default() };
+        let mesh = MeshData {
+            name: None,
+            positions: vec![Vec3::ZERO, Vec3::X, Vec3::Y],
+            indices: vec![[0, 1, 2]],
+            normals: None,
+            ..MeshData::default()
+        };
         let imported = Imported {
             meshes: vec![mesh],
             instances: vec![ImportedMesh { mesh: 0, transform: Mat4::from_translation(Vec3::Z), material: None }],

@@ -35,9 +35,15 @@ impl<'p> GltfImages<'p> {
                 let buffer = &buffers[view.buffer().index()];
                 let (start, len) = (view.offset(), view.length());
                 let Some(bytes) = start.checked_add(len).and_then(|end| buffer.get(start..end)) else {
-                    return Err(fail(".bufferView", format!("bytes {start}..{} lie outside buffer {}", start + len, view.buffer().index())));
+                    return Err(fail(
+                        ".bufferView",
+                        format!("bytes {start}..{} lie outside buffer {}", start + len, view.buffer().index()),
+                    ));
                 };
-                (self.path.with_file_name(format!("{}#{at}", self.path.file_name().map_or("glb".into(), |n| n.to_string_lossy()))), bytes.into())
+                (
+                    self.path.with_file_name(format!("{}#{at}", self.path.file_name().map_or("glb".into(), |n| n.to_string_lossy()))),
+                    bytes.into(),
+                )
             }
             gltf::image::Source::Uri { uri, .. } => {
                 if let Some(rest) = uri.strip_prefix("data:") {
@@ -45,14 +51,16 @@ impl<'p> GltfImages<'p> {
                         return Err(fail(".uri", "expected a base64 data URI (`data:...;base64,...`)".into()));
                     };
                     let bytes = super::gltf::base64_engine().decode(encoded).map_err(|e| fail(".uri", format!("invalid base64: {e}")))?;
-                    (self.path.with_file_name(format!("{}#{at}", self.path.file_name().map_or("gltf".into(), |n| n.to_string_lossy()))), bytes.into())
+                    (
+                        self.path.with_file_name(format!("{}#{at}", self.path.file_name().map_or("gltf".into(), |n| n.to_string_lossy()))),
+                        bytes.into(),
+                    )
                 } else if uri.contains("://") {
                     return Err(fail(".uri", format!("cannot fetch `{uri}`: only files beside the glTF are read")));
                 } else {
                     let file = self.path.parent().unwrap_or(Path::new("")).join(percent_decoded(uri));
-                    let bytes = crate::input::read_regular(&file, crate::image_io::MAX_IMAGE_FILE_BYTES).map_err(|r| {
-                        fail(".uri", format!("cannot read image `{}`: {}", file.display(), crate::image_io::refusal(&r)))
-                    })?;
+                    let bytes = crate::input::read_regular(&file, crate::image_io::MAX_IMAGE_FILE_BYTES)
+                        .map_err(|r| fail(".uri", format!("cannot read image `{}`: {}", file.display(), crate::image_io::refusal(&r))))?;
                     (file, bytes.into())
                 }
             }

@@ -21,8 +21,8 @@
 
 use std::sync::Arc;
 
-use lamplight_core::materials::image::{Channel, Filter, Wrap};
 use lamplight_core::materials::alpha::AlphaMask;
+use lamplight_core::materials::image::{Channel, Filter, Wrap};
 use lamplight_core::materials::{pbr, ImageData, ImageTexture, Material, NormalMap, Slot, Texture, UvTransform};
 use lamplight_core::math::Rgb;
 
@@ -82,9 +82,15 @@ fn image_texture(
     };
     let filter = match (sampler.min_filter(), sampler.mag_filter()) {
         (Some(MinFilter::Nearest), Some(MagFilter::Nearest)) => Filter::Nearest,
-        (Some(MinFilter::NearestMipmapNearest | MinFilter::LinearMipmapNearest | MinFilter::NearestMipmapLinear | MinFilter::LinearMipmapLinear), _) => {
-            Filter::Trilinear
-        }
+        (
+            Some(
+                MinFilter::NearestMipmapNearest
+                | MinFilter::LinearMipmapNearest
+                | MinFilter::NearestMipmapLinear
+                | MinFilter::LinearMipmapLinear,
+            ),
+            _,
+        ) => Filter::Trilinear,
         _ => Filter::Bilinear,
     };
     let flip = UvTransform([[1.0, 0.0, 0.0], [0.0, -1.0, 1.0]]);

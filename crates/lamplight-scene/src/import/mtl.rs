@@ -137,7 +137,13 @@ pub(super) fn parse(path: &Path, text: &str, warnings: &mut Warnings) -> Result<
             if let Some(image) = image {
                 let channel = if matches!(keyword, "map_Ns" | "map_d") { Channel::One(0) } else { Channel::Rgb };
                 let wrap = if clamp { Wrap::Clamp } else { Wrap::Repeat };
-                let texture = Texture::Image(Arc::new(ImageTexture { image, wrap, filter: Filter::Bilinear, transform: UvTransform::IDENTITY, channel }));
+                let texture = Texture::Image(Arc::new(ImageTexture {
+                    image,
+                    wrap,
+                    filter: Filter::Bilinear,
+                    transform: UvTransform::IDENTITY,
+                    channel,
+                }));
                 match keyword {
                     "map_Kd" => values.map_kd = Some(texture),
                     "map_Ks" => values.map_ks = Some(texture),
@@ -305,7 +311,10 @@ mod tests {
         assert!(matches!(m.color, Texture::Image(_)));
         assert_eq!(m.normal_map.as_ref().map(|n| n.scale), Some(2.0));
         let warnings = w.into_vec();
-        assert!(warnings[0].starts_with("MTL map_Ks at line 5 ignored: cannot read texture") && warnings[0].contains("missing.png"), "{warnings:?}");
+        assert!(
+            warnings[0].starts_with("MTL map_Ks at line 5 ignored: cannot read texture") && warnings[0].contains("missing.png"),
+            "{warnings:?}"
+        );
         assert_eq!(warnings[1], "MTL bump ignored: only map_Kd, map_Ks, map_Ns, map_d and norm maps are read");
     }
 

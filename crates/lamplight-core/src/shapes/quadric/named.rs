@@ -9,9 +9,9 @@
 use super::form::Form;
 use super::uv::Revolution;
 use super::{Clip, Quadric};
-use crate::shapes::surface::Meridian;
 use crate::accel::Aabb;
 use crate::math::{Mat4, Vec3};
+use crate::shapes::surface::Meridian;
 use crate::Error;
 use glam::DMat3;
 

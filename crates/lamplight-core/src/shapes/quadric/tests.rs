@@ -335,7 +335,9 @@ fn named_quadrics_have_surface_coordinates_of_revolution() {
         let (phi, theta) = (u * tau, std::f64::consts::PI * (1.0 - v));
         Vec3::new(0.0, 1.0, 0.0) + Vec3::new(theta.sin() * phi.cos(), 2.0 * theta.sin() * phi.sin(), 3.0 * theta.cos())
     };
-    let moved = tube.transformed(Mat4::from_scale_rotation_translation(Vec3::new(2.0, 1.0, 1.0), glam::DQuat::from_rotation_x(0.3), Vec3::X)).unwrap();
+    let moved = tube
+        .transformed(Mat4::from_scale_rotation_translation(Vec3::new(2.0, 1.0, 1.0), glam::DQuat::from_rotation_x(0.3), Vec3::X))
+        .unwrap();
     let m = Mat4::from_scale_rotation_translation(Vec3::new(2.0, 1.0, 1.0), glam::DQuat::from_rotation_x(0.3), Vec3::X);
     let on_moved = |u: f64, v: f64| m.transform_point3(on_tube(u, v));
     let cases: [(&Quadric, &dyn Fn(f64, f64) -> Vec3); 3] = [(&tube, &on_tube), (&e, &on_ellipsoid), (&moved, &on_moved)];

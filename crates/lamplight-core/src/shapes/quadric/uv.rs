@@ -30,7 +30,10 @@ impl Revolution {
     /// scaled by `radial` (`axis` unit).
     pub fn around(origin: Vec3, axis: Vec3, radial: f64, axial: f64, meridian: Meridian) -> Revolution {
         let (x, y) = orthonormal_basis(axis);
-        Revolution::new(Mat4::from_cols((x * radial).extend(0.0), (y * radial).extend(0.0), (axis * axial).extend(0.0), origin.extend(1.0)), meridian)
+        Revolution::new(
+            Mat4::from_cols((x * radial).extend(0.0), (y * radial).extend(0.0), (axis * axial).extend(0.0), origin.extend(1.0)),
+            meridian,
+        )
     }
 
     /// The frame `world_from_local` (affine, invertible).
