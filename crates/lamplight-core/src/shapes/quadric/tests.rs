@@ -340,7 +340,8 @@ fn named_quadrics_have_surface_coordinates_of_revolution() {
         .unwrap();
     let m = Mat4::from_scale_rotation_translation(Vec3::new(2.0, 1.0, 1.0), glam::DQuat::from_rotation_x(0.3), Vec3::X);
     let on_moved = |u: f64, v: f64| m.transform_point3(on_tube(u, v));
-    let cases: [(&Quadric, &dyn Fn(f64, f64) -> Vec3); 3] = [(&tube, &on_tube), (&e, &on_ellipsoid), (&moved, &on_moved)];
+    type Parametrization<'a> = &'a dyn Fn(f64, f64) -> Vec3;
+    let cases: [(&Quadric, Parametrization); 3] = [(&tube, &on_tube), (&e, &on_ellipsoid), (&moved, &on_moved)];
     for (q, at) in cases {
         for (u, v) in [(0.1, 0.2), (0.55, 0.5), (0.8, 0.9)] {
             let p = at(u, v);
