@@ -78,6 +78,10 @@ pub struct Scene {
     bounded: Vec<PrimRef>,
     /// Some material has a trilinear texture ([`Scene::uses_footprints`]).
     uses_footprints: bool,
+    /// Per material: whether [`Scene::shade`] can hand it over as it is (constant,
+    /// or a colour of the point alone, and no normal map). One byte each, so the
+    /// Whitted tracer's test touches no BSDF.
+    plain: Vec<bool>,
     /// Objects with infinite bounds (infinite planes, unclipped quadrics), tested one by one.
     unbounded: Vec<PrimRef>,
     /// Some material dims shadow rays without blocking them (transmittance strictly
@@ -208,7 +212,13 @@ impl SceneBuilder {
             .map(|m| m.is_constant().then(|| [bsdf_for(m, Vec3::ZERO, false), bsdf_for(m, Vec3::ZERO, true)]))
             .collect();
         let uses_footprints = self.materials.iter().any(Material::uses_footprint);
+        let plain = self
+            .materials
+            .iter()
+            .map(|m| m.normal_map.is_none() && m.textures.is_none() && m.pbr.is_none() && !m.color.needs_coords())
+            .collect();
         Ok(Scene {
+            plain,
             uses_footprints,
             bsdfs,
             bvh: Bvh::build_with(&boxes, Costs::OBJECTS),
@@ -416,11 +426,12 @@ impl Scene {
     #[inline]
     pub fn shade(&self, hit: &mut Hit, wo: Vec3, footprint: f64) -> Cow<'_, Material> {
         let material = &self.materials[hit.material];
-        // A prebuilt BSDF marks a constant material, one load instead of three tests.
-        let constant = matches!(self.bsdfs.get(hit.material), Some(Some(_)));
-        if constant && material.normal_map.is_none() {
+        // A colour of the point alone (the 3D checker) is evaluated where it is
+        // used, as before textures: copying the material per hit slowed `spheres` (its floor).
+        if self.plain[hit.material] {
             return Cow::Borrowed(material);
         }
+        let constant = matches!(self.bsdfs.get(hit.material), Some(Some(_)));
         let mut at = ShadingPoint::at(hit.point);
         let coords = material.needs_coords().then(|| self.surface_coords(hit));
         if let Some(c) = &coords {

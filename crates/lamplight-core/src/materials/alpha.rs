@@ -34,12 +34,12 @@ pub const ALPHA_PARAMS: [Param; 2] = [
 ];
 
 /// Reads [`ALPHA_PARAMS`].
-pub fn read(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Option<AlphaMask>> {
+pub fn read(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Option<std::sync::Arc<AlphaMask>>> {
     let cutoff = p.number_or("alpha_cutoff", 0.5)?;
     if !(0.0..=1.0).contains(&cutoff) {
         return Err(p.key_error("alpha_cutoff", format!("must be between 0 and 1, got {cutoff}")));
     }
-    Ok(textures.read_scalar(p, "alpha")?.map(|texture| AlphaMask { texture, cutoff }))
+    Ok(textures.read_scalar(p, "alpha")?.map(|texture| std::sync::Arc::new(AlphaMask { texture, cutoff })))
 }
 
 impl AlphaMask {
@@ -81,7 +81,11 @@ mod tests {
     fn rays_pass_through_cut_out_points_to_what_lies_behind() {
         // A unit square whose left half (u < 0.5) is cut out by a UV checker of two cells.
         let mask = AlphaMask {
-            texture: Texture::UvChecker { transform: UvTransform::new([2.0, 1.0], 0.0, [0.0, 0.0]), even: Rgb::ZERO, odd: Rgb::ONE },
+            texture: Texture::UvChecker(std::sync::Arc::new(crate::materials::texture::UvChecker {
+                transform: UvTransform::new([2.0, 1.0], 0.0, [0.0, 0.0]),
+                even: Rgb::ZERO,
+                odd: Rgb::ONE,
+            })),
             cutoff: 0.5,
         };
         let square = Rectangle::new(Vec3::ZERO, Vec3::X, Vec3::Y).unwrap();

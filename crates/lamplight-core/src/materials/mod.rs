@@ -139,9 +139,10 @@ pub struct Material {
     /// tracer's BSDF; the lecture's fields above are its Whitted approximation.
     pub pbr: Option<Pbr>,
     /// A tangent-space normal map ([`normal_map`]), applied where the surface is shaded.
-    pub normal_map: Option<NormalMap>,
+    /// (Shared: rare and large, kept out of the material's cache lines.)
+    pub normal_map: Option<Arc<NormalMap>>,
     /// A cut-out mask ([`alpha`]): where it is below its cutoff the surface is not there.
-    pub alpha: Option<alpha::AlphaMask>,
+    pub alpha: Option<Arc<alpha::AlphaMask>>,
 }
 
 impl Default for Material {

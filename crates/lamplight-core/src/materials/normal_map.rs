@@ -42,9 +42,9 @@ pub const NORMAL_MAP_PARAMS: [Param; 2] = [
 ];
 
 /// Reads [`NORMAL_MAP_PARAMS`].
-pub fn read(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Option<NormalMap>> {
+pub fn read(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Option<std::sync::Arc<NormalMap>>> {
     let scale = p.number_or("normal_scale", 1.0)?;
-    Ok(textures.read(p, "normal_map")?.map(|texture| NormalMap { texture, scale }))
+    Ok(textures.read(p, "normal_map")?.map(|texture| std::sync::Arc::new(NormalMap { texture, scale })))
 }
 
 /// Smallest `n . wo` a mapped normal keeps.

@@ -85,6 +85,17 @@ impl Textures<'_> {
     }
 }
 
+/// The cells of [`Texture::UvChecker`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct UvChecker {
+    /// `(u, v)` to cell coordinates.
+    pub transform: UvTransform,
+    /// Colour of even cells.
+    pub even: Rgb,
+    /// Colour of odd cells.
+    pub odd: Rgb,
+}
+
 /// What a texture is evaluated at: the point, and its surface coordinates when
 /// a texture reads them.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -131,14 +142,8 @@ pub enum Texture {
     },
     /// A checker in texture space: `even` where `floor(s) + floor(t)` is even
     /// for `(s, t) = T(u, v)` ([`super::uv_checker`]).
-    UvChecker {
-        /// `(u, v)` to cell coordinates.
-        transform: UvTransform,
-        /// Colour of even cells.
-        even: Rgb,
-        /// Colour of odd cells.
-        odd: Rgb,
-    },
+    /// (Shared, so that the enum stays the size it had with the 3D checker.)
+    UvChecker(Arc<UvChecker>),
     /// An image ([`super::image`]).
     Image(Arc<ImageTexture>),
     /// The product of two textures, channel by channel ([`super::combine`]).
@@ -163,12 +168,12 @@ impl Texture {
                     *odd
                 }
             }
-            Texture::UvChecker { transform, even, odd } => {
-                let [s, t] = transform.apply(at.uv);
+            Texture::UvChecker(c) => {
+                let [s, t] = c.transform.apply(at.uv);
                 if (s.floor() + t.floor()).rem_euclid(2.0) == 0.0 {
-                    *even
+                    c.even
                 } else {
-                    *odd
+                    c.odd
                 }
             }
             Texture::Image(image) => image.evaluate(at),

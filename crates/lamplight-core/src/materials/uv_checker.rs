@@ -11,7 +11,10 @@
 //! | `even`, `odd` | colour | required | the two colours |
 //! | `uv_scale`, `uv_rotate`, `uv_offset` | `[a, b]`, degrees, `[a, b]` | `[1, 1]`, 0, `[0, 0]` | the UV transform |
 
+use std::sync::Arc;
+
 use super::image::{read_uv_transform, UV_PARAMS};
+use super::texture::UvChecker;
 use super::{Texture, TextureKind};
 use crate::params::{Kind, Param, ParamType as T};
 
@@ -29,7 +32,7 @@ pub const KIND: TextureKind = Kind {
     build: |p, _| {
         let even = p.color("even")?.ok_or_else(|| p.error("needs `even` (a colour)"))?;
         let odd = p.color("odd")?.ok_or_else(|| p.error("needs `odd` (a colour)"))?;
-        Ok(Texture::UvChecker { transform: read_uv_transform(p)?, even, odd })
+        Ok(Texture::UvChecker(Arc::new(UvChecker { transform: read_uv_transform(p)?, even, odd })))
     },
 };
 
@@ -41,7 +44,7 @@ mod tests {
 
     #[test]
     fn cells_alternate_in_texture_space() {
-        let t = Texture::UvChecker { transform: UvTransform::new([4.0, 4.0], 0.0, [0.0, 0.0]), even: Rgb::ONE, odd: Rgb::ZERO };
+        let t = Texture::UvChecker(Arc::new(UvChecker { transform: UvTransform::new([4.0, 4.0], 0.0, [0.0, 0.0]), even: Rgb::ONE, odd: Rgb::ZERO }));
         let at = |u: f64, v: f64| t.evaluate(&ShadingPoint { uv: [u, v], ..ShadingPoint::at(Vec3::ZERO) });
         assert_eq!(at(0.1, 0.1), Rgb::ONE);
         assert_eq!(at(0.3, 0.1), Rgb::ZERO);

@@ -183,7 +183,7 @@ pub(super) fn map(
         None => None,
         Some(cutoff) => {
             let coverage = texture(pbr_json.base_color_texture(), true, Channel::One(3))?;
-            Some(AlphaMask { texture: scaled(coverage, Rgb::splat(clean(alpha_factor).min(1.0))), cutoff })
+            Some(Arc::new(AlphaMask { texture: scaled(coverage, Rgb::splat(clean(alpha_factor).min(1.0))), cutoff }))
         }
     };
     let mut material = pbr::material(base, metal, rough, emission, maps);
@@ -191,7 +191,7 @@ pub(super) fn map(
     if let Some(n) = m.normal_texture() {
         let texture = image_texture(&n.texture(), n.tex_coord(), None, false, Channel::Rgb, load, warnings)?;
         let scale = if n.scale().is_finite() { f64::from(n.scale()) } else { 1.0 };
-        material.normal_map = Some(NormalMap { texture, scale });
+        material.normal_map = Some(Arc::new(NormalMap { texture, scale }));
     }
     Ok(material)
 }

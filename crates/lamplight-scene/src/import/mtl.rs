@@ -231,8 +231,8 @@ fn to_material(v: &MtlValues) -> Material {
         ks: if illum <= 1 { Rgb::ZERO } else { ks },
         shininess: ns,
         emission: v.ke.unwrap_or(Rgb::ZERO),
-        normal_map: v.norm.clone(),
-        alpha: v.map_d.clone().map(|texture| AlphaMask { texture, cutoff: 0.5 }),
+        normal_map: v.norm.clone().map(Arc::new),
+        alpha: v.map_d.clone().map(|texture| Arc::new(AlphaMask { texture, cutoff: 0.5 })),
         ..Material::default()
     };
     if let Some(t) = &v.map_kd {
