@@ -18,9 +18,9 @@
 //! Filters: nearest takes the texel containing `(s, t)`; bilinear weighs the
 //! four texels around it by `(1 - fx)(1 - fy)`, `fx (1 - fy)`, ... (pbrt-v4's
 //! `Image::Bilerp`); trilinear blends bilinear lookups in the two MIP levels
-//! around `l = log2(max(w, h) * width)`, where `width` is the larger of the
-//! footprint's extents in `(s, t)` (pbrt-v4's `MIPMap::Filter` with
-//! `FilterFunction::Bilinear`). Level `k + 1` is level `k` box-filtered 2x2 (in
+//! around `l = log2(width)`, where `width` is the footprint's largest extent
+//! in texels of level 0 (`|ds| w` or `|dt| h`; pbrt-v4's `MIPMap::Filter` with
+//! `FilterFunction::Bilinear`, for images that need not be square). Level `k + 1` is level `k` box-filtered 2x2 (in
 //! linear values).
 //!
 //! A file is decoded once per colour space and shared by every texture that
@@ -276,10 +276,12 @@ impl ImageTexture {
 
     fn trilinear(&self, st: [f64; 2], at: &ShadingPoint) -> [f64; 4] {
         let (dx, dy) = (self.transform.apply_vector(at.duv_dx), self.transform.apply_vector(at.duv_dy));
-        let width = dx[0].abs().max(dx[1].abs()).max(dy[0].abs()).max(dy[1].abs());
         let (w, h) = self.image.size();
+        // The footprint in texels of level 0, per axis of the image (it need not be square).
+        let texels = |d: [f64; 2]| (d[0] * w as f64).abs().max((d[1] * h as f64).abs());
+        let width = texels(dx).max(texels(dy));
         let levels = self.image.levels.len();
-        let level = (w.max(h) as f64 * width).max(1e-30).log2();
+        let level = width.max(1e-30).log2();
         if !(level > 0.0) {
             return self.bilinear(0, st);
         }
