@@ -44,7 +44,11 @@ mod tests {
 
     #[test]
     fn cells_alternate_in_texture_space() {
-        let t = Texture::UvChecker(Arc::new(UvChecker { transform: UvTransform::new([4.0, 4.0], 0.0, [0.0, 0.0]), even: Rgb::ONE, odd: Rgb::ZERO }));
+        let t = Texture::UvChecker(Arc::new(UvChecker {
+            transform: UvTransform::new([4.0, 4.0], 0.0, [0.0, 0.0]),
+            even: Rgb::ONE,
+            odd: Rgb::ZERO,
+        }));
         let at = |u: f64, v: f64| t.evaluate(&ShadingPoint { uv: [u, v], ..ShadingPoint::at(Vec3::ZERO) });
         assert_eq!(at(0.1, 0.1), Rgb::ONE);
         assert_eq!(at(0.3, 0.1), Rgb::ZERO);
