@@ -3,7 +3,7 @@
 //!
 //! Every file is opened through [`crate::input::read_regular`] with the image
 //! size cap, and its stated dimensions are checked
-//! ([`crate::image_io::check_image_size`]) before any pixel is allocated.
+//! (`image_io::check_image_size`) before any pixel is allocated.
 //! 8-bit images stay 8-bit (decoded through the colour space's table at
 //! lookup); 16-bit and float images become linear floats, 16-bit ones decoded
 //! from sRGB when the texture is a colour.
