@@ -10,11 +10,11 @@ import pytest
 import lamplight
 from lamplight import _render
 
-# A quad with texture coordinates and a line element: two importer warnings.
-WARNED_OBJ = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nf 1 2 3 4\nl 1 3\n"
+# A quad with a line and a point element: two importer warnings.
+WARNED_OBJ = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nl 1 3\np 2\n"
 EXPECTED = [
-    "OBJ texture coordinates (vt) ignored: textures are not supported",
     "OBJ line elements ignored",
+    "OBJ point elements ignored",
 ]
 
 

@@ -295,16 +295,16 @@ fn radiance_hdr_files_light_the_scene_like_the_same_exr() {
     assert!(message.contains("not a valid Radiance .hdr file"), "{message}");
 }
 
-/// An OBJ quad with texture coordinates and a line element, both unsupported.
-const WARNED_OBJ: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 1\nf 1 2 3 4\nl 1 3\nl 2 4\n";
+/// An OBJ quad with line and point elements, both unsupported.
+const WARNED_OBJ: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nl 1 3\nl 2 4\np 1\np 2\n";
 
 #[test]
 fn importer_warnings_are_printed_once_each_to_stderr() {
     let dir = tempfile::tempdir().unwrap();
     let dir = dir.path();
     fs::write(dir.join("quad.obj"), WARNED_OBJ).unwrap();
-    let expected = "lamplight: warning: quad.obj: OBJ texture coordinates (vt) ignored: textures are not supported\n\
-                    lamplight: warning: quad.obj: OBJ line elements ignored\n";
+    let expected = "lamplight: warning: quad.obj: OBJ line elements ignored\n\
+                    lamplight: warning: quad.obj: OBJ point elements ignored\n";
     let err = ok(dir, &["render", "quad.obj", "--width", "16", "--height", "9", "-q"]);
     assert_eq!(err, expected, "-q keeps the warnings");
     let err = ok(dir, &["render", "quad.obj", "--width", "16", "--height", "9"]);

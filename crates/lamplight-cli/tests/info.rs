@@ -16,7 +16,7 @@ fn info(dir: &Path, file: &str) -> String {
     String::from_utf8(out.stdout).unwrap()
 }
 
-/// Two OBJ objects, one with an MTL material, texture coordinates (a warning).
+/// Two OBJ objects, one with an MTL material, the other naming a material no library defines (a warning).
 fn write_mesh(dir: &Path) {
     fs::write(dir.join("two.mtl"), "newmtl red\nKd 0.8 0.1 0.1\n").unwrap();
     let obj = "mtllib two.mtl\no quad\nv 0 0 0\nv 2 0 0\nv 2 1 0\nv 0 1 0\nvt 0 0\nusemtl red\nf 1 2 3 4\n\
@@ -36,8 +36,7 @@ fn a_mesh_file_lists_its_meshes_bounds_materials_and_warnings() {
          materials:  1 material; 1 placed mesh without one (the default grey)\n\
          cameras:    none (a render frames the model from a 3/4 view)\n\
          lights:     none (a render adds a neutral surround and key, fill and rim lights)\n\
-         warnings:   2\n  \
-           OBJ texture coordinates (vt) ignored: textures are not supported\n  \
+         warnings:   1\n  \
            OBJ material `none` is defined by no `mtllib` read so far: no material used\n"
     );
 }
@@ -65,8 +64,7 @@ fn a_scene_file_lists_its_objects_materials_camera_and_lights() {
          cameras:    1: perspective, eye = [0, 1, 5], look_at = [0, 0, 0], vfov = 40\n\
          lights:     2 point lights, 2 emitting objects (area lights), ambient [0.5, 0.5, 0.5]\n\
          background: [0.1, 0.2, 0.3]\n\
-         warnings:   2\n  \
-           two.obj: OBJ texture coordinates (vt) ignored: textures are not supported\n  \
+         warnings:   1\n  \
            two.obj: OBJ material `none` is defined by no `mtllib` read so far: no material used\n"
     );
 }

@@ -10,11 +10,13 @@ use crate::accel::{Aabb, Bvh, Costs};
 use crate::bsdfs::{bsdf_for, Bsdf};
 use crate::camera::Camera;
 use crate::lights::Light;
-use crate::materials::{Material, Texture};
+use crate::materials::Material;
 use crate::math::{max_abs, Rgb, Vec3};
 use crate::ray::{Ray, OFFSET_SCALE};
 use crate::shapes::Shape;
 use crate::Error;
+
+mod shading;
 
 /// A shape placed in the scene with its material.
 #[derive(Clone, Debug)]
@@ -76,6 +78,12 @@ pub struct Scene {
     bvh: Bvh,
     /// Objects in the BVH, in BVH primitive order.
     bounded: Vec<PrimRef>,
+    /// Some material has a trilinear texture ([`Scene::uses_footprints`]).
+    uses_footprints: bool,
+    /// Per material: whether [`Scene::shade`] can hand it over as it is (constant,
+    /// or a colour of the point alone, and no normal map). One byte each, so the
+    /// Whitted tracer's test touches no BSDF.
+    plain: Vec<bool>,
     /// Objects with infinite bounds (infinite planes, unclipped quadrics), tested one by one.
     unbounded: Vec<PrimRef>,
     /// Some material dims shadow rays without blocking them (transmittance strictly
@@ -108,6 +116,8 @@ fn set_name(list: &mut Vec<Option<String>>, i: usize, name: &str) {
 struct PrimRef {
     object: u32,
     opaque: bool,
+    /// Its material cuts holes ([`crate::materials::alpha`]).
+    masked: bool,
 }
 
 /// Collects objects, materials and lights, then builds a [`Scene`].
@@ -214,7 +224,8 @@ impl SceneBuilder {
         let mut boxes = Vec::new();
         for (i, object) in self.objects.iter().enumerate() {
             let b = object.shape.bounds();
-            let prim = PrimRef { object: i as u32, opaque: self.materials[object.material].shadow_transmittance == Rgb::ZERO };
+            let material = &self.materials[object.material];
+            let prim = PrimRef { object: i as u32, opaque: material.shadow_transmittance == Rgb::ZERO, masked: material.alpha.is_some() };
             if b.is_finite() {
                 bounded.push(prim);
                 boxes.push(b);
@@ -228,9 +239,17 @@ impl SceneBuilder {
         let bsdfs = self
             .materials
             .iter()
-            .map(|m| matches!(m.color, Texture::Constant(_)).then(|| [bsdf_for(m, Vec3::ZERO, false), bsdf_for(m, Vec3::ZERO, true)]))
+            .map(|m| m.is_constant().then(|| [bsdf_for(m, Vec3::ZERO, false), bsdf_for(m, Vec3::ZERO, true)]))
+            .collect();
+        let uses_footprints = self.materials.iter().any(Material::uses_footprint);
+        let plain = self
+            .materials
+            .iter()
+            .map(|m| m.normal_map.is_none() && m.textures.is_none() && m.pbr.is_none() && !m.color.needs_coords())
             .collect();
         Ok(Scene {
+            plain,
+            uses_footprints,
             bsdfs,
             bvh: Bvh::build_with(&boxes, Costs::OBJECTS),
             bounded,
@@ -267,15 +286,15 @@ impl Scene {
         let mut closest = t_max;
         for prim in &self.unbounded {
             let i = prim.object as usize;
-            if let Some(h) = self.objects[i].shape.intersect(ray, 0.0, closest) {
+            if let Some(h) = self.hit_object(prim, ray, closest) {
                 closest = h.t;
                 best = Some((i, h));
             }
         }
         self.bvh.traverse(ray.origin, ray.dir, 0.0, closest, |prim, t_max| {
-            let i = self.bounded[prim as usize].object as usize;
-            let h = self.objects[i].shape.intersect(ray, 0.0, t_max)?;
-            best = Some((i, h));
+            let prim = &self.bounded[prim as usize];
+            let h = self.hit_object(prim, ray, t_max)?;
+            best = Some((prim.object as usize, h));
             Some(h.t)
         });
         let (object, h) = best?;
@@ -296,6 +315,32 @@ impl Scene {
             error: h.error,
             primitive: h.primitive,
         })
+    }
+
+    /// Whether some material reads a footprint (a trilinear image texture), so
+    /// that the Whitted tracer follows its camera rays' cones.
+    pub fn uses_footprints(&self) -> bool {
+        self.uses_footprints
+    }
+
+    /// The nearest hit of one object in `(0, t_max)`, past its cut-outs.
+    #[inline]
+    fn hit_object(&self, prim: &PrimRef, ray: &Ray, t_max: f64) -> Option<crate::shapes::SurfaceHit> {
+        let object = &self.objects[prim.object as usize];
+        // The flag first: unmasked objects never load their material here.
+        if prim.masked {
+            if let Some(mask) = &self.materials[object.material].alpha {
+                return crate::materials::alpha::first_covered(&*object.shape, mask, ray, 0.0, t_max);
+            }
+        }
+        object.shape.intersect(ray, 0.0, t_max)
+    }
+
+    /// The surface coordinates of `hit` ([`Shape::surface_coords`]), computed
+    /// now: only materials that read them ask.
+    pub fn surface_coords(&self, hit: &Hit) -> crate::shapes::SurfaceCoords {
+        let outward = if hit.front_face { hit.geometric_normal } else { -hit.geometric_normal };
+        self.objects[hit.object].shape.surface_coords(hit.point, outward, hit.primitive)
     }
 
     /// What the shapes noticed while rendering ([`crate::shapes::Shape::warnings`]:
@@ -341,7 +386,13 @@ impl Scene {
         let ray = Ray { origin, dir };
         let ignore = ignore.map_or(u32::MAX, |i| i as u32);
         let blocks = |prim: &PrimRef| -> bool {
-            prim.opaque && prim.object != ignore && self.objects[prim.object as usize].shape.intersect_p(&ray, 0.0, distance)
+            prim.opaque
+                && prim.object != ignore
+                && if prim.masked {
+                    self.hit_object(prim, &ray, distance).is_some()
+                } else {
+                    self.objects[prim.object as usize].shape.intersect_p(&ray, 0.0, distance)
+                }
         };
         if self.unbounded.iter().any(blocks) {
             return Rgb::ZERO;
@@ -381,15 +432,15 @@ impl Scene {
         result
     }
 
-    /// The path tracer's BSDF of material `material` at `point`, for a ray that
-    /// arrived on the front side when `front_face` ([`bsdf_for`]). Materials of one
-    /// colour have it built once with the scene: making it per hit (scaling the
-    /// lobes so they conserve energy) was an eighth of the path tracer's time.
+    /// The path tracer's BSDF at `hit`, whose material evaluated there
+    /// ([`Scene::material_at`]) is `material` ([`bsdf_for`]). Constant materials
+    /// have it built once with the scene: making it per hit (scaling the lobes so
+    /// they conserve energy) was an eighth of the path tracer's time.
     #[inline]
-    pub fn bsdf(&self, material: usize, point: Vec3, front_face: bool) -> Cow<'_, Bsdf> {
-        match self.prebuilt_bsdf(material, front_face) {
+    pub fn bsdf(&self, hit: &Hit, material: &Material) -> Cow<'_, Bsdf> {
+        match self.prebuilt_bsdf(hit.material, hit.front_face) {
             Some(bsdf) => Cow::Borrowed(bsdf),
-            None => Cow::Owned(bsdf_for(&self.materials[material], point, front_face)),
+            None => Cow::Owned(bsdf_for(material, hit.point, hit.front_face)),
         }
     }
 

@@ -26,5 +26,6 @@ pub mod input;
 pub mod npy;
 pub mod registry;
 pub mod request;
+pub mod texture_files;
 
 pub use error::{LoadError, Location};

@@ -44,7 +44,7 @@ pub static SHAPES: &[&ShapeKind] = &[
 pub static LIGHTS: &[&LightKind] = &[&lights::point::KIND, &lights::directional::KIND, &lights::spot::KIND];
 
 /// Material kinds; the first is the default `type`.
-pub static MATERIALS: &[&MaterialKind] = &[&materials::phong::KIND];
+pub static MATERIALS: &[&MaterialKind] = &[&materials::phong::KIND, &materials::pbr::KIND];
 
 /// Camera kinds; the first is the default `type`.
 pub static CAMERAS: &[&CameraKind] = &[
@@ -56,7 +56,14 @@ pub static CAMERAS: &[&CameraKind] = &[
 ];
 
 /// Texture kinds.
-pub static TEXTURES: &[&TextureKind] = &[&materials::texture::CHECKER];
+pub static TEXTURES: &[&TextureKind] = &[
+    &materials::texture::CHECKER,
+    &materials::uv_checker::KIND,
+    &materials::image::KIND,
+    &materials::combine::SCALE,
+    &materials::combine::MIX,
+    &materials::combine::VERTEX_COLOR,
+];
 
 /// A node type the builder handles itself.
 #[derive(Debug)]

@@ -176,7 +176,8 @@ fn every_registered_kind_reports_a_mistyped_parameter_at_its_key() {
         let text = with_camera(&format!("[materials.m]\ntype = \"{}\"\n{} = 1\n", k.name, mistyped(key)));
         cases.push(("material \"m\"".into(), text, (7, 1), key));
     }
-    for k in registry::TEXTURES {
+    // A kind without parameters (`vertex_color`) has no key to mistype.
+    for k in registry::TEXTURES.iter().filter(|k| !k.params.is_empty()) {
         let key = k.params[0].name;
         let text = with_camera(&format!("[materials.m]\ncolor = {{ type = \"{}\", {} = 1 }}\n", k.name, mistyped(key)));
         let column = "color = { type = \"\", ".len() + k.name.len() + 1;

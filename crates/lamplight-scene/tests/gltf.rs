@@ -291,10 +291,13 @@ fn orthographic_cameras_see_their_window_at_every_aspect() {
 }
 
 #[test]
-fn a_metallic_roughness_texture_leaves_the_surface_a_dielectric() {
-    // glTF assets leave metallicFactor at 1 and paint the metal in the texture:
-    // without the texture, the factor alone would make all of it bare metal.
+fn a_metallic_roughness_texture_drives_metallic_and_roughness() {
+    // glTF assets leave metallicFactor at 1 and paint the metal in the texture
+    // (blue: metallic, green: roughness, linear); the factors multiply it.
     let dir = tempfile::tempdir().unwrap();
+    image::RgbImage::from_fn(2, 1, |x, _| image::Rgb(if x == 0 { [0, 128, 0] } else { [0, 64, 255] }))
+        .save(dir.path().join("mr.png"))
+        .unwrap();
     let metal = r#"{"pbrMetallicRoughness": {"baseColorFactor": [1, 0.5, 0.25, 1], "metallicFactor": 1, "roughnessFactor": 0.5}}"#;
     let textured = r#"{"pbrMetallicRoughness": {"baseColorFactor": [1, 0.5, 0.25, 1], "roughnessFactor": 0.5,
         "metallicRoughnessTexture": {"index": 0}}}"#;
@@ -305,14 +308,18 @@ fn a_metallic_roughness_texture_leaves_the_surface_a_dielectric() {
         .replace(r#""accessors""#, r#""textures": [{"source": 0}], "images": [{"uri": "mr.png"}], "accessors""#);
     let imported = write_and_load(dir.path(), "mr.gltf", json.as_bytes()).unwrap();
     let m = imported.instances[0].material.as_ref().unwrap();
-    assert_eq!((m.kd, m.ks, &m.reflection), (Rgb::new(1.0, 0.5, 0.25), Rgb::splat(0.04), &Reflection::None));
-    assert_eq!(
-        imported.warnings[..2],
-        [
-            "glTF metallicRoughnessTexture ignored: textures are not supported".to_string(),
-            "glTF metallicFactor read as 0 where a metallicRoughnessTexture modulates it: without the texture the whole surface \
-             would be bare metal"
-                .to_string(),
-        ]
-    );
+    assert!(!imported.warnings.iter().any(|w| w.contains("metallicRoughnessTexture")), "{:?}", imported.warnings);
+    let at = |u: f64| {
+        m.at(&lamplight_core::materials::ShadingPoint { uv: [u, 0.5], ..lamplight_core::materials::ShadingPoint::at(Vec3::ZERO) })
+            .into_owned()
+    };
+    let (dielectric, metallic) = (at(0.25), at(0.75));
+    assert_eq!(dielectric.pbr.as_ref().unwrap().metallic, 0.0);
+    assert!((dielectric.roughness - 0.5 * 128.0 / 255.0).abs() < 1e-6, "{}", dielectric.roughness);
+    assert_eq!((dielectric.kd, dielectric.ks, &dielectric.reflection), (Rgb::ONE, Rgb::splat(0.04), &Reflection::None));
+    assert_eq!(metallic.pbr.as_ref().unwrap().metallic, 1.0);
+    assert_eq!((metallic.kd, metallic.ks), (Rgb::ZERO, Rgb::new(1.0, 0.5, 0.25)));
+    // A missing image is an error at its JSON path.
+    std::fs::remove_file(dir.path().join("mr.png")).unwrap();
+    assert_eq!(error_of(dir.path(), "mr.gltf", json.as_bytes()), "mr.gltf: at images[0].uri: cannot read image `mr.png`: no such file");
 }

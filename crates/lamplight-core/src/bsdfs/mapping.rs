@@ -12,6 +12,7 @@
 //! | `Refraction::Fresnel` alone | refraction of weight `1 - F` |
 //! | `Refraction::Constant(w)` | refraction of weight `w` |
 //! | `emission` | area light radiance (see [`crate::lights::area`]) |
+//! | [`Material::pbr`] (glTF metallic-roughness) | the glTF BRDF ([`super::metallic_roughness`]) of base colour `C`, `metallic`, `alpha = max(roughness^2, 0.001)`, alone |
 //! | `ka` | nothing: it stands for the indirect light the path tracer computes (the background is the sky, [`crate::lights::LightSet`]) |
 //!
 //! With lights read as [`crate::lights::DELTA_SCALE`] says, the Lambertian lobe
@@ -31,7 +32,11 @@ use crate::math::{Rgb, Vec3};
 /// The BSDF of `material` at `point`, for a ray that arrived on the outward side when
 /// `front_face` (the relative index is `ior` entering, `1 / ior` leaving).
 pub fn bsdf_for(material: &Material, point: Vec3, front_face: bool) -> Bsdf {
-    let color = material.color.evaluate(point);
+    let color = material.color.evaluate(&crate::materials::ShadingPoint::at(point));
+    if let Some(pbr) = &material.pbr {
+        let alpha = (material.roughness * material.roughness).max(microfacet::MIN_ALPHA);
+        return Bsdf::new(&[Lobe::MetallicRoughness { base: color.min(Rgb::ONE), metallic: pbr.metallic, alpha }]);
+    }
     let relative = |ior: f64| if front_face { ior } else { 1.0 / ior };
     let mut lobes: [Lobe; 4] = [Lobe::Diffuse(Rgb::ZERO); 4];
     let mut n = 0;

@@ -15,6 +15,7 @@ pub mod conductor;
 pub mod dielectric;
 pub mod lambertian;
 pub mod mapping;
+pub mod metallic_roughness;
 pub mod microfacet;
 pub mod rough_conductor;
 pub mod rough_dielectric;
@@ -94,6 +95,15 @@ pub enum Lobe {
         /// Colour filter of both branches (1 for clear glass).
         tint: Rgb,
     },
+    /// The glTF metallic-roughness BRDF ([`metallic_roughness`]).
+    MetallicRoughness {
+        /// Base colour `C`.
+        base: Rgb,
+        /// Metallic, 0 to 1.
+        metallic: f64,
+        /// GGX roughness (glTF's `roughness^2`).
+        alpha: f64,
+    },
     /// Smooth refraction only, with weight `Constant` or `1 - F` (delta).
     Refract {
         /// Relative index across the boundary.
@@ -106,7 +116,10 @@ pub enum Lobe {
 impl Lobe {
     /// True for lobes that scatter into single directions.
     pub fn is_delta(&self) -> bool {
-        !matches!(self, Lobe::Diffuse(_) | Lobe::Glossy { .. } | Lobe::RoughConductor { .. } | Lobe::RoughGlass { .. })
+        !matches!(
+            self,
+            Lobe::Diffuse(_) | Lobe::Glossy { .. } | Lobe::RoughConductor { .. } | Lobe::RoughGlass { .. } | Lobe::MetallicRoughness { .. }
+        )
     }
 
     /// Per-channel upper bound of the reflectance (albedo) over all angles.
@@ -118,6 +131,7 @@ impl Lobe {
             Lobe::RoughConductor { .. } => Rgb::ONE,
             Lobe::Glass { tint, .. } | Lobe::RoughGlass { tint, .. } => tint,
             Lobe::Refract { weight, .. } => weight.unwrap_or(Rgb::ONE),
+            Lobe::MetallicRoughness { base, metallic, .. } => metallic_roughness::bound(base, metallic),
         }
     }
 
@@ -141,6 +155,8 @@ impl Lobe {
             Lobe::RoughConductor { alpha, .. } if s != Rgb::ONE => Lobe::Glossy { ks: s, alpha },
             Lobe::RoughConductor { .. } => self,
             Lobe::Refract { eta, weight } => Lobe::Refract { eta, weight: Some(weight.unwrap_or(Rgb::ONE) * s) },
+            // Its bound is at most 1 and the mapping uses it alone: never scaled.
+            Lobe::MetallicRoughness { .. } => self,
         }
     }
 }
@@ -243,6 +259,7 @@ impl Bsdf {
                 Lobe::Glossy { ks, alpha } => sum += microfacet::f(ks, alpha, wo, wi),
                 Lobe::RoughGlass { eta, alpha, tint } => sum += tint * rough_dielectric::f(alpha, eta, wo, wi),
                 Lobe::RoughConductor { eta, k, alpha } => sum += rough_conductor::f(eta, k, alpha, wo, wi),
+                Lobe::MetallicRoughness { base, metallic, alpha } => sum += metallic_roughness::f(base, metallic, alpha, wo, wi),
                 _ => {}
             }
         }
@@ -263,6 +280,7 @@ impl Bsdf {
                 Lobe::Diffuse(_) => pdf += p * lambertian::pdf(wo, wi),
                 Lobe::Glossy { alpha, .. } | Lobe::RoughConductor { alpha, .. } => pdf += p * microfacet::pdf(alpha, wo, wi),
                 Lobe::RoughGlass { eta, alpha, .. } => pdf += p * rough_dielectric::pdf(alpha, eta, wo, wi),
+                Lobe::MetallicRoughness { base, metallic, alpha } => pdf += p * metallic_roughness::pdf(base, metallic, alpha, wo, wi),
                 _ => {}
             }
         }
@@ -298,6 +316,7 @@ impl Bsdf {
             Lobe::Diffuse(_) => lambertian::sample(u),
             Lobe::Glossy { alpha, .. } | Lobe::RoughConductor { alpha, .. } => microfacet::sample(alpha, wo, u)?,
             Lobe::RoughGlass { eta, alpha, .. } => rough_dielectric::sample(alpha, eta, wo, u_rest, u)?,
+            Lobe::MetallicRoughness { base, metallic, alpha } => metallic_roughness::sample(base, metallic, alpha, wo, u_rest, u)?,
             Lobe::Mirror(m) => return delta(dielectric::reflect_local(wo), m.reflectance(wo.z), 1.0),
             Lobe::Glass { eta, tint } => {
                 let s = dielectric::sample(wo, eta, u_rest);

@@ -173,9 +173,28 @@ pub fn srgb_encode(x: f64) -> f64 {
     }
 }
 
+/// The inverse of [`srgb_encode`]: `x / 12.92` for `x <= 0.04045`, else
+/// `((x + 0.055) / 1.055)^2.4`, on a value clamped to `[0, 1]` (8-bit colour
+/// textures and vertex colours are stored encoded).
+pub fn srgb_decode(x: f64) -> f64 {
+    let x = if x.is_nan() { 0.0 } else { x.clamp(0.0, 1.0) };
+    if x <= 0.04045 {
+        x / 12.92
+    } else {
+        ((x + 0.055) / 1.055).powf(2.4)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn srgb_decode_inverts_the_encoding() {
+        for x in [0.0, 0.002, 0.01, 0.2, 0.5, 0.99, 1.0] {
+            assert!((srgb_decode(srgb_encode(x)) - x).abs() < 1e-12, "{x}");
+        }
+    }
 
     #[test]
     fn srgb_curve_values() {

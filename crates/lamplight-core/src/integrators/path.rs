@@ -139,7 +139,7 @@ impl PathTracer {
             // the intersection's latency. Unused if the path ends here.
             let (u_light, u_bsdf) = (sampler.peek_2d(1), sampler.peek_2d(3));
             trace.segment(depth, &ray, beta);
-            let Some(hit) = scene.first_intersect(&ray, f64::INFINITY) else {
+            let Some(mut hit) = scene.first_intersect(&ray, f64::INFINITY) else {
                 if let Some(env) = &self.lights.environment {
                     let w = if prev_delta { 1.0 } else { power_heuristic(prev_pdf, p_pick * env.pdf(ray.dir)) };
                     let le = env.radiance(ray.dir);
@@ -150,8 +150,8 @@ impl PathTracer {
                 trace.end(PathEnd::Escaped);
                 break;
             };
+            let material = &*scene.shade(&mut hit, -ray.dir, 0.0);
             trace.path_hit(scene, &hit);
-            let material = &scene.materials[hit.material];
             if material.emits_towards(hit.front_face) {
                 let w = match self.lights.area_light_of(hit.object) {
                     Some(light) if !prev_delta => {

@@ -30,20 +30,20 @@ impl SimplePath {
         let mut beta = Rgb::ONE;
         let mut ray = *camera_ray;
         for depth in 1..=self.max_depth {
-            let Some(hit) = scene.first_intersect(&ray, f64::INFINITY) else {
+            let Some(mut hit) = scene.first_intersect(&ray, f64::INFINITY) else {
                 if let Some(env) = &self.lights.environment {
                     radiance += beta * env.radiance(ray.dir);
                 }
                 break;
             };
-            let material = &scene.materials[hit.material];
+            let material = &*scene.shade(&mut hit, -ray.dir, 0.0);
             if material.emits_towards(hit.front_face) {
                 radiance += beta * material.emission;
             }
             if depth >= self.max_depth {
                 break;
             }
-            let bsdf = scene.bsdf(hit.material, hit.point, hit.front_face);
+            let bsdf = scene.bsdf(&hit, material);
             let frame = Frame::new(hit.normal);
             let wo = frame.to_local(-ray.dir);
             let u_lobe = sampler.get_1d();

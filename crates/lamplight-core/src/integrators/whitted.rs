@@ -70,6 +70,35 @@ struct Pending {
     ray: Ray,
     weight: Rgb,
     depth: u32,
+    /// Width of the ray's pixel footprint at its origin ([`Cone`]).
+    width: f64,
+}
+
+/// A camera ray's pixel footprint, a cone (ray cones, Akenine-Moeller et al.
+/// 2019): at distance `t` along the path it is `width + spread t` wide. Mirror
+/// and refracted rays continue the cone from the width at their hit (surface
+/// curvature is not followed). Made only for scenes with trilinear textures.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Cone {
+    /// Width at the camera.
+    pub width: f64,
+    /// Growth per unit of distance.
+    pub spread: f64,
+}
+
+impl Cone {
+    /// The footprint of the camera ray through film position `(fx, fy)`: the
+    /// distance to the rays one pixel over in x and y (their larger), narrowed
+    /// by `1 / sqrt(spp)` down to 1/8 for supersampled pixels (pbrt-v4's
+    /// `Approximate_dp_dxy` scaling).
+    pub fn of_pixel(view: &View, ray: &Ray, fx: f64, fy: f64, lens: (f64, f64)) -> Cone {
+        let x = view.camera.ray(fx + 1.0, fy, view.width, view.height, lens);
+        let y = view.camera.ray(fx, fy + 1.0, view.width, view.height, lens);
+        let width = (x.origin - ray.origin).length().max((y.origin - ray.origin).length());
+        let spread = (x.dir - ray.dir).length().max((y.dir - ray.dir).length());
+        let scale = (1.0 / f64::from(view.spp.max(1)).sqrt()).max(0.125);
+        Cone { width: width * scale, spread: spread * scale }
+    }
 }
 
 impl Integrator for Whitted {
@@ -106,8 +135,10 @@ impl Whitted {
             (sx + shift, sy + shift)
         };
         let lens = if view.lens { (uniform(), uniform()) } else { (0.5, 0.5) };
-        let ray = view.camera.ray(x as f64 + dx, y as f64 + dy, view.width, view.height, lens);
-        self.trace_traced(view.scene, &ray, &mut uniform, counts, trace)
+        let (fx, fy) = (x as f64 + dx, y as f64 + dy);
+        let ray = view.camera.ray(fx, fy, view.width, view.height, lens);
+        let cone = if view.scene.uses_footprints() { Cone::of_pixel(view, &ray, fx, fy, lens) } else { Cone::default() };
+        self.trace_traced(view.scene, &ray, cone, &mut uniform, counts, trace)
     }
 
     /// The tracer for `scene` (its area lights are collected here).
@@ -125,10 +156,16 @@ impl Whitted {
     /// [`Whitted::trace`] with the values of `[0, 1)` for area light points drawn
     /// from `uniform` (called only when the scene has area lights).
     pub fn trace_with(&self, scene: &Scene, ray: &Ray, uniform: &mut dyn FnMut() -> f64, counts: &mut RayCounts) -> Rgb {
-        self.trace_traced(scene, ray, uniform, counts, &mut NoTrace)
+        self.trace_cone(scene, ray, Cone::default(), uniform, counts)
     }
 
-    /// [`Whitted::trace_with`], telling `trace` each ray, hit, term and weight.
+    /// [`Whitted::trace_with`] for a camera ray whose pixel footprint is `cone`
+    /// (textures are filtered over it; a zero cone reads them unfiltered).
+    pub fn trace_cone(&self, scene: &Scene, ray: &Ray, cone: Cone, uniform: &mut dyn FnMut() -> f64, counts: &mut RayCounts) -> Rgb {
+        self.trace_traced(scene, ray, cone, uniform, counts, &mut NoTrace)
+    }
+
+    /// [`Whitted::trace_cone`], telling `trace` each ray, hit, term and weight.
     /// Never inlined: a call, as `trace_with` was before recording existed; inlined
     /// into `sample` the work list's copies cost 0.35 % more instructions (`BENCHMARKS.md`).
     #[inline(never)]
@@ -136,6 +173,7 @@ impl Whitted {
         &self,
         scene: &Scene,
         ray: &Ray,
+        cone: Cone,
         uniform: &mut dyn FnMut() -> f64,
         counts: &mut RayCounts,
         trace: &mut T,
@@ -146,24 +184,26 @@ impl Whitted {
         // so the list never holds more than one pending sibling per level plus two.
         // Left uninitialized: filling 4 KB per camera ray cost more than tracing it.
         let mut work = [const { MaybeUninit::<Pending>::uninit() }; MAX_DEPTH_LIMIT as usize + 2];
-        work[0].write(Pending { ray: *ray, weight: Rgb::ONE, depth: 1 });
+        work[0].write(Pending { ray: *ray, weight: Rgb::ONE, depth: 1, width: cone.width });
         let mut pending = 1;
         let max_depth = self.max_depth.min(MAX_DEPTH_LIMIT);
         while pending > 0 {
             pending -= 1;
             // SAFETY: entries below `pending` were written before (each push writes
             // `work[pending]` and then increments it).
-            let Pending { ray, weight, depth } = unsafe { work[pending].assume_init_read() };
+            let Pending { ray, weight, depth, width } = unsafe { work[pending].assume_init_read() };
             trace.ray(&ray, weight, depth);
-            let Some(hit) = scene.first_intersect(&ray, f64::INFINITY) else {
+            let Some(mut hit) = scene.first_intersect(&ray, f64::INFINITY) else {
                 let sky = scene.environment.as_ref().map_or(scene.background, |env| env.radiance(ray.dir));
                 let contribution = weight * sky;
                 trace.miss(sky, contribution);
                 total += contribution;
                 continue;
             };
+            let width = width + cone.spread * hit.t;
+            // Shaded first, so the tree shows the normal the lighting used (a normal map's).
+            let material = &*scene.shade(&mut hit, -ray.dir, width);
             trace.hit(scene, &hit);
-            let material = &scene.materials[hit.material];
             let direct = direct_light(scene, &self.area_lights, &ray, &hit, material, uniform, counts, trace);
             let contribution = weight * direct;
             trace.direct(direct, contribution);
@@ -181,7 +221,7 @@ impl Whitted {
                 counts.secondary += 1;
                 let origin = offset_origin(hit.point, hit.geometric_normal, dir, hit.t, hit.error);
                 trace.branch(&Ray { origin, dir }, w, depth + 1, true);
-                work[pending].write(Pending { ray: Ray { origin, dir }, weight: w, depth: depth + 1 });
+                work[pending].write(Pending { ray: Ray { origin, dir }, weight: w, depth: depth + 1, width });
                 pending += 1;
             }
         }
@@ -206,7 +246,9 @@ pub fn direct_light<T: WhittedTrace + ?Sized>(
     counts: &mut RayCounts,
     trace: &mut T,
 ) -> Rgb {
-    let color = material.color.evaluate(hit.point);
+    // The material as evaluated at the hit (`Scene::material_at`): its colour is
+    // constant, or the 3D checker, which needs only the point.
+    let color = material.color.evaluate(&crate::materials::ShadingPoint::at(hit.point));
     let emission = if material.emits_towards(hit.front_face) { material.emission } else { Rgb::ZERO };
     let ambient = material.ka * color * scene.ambient;
     trace.surface(color, emission, ambient);

@@ -10,20 +10,36 @@
 //! lights in shadow, and `R`, `T` are the weights of [`Reflection`] and
 //! [`Refraction`].
 
+pub mod alpha;
+pub mod combine;
 mod fresnel;
+pub mod image;
 mod metals;
+pub mod normal_map;
+pub mod pbr;
 pub mod phong;
 pub mod texture;
+pub mod textured;
+pub mod uv_checker;
+pub mod uv_transform;
 
 pub use fresnel::{fresnel_conductor, fresnel_conductor_channel, fresnel_dielectric};
+pub use image::{ImageData, ImageLoader, ImageTexture};
 pub use metals::Metal;
-pub use texture::{Texture, TextureKind, Textures};
+pub use normal_map::NormalMap;
+pub use pbr::Pbr;
+pub use texture::{ShadingPoint, Texture, TextureKind, Textures};
+pub use textured::Slot;
+pub use uv_transform::UvTransform;
 
 /// Builds a material kind's material from its parameters, reading texturable
 /// parameters through the registered texture kinds.
 pub type MaterialBuild = fn(&mut crate::params::Params<'_>, &Textures<'_>) -> crate::params::ParamResult<Material>;
 /// A material kind of the scene format.
 pub type MaterialKind = crate::params::Kind<MaterialBuild>;
+
+use std::borrow::Cow;
+use std::sync::Arc;
 
 use crate::math::Rgb;
 
@@ -115,7 +131,18 @@ pub struct Material {
     pub shadow_transmittance: Rgb,
     /// GGX roughness `alpha` of Fresnel glass and of conductor reflection for the path
     /// tracer (0: smooth; see [`crate::bsdfs::mapping`]); the Whitted tracer ignores it.
+    /// Under [`Material::pbr`], glTF's perceptual roughness `r` (GGX `alpha = r^2`).
     pub roughness: f64,
+    /// Parameters driven by textures ([`textured`]); `None` when all are constant.
+    pub textures: Option<Arc<[(Slot, Texture)]>>,
+    /// The glTF metallic-roughness model ([`pbr`]), which then decides the path
+    /// tracer's BSDF; the lecture's fields above are its Whitted approximation.
+    pub pbr: Option<Pbr>,
+    /// A tangent-space normal map ([`normal_map`]), applied where the surface is shaded.
+    /// (Shared: rare and large, kept out of the material's cache lines.)
+    pub normal_map: Option<Arc<NormalMap>>,
+    /// A cut-out mask ([`alpha`]): where it is below its cutoff the surface is not there.
+    pub alpha: Option<Arc<alpha::AlphaMask>>,
 }
 
 impl Default for Material {
@@ -133,6 +160,10 @@ impl Default for Material {
             refraction: Refraction::None,
             shadow_transmittance: Rgb::ZERO,
             roughness: 0.0,
+            textures: None,
+            pbr: None,
+            normal_map: None,
+            alpha: None,
         }
     }
 }
@@ -180,6 +211,44 @@ impl Material {
         }
     }
 
+    /// Whether a texture drives some parameter or the colour varies over the surface.
+    pub fn is_constant(&self) -> bool {
+        self.textures.is_none() && self.color.constant().is_some() && self.pbr.as_ref().is_none_or(Pbr::is_constant)
+    }
+
+    /// Whether some texture of the material is filtered over the pixel footprint.
+    pub fn uses_footprint(&self) -> bool {
+        self.color.uses_footprint()
+            || self.textures.as_ref().is_some_and(|t| t.iter().any(|(_, t)| t.uses_footprint()))
+            || self.normal_map.as_ref().is_some_and(|n| n.texture.uses_footprint())
+    }
+
+    /// Whether evaluating the material needs the hit's surface coordinates.
+    pub fn needs_coords(&self) -> bool {
+        self.color.needs_coords()
+            || self.normal_map.is_some()
+            || self.textures.as_ref().is_some_and(|t| t.iter().any(|(_, t)| t.needs_coords()))
+            || self.pbr.as_ref().is_some_and(Pbr::needs_coords)
+    }
+
+    /// The material at a shading point: every texture evaluated into its field
+    /// ([`textured`]), the colour made constant, and the metallic-roughness
+    /// model's Whitted terms derived ([`pbr`]). Borrowed when nothing varies.
+    pub fn at(&self, at: &ShadingPoint) -> Cow<'_, Material> {
+        if self.is_constant() {
+            return Cow::Borrowed(self);
+        }
+        let mut m = self.clone();
+        m.color = Texture::Constant(self.color.evaluate(at));
+        if let Some(maps) = m.textures.take() {
+            for (slot, texture) in maps.iter() {
+                slot.apply(&mut m, texture.evaluate(at));
+            }
+        }
+        pbr::derive_lecture_terms(&mut m);
+        Cow::Owned(m)
+    }
+
     /// Whether the surface emits towards a ray that met its front face
     /// (`front_face`) or its back: some emission, and the front side or
     /// [`Material::two_sided`].
@@ -222,6 +291,8 @@ impl Material {
                     return Err(crate::Error::invalid("checker size", "must be a positive number"));
                 }
             }
+            // Read through the registry's kinds, which check their own numbers.
+            _ => {}
         }
         let ior_ok = |ior: f64| {
             if ior.is_finite() && ior > 0.0 {

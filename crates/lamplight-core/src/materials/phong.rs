@@ -16,6 +16,8 @@
 //! | `{ type = "fresnel", ior = N }` | refraction weighted `1 - F` |
 //! | `{ type = "constant", ior = N, weight = COLOUR }` | refraction with a constant weight |
 
+use super::normal_map::{self, NORMAL_MAP_PARAMS};
+use super::textured::{color_param, scalar_param, Slot};
 use super::{Material, MaterialKind, Metal, Reflection, Refraction};
 use crate::params::{Kind, Param, ParamResult, ParamType as T, Params};
 
@@ -32,22 +34,32 @@ pub const KIND: MaterialKind = Kind {
             "",
             "a 3D checker instead of `color`: `{ size, even, odd, offset }`, as the `checker` texture",
         ),
-        Param::new("ka", T::Color, "0.1", "", "ambient factor"),
-        Param::new("kd", T::Color, "0.9", "", "diffuse factor"),
-        Param::new("ks", T::Color, "0", "", "Blinn highlight factor (not multiplied by `C`)"),
-        Param::new("shininess", T::Number, "1", ">= 0", "Blinn exponent"),
-        Param::new("emission", T::Color, "0", "radiance", "emitted radiance, from the front side; an emitting shape is an area light"),
+        Param::new("ka", T::Texture, "0.1", "", "ambient factor"),
+        Param::new("kd", T::Texture, "0.9", "", "diffuse factor"),
+        Param::new("ks", T::Texture, "0", "", "Blinn highlight factor (not multiplied by `C`)"),
+        Param::new("shininess", T::ScalarTexture, "1", ">= 0", "Blinn exponent"),
+        Param::new(
+            "emission",
+            T::Texture,
+            "0",
+            "radiance",
+            "emitted radiance, from the front side; an emitting shape of constant emission is an area light",
+        ),
         Param::new("two_sided", T::Bool, "false", "", "emit from both sides of the surface, not only the front"),
         Param::new("reflection", T::Table, "none", "", "mirror reflection (see below)"),
         Param::new("refraction", T::Table, "none", "", "refraction (see below)"),
         Param::new(
             "shadow_transmittance",
-            T::Color,
+            T::Texture,
             "0",
             "",
-            "fraction of light a shadow ray keeps crossing this surface (clear glass: 1)",
+            "fraction of light a shadow ray keeps crossing this surface (clear glass: 1; a texture applies where the surface is shaded, not to shadow rays)",
         ),
-        Param::new("roughness", T::Number, "0", "0 to 1", "GGX roughness of Fresnel glass and conductors in the path tracer"),
+        Param::new("roughness", T::ScalarTexture, "0", "0 to 1", "GGX roughness of Fresnel glass and conductors in the path tracer"),
+        NORMAL_MAP_PARAMS[0],
+        NORMAL_MAP_PARAMS[1],
+        super::alpha::ALPHA_PARAMS[0],
+        super::alpha::ALPHA_PARAMS[1],
     ],
     build,
 };
@@ -58,23 +70,36 @@ fn build(p: &mut Params<'_>, textures: &super::Textures<'_>) -> ParamResult<Mate
         (true, true) => return Err(p.error("takes color or checker, not both")),
         (false, true) => {
             let checker = &super::texture::CHECKER;
-            p.table("checker")?.expect("present").read(checker.params, &[], checker.build)?
+            p.table("checker")?.expect("present").read(checker.params, &[], |t| (checker.build)(t, textures))?
         }
         _ => textures.read(p, "color")?.unwrap_or(d.color.clone()),
     };
+    let mut maps = Vec::new();
     let material = Material {
         color,
-        ka: p.color_or("ka", d.ka)?,
-        kd: p.color_or("kd", d.kd)?,
-        ks: p.color_or("ks", d.ks)?,
-        shininess: p.number_or("shininess", d.shininess)?,
-        emission: p.color_or("emission", d.emission)?,
+        ka: color_param(p, textures, "ka", d.ka, Slot::Ka, &mut maps)?,
+        kd: color_param(p, textures, "kd", d.kd, Slot::Kd, &mut maps)?,
+        ks: color_param(p, textures, "ks", d.ks, Slot::Ks, &mut maps)?,
+        shininess: scalar_param(p, textures, "shininess", d.shininess, Slot::Shininess, &mut maps)?,
+        emission: color_param(p, textures, "emission", d.emission, Slot::Emission, &mut maps)?,
         two_sided: p.boolean("two_sided")?.unwrap_or(d.two_sided),
         reflection: reflection(p)?,
         refraction: refraction(p)?,
-        shadow_transmittance: p.color_or("shadow_transmittance", d.shadow_transmittance)?,
-        roughness: p.number_or("roughness", d.roughness)?,
+        shadow_transmittance: color_param(
+            p,
+            textures,
+            "shadow_transmittance",
+            d.shadow_transmittance,
+            Slot::ShadowTransmittance,
+            &mut maps,
+        )?,
+        roughness: scalar_param(p, textures, "roughness", d.roughness, Slot::Roughness, &mut maps)?,
+        textures: None,
+        pbr: None,
+        normal_map: normal_map::read(p, textures)?,
+        alpha: super::alpha::read(p, textures)?,
     };
+    let material = Material { textures: (!maps.is_empty()).then(|| maps.into()), ..material };
     material.validate().map_err(|e| p.core_error(e))?;
     Ok(material)
 }

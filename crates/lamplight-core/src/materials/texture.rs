@@ -1,14 +1,21 @@
-//! Colour sources evaluated at a hit point: constant or procedural checker.
+//! Colour sources evaluated at a shading point: constant, the 3D checker here,
+//! and the kinds of their own files (image, UV checker, mix, scale, vertex colour).
 //!
 //! A texturable parameter takes a colour (a constant) or a texture table
 //! `{ type = KIND, ... }` of a registered [`TextureKind`]; [`Textures::read`]
-//! tells them apart.
+//! tells them apart. Textures that read surface coordinates
+//! ([`Texture::needs_coords`]) make the integrators ask the shape for them.
 
+use std::sync::Arc;
+
+use super::image::{ImageLoader, ImageTexture};
+use super::uv_transform::UvTransform;
 use crate::math::{Rgb, Vec3};
 use crate::params::{unknown_kind, Item, Kind, Param, ParamResult, ParamType as T, Params, Value};
 
-/// Builds a texture kind's texture from its parameters.
-pub type TextureBuild = fn(&mut Params<'_>) -> ParamResult<Texture>;
+/// Builds a texture kind's texture from its parameters; textures nested in its
+/// parameters are read through the same [`Textures`].
+pub type TextureBuild = fn(&mut Params<'_>, &Textures<'_>) -> ParamResult<Texture>;
 /// A texture kind of the scene format.
 pub type TextureKind = Kind<TextureBuild>;
 
@@ -22,7 +29,7 @@ pub const CHECKER: TextureKind = Kind {
         Param::new("odd", T::Color, "", "", "colour of the other cells"),
         Param::new("offset", T::Vector, "[0, 0, 0]", "scene units", "added to the point before the cells are counted"),
     ],
-    build: |p| {
+    build: |p, _| {
         let size = p.required_number("size")?;
         let even = p.color("even")?.ok_or_else(|| p.error("needs `even` (a colour)"))?;
         let odd = p.color("odd")?.ok_or_else(|| p.error("needs `odd` (a colour)"))?;
@@ -32,10 +39,18 @@ pub const CHECKER: TextureKind = Kind {
 };
 
 /// The texture kinds a scene may use, for reading texturable parameters.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy)]
 pub struct Textures<'a> {
     /// The registered kinds.
     pub kinds: &'a [&'a TextureKind],
+    /// Reads image files (`None` where there is no scene file to read them beside).
+    pub images: Option<&'a dyn ImageLoader>,
+}
+
+impl std::fmt::Debug for Textures<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Textures").field("kinds", &self.kinds.len()).field("images", &self.images.is_some()).finish()
+    }
 }
 
 impl Textures<'_> {
@@ -53,10 +68,55 @@ impl Textures<'_> {
                 let Some(kind) = Kind::find(self.kinds, kind_name) else {
                     return Err(table.key_error("type", unknown_kind("texture", kind_name, self.kinds)));
                 };
-                table.read(kind.params, &["type"], kind.build).map(Some)
+                table.read(kind.params, &["type"], |t| (kind.build)(t, self)).map(Some)
             }
             Some(_) => Ok(p.color(key)?.map(Texture::Constant)),
         }
+    }
+
+    /// A scalar parameter `key`: a number is a constant (of every channel), a
+    /// table a texture whose first channel is read.
+    pub fn read_scalar(&self, p: &mut Params<'_>, key: &str) -> ParamResult<Option<Texture>> {
+        match p.item(key) {
+            Some(Item { value: Value::Table(_), .. }) => self.read(p, key),
+            Some(_) => Ok(p.number(key)?.map(|x| Texture::Constant(Rgb::splat(x)))),
+            None => Ok(None),
+        }
+    }
+}
+
+/// The cells of [`Texture::UvChecker`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct UvChecker {
+    /// `(u, v)` to cell coordinates.
+    pub transform: UvTransform,
+    /// Colour of even cells.
+    pub even: Rgb,
+    /// Colour of odd cells.
+    pub odd: Rgb,
+}
+
+/// What a texture is evaluated at: the point, and its surface coordinates when
+/// a texture reads them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShadingPoint {
+    /// World position.
+    pub p: Vec3,
+    /// Surface coordinates ([`crate::shapes::SurfaceCoords`]; 0 when not asked).
+    pub uv: [f64; 2],
+    /// Change of `uv` from one pixel to the next in x (0: no footprint known).
+    pub duv_dx: [f64; 2],
+    /// Change of `uv` from one pixel to the next in y.
+    pub duv_dy: [f64; 2],
+    /// A mesh's interpolated vertex colour.
+    pub color: Option<Rgb>,
+}
+
+impl ShadingPoint {
+    /// The point `p` with no surface coordinates.
+    #[inline]
+    pub fn at(p: Vec3) -> ShadingPoint {
+        ShadingPoint { p, uv: [0.0; 2], duv_dx: [0.0; 2], duv_dy: [0.0; 2], color: None }
     }
 }
 
@@ -80,22 +140,78 @@ pub enum Texture {
         /// Added to the point before the cells are counted.
         offset: Vec3,
     },
+    /// A checker in texture space: `even` where `floor(s) + floor(t)` is even
+    /// for `(s, t) = T(u, v)` ([`super::uv_checker`]).
+    /// (Shared, so that the enum stays the size it had with the 3D checker.)
+    UvChecker(Arc<UvChecker>),
+    /// An image ([`super::image`]).
+    Image(Arc<ImageTexture>),
+    /// The product of two textures, channel by channel ([`super::combine`]).
+    Scale(Arc<[Texture; 2]>),
+    /// `(1 - t) a + t b` of textures `[a, b, t]` ([`super::combine`]).
+    Mix(Arc<[Texture; 3]>),
+    /// A mesh's vertex colour, 1 where the shape has none ([`super::combine`]).
+    VertexColor,
 }
 
 impl Texture {
-    /// The colour at world point `p`.
+    /// The colour at the shading point.
     #[inline]
-    pub fn evaluate(&self, p: Vec3) -> Rgb {
+    pub fn evaluate(&self, at: &ShadingPoint) -> Rgb {
         match self {
             Texture::Constant(c) => *c,
             Texture::Checker { size, even, odd, offset } => {
-                let cell = (p + *offset) / *size;
+                let cell = (at.p + *offset) / *size;
                 if cell_parity(cell) == 0 {
                     *even
                 } else {
                     *odd
                 }
             }
+            Texture::UvChecker(c) => {
+                let [s, t] = c.transform.apply(at.uv);
+                if (s.floor() + t.floor()).rem_euclid(2.0) == 0.0 {
+                    c.even
+                } else {
+                    c.odd
+                }
+            }
+            Texture::Image(image) => image.evaluate(at),
+            Texture::Scale(f) => f[0].evaluate(at) * f[1].evaluate(at),
+            Texture::Mix(f) => {
+                let t = f[2].evaluate(at);
+                f[0].evaluate(at) * (Rgb::ONE - t) + f[1].evaluate(at) * t
+            }
+            Texture::VertexColor => at.color.unwrap_or(Rgb::ONE),
+        }
+    }
+
+    /// Whether the texture reads surface coordinates or vertex data (everything
+    /// but constants and the 3D checker).
+    pub fn needs_coords(&self) -> bool {
+        match self {
+            Texture::Constant(_) | Texture::Checker { .. } => false,
+            Texture::Scale(f) => f.iter().any(Texture::needs_coords),
+            Texture::Mix(f) => f.iter().any(Texture::needs_coords),
+            _ => true,
+        }
+    }
+
+    /// Whether a lookup reads the footprint (a trilinear image somewhere inside).
+    pub fn uses_footprint(&self) -> bool {
+        match self {
+            Texture::Image(i) => i.filter == super::image::Filter::Trilinear,
+            Texture::Scale(f) => f.iter().any(Texture::uses_footprint),
+            Texture::Mix(f) => f.iter().any(Texture::uses_footprint),
+            _ => false,
+        }
+    }
+
+    /// The constant colour, if the texture is one.
+    pub fn constant(&self) -> Option<Rgb> {
+        match self {
+            Texture::Constant(c) => Some(*c),
+            _ => None,
         }
     }
 }
@@ -166,10 +282,10 @@ mod tests {
     #[test]
     fn checker_alternates_across_cells() {
         let t = Texture::Checker { size: 0.5, even: Rgb::ONE, odd: Rgb::ZERO, offset: Vec3::new(0.0, 0.25, 0.0) };
-        assert_eq!(t.evaluate(Vec3::new(0.1, 0.0, 0.1)), Rgb::ONE);
-        assert_eq!(t.evaluate(Vec3::new(0.6, 0.0, 0.1)), Rgb::ZERO);
-        assert_eq!(t.evaluate(Vec3::new(-0.1, 0.0, 0.1)), Rgb::ZERO);
-        assert_eq!(t.evaluate(Vec3::new(-0.1, -1e-17, -0.1)), Rgb::ONE, "rounding below the plane must not flip it");
+        assert_eq!(t.evaluate(&ShadingPoint::at(Vec3::new(0.1, 0.0, 0.1))), Rgb::ONE);
+        assert_eq!(t.evaluate(&ShadingPoint::at(Vec3::new(0.6, 0.0, 0.1))), Rgb::ZERO);
+        assert_eq!(t.evaluate(&ShadingPoint::at(Vec3::new(-0.1, 0.0, 0.1))), Rgb::ZERO);
+        assert_eq!(t.evaluate(&ShadingPoint::at(Vec3::new(-0.1, -1e-17, -0.1))), Rgb::ONE, "rounding below the plane must not flip it");
     }
 
     #[test]
@@ -178,12 +294,13 @@ mod tests {
         // error above or below it, and both sides must give the same square.
         let t = Texture::Checker { size: 1.0, even: Rgb::ONE, odd: Rgb::ZERO, offset: Vec3::ZERO };
         for (x, z) in [(0.5, 0.5), (1.5, 0.5), (-0.5, 0.5), (-0.5, -0.5), (1e5 + 0.5, -3e5 + 0.5)] {
-            let colours: Vec<Rgb> = [-1e-17, -1e-12, -1e-10, 0.0, 1e-17, 1e-12].iter().map(|&y| t.evaluate(Vec3::new(x, y, z))).collect();
+            let colours: Vec<Rgb> =
+                [-1e-17, -1e-12, -1e-10, 0.0, 1e-17, 1e-12].iter().map(|&y| t.evaluate(&ShadingPoint::at(Vec3::new(x, y, z)))).collect();
             assert!(colours.iter().all(|c| *c == colours[0]), "({x}, {z}): {colours:?}");
         }
         // Cells still alternate, and a point a visible distance below the floor is in the cell below.
-        assert_ne!(t.evaluate(Vec3::new(0.5, 0.0, 0.5)), t.evaluate(Vec3::new(1.5, 0.0, 0.5)));
-        assert_ne!(t.evaluate(Vec3::new(0.5, 0.0, 0.5)), t.evaluate(Vec3::new(0.5, -1e-6, 0.5)));
+        assert_ne!(t.evaluate(&ShadingPoint::at(Vec3::new(0.5, 0.0, 0.5))), t.evaluate(&ShadingPoint::at(Vec3::new(1.5, 0.0, 0.5))));
+        assert_ne!(t.evaluate(&ShadingPoint::at(Vec3::new(0.5, 0.0, 0.5))), t.evaluate(&ShadingPoint::at(Vec3::new(0.5, -1e-6, 0.5))));
         // Far from the origin the tolerance scales with the coordinate.
         let far = 1e6;
         assert_eq!(cell_parity(Vec3::new(far - 1e-7, 0.5, 0.5)), cell_parity(Vec3::new(far + 1e-7, 0.5, 0.5)));

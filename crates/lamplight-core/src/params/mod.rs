@@ -49,6 +49,10 @@ pub enum ParamType {
     Color,
     /// A colour, or a texture table `{ type = ..., ... }`.
     Texture,
+    /// A number, or a texture table (a scalar read from a texture's first channel).
+    ScalarTexture,
+    /// `[a, b]`, two numbers (texture coordinates).
+    Pair,
     /// Four rows of four numbers.
     Matrix,
     /// A table whose keys the description gives.
@@ -68,6 +72,8 @@ impl fmt::Display for ParamType {
             ParamType::Vector => "vector",
             ParamType::Color => "colour",
             ParamType::Texture => "colour or texture",
+            ParamType::ScalarTexture => "number or texture",
+            ParamType::Pair => "[a, b]",
             ParamType::Matrix => "4x4 matrix",
             ParamType::Table => "table",
             ParamType::Array => "array",
@@ -306,6 +312,14 @@ impl<'a> Params<'a> {
         self.finite_vec(key, v)
     }
 
+    /// `[a, b]` of finite numbers.
+    pub fn pair(&mut self, key: &str) -> ParamResult<Option<[f64; 2]>> {
+        match self.typed(key, "[a, b]", numbers::<2>)? {
+            Some(v) if !(v[0].is_finite() && v[1].is_finite()) => Err(self.key_error(key, format!("must be finite numbers, got {v:?}"))),
+            v => Ok(v),
+        }
+    }
+
     /// `[x, y, z]`, required.
     pub fn required_vec3(&mut self, key: &str) -> ParamResult<Vec3> {
         self.vec3(key)?.ok_or_else(|| self.missing(key, "[x, y, z]"))
@@ -468,6 +482,8 @@ fn mismatch(ty: ParamType, value: &Value) -> Option<&'static str> {
         ParamType::Point | ParamType::Vector => numbers::<3>(value).is_some(),
         ParamType::Color => as_number(value).is_some() || numbers::<3>(value).is_some(),
         ParamType::Texture => as_number(value).is_some() || numbers::<3>(value).is_some() || matches!(value, Value::Table(_)),
+        ParamType::ScalarTexture => as_number(value).is_some() || matches!(value, Value::Table(_)),
+        ParamType::Pair => numbers::<2>(value).is_some(),
         ParamType::Matrix => {
             matches!(value, Value::Array(rows) if rows.len() == 4 && rows.iter().all(|r| numbers::<4>(&r.value).is_some()))
         }
@@ -481,6 +497,8 @@ fn mismatch(ty: ParamType, value: &Value) -> Option<&'static str> {
         ParamType::Point | ParamType::Vector => "[x, y, z]",
         ParamType::Color => "a number or [r, g, b]",
         ParamType::Texture => "a number, [r, g, b] or a texture table { type = ..., ... }",
+        ParamType::ScalarTexture => "a number or a texture table { type = ..., ... }",
+        ParamType::Pair => "[a, b]",
         ParamType::Matrix => "4 rows of 4 numbers",
         ParamType::Table | ParamType::Array => "",
     })

@@ -14,12 +14,18 @@
 //! The faces are parallelograms `M(corner) + a M(e_u) + b M(e_v)`; the area of the
 //! face with normal `+-x` is `|M e_y x M e_z| (max_y - min_y)(max_z - min_z)` (and
 //! likewise), which is what area sampling draws faces by.
+//!
+//! Surface coordinates: each face is `[0, 1]^2`. On the faces of axis `i`, with
+//! `(a, b) = (i + 1, i + 2) mod 3` and `f_k = (l_k - min_k) / (max_k - min_k)` for
+//! the local point `l`: `(u, v) = (f_a, f_b)` on the `max` face and
+//! `(1 - f_a, f_b)` on the `min` face, so that `dp/du x dp/dv` points out of the
+//! box on all six (`dp/du = +-M e_a (max_a - min_a)`, `dp/dv = M e_b (max_b - min_b)`).
 
 use std::sync::Arc;
 
 use glam::DMat3;
 
-use super::{Shape, ShapeKind, SurfaceHit};
+use super::{Shape, ShapeKind, SurfaceCoords, SurfaceHit};
 use crate::accel::Aabb;
 use crate::math::{Mat4, Vec3};
 use crate::params::{Kind, Param, ParamType as T};
@@ -216,6 +222,32 @@ impl Shape for Cuboid {
 
     fn intersect_p(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
         self.hit(ray, t_min, t_max).is_some()
+    }
+
+    fn surface_coords(&self, p: Vec3, _n: Vec3, _primitive: Option<u32>) -> SurfaceCoords {
+        let f = (self.local_linear * p - self.lo_shift) / (self.hi_shift - self.lo_shift);
+        // The face is the one the point is nearest to, in fractions of the box.
+        let mut face = (0, true);
+        let mut nearest = f64::INFINITY;
+        for axis in 0..3 {
+            for (distance, max_side) in [((1.0 - f[axis]).abs(), true), (f[axis].abs(), false)] {
+                if distance < nearest {
+                    nearest = distance;
+                    face = (axis, max_side);
+                }
+            }
+        }
+        let (axis, max_side) = face;
+        let (a, b) = ((axis + 1) % 3, (axis + 2) % 3);
+        let linear = DMat3::from_mat4(self.world_from_local);
+        let size = self.max - self.min;
+        let (fa, fb) = (f[a].clamp(0.0, 1.0), f[b].clamp(0.0, 1.0));
+        let (dpdu, dpdv) = (linear.col(a) * size[a], linear.col(b) * size[b]);
+        if max_side {
+            SurfaceCoords::new([fa, fb], dpdu, dpdv)
+        } else {
+            SurfaceCoords::new([1.0 - fa, fb], -dpdu, dpdv)
+        }
     }
 
     fn area(&self) -> Option<f64> {

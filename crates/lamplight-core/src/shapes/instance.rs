@@ -9,10 +9,14 @@
 //! surface under non-uniform scale and keeps it outward (`M^-T` preserves the
 //! side of the tangent plane a vector is on). The bounds are the box around the
 //! eight transformed corners of the object's box.
+//!
+//! Surface coordinates are the shape's at the object-space point `M^-1 p` (with
+//! normal `normalize(M^T n)`); `dp/du`, `dp/dv` and a mesh's tangent are vectors,
+//! mapped by `M`.
 
 use std::sync::Arc;
 
-use super::{Shape, SurfaceHit};
+use super::{Shape, SurfaceCoords, SurfaceHit};
 use crate::accel::Aabb;
 use crate::math::{Mat4, Vec3};
 use crate::ray::Ray;
@@ -129,6 +133,13 @@ impl Shape for Instance {
 
     fn primitive_count(&self) -> usize {
         self.shape.primitive_count()
+    }
+
+    fn surface_coords(&self, p: Vec3, n: Vec3, primitive: Option<u32>) -> SurfaceCoords {
+        let local = self.object_from_world.transform_point3(p);
+        // n' = M^T n: the object normal that M^-T maps to n.
+        let local_n = self.world_from_object.transpose().transform_vector3(n).try_normalize().unwrap_or(n);
+        self.shape.surface_coords(local, local_n, primitive).transformed(&self.world_from_object)
     }
 
     fn warnings(&self) -> Vec<String> {

@@ -17,14 +17,22 @@
 //! (for the ids that [`TriangleMesh::intersect_triangle_index`] reports), but left
 //! out of the BVH: no ray ever hits them.
 //!
+//! Vertex attributes ([`VertexAttributes`]: texture coordinates, colours,
+//! tangents) are interpolated barycentrically at shading time, the weights
+//! recomputed from the hit point ([`super::surface::barycentric`]), so a hit
+//! carries nothing more than before. Without texture coordinates a face's
+//! corners are at `(0, 0)`, `(1, 0)`, `(1, 1)` (pbrt-v4's default); `dp/du`,
+//! `dp/dv` are the face's ([`super::surface::triangle_tangents`]).
+//!
 //! The mesh is one object of the scene; its BVH over its own faces (one box per
 //! triangle) makes the scene a two-level hierarchy, so a mesh placed twice is
 //! stored once.
 
-use super::triangle::{face_normal, intersect_triangle, TriangleHit, WatertightRay};
-use super::{Shape, SurfaceHit};
+use super::surface::{barycentric, triangle_tangents};
+use super::triangle::{face_normal, intersect_triangle, TriangleHit, WatertightRay, DEFAULT_UV};
+use super::{Shape, SurfaceCoords, SurfaceHit};
 use crate::accel::{Aabb, Bvh};
-use crate::math::Vec3;
+use crate::math::{Rgb, Vec3};
 use crate::ray::Ray;
 use crate::Error;
 
@@ -38,6 +46,28 @@ pub struct TriangleMesh {
     /// BVH primitive -> face index, when some faces are degenerate (`None`: identity).
     faces_in_bvh: Option<Vec<u32>>,
     bounds: Aabb,
+    attributes: VertexAttributes,
+}
+
+/// Per-vertex data a mesh interpolates for shading, each list one entry per
+/// vertex when present.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct VertexAttributes {
+    /// Texture coordinates (glTF `TEXCOORD_0`, OBJ `vt`, PLY `u v`).
+    pub uvs: Option<Vec<[f64; 2]>>,
+    /// Linear RGB colours (glTF `COLOR_0`, PLY `red green blue`).
+    pub colors: Option<Vec<Rgb>>,
+    /// Tangents `(x, y, z, w)`, `w = +-1` the bitangent's sign (glTF `TANGENT`, or MikkTSpace).
+    pub tangents: Option<Vec<[f64; 4]>>,
+}
+
+/// The coordinates at `p` of the face `v` with corner texture coordinates `uv`,
+/// its weights from the point.
+pub(super) fn interpolated_coords(p: Vec3, v: [Vec3; 3], uv: [[f64; 2]; 3], normal: Vec3) -> SurfaceCoords {
+    let b = barycentric(p, v[0], v[1], v[2]);
+    let at = |k: usize| uv[0][k] * b[0] + uv[1][k] * b[1] + uv[2][k] * b[2];
+    let (dpdu, dpdv) = triangle_tangents(v, uv, normal);
+    SurfaceCoords::new([at(0), at(1)], dpdu, dpdv)
 }
 
 impl TriangleMesh {
@@ -95,7 +125,33 @@ impl TriangleMesh {
         let faces_in_bvh = (live.len() != indices.len()).then_some(live);
         let bvh = Bvh::build(&boxes);
         let bounds = bvh.bounds();
-        Ok(TriangleMesh { positions, indices, normals, bvh, faces_in_bvh, bounds })
+        Ok(TriangleMesh { positions, indices, normals, bvh, faces_in_bvh, bounds, attributes: VertexAttributes::default() })
+    }
+
+    /// This mesh with per-vertex `attributes`. Errors: a list whose length is
+    /// not the vertex count, or a value that is not finite (named with its vertex).
+    pub fn with_attributes(mut self, attributes: VertexAttributes) -> Result<TriangleMesh, Error> {
+        let n = self.positions.len();
+        fn check<T>(name: &str, list: &Option<Vec<T>>, n: usize, finite: impl Fn(&T) -> bool) -> Result<(), Error> {
+            let Some(list) = list else { return Ok(()) };
+            if list.len() != n {
+                return Err(Error::invalid(name, format!("{} values for {n} vertices", list.len())));
+            }
+            match list.iter().position(|x| !finite(x)) {
+                Some(i) => Err(Error::invalid(name, format!("the value of vertex {i} is not finite"))),
+                None => Ok(()),
+            }
+        }
+        check("texture coordinates", &attributes.uvs, n, |uv| uv.iter().all(|x| x.is_finite()))?;
+        check("colors", &attributes.colors, n, |c| c.is_finite())?;
+        check("tangents", &attributes.tangents, n, |t| t.iter().all(|x| x.is_finite()))?;
+        self.attributes = attributes;
+        Ok(self)
+    }
+
+    /// The per-vertex attributes.
+    pub fn attributes(&self) -> &VertexAttributes {
+        &self.attributes
     }
 
     /// Vertex positions.
@@ -203,6 +259,35 @@ impl Shape for TriangleMesh {
 
     fn triangles(&self) -> Option<Vec<[Vec3; 3]>> {
         Some((0..self.indices.len() as u32).map(|f| self.face_vertices(f)).collect())
+    }
+
+    fn surface_coords(&self, p: Vec3, n: Vec3, primitive: Option<u32>) -> SurfaceCoords {
+        let Some(face) = primitive.filter(|&f| (f as usize) < self.indices.len()) else {
+            return SurfaceCoords::unparametrized(n);
+        };
+        let idx = self.indices[face as usize].map(|i| i as usize);
+        let v = idx.map(|i| self.positions[i]);
+        let a = &self.attributes;
+        let uv = a.uvs.as_ref().map_or(DEFAULT_UV, |uvs| idx.map(|i| uvs[i]));
+        let normal = face_normal(v[0], v[1], v[2]).unwrap_or(n);
+        let mut coords = interpolated_coords(p, v, uv, normal);
+        let b = barycentric(p, v[0], v[1], v[2]);
+        coords.color = a.colors.as_ref().map(|c| c[idx[0]] * b[0] + c[idx[1]] * b[1] + c[idx[2]] * b[2]);
+        coords.tangent = a.tangents.as_ref().and_then(|t| {
+            let [t0, t1, t2] = idx.map(|i| t[i]);
+            let xyz = |t: [f64; 4]| Vec3::new(t[0], t[1], t[2]);
+            // The sign is per vertex (a mirrored UV island): the nearest corner's.
+            let nearest = if b[0] >= b[1] && b[0] >= b[2] {
+                t0
+            } else if b[1] >= b[2] {
+                t1
+            } else {
+                t2
+            };
+            let w = if nearest[3] < 0.0 { -1.0 } else { 1.0 };
+            (xyz(t0) * b[0] + xyz(t1) * b[1] + xyz(t2) * b[2]).try_normalize().map(|t| (t, w))
+        });
+        coords
     }
 }
 

@@ -29,16 +29,18 @@ mod mesh;
 pub mod plane;
 pub mod quadric;
 pub mod sphere;
+pub mod surface;
 pub mod torus;
 pub mod triangle;
 
 pub use cuboid::Cuboid;
 pub use implicit::{GradientFn, Implicit, ImplicitFn};
 pub use instance::{placed, Instance};
-pub use mesh::TriangleMesh;
+pub use mesh::{TriangleMesh, VertexAttributes};
 pub use plane::{Disk, Plane, Rectangle};
 pub use quadric::{Clip, Quadric, Sheets};
 pub use sphere::Sphere;
+pub use surface::SurfaceCoords;
 pub use torus::Torus;
 pub use triangle::{intersect_triangle, Triangle, TriangleHit, WatertightRay};
 
@@ -118,6 +120,16 @@ pub trait Shape: Send + Sync + std::fmt::Debug {
     /// an area light ([`crate::lights::AreaLight`]). `None` (the default) otherwise.
     fn triangles(&self) -> Option<Vec<[Vec3; 3]>> {
         None
+    }
+
+    /// Surface coordinates `(u, v)`, `dp/du` and `dp/dv` at point `p` of the
+    /// surface, where the unit outward normal is `n`, on primitive `primitive` of
+    /// the hit ([`SurfaceHit::primitive`]). Asked at shading time, only by
+    /// materials that read them ([`surface`]). The default, for shapes with no
+    /// parametrization, is `(0, 0)` with a frame around `n`.
+    fn surface_coords(&self, p: Vec3, n: Vec3, primitive: Option<u32>) -> SurfaceCoords {
+        let _ = (p, primitive);
+        SurfaceCoords::unparametrized(n)
     }
 
     /// What the shape noticed while rendering that the user should know (an

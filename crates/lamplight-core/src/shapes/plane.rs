@@ -4,10 +4,19 @@
 //! `t = (p0 - s).n / (d.n)`, then test whether the point lies inside the bounds.
 //! They are infinitely thin, with the same material on both sides; `normal` is the
 //! side called outward.
+//!
+//! Surface coordinates:
+//!
+//! | shape | `(u, v)` | `dp/du`, `dp/dv` |
+//! |---|---|---|
+//! | plane | `((p - point).t, (p - point).b)`, scene units, with `(t, b)` the frame [`crate::math::orthonormal_basis`] builds around the normal | `t`, `b` |
+//! | rectangle | `p = corner + u edge_u + v edge_v`, `[0, 1]` over the face | `edge_u`, `edge_v` |
+//! | disk | pbrt-v4's: `u = phi / (2 pi)` with `phi` measured from `t` towards `b` (the normal's frame), `v = 1 - r / R` (1 at the centre, 0 on the rim) | `2 pi (-y t + x b)`, `-R (p - c) / r` |
 
 use std::sync::Arc;
 
-use super::{placed, Shape, ShapeKind, SurfaceHit};
+use super::surface::azimuth;
+use super::{placed, Shape, ShapeKind, SurfaceCoords, SurfaceHit};
 use crate::accel::Aabb;
 use crate::math::{similarity_scale, Mat4, Vec3};
 use crate::params::{Kind, Param, ParamType as T};
@@ -104,6 +113,12 @@ impl Shape for Plane {
 
     fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
         plane_t(ray, self.point, self.normal, t_min, t_max).map(|t| SurfaceHit::new(t, self.normal))
+    }
+
+    fn surface_coords(&self, p: Vec3, _n: Vec3, _primitive: Option<u32>) -> SurfaceCoords {
+        let (t, b) = crate::math::orthonormal_basis(self.normal);
+        let d = p - self.point;
+        SurfaceCoords::new([d.dot(t), d.dot(b)], t, b)
     }
 }
 
@@ -202,6 +217,12 @@ impl Shape for Rectangle {
     fn intersect_p(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
         self.hit_t(ray, t_min, t_max).is_some()
     }
+
+    fn surface_coords(&self, p: Vec3, _n: Vec3, _primitive: Option<u32>) -> SurfaceCoords {
+        let local = p - self.corner;
+        let uv = [local.dot(self.dual_u).clamp(0.0, 1.0), local.dot(self.dual_v).clamp(0.0, 1.0)];
+        SurfaceCoords::new(uv, self.edge_u, self.edge_v)
+    }
 }
 
 impl Rectangle {
@@ -271,6 +292,18 @@ impl Shape for Disk {
         let t = plane_t(ray, self.center, self.normal, t_min, t_max)?;
         ((ray.at(t) - self.center).length_squared() <= self.radius * self.radius).then(|| SurfaceHit::new(t, self.normal))
     }
+
+    fn surface_coords(&self, p: Vec3, n: Vec3, _primitive: Option<u32>) -> SurfaceCoords {
+        let (t, b) = crate::math::orthonormal_basis(self.normal);
+        let d = p - self.center;
+        let (x, y) = (d.dot(t), d.dot(b));
+        let r = x.hypot(y);
+        if !(r > 0.0) {
+            return SurfaceCoords { uv: [0.0, 1.0], ..SurfaceCoords::unparametrized(n) };
+        }
+        let uv = [azimuth(x, y) / std::f64::consts::TAU, (1.0 - r / self.radius).max(0.0)];
+        SurfaceCoords::new(uv, (b * x - t * y) * std::f64::consts::TAU, (t * x + b * y) * (-self.radius / r))
+    }
 }
 
 #[cfg(test)]
@@ -278,6 +311,37 @@ mod tests {
     use super::*;
 
     const INF: f64 = f64::INFINITY;
+
+    /// Central difference of `p(u, v)` against the reported tangent.
+    fn check_tangent(analytic: Vec3, numeric: Vec3) {
+        assert!((analytic - numeric).length() <= 1e-6 * numeric.length().max(1.0), "{analytic} vs {numeric}");
+    }
+
+    #[test]
+    fn surface_coordinates_of_the_planar_shapes() {
+        let r = Rectangle::new(Vec3::new(1.0, 0.0, 0.0), Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 0.0, -4.0)).unwrap();
+        let c = r.surface_coords(Vec3::new(1.5, 0.0, -3.0), r.normal(), None);
+        assert_eq!(c.uv, [0.25, 0.75]);
+        assert_eq!((c.dpdu, c.dpdv), (r.edge_u, r.edge_v));
+
+        let d = Disk::new(Vec3::new(0.0, 1.0, 0.0), Vec3::Z, 2.0).unwrap();
+        let (t, b) = crate::math::orthonormal_basis(Vec3::Z);
+        let at = |u: f64, v: f64| {
+            let (phi, rad) = (u * std::f64::consts::TAU, (1.0 - v) * 2.0);
+            d.center + (t * phi.cos() + b * phi.sin()) * rad
+        };
+        for (u, v) in [(0.1, 0.2), (0.7, 0.9), (0.45, 0.5)] {
+            let c = d.surface_coords(at(u, v), Vec3::Z, None);
+            assert!((c.uv[0] - u).abs() < 1e-12 && (c.uv[1] - v).abs() < 1e-12, "{:?}", c.uv);
+            let h = 1e-6;
+            check_tangent(c.dpdu, (at(u + h, v) - at(u - h, v)) / (2.0 * h));
+            check_tangent(c.dpdv, (at(u, v + h) - at(u, v - h)) / (2.0 * h));
+        }
+
+        let plane = Plane::new(Vec3::new(0.0, 2.0, 0.0), Vec3::Y).unwrap();
+        let c = plane.surface_coords(Vec3::new(3.0, 2.0, -1.0), Vec3::Y, None);
+        assert!((plane.point + c.dpdu * c.uv[0] + c.dpdv * c.uv[1] - Vec3::new(3.0, 2.0, -1.0)).length() < 1e-14);
+    }
 
     #[test]
     fn plane_hit_from_either_side_and_parallel_miss() {

@@ -25,17 +25,20 @@ mod clip;
 mod form;
 pub mod kinds;
 mod named;
+mod uv;
 
 pub use clip::Clip;
 pub use named::Sheets;
 
-use super::{Shape, SurfaceHit};
+use super::surface::Meridian;
+use super::{Shape, SurfaceCoords, SurfaceHit};
 use crate::accel::Aabb;
 use crate::math::{solve_quadratic, Mat4, Vec3};
 use crate::ray::Ray;
 use crate::Error;
 use form::{Affine, Form};
 use glam::DMat3;
+use uv::Revolution;
 
 /// A quadric surface with optional clip regions; see the module documentation.
 #[derive(Clone, Debug, PartialEq)]
@@ -44,6 +47,8 @@ pub struct Quadric {
     clips: Vec<Clip>,
     /// Conservative box of the visible surface; may be infinite on some sides.
     bounds: Aabb,
+    /// The frame of a named quadric, for its surface coordinates (`quadric/uv.rs`).
+    revolution: Option<Revolution>,
 }
 
 impl Quadric {
@@ -63,7 +68,7 @@ impl Quadric {
         if bounds.is_empty() {
             return Err(Error::DegenerateGeometry("quadric has no real points".into()));
         }
-        Ok(Quadric { form, clips: Vec::new(), bounds })
+        Ok(Quadric { form, clips: Vec::new(), bounds, revolution: None })
     }
 
     /// This quadric with one more clip region: the visible surface shrinks to the
@@ -71,6 +76,13 @@ impl Quadric {
     pub fn with_clip(mut self, clip: Clip) -> Quadric {
         self.bounds = self.bounds.intersection(clip.region_box());
         self.clips.push(clip);
+        self
+    }
+
+    /// This quadric with the surface coordinates of a surface of revolution about
+    /// `axis` (unit) through `origin`, `z` scaled by `axial` and `x`, `y` by `radial`.
+    fn revolving(mut self, origin: Vec3, axis: Vec3, radial: f64, axial: f64, meridian: Meridian) -> Quadric {
+        self.revolution = Some(Revolution::around(origin, axis, radial, axial, meridian));
         self
     }
 
@@ -90,6 +102,7 @@ impl Quadric {
         for clip in &self.clips {
             moved = moved.with_clip(clip.transformed(&affine)?);
         }
+        moved.revolution = self.revolution.map(|r| r.transformed(&m));
         Ok(moved)
     }
 
@@ -193,6 +206,14 @@ impl Shape for Quadric {
             return Some(SurfaceHit::new(t, normal));
         }
         None
+    }
+
+    /// See `quadric/uv.rs`.
+    fn surface_coords(&self, p: Vec3, n: Vec3, _primitive: Option<u32>) -> SurfaceCoords {
+        match &self.revolution {
+            Some(r) => r.coords(p, n),
+            None => SurfaceCoords::unparametrized(n),
+        }
     }
 }
 

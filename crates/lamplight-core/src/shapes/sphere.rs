@@ -5,12 +5,23 @@
 //! | `center` | point | required | centre |
 //! | `radius` | number | required | radius, > 0 |
 //!
-//! Under a rotation, translation and uniform scale it stays a sphere; under any
-//! other affine transform it becomes the ellipsoid quadric it maps to.
+//! Under a rotation, translation and uniform scale it stays a sphere (the
+//! rotation is kept for its surface coordinates); under any other affine
+//! transform it becomes the ellipsoid quadric it maps to.
+//!
+//! Surface coordinates (pbrt-v4's sphere): with `q = R^T (p - c)` the point in
+//! the sphere's own frame (`R` the rotation it was placed by, the identity when
+//! it was not), `phi = atan2(q.y, q.x)` in `[0, 2 pi)` and
+//! `theta = acos(q.z / r)`, `u = phi / (2 pi)`, `v = (pi - theta) / pi` (0 at the
+//! `-z` pole, 1 at `+z`), `dp/du = R 2 pi (-q.y, q.x, 0)` and
+//! `dp/dv = R (-pi) (q.z cos phi, q.z sin phi, -r sin theta)`.
 
 use std::sync::Arc;
 
-use super::{Quadric, Shape, ShapeKind, SurfaceHit};
+use glam::DMat3;
+
+use super::surface::{revolution, Meridian};
+use super::{Quadric, Shape, ShapeKind, SurfaceCoords, SurfaceHit};
 use crate::accel::Aabb;
 use crate::math::{similarity_scale, Mat4, Vec3};
 use crate::params::{Kind, Param, ParamResult, ParamType, Params};
@@ -33,7 +44,8 @@ fn build(p: &mut Params<'_>, m: &Mat4) -> ParamResult<Vec<Arc<dyn Shape>>> {
     let shape: Arc<dyn Shape> = if *m == Mat4::IDENTITY {
         Arc::new(Sphere::new(c, r).map_err(|e| p.core_error(e))?)
     } else if let Some(s) = similarity_scale(m) {
-        Arc::new(Sphere::new(m.transform_point3(c), r * s).map_err(|e| p.core_error(e))?)
+        let rotation = DMat3::from_mat4(*m) * (1.0 / s);
+        Arc::new(Sphere::new(m.transform_point3(c), r * s).map_err(|e| p.core_error(e))?.rotated(rotation))
     } else {
         Arc::new(Quadric::ellipsoid(c, Vec3::splat(r)).and_then(|q| q.transformed(*m)).map_err(|e| p.core_error(e))?)
     };
@@ -49,6 +61,8 @@ pub struct Sphere {
     pub radius: f64,
     /// `1 / radius`, so that the normal costs a multiplication.
     inv_radius: f64,
+    /// The rotation `R` from the sphere's own frame to the world (surface coordinates only).
+    rotation: DMat3,
 }
 
 impl Sphere {
@@ -60,7 +74,14 @@ impl Sphere {
         if !center.is_finite() {
             return Err(Error::invalid("center", "must be finite"));
         }
-        Ok(Sphere { center, radius, inv_radius: 1.0 / radius })
+        Ok(Sphere { center, radius, inv_radius: 1.0 / radius, rotation: DMat3::IDENTITY })
+    }
+
+    /// This sphere with its own frame turned by the orthogonal `rotation` (the
+    /// surface is the same; its `(u, v)` turn with it).
+    pub fn rotated(mut self, rotation: DMat3) -> Sphere {
+        self.rotation = rotation;
+        self
     }
 }
 
@@ -126,6 +147,19 @@ impl Shape for Sphere {
             normal = (perpendicular + ray.dir * along) * self.inv_radius;
         }
         Some(SurfaceHit::new(t, normal.normalize()))
+    }
+
+    fn surface_coords(&self, _p: Vec3, n: Vec3, _primitive: Option<u32>) -> SurfaceCoords {
+        // On the sphere itself, not a rounding error off it, so that v stays in [0, 1].
+        let q = self.rotation.transpose() * (n * self.radius);
+        match revolution(q, q * self.inv_radius, Meridian::Polar) {
+            Some(c) => SurfaceCoords::new(c.uv, self.rotation * c.dpdu, self.rotation * c.dpdv),
+            // At a pole phi is undefined: u = 0, and v is 0 or 1.
+            None => {
+                let v = if q.z > 0.0 { 1.0 } else { 0.0 };
+                SurfaceCoords { uv: [0.0, v], ..SurfaceCoords::unparametrized(n) }
+            }
+        }
     }
 
     fn intersect_p(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
@@ -201,6 +235,32 @@ mod tests {
         let s = Sphere::new(Vec3::new(0.0, 0.0, 1e6), 1e-3).unwrap();
         let hit = s.intersect(&Ray::new(Vec3::ZERO, Vec3::Z), 0.0, f64::INFINITY).unwrap();
         assert!((hit.t - (1e6 - 1e-3)).abs() < 1e-8, "t = {}", hit.t);
+    }
+
+    /// `(u, v)` at known points, and `dp/du`, `dp/dv` against central differences
+    /// of the parametrization `p(u, v)`.
+    #[test]
+    fn surface_coordinates_follow_pbrt() {
+        let s = Sphere::new(Vec3::new(1.0, 2.0, 3.0), 2.0).unwrap();
+        let at = |u: f64, v: f64| {
+            let (phi, theta) = (u * std::f64::consts::TAU, std::f64::consts::PI * (1.0 - v));
+            s.center + Vec3::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos()) * s.radius
+        };
+        for (u, v) in [(0.1, 0.3), (0.6, 0.8), (0.9, 0.5)] {
+            let p = at(u, v);
+            let c = s.surface_coords(p, (p - s.center) / s.radius, None);
+            assert!((c.uv[0] - u).abs() < 1e-12 && (c.uv[1] - v).abs() < 1e-12, "{:?} vs ({u}, {v})", c.uv);
+            let h = 1e-6;
+            let dpdu = (at(u + h, v) - at(u - h, v)) / (2.0 * h);
+            let dpdv = (at(u, v + h) - at(u, v - h)) / (2.0 * h);
+            assert!((c.dpdu - dpdu).length() < 1e-6 * dpdu.length(), "{} vs {dpdu}", c.dpdu);
+            assert!((c.dpdv - dpdv).length() < 1e-6 * dpdv.length(), "{} vs {dpdv}", c.dpdv);
+        }
+        // A rotation turns the coordinates with the sphere: +x of the frame goes to +y.
+        let turned = Sphere::new(Vec3::ZERO, 1.0).unwrap().rotated(DMat3::from_rotation_z(std::f64::consts::FRAC_PI_2));
+        let c = turned.surface_coords(Vec3::Y, Vec3::Y, None);
+        assert!(c.uv[0].abs() < 1e-12 && (c.uv[1] - 0.5).abs() < 1e-12, "{:?}", c.uv);
+        assert_eq!(unit().surface_coords(Vec3::Z, Vec3::Z, None).uv, [0.0, 1.0], "the pole");
     }
 
     #[test]

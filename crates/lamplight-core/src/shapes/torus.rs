@@ -21,6 +21,13 @@
 //! ray tangent to the surface still hits it. The normal is the gradient
 //! `4 (|p|^2 + R^2 - r^2) p - 8 R^2 (x, y, 0)`. `SurfaceHit::error` is the hit point's
 //! exact distance from the surface, `| |(sqrt(x^2 + y^2) - R, z)| - r |`.
+//!
+//! Surface coordinates (neither pbrt nor Mitsuba has a torus; these follow their
+//! angle-over-range convention): the local point is
+//! `((R + r cos theta) cos phi, (R + r cos theta) sin phi, r sin theta)` with
+//! `u = phi / (2 pi)` around the axis and `v = theta / (2 pi)` around the tube
+//! (`v = 0` on the outer equator), both in `[0, 1)`;
+//! `dp/du = 2 pi (-y, x, 0)`, `dp/dv = 2 pi r (-sin theta cos phi, -sin theta sin phi, cos theta)`.
 
 mod polynomial;
 
@@ -28,7 +35,8 @@ use polynomial::{roots_in, Poly};
 
 use std::sync::Arc;
 
-use super::{placed, Shape, ShapeKind, SurfaceHit};
+use super::surface::azimuth;
+use super::{placed, Shape, ShapeKind, SurfaceCoords, SurfaceHit};
 use crate::accel::Aabb;
 use crate::math::{orthonormal_basis, Vec3};
 use crate::params::{Kind, Param, ParamType as T};
@@ -187,6 +195,21 @@ impl Shape for Torus {
         let p = start + d * u;
         let normal = self.world_from_local(self.normal_local(p)).normalize();
         Some(SurfaceHit { t, normal, shading_normal: normal, error: self.distance_local(p).abs(), primitive: None })
+    }
+
+    fn surface_coords(&self, p: Vec3, n: Vec3, _primitive: Option<u32>) -> SurfaceCoords {
+        let q = self.local_from_world(p - self.center);
+        let rho = q.x.hypot(q.y);
+        if !(rho > 0.0) {
+            return SurfaceCoords::unparametrized(n);
+        }
+        let phi = azimuth(q.x, q.y);
+        let theta = azimuth(rho - self.major_radius, q.z);
+        let (sin_t, cos_t) = theta.sin_cos();
+        let tau = std::f64::consts::TAU;
+        let dpdu = Vec3::new(-q.y, q.x, 0.0) * tau;
+        let dpdv = Vec3::new(-sin_t * phi.cos(), -sin_t * phi.sin(), cos_t) * (tau * self.minor_radius);
+        SurfaceCoords::new([phi / tau, theta / tau], self.world_from_local(dpdu), self.world_from_local(dpdv))
     }
 }
 

@@ -224,7 +224,17 @@ impl Shape for Triangle {
         let hit = intersect_triangle(&WatertightRay::new(ray), self.p0, self.p1, self.p2, t_min, t_max)?;
         Some(SurfaceHit::new(hit.t, self.normal))
     }
+
+    /// pbrt-v4's default for a triangle without texture coordinates: the
+    /// vertices are at `(0, 0)`, `(1, 0)` and `(1, 1)`.
+    fn surface_coords(&self, p: Vec3, _n: Vec3, _primitive: Option<u32>) -> super::SurfaceCoords {
+        let v = self.vertices();
+        super::mesh::interpolated_coords(p, v, DEFAULT_UV, self.normal)
+    }
 }
+
+/// Texture coordinates of a triangle's vertices when none are given (pbrt-v4's).
+pub const DEFAULT_UV: [[f64; 2]; 3] = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0]];
 
 #[cfg(test)]
 mod tests {

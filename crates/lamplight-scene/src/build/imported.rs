@@ -11,7 +11,6 @@ use std::sync::Arc;
 use lamplight_core::camera::{Camera, Fov, Orthographic, Perspective};
 use lamplight_core::materials::Material;
 use lamplight_core::math::{Rgb, Vec3};
-use lamplight_core::shapes::TriangleMesh;
 use lamplight_core::{Scene, SceneBuilder};
 
 use super::{viewer, Built};
@@ -38,7 +37,7 @@ pub fn build(path: &Path, imported: &Imported) -> Result<Scene, LoadError> {
     let fail = |e: lamplight_core::Error| LoadError::file(path, e.to_string());
     let mut meshes = Vec::with_capacity(imported.meshes.len());
     for data in &imported.meshes {
-        let mesh = TriangleMesh::new(data.positions.clone(), data.indices.clone(), data.normals.clone()).map_err(fail)?;
+        let mesh = data.to_mesh().map_err(fail)?;
         meshes.push(Arc::new(mesh));
     }
     for placed in &imported.instances {
@@ -102,7 +101,13 @@ mod tests {
 
     #[test]
     fn default_camera_frames_the_model_and_lights_are_added() {
-        let mesh = MeshData { name: None, positions: vec![Vec3::ZERO, Vec3::X, Vec3::Y], indices: vec![[0, 1, 2]], normals: None };
+        let mesh = MeshData {
+            name: None,
+            positions: vec![Vec3::ZERO, Vec3::X, Vec3::Y],
+            indices: vec![[0, 1, 2]],
+            normals: None,
+            ..MeshData::default()
+        };
         let imported = Imported {
             meshes: vec![mesh],
             instances: vec![ImportedMesh { mesh: 0, transform: Mat4::from_translation(Vec3::Z), material: None }],

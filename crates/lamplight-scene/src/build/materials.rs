@@ -13,7 +13,10 @@ use crate::registry;
 
 /// Adds every material of `desc` to `builder`; returns their indices by name.
 pub(super) fn add_all(desc: &SceneDescription, source: &Source, builder: &mut SceneBuilder) -> Result<BTreeMap<String, usize>, LoadError> {
-    let textures = Textures { kinds: registry::TEXTURES };
+    // Texture files are found beside the scene file, and decoded once each.
+    let dir = source.path.parent().unwrap_or(std::path::Path::new(""));
+    let images = crate::texture_files::ImageFiles::new(dir);
+    let textures = Textures { kinds: registry::TEXTURES, images: Some(&images) };
     let mut out = BTreeMap::new();
     for named in &desc.materials {
         let node = &named.value;

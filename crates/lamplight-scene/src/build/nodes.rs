@@ -280,7 +280,8 @@ impl<'a> Ctx<'a> {
             let mesh = match meshes.get(&placed.mesh) {
                 Some(mesh) => mesh.clone(),
                 None => {
-                    let mesh = TriangleMesh::new(data.positions.clone(), data.indices.clone(), data.normals.clone())
+                    let mesh = data
+                        .to_mesh()
                         .map_err(|e| Err(LoadError { path: path.clone(), location: Location::File, message: e.to_string() }))?;
                     meshes.entry(placed.mesh).or_insert(Arc::new(mesh)).clone()
                 }

@@ -157,6 +157,10 @@ pub fn build() -> Result<Scene, Error> {
             refraction: Refraction::Constant { ior: s.ir, weight: Rgb::splat(s.kt) },
             shadow_transmittance: Rgb::ZERO,
             roughness: 0.0,
+            textures: None,
+            pbr: None,
+            normal_map: None,
+            alpha: None,
         })?;
         let center = Vec3::from_array(s.center);
         let index = scene.object(Sphere::new(center, s.radius)?, material)?;

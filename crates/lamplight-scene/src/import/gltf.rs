@@ -34,7 +34,9 @@ use gltf::khr_lights_punctual::Kind;
 use lamplight_core::lights::{DirectionalLight, PointLight, SpotLight, SpotProfile};
 use lamplight_core::materials::Material;
 use lamplight_core::math::{Mat4, Rgb, Vec3};
+use lamplight_core::shapes::VertexAttributes;
 
+use super::gltf_images::GltfImages;
 use super::{gltf_material, Imported, ImportedCamera, ImportedLight, ImportedMesh, ImportedProjection, MeshData, Warnings};
 use crate::error::LoadError;
 
@@ -45,7 +47,14 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
     check_position_accessors(path, &root)?;
     let document = gltf::Document::from_json(root).map_err(|e| gltf_error(path, bytes, e))?;
     let buffers = load_buffers(path, &document, blob)?;
-    let mut reader = Reader { path, buffers, warnings: Warnings::default(), primitives: HashMap::new(), materials: HashMap::new() };
+    let mut reader = Reader {
+        path,
+        buffers,
+        warnings: Warnings::default(),
+        primitives: HashMap::new(),
+        materials: HashMap::new(),
+        images: GltfImages::new(path),
+    };
     let mut out = Imported::default();
     if document.animations().next().is_some() {
         reader.warnings.once("glTF animations ignored".to_string());
@@ -133,7 +142,9 @@ struct Reader<'p> {
     warnings: Warnings,
     /// glTF mesh index -> (index into `Imported::meshes`, material) per triangle primitive.
     primitives: HashMap<usize, Vec<(usize, Option<Material>)>>,
-    materials: HashMap<usize, Material>,
+    /// (glTF material index, whether the primitive has vertex colours) -> material.
+    materials: HashMap<(usize, bool), Material>,
+    images: GltfImages<'p>,
 }
 
 impl Reader<'_> {
@@ -214,7 +225,8 @@ impl Reader<'_> {
                 self.warnings.once("glTF morph targets ignored".to_string());
             }
             for (semantic, _) in p.attributes() {
-                if !matches!(semantic, gltf::Semantic::Positions | gltf::Semantic::Normals) {
+                use gltf::Semantic as S;
+                if !matches!(semantic, S::Positions | S::Normals | S::TexCoords(0) | S::Colors(0) | S::Tangents) {
                     self.warnings.once(format!("glTF vertex attribute {semantic:?} ignored"));
                 }
             }
@@ -233,6 +245,7 @@ impl Reader<'_> {
                 }
                 None => None,
             };
+            let attributes = self.vertex_attributes(&p, &at, positions.len())?;
             let indices: Vec<u32> = match p.indices() {
                 Some(acc) => {
                     let values = self.values(&acc, Dimensions::Scalar, &[DataType::U8, DataType::U16, DataType::U32])?;
@@ -258,14 +271,86 @@ impl Reader<'_> {
                 (None, _) => None,
             };
             let triangles = indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect();
-            out.meshes.push(MeshData { name, positions, indices: triangles, normals });
+            let attributes_have_colors = attributes.colors.is_some();
+            let mut data = MeshData { name, positions, indices: triangles, normals, attributes };
             let material = match p.material().index() {
-                Some(m) => Some(self.materials.entry(m).or_insert_with(|| gltf_material::map(&p.material(), &mut self.warnings)).clone()),
+                Some(m) => {
+                    let key = (m, attributes_have_colors);
+                    if !self.materials.contains_key(&key) {
+                        let (buffers, images) = (&self.buffers, &mut self.images);
+                        let mut load = |image: &gltf::Image, srgb: bool| images.load(image, buffers, srgb);
+                        let material = gltf_material::map(&p.material(), key.1, &mut load, &mut self.warnings)?;
+                        self.materials.insert(key, material);
+                    }
+                    Some(self.materials[&key].clone())
+                }
                 None => None,
             };
+            // A normal map needs tangents: the file's, else MikkTSpace's.
+            if material.as_ref().is_some_and(|m| m.normal_map.is_some()) && !super::tangents::generate(&mut data) {
+                self.warnings.once("glTF normalTexture on a primitive without TEXCOORD_0: its tangents follow the faces".to_string());
+            }
+            out.meshes.push(data);
             list.push((out.meshes.len() - 1, material));
         }
         Ok(list)
+    }
+
+    /// `TEXCOORD_0` (its `v` flipped: glTF's `v = 0` is the image's top row,
+    /// lamplight's the bottom), `COLOR_0` (rgb; alpha is not used) and `TANGENT`.
+    fn vertex_attributes(&self, p: &gltf::Primitive, at: &str, count: usize) -> Result<VertexAttributes, LoadError> {
+        use gltf::Semantic as S;
+        let mut out = VertexAttributes::default();
+        if let Some(acc) = p.get(&S::TexCoords(0)) {
+            let (v, _) = self.normalized(&acc, &[Dimensions::Vec2], &format!("{at}.attributes.TEXCOORD_0"), count)?;
+            out.uvs = Some(v.chunks_exact(2).map(|c| [c[0], 1.0 - c[1]]).collect());
+        }
+        if let Some(acc) = p.get(&S::Colors(0)) {
+            let (v, n) = self.normalized(&acc, &[Dimensions::Vec3, Dimensions::Vec4], &format!("{at}.attributes.COLOR_0"), count)?;
+            out.colors = Some(v.chunks_exact(n).map(|c| Rgb::new(c[0], c[1], c[2])).collect());
+        }
+        if let Some(acc) = p.get(&S::Tangents) {
+            let (v, _) = self.normalized(&acc, &[Dimensions::Vec4], &format!("{at}.attributes.TANGENT"), count)?;
+            out.tangents = Some(v.chunks_exact(4).map(|c| [c[0], c[1], c[2], c[3]]).collect());
+        }
+        Ok(out)
+    }
+
+    /// A float or normalized-integer accessor (glTF 2.0 section 3.7.2.1: `c / 255`
+    /// for `u8`, `c / 65535` for `u16`, `max(c / 127, -1)` for `i8`, and so on) of
+    /// one of `dims`, with one item per vertex; the values and components per item.
+    fn normalized(&self, acc: &gltf::Accessor, dims: &[Dimensions], at: &str, count: usize) -> Result<(Vec<f64>, usize), LoadError> {
+        let err = |msg: String| Err(LoadError::json(self.path, at.to_string(), msg));
+        if !dims.contains(&acc.dimensions()) {
+            return err(format!("expected {dims:?}, found {:?}", acc.dimensions()));
+        }
+        let ty = acc.data_type();
+        if ty != DataType::F32 && !acc.normalized() {
+            return err(format!("expected floats or normalized integers, found {ty:?} that are not normalized"));
+        }
+        let scale = match ty {
+            DataType::I8 => 127.0,
+            DataType::U8 => 255.0,
+            DataType::I16 => 32767.0,
+            DataType::U16 => 65535.0,
+            DataType::U32 => 4294967295.0,
+            DataType::F32 => 1.0,
+        };
+        let mut values = self.values(acc, acc.dimensions(), &[ty])?;
+        let n = acc.dimensions().multiplicity();
+        if values.len() != count * n {
+            return err(format!("has {} items but POSITION has {count}", values.len() / n));
+        }
+        for (k, v) in values.iter_mut().enumerate() {
+            *v /= scale;
+            if matches!(ty, DataType::I8 | DataType::I16) {
+                *v = v.max(-1.0);
+            }
+            if !v.is_finite() {
+                return err(format!("item {} is not finite", k / n));
+            }
+        }
+        Ok((values, n))
     }
 
     /// A VEC3 float accessor as finite vectors.
@@ -344,12 +429,14 @@ impl Reader<'_> {
     }
 }
 
+/// Standard base64 that accepts data URIs with or without padding.
+pub(super) fn base64_engine() -> GeneralPurpose {
+    GeneralPurpose::new(&base64::alphabet::STANDARD, GeneralPurposeConfig::new().with_decode_padding_mode(DecodePaddingMode::Indifferent))
+}
+
 /// The bytes of every buffer: the GLB chunk, a `data:` URI, or a file beside `path`.
 fn load_buffers(path: &Path, document: &gltf::Document, mut blob: Option<Vec<u8>>) -> Result<Vec<Vec<u8>>, LoadError> {
-    let engine = GeneralPurpose::new(
-        &base64::alphabet::STANDARD,
-        GeneralPurposeConfig::new().with_decode_padding_mode(DecodePaddingMode::Indifferent),
-    );
+    let engine = base64_engine();
     let mut out = Vec::new();
     for buffer in document.buffers() {
         let at = format!("buffers[{}]", buffer.index());

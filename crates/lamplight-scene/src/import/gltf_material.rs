@@ -1,30 +1,36 @@
-//! glTF metallic-roughness materials mapped onto the nearest lamplight
-//! [`Material`] (a Whitted tracer has no glossy lobes, so the mapping keeps
-//! the colours and turns roughness into a Blinn exponent).
-//!
-//! With base colour `B` (`baseColorFactor` rgb), metallic `m` and roughness `r`:
+//! glTF materials mapped onto lamplight's `pbr` material
+//! ([`lamplight_core::materials::pbr`]): the specification's BRDF for the path
+//! tracer, its lecture-model approximation for the Whitted tracer.
 //!
 //! | glTF | lamplight |
 //! |---|---|
-//! | `B`, `m` | `color = 1`, `kd = (1 - m) B`, `ka = 0.1 kd` |
-//! | highlight | `ks = (1 - m) 0.04 + m B` (the glTF specular colour at normal incidence) |
-//! | `r` | `shininess = clamp(2 / max(r^4, 1e-4) - 2, 1, 10000)`: the Blinn exponent whose lobe matches a GGX lobe of `alpha = r^2` (`n = 2 / alpha^2 - 2`) |
-//! | `m > 0` | mirror `Reflection::Constant(m B (1 - r))`: a conductor tinted by its base colour, fading as it roughens since a sharp mirror of a rough metal would look wrong |
-//! | `metallicRoughnessTexture` | `m = 0`: the texture is unsupported, and the factor alone (1 by default, as such assets leave it) would make the whole surface bare metal, black where no light is mirrored |
-//! | `emissiveFactor` | `emission`; 0 when an `emissiveTexture` modulates it (textures are unsupported, and the factor alone would make the whole surface glow: glTF assets set it to 1 and paint the glowing parts in the texture) |
-//! | `KHR_materials_transmission` `t > 0` | `Material::glass(ior, ..)` (index from `KHR_materials_ior`, default 1.5) with `kd`, `ka` scaled by `1 - t`, shadow rays passing `t B`, and GGX `roughness = r^2` (glTF's `alpha`; rough glass in the path tracer) |
+//! | `baseColorFactor` x `baseColorTexture` (sRGB) x `COLOR_0` | base colour: a `scale` texture of the three (the colours only on primitives that have them) |
+//! | `metallicFactor` x `metallicRoughnessTexture`.b, `roughnessFactor` x its .g (linear) | `metallic`, `roughness` |
+//! | `emissiveFactor` x `emissiveTexture` (sRGB) x `KHR_materials_emissive_strength` | `emission` (an emitting surface with a texture is not sampled as an area light) |
+//! | sampler `wrapS`, `minFilter`/`magFilter` | `wrap`; `nearest` for NEAREST filters, `trilinear` for mipmapped ones, else `bilinear` |
+//! | `normalTexture`, its `scale` | the normal map (linear; the tangents from `TANGENT`, else MikkTSpace) |
+//! | `KHR_texture_transform` | the texture's UV transform, in lamplight's `v`-up convention (`F T R S F`, `F(u, v) = (u, 1 - v)`) |
+//! | `KHR_materials_transmission` `t > 0` | `Material::glass(ior, ..)` (index from `KHR_materials_ior`, default 1.5) with `kd`, `ka` scaled by `1 - t`, shadow rays passing `t B`, and GGX `roughness = r^2` (textures not read) |
 //!
-//! `KHR_materials_ior` without transmission changes only the dielectric F0,
-//! which the fixed 0.04 above already stands for, so it is read but unused.
-//! Textures (base colour, metallic-roughness, normal, occlusion, emissive,
-//! transmission) and alpha blending/masking are unsupported: each kind is
-//! reported once as a warning. Numbers are clamped to their valid range
+//! | `alphaMode` `MASK`, `alphaCutoff`; `BLEND` | a cut-out of base colour alpha x `baseColorTexture` alpha ([`lamplight_core::materials::alpha`]); `BLEND` as `MASK` at 0.5, with a warning |
+//!
+//! `occlusionTexture` is not read: the path tracer computes the occlusion it
+//! stands for. Texture coordinates other than `TEXCOORD_0` are read as
+//! `TEXCOORD_0` (a warning says so). Numbers are clamped to their valid range
 //! (non-finite ones become 0) so no NaN reaches the renderer.
 
-use lamplight_core::materials::{Material, Reflection, Texture};
+use std::sync::Arc;
+
+use lamplight_core::materials::alpha::AlphaMask;
+use lamplight_core::materials::image::{Channel, Filter, Wrap};
+use lamplight_core::materials::{pbr, ImageData, ImageTexture, Material, NormalMap, Slot, Texture, UvTransform};
 use lamplight_core::math::Rgb;
 
 use super::Warnings;
+use crate::error::LoadError;
+
+/// Decodes a glTF image (index, sRGB).
+pub(super) type LoadImage<'a> = dyn FnMut(&gltf::Image, bool) -> Result<Arc<ImageData>, LoadError> + 'a;
 
 /// A finite, non-negative number from an `f32` of the file.
 fn clean(x: f32) -> f64 {
@@ -39,78 +45,155 @@ fn rgb(c: [f32; 3]) -> Rgb {
     Rgb::new(clean(c[0]), clean(c[1]), clean(c[2]))
 }
 
-/// The Blinn exponent of roughness `r` (module doc).
+/// The Blinn exponent of roughness `r` ([`pbr::shininess`]).
 pub(super) fn shininess(roughness: f64) -> f64 {
-    (2.0 / roughness.powi(4).max(1e-4) - 2.0).clamp(1.0, 10_000.0)
+    pbr::shininess(roughness)
 }
 
-/// Maps one glTF material (module doc), adding a warning per unsupported kind.
-pub(super) fn map(m: &gltf::Material, warnings: &mut Warnings) -> Material {
-    let pbr = m.pbr_metallic_roughness();
-    let textures = [
-        ("baseColorTexture", pbr.base_color_texture().is_some()),
-        ("metallicRoughnessTexture", pbr.metallic_roughness_texture().is_some()),
-        ("normalTexture", m.normal_texture().is_some()),
-        ("occlusionTexture", m.occlusion_texture().is_some()),
-        ("emissiveTexture", m.emissive_texture().is_some()),
-        ("transmissionTexture", m.transmission().is_some_and(|t| t.transmission_texture().is_some())),
-    ];
-    for (kind, present) in textures {
-        if present {
-            warnings.once(format!("glTF {kind} ignored: textures are not supported"));
+/// `texture * factor`, or the factor alone without a texture.
+fn scaled(texture: Option<Texture>, factor: Rgb) -> Texture {
+    match texture {
+        None => Texture::Constant(factor),
+        Some(t) if factor == Rgb::ONE => t,
+        Some(t) => Texture::Scale(Arc::new([t, Texture::Constant(factor)])),
+    }
+}
+
+/// The texture of a texture reference (module documentation).
+fn image_texture(
+    texture: &gltf::Texture,
+    tex_coord: u32,
+    transform: Option<gltf::texture::TextureTransform>,
+    srgb: bool,
+    channel: Channel,
+    load: &mut LoadImage<'_>,
+    warnings: &mut Warnings,
+) -> Result<Texture, LoadError> {
+    if tex_coord != 0 || transform.as_ref().and_then(|t| t.tex_coord()).is_some_and(|c| c != 0) {
+        warnings.once("glTF textures on TEXCOORD_1 and above are read with TEXCOORD_0".to_string());
+    }
+    let image = load(&texture.source(), srgb)?;
+    let sampler = texture.sampler();
+    use gltf::texture::{MagFilter, MinFilter, WrappingMode};
+    let wrap = match sampler.wrap_s() {
+        WrappingMode::ClampToEdge => Wrap::Clamp,
+        WrappingMode::MirroredRepeat => Wrap::Mirror,
+        WrappingMode::Repeat => Wrap::Repeat,
+    };
+    let filter = match (sampler.min_filter(), sampler.mag_filter()) {
+        (Some(MinFilter::Nearest), Some(MagFilter::Nearest)) => Filter::Nearest,
+        (
+            Some(
+                MinFilter::NearestMipmapNearest
+                | MinFilter::LinearMipmapNearest
+                | MinFilter::NearestMipmapLinear
+                | MinFilter::LinearMipmapLinear,
+            ),
+            _,
+        ) => Filter::Trilinear,
+        _ => Filter::Bilinear,
+    };
+    let flip = UvTransform([[1.0, 0.0, 0.0], [0.0, -1.0, 1.0]]);
+    let transform = match transform {
+        None => UvTransform::IDENTITY,
+        Some(t) => {
+            let (offset, scale) = (t.offset().map(f64::from), t.scale().map(f64::from));
+            let khr = UvTransform::new(scale, f64::from(t.rotation()), offset);
+            let m = flip.then(&khr).then(&flip);
+            if m.is_finite() {
+                m
+            } else {
+                UvTransform::IDENTITY
+            }
         }
-    }
-    if m.alpha_mode() != gltf::material::AlphaMode::Opaque {
-        warnings.once("glTF alphaMode BLEND/MASK ignored: surfaces are opaque".to_string());
-    }
-    let [r, g, b, _alpha] = pbr.base_color_factor();
-    let base = rgb([r, g, b]).min(Rgb::ONE);
-    let metal = if pbr.metallic_roughness_texture().is_some() {
-        warnings.once(
-            "glTF metallicFactor read as 0 where a metallicRoughnessTexture modulates it: without the texture the whole surface \
-             would be bare metal"
-                .to_string(),
-        );
-        0.0
-    } else {
-        clean(pbr.metallic_factor()).min(1.0)
     };
-    let rough = clean(pbr.roughness_factor()).min(1.0);
-    let kd = (1.0 - metal) * base;
-    let ks = Rgb::splat(0.04 * (1.0 - metal)) + metal * base;
-    let shine = shininess(rough);
-    let emission = if m.emissive_texture().is_some() {
-        warnings.once(
-            "glTF emissiveFactor ignored where an emissiveTexture modulates it: without the texture the whole surface would glow"
-                .to_string(),
-        );
-        Rgb::ZERO
-    } else {
-        rgb(m.emissive_factor())
-    };
+    Ok(Texture::Image(Arc::new(ImageTexture { image, wrap, filter, transform, channel })))
+}
+
+/// Maps one glTF material (module doc); `vertex_colors` when the primitive has
+/// `COLOR_0`. Images are decoded through `load`.
+pub(super) fn map(
+    m: &gltf::Material,
+    vertex_colors: bool,
+    load: &mut LoadImage<'_>,
+    warnings: &mut Warnings,
+) -> Result<Material, LoadError> {
+    let pbr_json = m.pbr_metallic_roughness();
+    if m.transmission().is_some_and(|t| t.transmission_texture().is_some()) {
+        warnings.once("glTF transmissionTexture ignored: the transmission factor is used".to_string());
+    }
+    let [r, g, b, alpha_factor] = pbr_json.base_color_factor();
+    let base_factor = rgb([r, g, b]).min(Rgb::ONE);
+    let metal = clean(pbr_json.metallic_factor()).min(1.0);
+    let rough = clean(pbr_json.roughness_factor()).min(1.0);
+    let strength = m.emissive_strength().map_or(1.0, clean);
+    let emissive = rgb(m.emissive_factor()) * strength;
     let transmission = m.transmission().map_or(0.0, |t| clean(t.transmission_factor()).min(1.0));
     if transmission > 0.0 {
         let ior = m.ior().map(f64::from).filter(|i| i.is_finite() && *i > 0.0).unwrap_or(1.5);
-        let glass = Material::glass(ior, ks.max_element(), shine);
-        return Material {
+        let kd = (1.0 - metal) * base_factor;
+        let ks = Rgb::splat(0.04 * (1.0 - metal)) + metal * base_factor;
+        let glass = Material::glass(ior, ks.max_element(), shininess(rough));
+        return Ok(Material {
             kd: (1.0 - transmission) * kd,
             ka: 0.1 * (1.0 - transmission) * kd,
-            emission,
-            shadow_transmittance: transmission * base,
+            emission: emissive,
+            shadow_transmittance: transmission * base_factor,
             roughness: rough * rough,
             ..glass
+        });
+    }
+    let cutoff = match m.alpha_mode() {
+        gltf::material::AlphaMode::Opaque => None,
+        gltf::material::AlphaMode::Mask => Some(m.alpha_cutoff().map_or(0.5, |c| clean(c).min(1.0))),
+        gltf::material::AlphaMode::Blend => {
+            warnings.once("glTF alphaMode BLEND read as MASK with cutoff 0.5: blending is not done".to_string());
+            Some(0.5)
+        }
+    };
+    let mut texture = |info: Option<gltf::texture::Info>, srgb: bool, channel: Channel| -> Result<Option<Texture>, LoadError> {
+        match info {
+            None => Ok(None),
+            Some(i) => image_texture(&i.texture(), i.tex_coord(), i.texture_transform(), srgb, channel, load, warnings).map(Some),
+        }
+    };
+    let mut base = scaled(texture(pbr_json.base_color_texture(), true, Channel::Rgb)?, base_factor);
+    if vertex_colors {
+        base = match base {
+            Texture::Constant(c) if c == Rgb::ONE => Texture::VertexColor,
+            other => Texture::Scale(Arc::new([other, Texture::VertexColor])),
         };
     }
-    Material {
-        color: Texture::Constant(Rgb::ONE),
-        ka: 0.1 * kd,
-        kd,
-        ks,
-        shininess: shine,
-        emission,
-        reflection: if metal > 0.0 { Reflection::Constant(metal * base * (1.0 - rough)) } else { Reflection::None },
-        ..Material::default()
+    let mut maps = Vec::new();
+    let mr = pbr_json.metallic_roughness_texture();
+    if mr.is_some() {
+        let metallic = texture(mr.clone(), false, Channel::One(2))?;
+        let roughness = texture(mr, false, Channel::One(1))?;
+        maps.push((Slot::Metallic, scaled(metallic, Rgb::splat(metal))));
+        maps.push((Slot::Roughness, scaled(roughness, Rgb::splat(rough))));
     }
+    let emission = match texture(m.emissive_texture(), true, Channel::Rgb)? {
+        Some(t) if emissive != Rgb::ZERO => {
+            maps.push((Slot::Emission, scaled(Some(t), emissive)));
+            Rgb::ZERO
+        }
+        _ => emissive,
+    };
+    let alpha = match cutoff {
+        None => None,
+        Some(cutoff) => {
+            let coverage = texture(pbr_json.base_color_texture(), true, Channel::One(3))?;
+            Some(Arc::new(AlphaMask { texture: scaled(coverage, Rgb::splat(clean(alpha_factor).min(1.0))), cutoff }))
+        }
+    };
+    let mut material = pbr::material(base, metal, rough, emission, maps);
+    material.alpha = alpha;
+    if let Some(n) = m.normal_texture() {
+        let texture = image_texture(&n.texture(), n.tex_coord(), None, false, Channel::Rgb, load, warnings)?;
+        let scale = if n.scale().is_finite() { f64::from(n.scale()) } else { 1.0 };
+        material.normal_map = Some(Arc::new(NormalMap { texture, scale }));
+    }
+    Ok(material)
 }
 
 #[cfg(test)]

@@ -13,14 +13,17 @@ use std::path::Path;
 use lamplight_core::lights::{DirectionalLight, PointLight, SpotLight};
 use lamplight_core::materials::Material;
 use lamplight_core::math::{Mat4, Vec3};
+use lamplight_core::shapes::VertexAttributes;
 
 use crate::error::LoadError;
 
 mod gltf;
+mod gltf_images;
 mod gltf_material;
 mod mtl;
 mod obj;
 mod ply;
+mod tangents;
 
 /// Triangle mesh data as read from a file (indices in the file's face order,
 /// polygons triangulated as fans).
@@ -34,6 +37,8 @@ pub struct MeshData {
     pub indices: Vec<[u32; 3]>,
     /// Per-vertex normals, if the file has them (same length as `positions`).
     pub normals: Option<Vec<Vec3>>,
+    /// Texture coordinates, colours and tangents, each if the file has them.
+    pub attributes: VertexAttributes,
 }
 
 /// One mesh placed in the world with a material.
@@ -148,6 +153,14 @@ pub fn load_mesh(path: &Path) -> Result<MeshData, LoadError> {
     Ok(load(path)?.into_mesh())
 }
 
+impl MeshData {
+    /// The core mesh, with its vertex attributes.
+    pub fn to_mesh(&self) -> Result<lamplight_core::shapes::TriangleMesh, lamplight_core::Error> {
+        lamplight_core::shapes::TriangleMesh::new(self.positions.clone(), self.indices.clone(), self.normals.clone())?
+            .with_attributes(self.attributes.clone())
+    }
+}
+
 impl Imported {
     /// The warnings as the front ends show them: `PATH: what`, `path` being the
     /// file they came from, each once.
@@ -161,7 +174,9 @@ impl Imported {
         if self.meshes.len() == 1 && self.instances.len() == 1 && self.instances[0].transform == Mat4::IDENTITY {
             return self.meshes.pop().unwrap_or_default();
         }
-        let mut out = MeshData { name: None, positions: Vec::new(), indices: Vec::new(), normals: Some(Vec::new()) };
+        // Vertex attributes are for rendering the file's own scene; a merged mesh
+        // (the batch ray-casting API) has positions and normals only.
+        let mut out = MeshData { name: None, positions: Vec::new(), indices: Vec::new(), normals: Some(Vec::new()), ..MeshData::default() };
         for instance in &self.instances {
             let Some(mesh) = self.meshes.get(instance.mesh) else { continue };
             let base = out.positions.len() as u32;

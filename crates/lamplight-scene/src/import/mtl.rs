@@ -18,14 +18,29 @@
 //! | `illum 4, 6, 7, 9` | glass: `Material::glass(Ni, Ks, Ns)` (`Ni` absent: 1.5) with `Kd`, `Ka` kept |
 //! | `d < 1` otherwise | see-through: `Refraction::Constant { ior: Ni or 1, weight: 1 - d }`, `kd`, `ka` scaled by `d`, shadows pass `1 - d` |
 //!
+//! | `map_Kd FILE` | `color` = the image (sRGB), so `kd * C = Kd x map_Kd` |
+//! | `map_Ks FILE` | `ks` = `Ks x` the image (sRGB) |
+//! | `map_Ns FILE` | `shininess` = `Ns x` the image's first channel (linear) |
+//! | `norm FILE` (with `-bm s`) | a tangent-space normal map of scale `s` |
+//! | `map_d FILE` | a cut-out where the image's first channel (linear) is below 0.5 |
+//!
 //! `Tr` follows the specification (`Tr = 1 - d`); whichever of `d`/`Tr` comes
-//! last wins. Texture maps (`map_*`, `bump`, `disp`, `decal`, `refl`) and other
-//! statements are not supported: each kind is reported once as a warning.
+//! last wins. A map statement's options (`-s`, `-o`, `-bm`, `-clamp`, ...) are
+//! read past (`-bm` is the normal map's scale, `-clamp on` its wrap mode) and
+//! its file is found beside the `.mtl`; a file that cannot be read is reported
+//! as a warning naming it and its line, and the material is kept without it.
+//! Height bump maps (`bump`, `map_Bump`), `map_Ka`,
+//! `disp`, `decal`, `refl` and other statements are not supported: each kind is
+//! reported once as a warning.
 
 use std::collections::HashMap;
 use std::path::Path;
 
-use lamplight_core::materials::{Material, Reflection, Refraction, Texture};
+use std::sync::Arc;
+
+use lamplight_core::materials::alpha::AlphaMask;
+use lamplight_core::materials::image::{Channel, Filter, Wrap};
+use lamplight_core::materials::{ImageData, ImageTexture, Material, NormalMap, Reflection, Refraction, Slot, Texture, UvTransform};
 use lamplight_core::math::Rgb;
 
 use super::{number, words, Warnings};
@@ -42,11 +57,40 @@ struct MtlValues {
     ni: Option<f64>,
     dissolve: Option<f64>,
     illum: Option<i64>,
+    map_kd: Option<Texture>,
+    map_ks: Option<Texture>,
+    map_ns: Option<Texture>,
+    norm: Option<NormalMap>,
+    map_d: Option<Texture>,
+}
+
+/// A map statement's file and options: `(file, -bm value, -clamp on)`.
+fn map_statement(words: &[(usize, &str)]) -> Option<(String, f64, bool)> {
+    let mut i = 1;
+    let (mut bm, mut clamp) = (1.0, false);
+    while i < words.len() && words[i].1.starts_with('-') && words[i].1.len() > 1 && words[i].1.parse::<f64>().is_err() {
+        let option = words[i].1;
+        // The numbers that follow an option are its arguments (up to three for -o, -s, -t).
+        let args = match option {
+            "-o" | "-s" | "-t" => words[i + 1..].iter().take(3).take_while(|w| w.1.parse::<f64>().is_ok()).count().max(1),
+            "-mm" => 2,
+            _ => 1,
+        };
+        match option {
+            "-bm" => bm = words.get(i + 1).and_then(|w| w.1.parse().ok()).unwrap_or(1.0),
+            "-clamp" => clamp = words.get(i + 1).is_some_and(|w| w.1 == "on"),
+            _ => {}
+        }
+        i += 1 + args;
+    }
+    let file = words.get(i..)?.iter().map(|w| w.1).collect::<Vec<_>>().join(" ");
+    (!file.is_empty()).then_some((file, bm, clamp))
 }
 
 /// Reads a material library into lamplight materials by name.
 pub(super) fn parse(path: &Path, text: &str, warnings: &mut Warnings) -> Result<HashMap<String, Material>, LoadError> {
     let mut done = HashMap::new();
+    let mut images: HashMap<(String, bool), Arc<ImageData>> = HashMap::new();
     let mut current: Option<(String, MtlValues)> = None;
     for (line_index, raw) in text.lines().enumerate() {
         let line_no = line_index + 1;
@@ -65,10 +109,55 @@ pub(super) fn parse(path: &Path, text: &str, warnings: &mut Warnings) -> Result<
             continue;
         }
         let is_map = keyword.starts_with("map_") || matches!(keyword, "bump" | "disp" | "decal" | "refl" | "norm");
+        let read_map = matches!(keyword, "map_Kd" | "map_Ks" | "map_Ns" | "norm" | "map_d");
+        if read_map {
+            let Some((_, values)) = current.as_mut() else {
+                return Err(LoadError::at(path, line_no, w[0].0, format!("`{keyword}` before any `newmtl`")));
+            };
+            let Some((file, bm, clamp)) = map_statement(&w) else {
+                let end = line.trim_end().chars().count() + 1;
+                return Err(LoadError::at(path, line_no, end, format!("expected a file name after `{keyword}`")));
+            };
+            let srgb = matches!(keyword, "map_Kd" | "map_Ks");
+            let key = (file.clone(), srgb);
+            let image = match images.get(&key) {
+                Some(i) => Some(i.clone()),
+                None => match crate::texture_files::read_texture(&path.parent().unwrap_or(Path::new("")).join(&file), srgb) {
+                    Ok(i) => {
+                        let i = Arc::new(i);
+                        images.insert(key, i.clone());
+                        Some(i)
+                    }
+                    Err(e) => {
+                        warnings.once(format!("MTL {keyword} at line {line_no} ignored: {e}"));
+                        None
+                    }
+                },
+            };
+            if let Some(image) = image {
+                let channel = if matches!(keyword, "map_Ns" | "map_d") { Channel::One(0) } else { Channel::Rgb };
+                let wrap = if clamp { Wrap::Clamp } else { Wrap::Repeat };
+                let texture = Texture::Image(Arc::new(ImageTexture {
+                    image,
+                    wrap,
+                    filter: Filter::Bilinear,
+                    transform: UvTransform::IDENTITY,
+                    channel,
+                }));
+                match keyword {
+                    "map_Kd" => values.map_kd = Some(texture),
+                    "map_Ks" => values.map_ks = Some(texture),
+                    "map_Ns" => values.map_ns = Some(texture),
+                    "map_d" => values.map_d = Some(texture),
+                    _ => values.norm = Some(NormalMap { texture, scale: bm }),
+                }
+            }
+            continue;
+        }
         let known = matches!(keyword, "Ka" | "Kd" | "Ks" | "Ke" | "Ns" | "Ni" | "d" | "Tr" | "illum");
         if !known {
             let what = if is_map {
-                "MTL texture maps (map_*, bump, disp, decal, refl) ignored".to_string()
+                format!("MTL {keyword} ignored: only map_Kd, map_Ks, map_Ns, map_d and norm maps are read")
             } else {
                 format!("MTL statement `{keyword}` ignored")
             };
@@ -142,8 +231,24 @@ fn to_material(v: &MtlValues) -> Material {
         ks: if illum <= 1 { Rgb::ZERO } else { ks },
         shininess: ns,
         emission: v.ke.unwrap_or(Rgb::ZERO),
+        normal_map: v.norm.clone().map(Arc::new),
+        alpha: v.map_d.clone().map(|texture| Arc::new(AlphaMask { texture, cutoff: 0.5 })),
         ..Material::default()
     };
+    if let Some(t) = &v.map_kd {
+        m.color = t.clone();
+    }
+    let scaled = |t: &Texture, by: Rgb| Texture::Scale(Arc::new([t.clone(), Texture::Constant(by)]));
+    let mut maps = Vec::new();
+    if let (Some(t), true) = (&v.map_ks, illum > 1) {
+        maps.push((Slot::Ks, scaled(t, ks)));
+    }
+    if let Some(t) = &v.map_ns {
+        maps.push((Slot::Shininess, scaled(t, Rgb::splat(ns))));
+    }
+    if !maps.is_empty() {
+        m.textures = Some(maps.into());
+    }
     match illum {
         3 | 8 => m.reflection = Reflection::Constant(ks),
         5 => m.reflection = Reflection::Dielectric { ior: v.ni.unwrap_or(1.5), min: 0.0, max: 1.0 },
@@ -186,6 +291,31 @@ mod tests {
         let glass = one("newmtl m\nNi 1.33\nillum 7\n");
         assert_eq!(glass.refraction, Refraction::Fresnel { ior: 1.33 });
         assert_eq!(glass.shadow_transmittance, Rgb::ONE);
+    }
+
+    #[test]
+    fn map_statements_read_their_file_past_the_options() {
+        let w = words("map_Kd -s 2 2 1 -o 0.5 -clamp on my texture.png");
+        assert_eq!(map_statement(&w), Some(("my texture.png".to_string(), 1.0, true)));
+        assert_eq!(map_statement(&words("norm -bm 0.5 n.png")), Some(("n.png".to_string(), 0.5, false)));
+        assert_eq!(map_statement(&words("map_Kd")), None);
+    }
+
+    #[test]
+    fn texture_maps_drive_the_colour_and_a_missing_file_is_a_warning() {
+        let dir = tempfile::tempdir().unwrap();
+        image::RgbImage::from_pixel(1, 1, image::Rgb([255, 0, 0])).save(dir.path().join("red.png")).unwrap();
+        let mut w = Warnings::default();
+        let text = "newmtl m\nKd 0.5\nmap_Kd -s 1 1 red.png\nnorm -bm 2 red.png\nmap_Ks missing.png\nbump b.png\n";
+        let m = parse(&dir.path().join("t.mtl"), text, &mut w).unwrap().remove("m").unwrap();
+        assert!(matches!(m.color, Texture::Image(_)));
+        assert_eq!(m.normal_map.as_ref().map(|n| n.scale), Some(2.0));
+        let warnings = w.into_vec();
+        assert!(
+            warnings[0].starts_with("MTL map_Ks at line 5 ignored: cannot read texture") && warnings[0].contains("missing.png"),
+            "{warnings:?}"
+        );
+        assert_eq!(warnings[1], "MTL bump ignored: only map_Kd, map_Ks, map_Ns, map_d and norm maps are read");
     }
 
     #[test]

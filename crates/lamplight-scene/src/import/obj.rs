@@ -1,12 +1,14 @@
 //! Wavefront OBJ reader with MTL materials (mapping in [`super::mtl`]).
 //!
-//! Reads `v` (positions), `vn` (normals), `f` (polygons of any size in the forms
+//! Reads `v` (positions), `vn` (normals), `vt` (texture coordinates), `f` (polygons of any size in the forms
 //! `v`, `v/vt`, `v//vn`, `v/vt/vn`, with 1-based or negative, relative indices),
 //! `o`/`g` (names), `usemtl` and `mtllib`. Polygons are fan-triangulated
 //! (`v0 v(k) v(k+1)`). Every run of faces with one object/group name and one
 //! material becomes one mesh, in file order, so merging the meshes
-//! ([`super::load_mesh`]) keeps the file's face order. A mesh has normals when
-//! every corner of its faces names one. Texture coordinates, lines, points,
+//! ([`super::load_mesh`]) keeps the file's face order. A mesh has normals (texture
+//! coordinates) when every corner of its faces names one; a `vt` keeps its
+//! `(u, v)` as they are (OBJ's `v = 0` is the image's bottom row, the
+//! convention of lamplight's textures). Lines, points,
 //! free-form geometry and unknown statements are reported once each as
 //! warnings; smoothing groups (`s`) only matter with normals and are skipped.
 //! A file with a single run of faces keeps the file's vertex numbering (see
@@ -33,16 +35,27 @@ struct Group {
     material: Option<String>,
     mesh: MeshData,
     normals: Vec<Vec3>,
+    uvs: Vec<[f64; 2]>,
     all_corners_have_normals: bool,
-    /// File (position, normal) index pair -> index in this mesh.
-    remap: HashMap<(u32, u32), u32>,
-    /// Index in this mesh -> file (position, normal) index pair.
-    origin: Vec<(u32, u32)>,
+    all_corners_have_uvs: bool,
+    /// File corner -> index in this mesh.
+    remap: HashMap<Corner, u32>,
+    /// Index in this mesh -> file corner.
+    origin: Vec<Corner>,
+}
+
+/// A face corner's 0-based file indices of position, texture coordinate and
+/// normal, `u32::MAX` for none.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+struct Corner {
+    v: u32,
+    t: u32,
+    n: u32,
 }
 
 impl Group {
     fn new(name: Option<String>, material: Option<String>) -> Group {
-        Group { name, material, all_corners_have_normals: true, ..Group::default() }
+        Group { name, material, all_corners_have_normals: true, all_corners_have_uvs: true, ..Group::default() }
     }
 }
 
@@ -52,10 +65,11 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
     let mut warnings = Warnings::default();
     let mut positions: Vec<Vec3> = Vec::new();
     let mut normals: Vec<Vec3> = Vec::new();
+    let mut uvs: Vec<[f64; 2]> = Vec::new();
     let mut materials: HashMap<String, Material> = HashMap::new();
     let mut done: Vec<Group> = Vec::new();
     let mut group = Group::new(None, None);
-    let mut corners: Vec<(u32, u32)> = Vec::new();
+    let mut corners: Vec<Corner> = Vec::new();
     for (line_index, raw) in text.lines().enumerate() {
         let line_no = line_index + 1;
         let line = raw.split('#').next().unwrap_or("");
@@ -65,18 +79,19 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
         match keyword {
             "v" => positions.push(Vec3::new(num(1, "x")?, num(2, "y")?, num(3, "z")?)),
             "vn" => normals.push(Vec3::new(num(1, "normal x")?, num(2, "normal y")?, num(3, "normal z")?)),
-            "vt" => warnings.once("OBJ texture coordinates (vt) ignored: textures are not supported".to_string()),
+            // `vt u [v [w]]`: v defaults to 0 and w (3D textures) is not used.
+            "vt" => uvs.push([num(1, "texture u")?, if w.len() > 2 { num(2, "texture v")? } else { 0.0 }]),
             "f" => {
                 if w.len() < 4 {
                     return Err(LoadError::at(path, line_no, w[0].0, format!("a face needs at least 3 vertices, found {}", w.len() - 1)));
                 }
                 corners.clear();
                 for &(column, word) in &w[1..] {
-                    let corner = parse_corner(word, positions.len(), normals.len())
+                    let corner = parse_corner(word, positions.len(), uvs.len(), normals.len())
                         .map_err(|message| LoadError::at(path, line_no, column, format!("face corner `{word}`: {message}")))?;
                     corners.push(corner);
                 }
-                add_face(&mut group, &corners, &positions, &normals);
+                add_face(&mut group, &corners, &positions, &uvs, &normals);
             }
             "o" | "g" | "usemtl" => {
                 let rest = line.trim_start()[keyword.len()..].trim();
@@ -114,7 +129,7 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
     done.push(group);
     done.retain(|g| !g.mesh.indices.is_empty());
     if let [single] = done.as_mut_slice() {
-        keep_file_numbering(single, &positions, &normals);
+        keep_file_numbering(single, &positions, &uvs, &normals);
     }
     let mut imported = Imported { warnings: warnings.into_vec(), ..Imported::default() };
     for g in done {
@@ -122,6 +137,9 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
         mesh.name = g.name;
         if g.all_corners_have_normals {
             mesh.normals = Some(g.normals);
+        }
+        if g.all_corners_have_uvs {
+            mesh.attributes.uvs = Some(g.uvs);
         }
         let material = g.material.and_then(|m| materials.get(&m).cloned());
         imported.instances.push(ImportedMesh { mesh: imported.meshes.len(), transform: Mat4::IDENTITY, material });
@@ -134,27 +152,35 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
 }
 
 /// A file of one group keeps the file's vertex numbering (vertex `i` of the mesh is
-/// `v` line `i`, unused ones included) when its corners name no normals, or each
-/// names the normal of the same number, so that tools can refer to file indices.
-fn keep_file_numbering(group: &mut Group, positions: &[Vec3], normals: &[Vec3]) {
-    let no_normals = group.origin.iter().all(|&(_, n)| n == u32::MAX);
-    let paired = normals.len() == positions.len() && group.origin.iter().all(|&(v, n)| v == n);
-    if !(no_normals || paired) {
+/// `v` line `i`, unused ones included) when its corners name no normals (texture
+/// coordinates), or each names the one of the same number, so that tools can
+/// refer to file indices.
+fn keep_file_numbering(group: &mut Group, positions: &[Vec3], uvs: &[[f64; 2]], normals: &[Vec3]) {
+    let no_normals = group.origin.iter().all(|c| c.n == u32::MAX);
+    let paired = normals.len() == positions.len() && group.origin.iter().all(|c| c.v == c.n);
+    let no_uvs = group.origin.iter().all(|c| c.t == u32::MAX);
+    let uvs_paired = uvs.len() == positions.len() && group.origin.iter().all(|c| c.v == c.t);
+    if !((no_normals || paired) && (no_uvs || uvs_paired)) {
         return;
     }
     for t in &mut group.mesh.indices {
-        *t = t.map(|i| group.origin[i as usize].0);
+        *t = t.map(|i| group.origin[i as usize].v);
     }
     group.mesh.positions = positions.to_vec();
     group.normals = if paired { normals.to_vec() } else { Vec::new() };
     group.all_corners_have_normals = paired;
+    group.uvs = if uvs_paired { uvs.to_vec() } else { Vec::new() };
+    group.all_corners_have_uvs = uvs_paired;
 }
 
-/// `v`, `v/vt`, `v//vn` or `v/vt/vn` -> 0-based (position, normal) with `u32::MAX` for "no normal".
-fn parse_corner(word: &str, n_positions: usize, n_normals: usize) -> Result<(u32, u32), String> {
+/// `v`, `v/vt`, `v//vn` or `v/vt/vn` -> 0-based indices, `u32::MAX` for none.
+fn parse_corner(word: &str, n_positions: usize, n_uvs: usize, n_normals: usize) -> Result<Corner, String> {
     let mut parts = word.split('/');
     let v = resolve(parts.next().unwrap_or(""), n_positions, "vertex")?;
-    let _texture = parts.next();
+    let t = match parts.next() {
+        Some(s) if !s.is_empty() => resolve(s, n_uvs, "texture coordinate")?,
+        _ => u32::MAX,
+    };
     let n = match parts.next() {
         Some(s) if !s.is_empty() => resolve(s, n_normals, "normal")?,
         _ => u32::MAX,
@@ -162,7 +188,7 @@ fn parse_corner(word: &str, n_positions: usize, n_normals: usize) -> Result<(u32
     if parts.next().is_some() {
         return Err("expected at most 3 indices separated by `/`".to_string());
     }
-    Ok((v, n))
+    Ok(Corner { v, t, n })
 }
 
 /// An OBJ index (1-based, or negative counting back from the last one read) -> 0-based.
@@ -171,7 +197,11 @@ fn resolve(text: &str, count: usize, what: &str) -> Result<u32, String> {
         return Err(format!("expected an integer {what} index, found `{text}`"));
     };
     let count = count as i64;
-    let plural = if what == "vertex" { "vertices" } else { "normals" };
+    let plural = match what {
+        "vertex" => "vertices",
+        "normal" => "normals",
+        _ => "texture coordinates",
+    };
     let zero_based = if i > 0 { i - 1 } else { count + i };
     if i == 0 || zero_based < 0 || zero_based >= count || zero_based >= i64::from(u32::MAX) {
         return Err(format!("{what} index {i} out of range ({count} {plural} defined so far)"));
@@ -179,17 +209,21 @@ fn resolve(text: &str, count: usize, what: &str) -> Result<u32, String> {
     Ok(zero_based as u32)
 }
 
-fn add_face(group: &mut Group, corners: &[(u32, u32)], positions: &[Vec3], normals: &[Vec3]) {
+fn add_face(group: &mut Group, corners: &[Corner], positions: &[Vec3], uvs: &[[f64; 2]], normals: &[Vec3]) {
     let mut local = [0u32; 3];
-    let index_of = |group: &mut Group, (v, n): (u32, u32)| -> u32 {
-        if n == u32::MAX {
+    let index_of = |group: &mut Group, c: Corner| -> u32 {
+        if c.n == u32::MAX {
             group.all_corners_have_normals = false;
         }
+        if c.t == u32::MAX {
+            group.all_corners_have_uvs = false;
+        }
         let next = group.mesh.positions.len() as u32;
-        *group.remap.entry((v, n)).or_insert_with(|| {
-            group.mesh.positions.push(positions[v as usize]);
-            group.normals.push(normals.get(n as usize).copied().unwrap_or(Vec3::ZERO));
-            group.origin.push((v, n));
+        *group.remap.entry(c).or_insert_with(|| {
+            group.mesh.positions.push(positions[c.v as usize]);
+            group.normals.push(normals.get(c.n as usize).copied().unwrap_or(Vec3::ZERO));
+            group.uvs.push(uvs.get(c.t as usize).copied().unwrap_or([0.0, 0.0]));
+            group.origin.push(c);
             next
         })
     };
@@ -214,7 +248,8 @@ mod tests {
         assert_eq!(resolve("4", 4, "vertex"), Ok(3));
         assert!(resolve("0", 4, "vertex").is_err());
         assert!(resolve("-5", 4, "vertex").is_err());
-        assert_eq!(parse_corner("2//-1", 3, 2), Ok((1, 1)));
-        assert_eq!(parse_corner("2/7", 3, 0), Ok((1, u32::MAX)));
+        assert_eq!(parse_corner("2//-1", 3, 0, 2), Ok(Corner { v: 1, t: u32::MAX, n: 1 }));
+        assert_eq!(parse_corner("2/7", 3, 7, 0), Ok(Corner { v: 1, t: 6, n: u32::MAX }));
+        assert!(parse_corner("2/7", 3, 0, 0).unwrap_err().contains("texture coordinate index 7 out of range"));
     }
 }

@@ -1,5 +1,8 @@
 //! PLY (Stanford polygon file) reader: ASCII, binary little-endian and binary
 //! big-endian bodies, vertex positions with optional normals (`nx ny nz`),
+//! texture coordinates (`u v`, `s t`, `texture_u texture_v` or `texture_s
+//! texture_t`) and colours (`red green blue`: integers are sRGB-encoded
+//! fractions of their type's maximum, decoded to linear; floats are linear),
 //! `face` lists of any length (fan-triangulated: `v0 v(k) v(k+1)`), and
 //! `tristrips` lists with `-1` restarts (strip `a b c d ...` gives `abc`, `cbd`,
 //! `cde`, ...: every second triangle swaps its first two corners so that all keep
@@ -475,14 +478,28 @@ fn read_vertices(path: &Path, reader: &mut Reader, e: &Element, mesh: &mut MeshD
             slot[i.unwrap_or_default()] = Some(3 + axis);
         }
     }
+    let uv_names = [["u", "v"], ["s", "t"], ["texture_u", "texture_v"], ["texture_s", "texture_t"]];
+    let uv_slots = uv_names.iter().map(|[a, b]| (find(a), find(b))).find(|(a, b)| a.is_some() && b.is_some());
+    if let Some((Some(a), Some(b))) = uv_slots {
+        (slot[a], slot[b]) = (Some(6), Some(7));
+    }
+    let color_slots: Vec<Option<usize>> = ["red", "green", "blue"].iter().map(|n| find(n)).collect();
+    let has_colors = color_slots.iter().all(Option::is_some);
+    if has_colors {
+        for (k, i) in color_slots.iter().enumerate() {
+            slot[i.unwrap_or_default()] = Some(8 + k);
+        }
+    }
     let ignored: Vec<&str> = e.props.iter().zip(&slot).filter(|(_, s)| s.is_none()).map(|(p, _)| p.name.as_str()).collect();
     if !ignored.is_empty() {
         warnings.push(format!("PLY vertex properties ignored: {}", ignored.join(", ")));
     }
     mesh.positions.reserve_exact(e.count as usize);
     let mut normals = if has_normals { Vec::with_capacity(e.count as usize) } else { Vec::new() };
+    let mut uvs = Vec::new();
+    let mut colors = Vec::new();
     for v in 0..e.count {
-        let mut xyz = [0.0; 6];
+        let mut xyz = [0.0; 11];
         for (p, s) in e.props.iter().zip(&slot) {
             match s {
                 Some(k) => {
@@ -490,7 +507,10 @@ fn read_vertices(path: &Path, reader: &mut Reader, e: &Element, mesh: &mut MeshD
                     if !value.is_finite() {
                         return Err(reader.error(path, format!("vertex {v}: `{}` is {value}, expected a finite number", p.name)));
                     }
-                    xyz[*k] = value;
+                    xyz[*k] = match p.item.int_range() {
+                        Some((_, max)) if *k >= 8 => lamplight_core::film::srgb_decode(value / max as f64),
+                        _ => value,
+                    };
                 }
                 None => skip_property(reader, path, p, ("vertex", v))?,
             }
@@ -499,8 +519,16 @@ fn read_vertices(path: &Path, reader: &mut Reader, e: &Element, mesh: &mut MeshD
         if has_normals {
             normals.push(Vec3::new(xyz[3], xyz[4], xyz[5]));
         }
+        if uv_slots.is_some() {
+            uvs.push([xyz[6], xyz[7]]);
+        }
+        if has_colors {
+            colors.push(Vec3::new(xyz[8], xyz[9], xyz[10]));
+        }
     }
     mesh.normals = has_normals.then_some(normals);
+    mesh.attributes.uvs = uv_slots.is_some().then_some(uvs);
+    mesh.attributes.colors = has_colors.then_some(colors);
     Ok(())
 }
 

@@ -237,3 +237,21 @@ fn emitting_box_light_integrates_the_solid_angle_of_its_visible_face() {
     let expected = 4.0 * (1.0f64 / (2.0 * 6f64.sqrt())).atan();
     assert!((omega - expected).abs() / expected < 2e-3, "{omega} vs {expected}");
 }
+
+#[test]
+fn each_face_is_the_unit_square_with_outward_tangents() {
+    for m in placements() {
+        let b = Cuboid::new(Vec3::new(-1.0, 0.0, 2.0), Vec3::new(1.0, 3.0, 3.0), m).unwrap();
+        let mut rng = Rng::for_sample(5, 0, 0);
+        for _ in 0..200 {
+            let (p, n) = b.sample_area((rng.uniform(), rng.uniform())).unwrap();
+            let c = b.surface_coords(p, n, None);
+            assert!(c.uv.iter().all(|x| (0.0..=1.0).contains(x)), "{:?}", c.uv);
+            assert!(c.dpdu.cross(c.dpdv).dot(n) > 0.0, "dp/du x dp/dv must point out of the box");
+            // Moving by the tangents reproduces the point from the face's corner: p(u, v) is affine.
+            let corner = p - c.dpdu * c.uv[0] - c.dpdv * c.uv[1];
+            let again = b.surface_coords(corner + c.dpdu * 0.5 + c.dpdv * 0.25, n, None);
+            assert!((again.uv[0] - 0.5).abs() < 1e-9 && (again.uv[1] - 0.25).abs() < 1e-9, "{:?}", again.uv);
+        }
+    }
+}

@@ -234,3 +234,27 @@ fn invalid_meshes_are_rejected_with_the_place_named() {
     assert!(TriangleMesh::new(tri(), vec![], None).is_err());
     assert!(matches!(TriangleMesh::new(tri(), vec![[0, 0, 1]], None), Err(Error::DegenerateGeometry(_))));
 }
+
+#[test]
+fn attributes_are_interpolated_at_the_hit() {
+    // A quad in z = 0 from (0, 0) to (2, 1) with (u, v) = (x / 2, y) and a colour ramp in x.
+    let positions = vec![Vec3::ZERO, Vec3::new(2.0, 0.0, 0.0), Vec3::new(2.0, 1.0, 0.0), Vec3::new(0.0, 1.0, 0.0)];
+    let uvs = positions.iter().map(|p| [p.x / 2.0, p.y]).collect();
+    let colors = positions.iter().map(|p| Rgb::new(p.x / 2.0, 0.0, 1.0)).collect();
+    let tangents = vec![[1.0, 0.0, 0.0, 1.0]; 4];
+    let mesh = TriangleMesh::new(positions, vec![[0, 1, 2], [0, 2, 3]], None)
+        .unwrap()
+        .with_attributes(VertexAttributes { uvs: Some(uvs), colors: Some(colors), tangents: Some(tangents) })
+        .unwrap();
+    for (x, y) in [(1.5, 0.25), (0.5, 0.75)] {
+        let hit = mesh.intersect(&Ray::new(Vec3::new(x, y, 1.0), -Vec3::Z), 0.0, f64::INFINITY).unwrap();
+        let c = mesh.surface_coords(Vec3::new(x, y, 0.0), hit.normal, hit.primitive);
+        assert!((c.uv[0] - x / 2.0).abs() < 1e-12 && (c.uv[1] - y).abs() < 1e-12, "{:?}", c.uv);
+        assert!((c.dpdu - Vec3::new(2.0, 0.0, 0.0)).length() < 1e-12 && (c.dpdv - Vec3::Y).length() < 1e-12);
+        assert!((c.color.unwrap() - Rgb::new(x / 2.0, 0.0, 1.0)).length() < 1e-12);
+        assert_eq!(c.tangent, Some((Vec3::X, 1.0)));
+    }
+    let bad = TriangleMesh::new(vec![Vec3::ZERO, Vec3::X, Vec3::Y], vec![[0, 1, 2]], None).unwrap();
+    let err = bad.with_attributes(VertexAttributes { uvs: Some(vec![[0.0, 0.0]]), ..Default::default() }).unwrap_err();
+    assert_eq!(err.to_string(), "invalid texture coordinates: 1 values for 3 vertices");
+}

@@ -7,9 +7,11 @@
 //! the bowl for a paraboloid).
 
 use super::form::Form;
+use super::uv::Revolution;
 use super::{Clip, Quadric};
 use crate::accel::Aabb;
-use crate::math::Vec3;
+use crate::math::{Mat4, Vec3};
+use crate::shapes::surface::Meridian;
 use crate::Error;
 use glam::DMat3;
 
@@ -59,6 +61,9 @@ fn circle_box(center: Vec3, axis: Vec3, r: f64) -> Aabb {
     Aabb::new(center - half, center + half)
 }
 
+/// `v` along the axis.
+const HEIGHT: Meridian = Meridian::Height { z0: 0.0, z1: 1.0 };
+
 impl Quadric {
     /// Ellipsoid `sum_i ((p - center)_i / radii_i)^2 = 1` with axis-aligned
     /// semi-axes `radii` (all positive); rotate it with [`Quadric::transformed`].
@@ -68,7 +73,15 @@ impl Quadric {
             positive("radii", r)?;
         }
         let a = DMat3::from_diagonal(radii.powf(-2.0));
-        Quadric::from_form(Form::from_parts(center, a, Vec3::ZERO, -1.0, "ellipsoid")?)
+        let frame = Mat4::from_cols(
+            (Vec3::X * radii.x).extend(0.0),
+            (Vec3::Y * radii.y).extend(0.0),
+            (Vec3::Z * radii.z).extend(0.0),
+            center.extend(1.0),
+        );
+        let mut q = Quadric::from_form(Form::from_parts(center, a, Vec3::ZERO, -1.0, "ellipsoid")?)?;
+        q.revolution = Some(Revolution::new(frame, Meridian::Polar));
+        Ok(q)
     }
 
     /// Infinite cylinder `|v_perp|^2 = radius^2` around the line through
@@ -77,7 +90,7 @@ impl Quadric {
         let c = finite_point("point_on_axis", point_on_axis)?;
         let a = unit_axis(axis_dir)?;
         let r = positive("radius", radius)?;
-        Quadric::from_form(Form::from_parts(c, perp(a), Vec3::ZERO, -r * r, "cylinder")?)
+        Ok(Quadric::from_form(Form::from_parts(c, perp(a), Vec3::ZERO, -r * r, "cylinder")?)?.revolving(c, a, 1.0, 1.0, HEIGHT))
     }
 
     /// Infinite double cone `cos^2(th) |v_perp|^2 = sin^2(th) h^2` with apex
@@ -92,7 +105,7 @@ impl Quadric {
         }
         let (sin, cos) = half_angle_rad.sin_cos();
         let q = perp(a) * (cos * cos) - outer(a) * (sin * sin);
-        Quadric::from_form(Form::from_parts(c, q, Vec3::ZERO, 0.0, "cone")?)
+        Ok(Quadric::from_form(Form::from_parts(c, q, Vec3::ZERO, 0.0, "cone")?)?.revolving(c, a, 1.0, 1.0, HEIGHT))
     }
 
     /// Paraboloid `|v_perp|^2 = 4 f h` (the issue's `|P-A|^2 - ((P-A).a)^2 =
@@ -104,7 +117,7 @@ impl Quadric {
         let a = unit_axis(axis_dir)?;
         let f = positive("focal_length", focal_length)?;
         // 2 b.v = -4 f h  =>  b = -2 f a.
-        Quadric::from_form(Form::from_parts(c, perp(a), a * (-2.0 * f), 0.0, "paraboloid")?)
+        Ok(Quadric::from_form(Form::from_parts(c, perp(a), a * (-2.0 * f), 0.0, "paraboloid")?)?.revolving(c, a, 1.0, 1.0, HEIGHT))
     }
 
     /// Hyperboloid around `center` with axis `axis_dir`:
@@ -120,7 +133,7 @@ impl Quadric {
             Sheets::One => -1.0,
             Sheets::Two => 1.0,
         };
-        Quadric::from_form(Form::from_parts(centre, q, Vec3::ZERO, k, "hyperboloid")?)
+        Ok(Quadric::from_form(Form::from_parts(centre, q, Vec3::ZERO, k, "hyperboloid")?)?.revolving(centre, axis, 1.0, 1.0, HEIGHT))
     }
 
     /// The open tube of radius `radius` between `p0` and `p1`: the cylinder
@@ -129,7 +142,8 @@ impl Quadric {
         let (p0, p1) = (finite_point("p0", p0)?, finite_point("p1", p1)?);
         let a = (p1 - p0).try_normalize().ok_or_else(|| Error::DegenerateGeometry("cylinder segment ends coincide".into()))?;
         let b = circle_box(p0, a, radius).union(circle_box(p1, a, radius));
-        Ok(Quadric::cylinder(p0, a, radius)?.with_clip(Clip::half_space(p0, -a)?).with_clip(Clip::half_space(p1, a)?).within(b))
+        let tube = Quadric::cylinder(p0, a, radius)?.revolving(p0, a, 1.0, (p1 - p0).length(), HEIGHT);
+        Ok(tube.with_clip(Clip::half_space(p0, -a)?).with_clip(Clip::half_space(p1, a)?).within(b))
     }
 
     /// The nappe of a cone between `apex` and the circle of radius `base_radius`
@@ -142,7 +156,7 @@ impl Quadric {
         let r = positive("base_radius", base_radius)?;
         // The nappe lies in the convex hull of its apex and base circle.
         let b = circle_box(base, a, r).grow(apex);
-        let cone = Quadric::cone(apex, a, r.atan2(height))?;
+        let cone = Quadric::cone(apex, a, r.atan2(height))?.revolving(apex, a, 1.0, height, HEIGHT);
         Ok(cone.with_clip(Clip::half_space(apex, -a)?).with_clip(Clip::half_space(base, a)?).within(b))
     }
 
@@ -158,7 +172,7 @@ impl Quadric {
         // surface stays within the rim radius: the cylinder of that radius bounds it.
         let rim_radius = (4.0 * focal_length * depth).sqrt();
         let b = circle_box(apex, a, rim_radius).union(circle_box(rim, a, rim_radius));
-        Ok(bowl.with_clip(Clip::half_space(rim, a)?).within(b))
+        Ok(bowl.revolving(apex, a, 1.0, depth, HEIGHT).with_clip(Clip::half_space(rim, a)?).within(b))
     }
 }
 

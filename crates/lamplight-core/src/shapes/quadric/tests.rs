@@ -317,3 +317,41 @@ proptest! {
         }
     }
 }
+
+/// `(u, v)` of the named quadrics at points built from the parametrization, and
+/// `dp/du`, `dp/dv` against central differences of it.
+#[test]
+fn named_quadrics_have_surface_coordinates_of_revolution() {
+    use crate::math::orthonormal_basis;
+    use crate::shapes::Shape;
+    let tau = std::f64::consts::TAU;
+    let (p0, p1, r) = (Vec3::new(1.0, 0.0, -1.0), Vec3::new(1.0, 3.0, 1.0), 0.5);
+    let axis = (p1 - p0).normalize();
+    let (x, y) = orthonormal_basis(axis);
+    let tube = Quadric::cylinder_segment(p0, p1, r).unwrap();
+    let on_tube = |u: f64, v: f64| p0 + (p1 - p0) * v + (x * (u * tau).cos() + y * (u * tau).sin()) * r;
+    let e = Quadric::ellipsoid(Vec3::new(0.0, 1.0, 0.0), Vec3::new(1.0, 2.0, 3.0)).unwrap();
+    let on_ellipsoid = |u: f64, v: f64| {
+        let (phi, theta) = (u * tau, std::f64::consts::PI * (1.0 - v));
+        Vec3::new(0.0, 1.0, 0.0) + Vec3::new(theta.sin() * phi.cos(), 2.0 * theta.sin() * phi.sin(), 3.0 * theta.cos())
+    };
+    let moved = tube
+        .transformed(Mat4::from_scale_rotation_translation(Vec3::new(2.0, 1.0, 1.0), glam::DQuat::from_rotation_x(0.3), Vec3::X))
+        .unwrap();
+    let m = Mat4::from_scale_rotation_translation(Vec3::new(2.0, 1.0, 1.0), glam::DQuat::from_rotation_x(0.3), Vec3::X);
+    let on_moved = |u: f64, v: f64| m.transform_point3(on_tube(u, v));
+    type Parametrization<'a> = &'a dyn Fn(f64, f64) -> Vec3;
+    let cases: [(&Quadric, Parametrization); 3] = [(&tube, &on_tube), (&e, &on_ellipsoid), (&moved, &on_moved)];
+    for (q, at) in cases {
+        for (u, v) in [(0.1, 0.2), (0.55, 0.5), (0.8, 0.9)] {
+            let p = at(u, v);
+            let n = q.gradient(p).normalize();
+            let c = q.surface_coords(p, n, None);
+            assert!((c.uv[0] - u).abs() < 1e-9 && (c.uv[1] - v).abs() < 1e-9, "{:?} vs ({u}, {v})", c.uv);
+            let h = 1e-6;
+            let (du, dv) = ((at(u + h, v) - at(u - h, v)) / (2.0 * h), (at(u, v + h) - at(u, v - h)) / (2.0 * h));
+            assert!((c.dpdu - du).length() < 1e-6 * du.length(), "{} vs {du}", c.dpdu);
+            assert!((c.dpdv - dv).length() < 1e-6 * dv.length(), "{} vs {dv}", c.dpdv);
+        }
+    }
+}

@@ -189,3 +189,23 @@ proptest! {
         prop_assert!(h.error <= 1e-9 * scale);
     }
 }
+
+#[test]
+fn surface_coordinates_at_known_points_and_their_derivatives() {
+    let t = Torus::new(Vec3::new(1.0, -1.0, 2.0), Vec3::new(0.0, 1.0, 1.0), 2.0, 0.5).unwrap();
+    let tau = std::f64::consts::TAU;
+    let at = |u: f64, v: f64| {
+        let (phi, theta) = (u * tau, v * tau);
+        let local = Vec3::new((2.0 + 0.5 * theta.cos()) * phi.cos(), (2.0 + 0.5 * theta.cos()) * phi.sin(), 0.5 * theta.sin());
+        t.center + t.world_from_local(local)
+    };
+    for (u, v) in [(0.1, 0.2), (0.6, 0.7), (0.3, 0.95)] {
+        let p = at(u, v);
+        let c = t.surface_coords(p, Vec3::Z, None);
+        assert!((c.uv[0] - u).abs() < 1e-12 && (c.uv[1] - v).abs() < 1e-12, "{:?} vs ({u}, {v})", c.uv);
+        let h = 1e-6;
+        let (du, dv) = ((at(u + h, v) - at(u - h, v)) / (2.0 * h), (at(u, v + h) - at(u, v - h)) / (2.0 * h));
+        assert!((c.dpdu - du).length() < 1e-6 * du.length(), "{} vs {du}", c.dpdu);
+        assert!((c.dpdv - dv).length() < 1e-6 * dv.length(), "{} vs {dv}", c.dpdv);
+    }
+}

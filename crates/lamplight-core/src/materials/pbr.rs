@@ -1,0 +1,140 @@
+//! `pbr`: the glTF 2.0 metallic-roughness material, as a scene kind and as
+//! what the glTF importer maps its materials to.
+//!
+//! The path tracer's BSDF is the specification's (Appendix B,
+//! [`crate::bsdfs::metallic_roughness`]). The Whitted tracer has no glossy
+//! lobes; it sees the lecture's terms derived from the same numbers
+//! ([`derive_lecture_terms`]): with base colour `C`, metallic `m`, roughness `r`,
+//!
+//! | lecture | from |
+//! |---|---|
+//! | `kd` (times `C`) | `1 - m` |
+//! | `ks` | `0.04 (1 - m) + m C`, the specular colour at normal incidence |
+//! | `shininess` | `clamp(2 / max(r^4, 1e-4) - 2, 1, 10000)`: the Blinn exponent of GGX `alpha = r^2` |
+//! | mirror | `m C (1 - r)`: a metal mirrors its base colour, fading as it roughens |
+//! | `ka` (times `C`) | `0.1 ((1 - m) + m r)`: the diffuse part, and the part of a metal's reflection its roughness spreads, both under the ambient light (the importers' `ka = 0.1 kd` convention), so that under a uniform surround the terms add to `C` |
+//!
+//! | parameter | type | default | meaning |
+//! |---|---|---|---|
+//! | `base_color` | colour or texture | 1 | `C` (glTF `baseColorFactor x baseColorTexture`) |
+//! | `metallic` | number or texture | 0 | `m`, 0 to 1 (glTF's metallicRoughness texture's blue channel) |
+//! | `roughness` | number or texture | 0.5 | perceptual `r`, 0 to 1; GGX `alpha = r^2` (the texture's green channel) |
+//! | `emission` | colour or texture | 0 | emitted radiance |
+//! | `emission_strength` | number | 1 | multiplies `emission` (`KHR_materials_emissive_strength`) |
+//! | `two_sided` | boolean | false | emit from both sides |
+//! | `normal_map`, `normal_scale` | texture, number | none, 1 | a tangent-space normal map ([`super::normal_map`]) |
+//! | `alpha`, `alpha_cutoff` | number or texture, number | none, 0.5 | a cut-out mask ([`super::alpha`]) |
+//!
+//! Occlusion textures are not read: a path tracer computes the occlusion they
+//! approximate.
+
+use std::sync::Arc;
+
+use super::textured::{scalar_param, Slot};
+use super::{Material, MaterialKind, Reflection, Texture, Textures};
+use crate::math::Rgb;
+use crate::params::{Kind, Param, ParamResult, ParamType as T, Params};
+
+/// The metallic-roughness model's own numbers; the base colour is the
+/// material's `color`, the roughness its `roughness`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Pbr {
+    /// Metallic `m`, 0 to 1.
+    pub metallic: f64,
+}
+
+impl Pbr {
+    /// Whether nothing of its own varies over the surface.
+    pub fn is_constant(&self) -> bool {
+        true
+    }
+
+    /// Whether it reads surface coordinates.
+    pub fn needs_coords(&self) -> bool {
+        false
+    }
+}
+
+/// The Blinn exponent whose lobe matches GGX of `alpha = r^2` (`n = 2 / alpha^2 - 2`), clamped.
+pub fn shininess(roughness: f64) -> f64 {
+    (2.0 / roughness.powi(4).max(1e-4) - 2.0).clamp(1.0, 10_000.0)
+}
+
+/// Sets the lecture's terms of a metallic-roughness material `m` (module
+/// documentation) from its constant colour, `metallic` and `roughness`.
+pub fn derive_lecture_terms(m: &mut Material) {
+    let Some(pbr) = &m.pbr else { return };
+    let metal = pbr.metallic.clamp(0.0, 1.0);
+    let base = m.color.constant().unwrap_or(Rgb::ONE).clamp(Rgb::ZERO, Rgb::ONE);
+    let r = m.roughness.clamp(0.0, 1.0);
+    m.kd = Rgb::splat(1.0 - metal);
+    m.ka = Rgb::splat(0.1 * ((1.0 - metal) + metal * r));
+    m.ks = Rgb::splat(0.04 * (1.0 - metal)) + metal * base;
+    m.shininess = shininess(r);
+    m.reflection = if metal > 0.0 { Reflection::Constant(metal * base * (1.0 - r)) } else { Reflection::None };
+}
+
+/// A metallic-roughness material: base colour `base`, `metallic`, perceptual
+/// `roughness`, emission, and textures for any of them in `textures`.
+pub fn material(base: Texture, metallic: f64, roughness: f64, emission: Rgb, textures: Vec<(Slot, Texture)>) -> Material {
+    let mut m = Material {
+        color: base,
+        roughness: roughness.clamp(0.0, 1.0),
+        emission,
+        textures: (!textures.is_empty()).then(|| Arc::from(textures)),
+        pbr: Some(Pbr { metallic: metallic.clamp(0.0, 1.0) }),
+        ..Material::default()
+    };
+    derive_lecture_terms(&mut m);
+    m
+}
+
+/// `pbr`.
+pub const KIND: MaterialKind = Kind {
+    name: "pbr",
+    summary: "the glTF 2.0 metallic-roughness material: Lambert diffuse and GGX specular mixed by `metallic`, Schlick Fresnel",
+    params: &[
+        Param::new("base_color", T::Texture, "1", "", "base colour `C`"),
+        Param::new("metallic", T::ScalarTexture, "0", "0 to 1", "metalness `m`"),
+        Param::new("roughness", T::ScalarTexture, "0.5", "0 to 1", "perceptual roughness `r`; GGX `alpha = r^2`"),
+        Param::new("emission", T::Texture, "0", "radiance", "emitted radiance"),
+        Param::new("emission_strength", T::Number, "1", ">= 0", "multiplies `emission` (`KHR_materials_emissive_strength`)"),
+        Param::new("two_sided", T::Bool, "false", "", "emit from both sides of the surface, not only the front"),
+        super::normal_map::NORMAL_MAP_PARAMS[0],
+        super::normal_map::NORMAL_MAP_PARAMS[1],
+        super::alpha::ALPHA_PARAMS[0],
+        super::alpha::ALPHA_PARAMS[1],
+    ],
+    build,
+};
+
+fn build(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Material> {
+    let base = textures.read(p, "base_color")?.unwrap_or(Texture::Constant(Rgb::ONE));
+    let mut maps = Vec::new();
+    let metallic = scalar_param(p, textures, "metallic", 0.0, Slot::Metallic, &mut maps)?;
+    let roughness = scalar_param(p, textures, "roughness", 0.5, Slot::Roughness, &mut maps)?;
+    for (key, x) in [("metallic", metallic), ("roughness", roughness)] {
+        if !(0.0..=1.0).contains(&x) {
+            return Err(p.key_error(key, format!("must be between 0 and 1, got {x}")));
+        }
+    }
+    let strength = p.number_or("emission_strength", 1.0)?;
+    if !(strength.is_finite() && strength >= 0.0) {
+        return Err(p.key_error("emission_strength", format!("must be a non-negative number, got {strength}")));
+    }
+    let emission = match textures.read(p, "emission")? {
+        None => Rgb::ZERO,
+        Some(Texture::Constant(c)) => c * strength,
+        Some(t) => {
+            let scaled = if strength == 1.0 { t } else { Texture::Scale(Arc::new([t, Texture::Constant(Rgb::splat(strength))])) };
+            maps.push((Slot::Emission, scaled));
+            Rgb::ZERO
+        }
+    };
+    let mut m = material(base, metallic, roughness, emission, maps);
+    m.two_sided = p.boolean("two_sided")?.unwrap_or(false);
+    m.normal_map = super::normal_map::read(p, textures)?;
+    m.alpha = super::alpha::read(p, textures)?;
+    m.validate().map_err(|e| p.core_error(e))?;
+    Ok(m)
+}

@@ -1,0 +1,98 @@
+//! Shading a hit: the material's textures evaluated at the hit's surface
+//! coordinates (computed only for materials that read them), its normal map
+//! applied, and the pixel footprint carried into `(u, v)` for MIP-mapping.
+
+use std::borrow::Cow;
+
+use super::{Hit, Scene};
+use crate::materials::{Material, ShadingPoint};
+use crate::math::Vec3;
+
+impl Scene {
+    /// What textures are evaluated at for `hit`: its point, and its surface
+    /// coordinates and vertex colour when the material reads them (computed
+    /// only then, [`Scene::surface_coords`]).
+    #[inline]
+    pub fn shading_point(&self, hit: &Hit) -> ShadingPoint {
+        let mut at = ShadingPoint::at(hit.point);
+        if self.materials[hit.material].needs_coords() {
+            let c = self.surface_coords(hit);
+            at.uv = c.uv;
+            at.color = c.color;
+        }
+        at
+    }
+
+    /// Shades `hit`, seen from the unit direction `wo` by a ray whose pixel
+    /// footprint there is `footprint` wide (0: unknown): the material with its
+    /// textures evaluated there ([`Material::at`]), and the shading normal
+    /// turned by the material's normal map ([`crate::materials::normal_map`]).
+    /// The surface coordinates are computed once, and only when the material
+    /// reads them.
+    #[inline]
+    pub fn shade(&self, hit: &mut Hit, wo: Vec3, footprint: f64) -> Cow<'_, Material> {
+        let material = &self.materials[hit.material];
+        // A colour of the point alone (the 3D checker) is evaluated where it is
+        // used, as before textures: copying the material per hit slowed `spheres` (its floor).
+        if self.plain[hit.material] {
+            return Cow::Borrowed(material);
+        }
+        let constant = matches!(self.bsdfs.get(hit.material), Some(Some(_)));
+        let mut at = ShadingPoint::at(hit.point);
+        let coords = material.needs_coords().then(|| self.surface_coords(hit));
+        if let Some(c) = &coords {
+            at.uv = c.uv;
+            at.color = c.color;
+            if footprint > 0.0 {
+                (at.duv_dx, at.duv_dy) = footprint_in_uv(c, hit.geometric_normal, wo, footprint);
+            }
+        }
+        if let (Some(map), Some(c)) = (&material.normal_map, &coords) {
+            hit.normal = map.apply(&at, c, hit.normal, hit.geometric_normal, wo);
+        }
+        if constant {
+            return Cow::Borrowed(material);
+        }
+        match material.at(&at) {
+            Cow::Owned(m) => Cow::Owned(m),
+            Cow::Borrowed(_) => Cow::Borrowed(material),
+        }
+    }
+
+    /// The material of `hit` with its textures evaluated there
+    /// ([`Material::at`]; borrowed for a constant material).
+    #[inline]
+    pub fn material_at(&self, hit: &Hit) -> Cow<'_, Material> {
+        let material = &self.materials[hit.material];
+        // A prebuilt BSDF marks a constant material, one load instead of three tests.
+        if matches!(self.bsdfs.get(hit.material), Some(Some(_))) {
+            return Cow::Borrowed(material);
+        }
+        match material.at(&self.shading_point(hit)) {
+            Cow::Owned(m) => Cow::Owned(m),
+            Cow::Borrowed(_) => Cow::Borrowed(material),
+        }
+    }
+}
+
+/// A footprint `width` wide at a surface seen along `-wo`, as changes of
+/// `(u, v)` along its two axes: the long one in the plane of the view and the
+/// normal `ng`, stretched by `1 / cos` (to at most 100x), and the one across it
+/// (ray cones' elliptical footprint). Each world step `a` in the tangent plane
+/// becomes the least-squares `(du, dv)` of `a = du dp/du + dv dp/dv`.
+fn footprint_in_uv(c: &crate::shapes::SurfaceCoords, ng: Vec3, wo: Vec3, width: f64) -> ([f64; 2], [f64; 2]) {
+    let cos = ng.dot(wo).abs().max(0.01);
+    let along = (wo - ng * ng.dot(wo)).try_normalize().unwrap_or_else(|| crate::math::orthonormal_basis(ng).0);
+    let across = ng.cross(along);
+    let (a, b) = (c.dpdu, c.dpdv);
+    let (aa, ab, bb) = (a.dot(a), a.dot(b), b.dot(b));
+    let det = aa * bb - ab * ab;
+    if !(det > 0.0 && det.is_finite()) {
+        return ([0.0; 2], [0.0; 2]);
+    }
+    let solve = |v: Vec3| {
+        let (av, bv) = (a.dot(v), b.dot(v));
+        [(bb * av - ab * bv) / det, (aa * bv - ab * av) / det]
+    };
+    (solve(along * (width / cos)), solve(across * width))
+}
