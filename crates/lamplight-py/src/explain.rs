@@ -7,7 +7,6 @@
 //! prints and `json.dumps` writes them back.
 
 use std::path::PathBuf;
-use std::sync::Arc;
 
 use lamplight_scene::request::{limits, Naming, Request};
 use pyo3::exceptions::PyValueError;
@@ -74,13 +73,7 @@ pub fn explain(py: Python<'_>, scene: &Scene, a: ExplainArgs<'_>) -> PyResult<Py
         ..Request::default()
     };
     let job = request.resolve(scene.settings(), Naming::Keywords).map_err(|e| PyValueError::new_err(e.0))?;
-    let core = if job.environment.is_some() {
-        let mut fresh = scene.fresh_core(py)?;
-        job.prepare(&mut fresh).map_err(|e| PyValueError::new_err(e.0))?;
-        Arc::new(fresh)
-    } else {
-        scene.core(py)?
-    };
+    let core = scene.core_for(py, &job)?;
     let text = py.allow_threads(|| {
         lamplight_scene::explain::explain(&core, &job, (x, y), sample, Naming::Keywords).map(|e| e.to_json().to_string())
     });

@@ -97,13 +97,7 @@ pub fn render_array<'py>(
         layers,
     };
     let job = request.resolve(scene.settings(), Naming::Keywords).map_err(|e| PyValueError::new_err(e.0))?;
-    let core = if job.environment.is_some() {
-        let mut fresh = scene.fresh_core(py)?;
-        job.prepare(&mut fresh).map_err(|e| PyValueError::new_err(e.0))?;
-        Arc::new(fresh)
-    } else {
-        scene.core(py)?
-    };
+    let core = scene.core_for(py, &job)?;
 
     let warnings: Vec<String> = job.light_warning(&core).into_iter().collect();
     let cancel = Arc::new(AtomicBool::new(false));

@@ -457,6 +457,17 @@ impl Scene {
         }
         Ok(scene)
     }
+
+    /// The core scene `job` renders: the kept build, or a fresh one lit by the
+    /// job's environment map.
+    pub fn core_for(&self, py: Python<'_>, job: &lamplight_scene::request::Job) -> PyResult<Arc<CoreScene>> {
+        if job.environment.is_none() {
+            return self.core(py);
+        }
+        let mut fresh = self.fresh_core(py)?;
+        job.prepare(&mut fresh).map_err(|e| PyValueError::new_err(e.0))?;
+        Ok(Arc::new(fresh))
+    }
 }
 
 /// Gives each importer warning to Python's `warnings.warn` (a `UserWarning`).

@@ -274,7 +274,8 @@ fn passes(
     let total_tiles = tiles_per_pass * schedule.pass_count(spp) as u64;
     // Pixels still sampled, row-major over the window; `None`: all of them.
     let mut active: Option<Vec<bool>> = sampled.only.map(<[bool]>::to_vec);
-    let mut convergence = adaptive::Convergence::new(window.width as usize * window.height as usize);
+    // Made at the first check: a render without a noise threshold needs none.
+    let mut convergence: Option<adaptive::Convergence> = None;
     // The first complete pass becomes the film; later ones are rendered into a
     // spare film and added, so a pass cut short leaves the film untouched.
     let (mut film, mut spare): (Option<Film>, Option<Film>) = (None, None);
@@ -356,6 +357,8 @@ fn passes(
         }
         if let (Some(noise), Some(film)) = (sampled.noise, film.as_ref()) {
             if let Some(may_stop) = noise.check_after(done, spp) {
+                let pixels = window.width as usize * window.height as usize;
+                let convergence = convergence.get_or_insert_with(|| adaptive::Convergence::new(pixels));
                 let still = convergence.check(pool, film, active.as_deref(), noise.threshold, may_stop);
                 let any = still.iter().any(|a| *a);
                 active = Some(still);
