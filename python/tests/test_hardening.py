@@ -1,6 +1,7 @@
 """Issue 12 ("Hardening") from Python: every bad value raises one error naming
 the parameter or the key path and its bound, and no NaN reaches an answer."""
 
+import decimal
 import re
 
 import numpy as np
@@ -45,6 +46,54 @@ def test_far_hits_keep_finite_normals(z):
     t, ids, _, normals = lamplight.Scene(scene_with()).intersect(np.array([[0.0, 0.0, z]]), np.array([[0.0, 0.0, -1.0]]))
     assert list(ids) == [0] and t[0] == z
     assert normals.tolist() == [[0.0, 0.0, 1.0]]
+
+
+def exact_sphere_distance(origin, direction, center, radius):
+    """The nearest root of |o + s d - c| = r, to 50 digits, as a distance."""
+    with decimal.localcontext() as ctx:
+        ctx.prec = 50
+        o, d, c = ([decimal.Decimal(float(x)) for x in v] for v in (origin, direction, center))
+        oc = [a - b for a, b in zip(o, c)]
+        length = sum(x * x for x in d).sqrt()
+        u = [x / length for x in d]
+        b = sum(x * y for x, y in zip(u, oc))
+        disc = b * b - (sum(x * x for x in oc) - decimal.Decimal(radius) ** 2)
+        root = disc.sqrt()
+        near, far = -b - root, -b + root
+        return near if near > 0 else far
+
+
+@pytest.mark.parametrize("dtype, farthest", [(np.float64, 1e13), (np.float32, 1e4)])
+def test_distance_error_bounds_hold_and_say_where_precision_is_lost(dtype, farthest):
+    rng = np.random.default_rng(7)
+    center, radius = np.array([0.3, -0.2, 0.1]), 1.0
+    scene = lamplight.Scene(scene_with(objects=[dict(SPHERE, center=center.tolist(), radius=radius)]))
+    # Origins at every scale the dtype can still aim from, at random points of
+    # the sphere's inner half-radius ball (no ray grazes it); then rays down the
+    # z axis, aimed exactly from any height.
+    scale = 10.0 ** rng.uniform(0, np.log10(farthest), 200)
+    origins = rng.normal(size=(200, 3)) * scale[:, None]
+    targets = center + rng.uniform(-0.28, 0.28, (200, 3))
+    heights = 10.0 ** np.arange(1, 21)
+    origins = np.vstack([origins, np.column_stack([np.full(20, 0.3), np.full(20, -0.2), heights])]).astype(dtype)
+    directions = np.vstack([targets - origins[:200], np.tile([0.0, 0.0, -1.0], (20, 1))]).astype(dtype)
+    t, ids, _, normals, t_error = scene.intersect(origins, directions, errors=True)
+    assert t_error.dtype == dtype and (ids == 0).all() and np.isfinite(normals).all()
+    for i in range(len(t)):
+        exact = exact_sphere_distance(origins[i], directions[i], center, radius)
+        off = abs(decimal.Decimal(float(t[i])) - exact)
+        assert off <= decimal.Decimal(float(t_error[i])), f"ray {i}: t {t[i]} is {off} off, bound {t_error[i]}"
+    # A few ulps of the magnitudes: far below the radius for near rays, above it
+    # for those so far that the distance cannot resolve the sphere.
+    eps = np.finfo(dtype).eps
+    magnitude = np.abs(origins).max(axis=1).astype(np.float64) + t
+    assert (t_error <= 64 * eps * (magnitude + 2)).all()
+    axis_error = t_error[200:]
+    assert (axis_error[heights * eps < 1e-4] < 0.01 * radius).all()
+    assert (axis_error[heights * eps > 2] > radius).all()
+    t, _, _, _, t_error = scene.intersect([[0.0, 0.0, 5.0]], [[0.0, 1.0, 0.0]], errors=True)
+    assert (t[0], t_error[0]) == (np.inf, np.inf), "a miss"
+    assert len(scene.intersect(origins, directions)) == 4, "without errors=True the answers are the four of before"
 
 
 def garbage_mesh(tmp_path):

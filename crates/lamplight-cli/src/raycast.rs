@@ -152,7 +152,7 @@ pub fn raycast_command(args: RaycastArgs) -> anyhow::Result<()> {
             if args.any_hit {
                 batch::occluded(&accel, &rays, None, &mut hits, 0)
             } else {
-                let out = Hits { t: &mut t, object: objects.as_deref_mut(), primitive: prims.as_deref_mut(), normal: None };
+                let out = Hits { t: &mut t, object: objects.as_deref_mut(), primitive: prims.as_deref_mut(), normal: None, error: None };
                 batch::cast(&accel, &rays, out, 0)
             }
         })?;

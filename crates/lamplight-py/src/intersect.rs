@@ -11,8 +11,11 @@
 //! (the input's float type, `+inf` on a miss); the id of the object hit (int64,
 //! objects in scene order, `-1` on a miss); the index of the triangle hit within
 //! a mesh object (int64, the mesh's face order; `-1` on a miss and for other
-//! shapes); and the unit outward geometric normal (`(N, 3)`, zero on a miss). A
-//! ray with a zero or non-finite direction or a non-finite origin misses.
+//! shapes); and the unit outward geometric normal (`(N, 3)`, zero on a miss).
+//! With `errors=True` a fifth answer bounds the rounding in each `t` (the
+//! input's float type, `+inf` on a miss; `lamplight_core::batch::scene`), which
+//! says where precision was lost far from the origin. A ray with a zero or
+//! non-finite direction or a non-finite origin misses.
 
 use lamplight_core::batch::{self, Float, Hits, Rays, MAX_THREADS};
 use lamplight_core::Scene as CoreScene;
@@ -74,13 +77,14 @@ fn dtype_name(obj: &Bound<'_, PyAny>) -> String {
 }
 
 /// Traces every ray in a pool of `threads` (0: one per core); returns
-/// `(t, ids, prims, normals)`.
+/// `(t, ids, prims, normals)`, and `t_error` after them when `errors`.
 pub fn intersect<'py>(
     py: Python<'py>,
     scene: &CoreScene,
     origins: &Bound<'py, PyAny>,
     directions: &Bound<'py, PyAny>,
     threads: usize,
+    errors: bool,
 ) -> PyResult<Bound<'py, PyTuple>> {
     let (origins, directions) = (&as_array(origins, directions, "origins")?, &as_array(directions, origins, "directions")?);
     let n = rows(origins, "origins")?;
@@ -98,12 +102,12 @@ pub fn intersect<'py>(
     if let (Ok(o), Ok(d)) = (origins.downcast::<PyArray2<f64>>(), directions.downcast::<PyArray2<f64>>()) {
         let (o, d) = (o.readonly(), d.readonly());
         let rays = ArrayRays { origins: o.as_array(), directions: d.as_array() };
-        return answer(py, &pool, scene, &rays);
+        return answer(py, &pool, scene, &rays, errors);
     }
     if let (Ok(o), Ok(d)) = (origins.downcast::<PyArray2<f32>>(), directions.downcast::<PyArray2<f32>>()) {
         let (o, d) = (o.readonly(), d.readonly());
         let rays = ArrayRays { origins: o.as_array(), directions: d.as_array() };
-        return answer(py, &pool, scene, &rays);
+        return answer(py, &pool, scene, &rays, errors);
     }
     Err(PyTypeError::new_err(format!(
         "origins and directions must both be float32 or both float64 arrays, got {} and {}",
@@ -118,12 +122,15 @@ fn answer<'py, T: Float + Element>(
     pool: &rayon::ThreadPool,
     scene: &CoreScene,
     rays: &ArrayRays<'_, T>,
+    errors: bool,
 ) -> PyResult<Bound<'py, PyTuple>> {
     let n = rays.len();
     let (mut t, mut ids, mut prims) = (vec![T::from_f64(0.0); n], vec![0i64; n], vec![0i64; n]);
     let mut normals = vec![[T::from_f64(0.0); 3]; n];
+    let mut t_error = if errors { vec![T::from_f64(0.0); n] } else { Vec::new() };
     py.allow_threads(|| {
-        let out = Hits { t: &mut t, object: Some(&mut ids), primitive: Some(&mut prims), normal: Some(&mut normals) };
+        let error = errors.then_some(&mut t_error[..]);
+        let out = Hits { t: &mut t, object: Some(&mut ids), primitive: Some(&mut prims), normal: Some(&mut normals), error };
         pool.install(|| batch::cast(scene, rays, out, 0))
     })
     .map_err(|e| PyValueError::new_err(e.to_string()))?;
@@ -131,5 +138,9 @@ fn answer<'py, T: Float + Element>(
     let ids = PyArray1::from_vec(py, ids);
     let prims = PyArray1::from_vec(py, prims);
     let normals = PyArray1::from_vec(py, normals.into_flattened()).reshape([n, 3])?;
-    PyTuple::new(py, [t.into_any(), ids.into_any(), prims.into_any(), normals.into_any()])
+    let mut answers = vec![t.into_any(), ids.into_any(), prims.into_any(), normals.into_any()];
+    if errors {
+        answers.push(PyArray1::from_vec(py, t_error).into_any());
+    }
+    PyTuple::new(py, answers)
 }

@@ -359,17 +359,18 @@ impl Scene {
 
     /// Nearest hits of rays `origins[i] + s * directions[i]`, `t = s |directions[i]|`
     /// the distance: see `lamplight.Scene.intersect` in the type stubs.
-    #[pyo3(signature = (origins, directions, threads=None))]
+    #[pyo3(signature = (origins, directions, threads=None, errors=false))]
     fn intersect<'py>(
         &self,
         py: Python<'py>,
         origins: &Bound<'py, PyAny>,
         directions: &Bound<'py, PyAny>,
         threads: Option<Bound<'py, PyAny>>,
+        errors: bool,
     ) -> PyResult<Bound<'py, PyTuple>> {
         let threads = crate::render::threads_arg(threads.as_ref())?;
         let scene = self.core(py)?;
-        crate::intersect::intersect(py, &scene, origins, directions, threads)
+        crate::intersect::intersect(py, &scene, origins, directions, threads, errors)
     }
 
     /// Why pixel `(x, y)` has its colour: the ray tree of each sample (Whitted)

@@ -98,7 +98,7 @@ impl BatchTarget for MeshAccel {
     #[inline]
     fn nearest<T: Float>(&self, ray: &BatchRay<T>) -> Option<RayHit> {
         let (s, triangle) = self.bvh.closest(ray.origin.map(T::to_f32), ray.dir.map(T::to_f32), f32::INFINITY)?;
-        Some(RayHit { t: f64::from(s) * ray.length(), object: 0, primitive: Some(triangle), normal: None })
+        Some(RayHit { t: f64::from(s) * ray.length(), object: 0, primitive: Some(triangle), normal: None, shape_error: 0.0 })
     }
 
     /// Asks the kernel for `s < t_max / |d|` (rounded to `f32`).
@@ -180,7 +180,7 @@ mod tests {
     fn cast(accel: &MeshAccel, origins: &[[f32; 3]], dirs: &[[f32; 3]], threads: usize) -> (Vec<f32>, Vec<i64>, Vec<i64>) {
         let n = origins.len();
         let (mut t, mut object, mut prim) = (vec![0.0; n], vec![0; n], vec![0; n]);
-        let out = Hits { t: &mut t, object: Some(&mut object), primitive: Some(&mut prim), normal: None };
+        let out = Hits { t: &mut t, object: Some(&mut object), primitive: Some(&mut prim), normal: None, error: None };
         batch::cast(accel, &RaySlices::new(origins, dirs).unwrap(), out, threads).unwrap();
         (t, object, prim)
     }
@@ -299,11 +299,12 @@ mod tests {
         assert!(accel.nearest_param([0.0; 3], [0.0; 3], f32::INFINITY).is_none(), "a zero direction hits nothing");
         let mut t = [0.0; 1];
         let two = RaySlices::new(&[[0.0f32; 3]; 2], &[[1.0, 0.0, 0.0]; 2]).unwrap();
-        let err = batch::cast(&accel, &two, Hits { t: &mut t, object: None, primitive: None, normal: None }, 1).unwrap_err();
+        let err = batch::cast(&accel, &two, Hits { t: &mut t, object: None, primitive: None, normal: None, error: None }, 1).unwrap_err();
         assert_eq!(err.to_string(), "invalid t: 1 outputs for 2 rays: lengths must agree");
         let mut normal = [[0.0f32; 3]; 2];
         let mut t = [0.0; 2];
-        let err = batch::cast(&accel, &two, Hits { t: &mut t, object: None, primitive: None, normal: Some(&mut normal) }, 1).unwrap_err();
+        let err = batch::cast(&accel, &two, Hits { t: &mut t, object: None, primitive: None, normal: Some(&mut normal), error: None }, 1)
+            .unwrap_err();
         assert_eq!(err.to_string(), "invalid normal: this target does not report normals");
         assert!(MeshAccel::new(&[[0.0, 0.0, f32::NAN]], &[]).is_err());
         assert!(MeshAccel::new(&v, &[[0, 1, v.len() as u32]]).is_err());

@@ -17,6 +17,11 @@
 //! - `normal_i` (targets that have them, [`BatchTarget::NORMALS`]): the unit
 //!   outward geometric normal at the hit, not turned towards the ray; zero for a
 //!   miss.
+//! - `error_i` (targets that have it, [`BatchTarget::ERRORS`]): a bound on
+//!   `|t_i - t_exact|`, the rounding in the answered distance, including its
+//!   rounding to the output type; `+inf` for a miss. It is how a caller learns
+//!   that precision was lost: a ray from `z = 1e17` towards a unit sphere is
+//!   answered `t = 1e17` with an error bound of about 1,400, larger than the sphere.
 //!
 //! A ray with a zero or non-finite direction, or a non-finite origin, misses.
 //! Normals are always finite: far from the origin, where `f64` cannot resolve
@@ -99,12 +104,26 @@ pub struct RayHit {
     pub primitive: Option<u32>,
     /// Unit outward geometric normal; `None` when the target has none.
     pub normal: Option<[f64; 3]>,
+    /// The shape's own absolute error bound of the hit point, for shapes whose
+    /// root finding is iterative (0 for closed-form ones and for targets
+    /// without [`BatchTarget::ERRORS`]).
+    pub shape_error: f64,
 }
 
 /// Something a batch of rays can be cast against.
 pub trait BatchTarget: Sync {
     /// Whether [`BatchTarget::nearest`] reports normals.
     const NORMALS: bool;
+
+    /// Whether [`BatchTarget::t_error`] bounds the error of `t`.
+    const ERRORS: bool = false;
+
+    /// A bound on `|hit.t - t_exact|` in the target's own arithmetic (only asked
+    /// when [`BatchTarget::ERRORS`]); the rounding to the output type is added
+    /// by [`cast`].
+    fn t_error<T: Float>(&self, _ray: &BatchRay<T>, _hit: &RayHit) -> f64 {
+        f64::INFINITY
+    }
 
     /// The nearest hit of `ray` with `s > 0`, or `None`.
     fn nearest<T: Float>(&self, ray: &BatchRay<T>) -> Option<RayHit>;
@@ -134,6 +153,9 @@ pub trait Rays: Sync {
 /// A float type rays are read in and answers written in (`f32` or `f64`);
 /// conversions round to nearest.
 pub trait Float: Copy + Send + Sync + std::fmt::Debug + PartialEq + 'static {
+    /// The machine epsilon (the gap from 1 to the next number): a rounding to
+    /// this type changes `x` by at most `EPSILON |x| / 2`.
+    const EPSILON: f64;
     /// `x` rounded to this type.
     fn from_f64(x: f64) -> Self;
     /// `self` as `f64` (exact).
@@ -143,6 +165,7 @@ pub trait Float: Copy + Send + Sync + std::fmt::Debug + PartialEq + 'static {
 }
 
 impl Float for f32 {
+    const EPSILON: f64 = f32::EPSILON as f64;
     #[inline]
     fn from_f64(x: f64) -> f32 {
         x as f32
@@ -158,6 +181,7 @@ impl Float for f32 {
 }
 
 impl Float for f64 {
+    const EPSILON: f64 = f64::EPSILON;
     #[inline]
     fn from_f64(x: f64) -> f64 {
         x
@@ -213,6 +237,16 @@ pub struct Hits<'a, T> {
     pub primitive: Option<&'a mut [i64]>,
     /// Unit outward normals (zero for a miss); only for targets with normals.
     pub normal: Option<&'a mut [[T; 3]]>,
+    /// Bounds on the error of each `t` (`+inf` for a miss); only for targets
+    /// with [`BatchTarget::ERRORS`].
+    pub error: Option<&'a mut [T]>,
+}
+
+impl<'a, T> Hits<'a, T> {
+    /// Only the distances; the other outputs are added by setting their fields.
+    pub fn distances(t: &'a mut [T]) -> Hits<'a, T> {
+        Hits { t, object: None, primitive: None, normal: None, error: None }
+    }
 }
 
 /// One chunk of the outputs, with the index of its first ray.
@@ -222,13 +256,14 @@ struct Part<'a, T> {
     object: Option<&'a mut [i64]>,
     primitive: Option<&'a mut [i64]>,
     normal: Option<&'a mut [[T; 3]]>,
+    error: Option<&'a mut [T]>,
 }
 
 /// Casts every ray of `rays` against `target` and writes the nearest hits to
 /// `out` (see the module documentation for the units). `threads` is the worker
 /// count, 1 to [`MAX_THREADS`], or 0 for the current rayon pool. Fails, writing
-/// nothing, when an output's length is not the ray count, when normals are asked
-/// of a target without them, or when the pool cannot start.
+/// nothing, when an output's length is not the ray count, when normals or errors
+/// are asked of a target without them, or when the pool cannot start.
 pub fn cast<B: BatchTarget, R: Rays, T: Float>(target: &B, rays: &R, out: Hits<'_, T>, threads: usize) -> Result<(), Error> {
     let n = rays.len();
     let lengths = [
@@ -236,8 +271,9 @@ pub fn cast<B: BatchTarget, R: Rays, T: Float>(target: &B, rays: &R, out: Hits<'
         out.object.as_ref().map(|s| s.len()),
         out.primitive.as_ref().map(|s| s.len()),
         out.normal.as_ref().map(|s| s.len()),
+        out.error.as_ref().map(|s| s.len()),
     ];
-    for (name, len) in ["t", "object", "primitive", "normal"].iter().zip(lengths) {
+    for (name, len) in ["t", "object", "primitive", "normal", "error"].iter().zip(lengths) {
         if len.is_some_and(|len| len != n) {
             return Err(Error::invalid(*name, format!("{} outputs for {n} rays: lengths must agree", len.unwrap_or(0))));
         }
@@ -245,9 +281,13 @@ pub fn cast<B: BatchTarget, R: Rays, T: Float>(target: &B, rays: &R, out: Hits<'
     if out.normal.is_some() && !B::NORMALS {
         return Err(Error::invalid("normal", "this target does not report normals"));
     }
+    if out.error.is_some() && !B::ERRORS {
+        return Err(Error::invalid("error", "this target does not bound its errors"));
+    }
     let mut object = out.object.map(|s| s.chunks_mut(CHUNK));
     let mut primitive = out.primitive.map(|s| s.chunks_mut(CHUNK));
     let mut normal = out.normal.map(|s| s.chunks_mut(CHUNK));
+    let mut error = out.error.map(|s| s.chunks_mut(CHUNK));
     let parts: Vec<Part<'_, T>> = out
         .t
         .chunks_mut(CHUNK)
@@ -258,13 +298,15 @@ pub fn cast<B: BatchTarget, R: Rays, T: Float>(target: &B, rays: &R, out: Hits<'
             object: object.as_mut().and_then(Iterator::next),
             primitive: primitive.as_mut().and_then(Iterator::next),
             normal: normal.as_mut().and_then(Iterator::next),
+            error: error.as_mut().and_then(Iterator::next),
         })
         .collect();
     run(threads, || {
         parts.into_par_iter().for_each(|mut part| {
             for j in 0..part.t.len() {
                 let (o, d) = rays.get(part.start + j);
-                let hit = BatchRay::new(o, d).and_then(|ray| target.nearest(&ray));
+                let ray = BatchRay::new(o, d);
+                let hit = ray.and_then(|ray| target.nearest(&ray));
                 part.t[j] = T::from_f64(hit.map_or(f64::INFINITY, |h| h.t));
                 if let Some(object) = part.object.as_deref_mut() {
                     object[j] = hit.map_or(-1, |h| h.object as i64);
@@ -275,9 +317,20 @@ pub fn cast<B: BatchTarget, R: Rays, T: Float>(target: &B, rays: &R, out: Hits<'
                 if let Some(normal) = part.normal.as_deref_mut() {
                     normal[j] = hit.and_then(|h| h.normal).unwrap_or([0.0; 3]).map(T::from_f64);
                 }
+                if let (Some(error), Some(ray), Some(hit)) = (part.error.as_deref_mut(), ray, hit) {
+                    error[j] = T::from_f64(answer_error::<T>(target.t_error(&ray, &hit), hit.t));
+                } else if let Some(error) = part.error.as_deref_mut() {
+                    error[j] = T::from_f64(f64::INFINITY);
+                }
             }
         })
     })
+}
+
+/// `target_error` plus the rounding of `t` to `T` (half an ulp, here a whole
+/// `EPSILON t` so that the bound's own rounding to `T` cannot undercut it).
+fn answer_error<T: Float>(target_error: f64, t: f64) -> f64 {
+    target_error + T::EPSILON * t.abs()
 }
 
 /// The any-hit query: `hit_out[i]` is true when ray `i` hits something at a

@@ -16,9 +16,14 @@
 //! a NaN normal.
 
 use super::{BatchRay, BatchTarget, Float, RayHit};
-use crate::math::Vec3;
+use crate::math::{max_abs, Vec3};
 use crate::ray::Ray;
 use crate::Scene;
+
+/// Ulps of the magnitudes involved that a closed-form hit distance may be off:
+/// normalizing the direction, the root's few operations and the point's
+/// evaluation each lose one or two, with a factor of two to spare.
+const ROUNDING_ULPS: f64 = 32.0;
 
 /// The unit-direction ray the scene traces.
 fn unit_ray<T: Float>(ray: &BatchRay<T>) -> Ray {
@@ -27,6 +32,7 @@ fn unit_ray<T: Float>(ray: &BatchRay<T>) -> Ray {
 
 impl BatchTarget for Scene {
     const NORMALS: bool = true;
+    const ERRORS: bool = true;
 
     fn nearest<T: Float>(&self, ray: &BatchRay<T>) -> Option<RayHit> {
         let hit = self.first_intersect(&unit_ray(ray), f64::INFINITY)?;
@@ -35,7 +41,15 @@ impl BatchTarget for Scene {
             // The shape could not resolve where the ray meets it (see the module doc).
             return None;
         }
-        Some(RayHit { t: hit.t, object: hit.object, primitive: hit.primitive, normal: Some(outward.to_array()) })
+        Some(RayHit { t: hit.t, object: hit.object, primitive: hit.primitive, normal: Some(outward.to_array()), shape_error: hit.error })
+    }
+
+    fn t_error<T: Float>(&self, ray: &BatchRay<T>, hit: &RayHit) -> f64 {
+        let bounds = self.objects[hit.object].shape.bounds();
+        let scale =
+            [bounds.min, bounds.max].iter().flat_map(|c| c.to_array()).filter(|x| x.is_finite()).fold(0.0, |m: f64, x| m.max(x.abs()));
+        let origin = max_abs(Vec3::from_array(ray.origin.map(T::to_f64)));
+        ROUNDING_ULPS * f64::EPSILON * (origin + hit.t + scale) + hit.shape_error
     }
 
     fn occluded<T: Float>(&self, ray: &BatchRay<T>, t_max: f64) -> bool {

@@ -33,7 +33,7 @@ type Answers<T> = (Vec<T>, Vec<i64>, Vec<i64>);
 fn cast_all<B: BatchTarget, T: Float>(target: &B, origins: &[[T; 3]], dirs: &[[T; 3]], threads: usize) -> Answers<T> {
     let n = origins.len();
     let (mut t, mut object, mut primitive) = (vec![T::from_f64(0.0); n], vec![0; n], vec![0; n]);
-    let out = Hits { t: &mut t, object: Some(&mut object), primitive: Some(&mut primitive), normal: None };
+    let out = Hits { t: &mut t, object: Some(&mut object), primitive: Some(&mut primitive), normal: None, error: None };
     cast(target, &RaySlices::new(origins, dirs).unwrap(), out, threads).unwrap();
     (t, object, primitive)
 }
@@ -62,7 +62,7 @@ fn misses_and_degenerate_rays_are_inf_and_minus_one() {
     let dirs = [[0.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, f64::INFINITY, -1.0], [0.0, 1.0, 0.0], [1e200, 1e200, -1e200]];
     let n = origins.len();
     let (mut t, mut object, mut primitive, mut normal) = (vec![0.0; n], vec![0; n], vec![0; n], vec![[1.0; 3]; n]);
-    let out = Hits { t: &mut t, object: Some(&mut object), primitive: Some(&mut primitive), normal: Some(&mut normal) };
+    let out = Hits { t: &mut t, object: Some(&mut object), primitive: Some(&mut primitive), normal: Some(&mut normal), error: None };
     cast(&s, &RaySlices::new(&origins, &dirs).unwrap(), out, 2).unwrap();
     assert_eq!(t, [f64::INFINITY; 5], "the last direction's length overflows: a miss by definition");
     assert_eq!((object, primitive), (vec![-1; 5], vec![-1; 5]));
@@ -79,7 +79,7 @@ fn normals_are_outward_and_occlusion_uses_distances() {
     let origins = [[0.0, 0.0, -5.0], [-3.0, 0.0, -5.0], [0.5, 0.25, -0.5]];
     let dirs = [[0.0, 3.0, 0.0], [0.5, 0.0, 0.0], [0.0, 0.0, 4.0]];
     let (mut t, mut normal) = (vec![0.0f32; 3], vec![[0.0f32; 3]; 3]);
-    let out = Hits { t: &mut t, object: None, primitive: None, normal: Some(&mut normal) };
+    let out = Hits { t: &mut t, object: None, primitive: None, normal: Some(&mut normal), error: None };
     cast(&s, &RaySlices::new(&origins, &dirs).unwrap(), out, 1).unwrap();
     assert_eq!(t, [1.0, 2.0, 0.5]);
     assert_eq!(normal, [[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]], "outward, not turned to the ray");
@@ -113,13 +113,77 @@ fn bad_lengths_and_thread_counts_are_errors() {
     assert_eq!(RaySlices::new(&[[0.0f64; 3]; 2], &[[0.0; 3]; 3]).unwrap_err().to_string(), "invalid rays: 2 origins but 3 directions");
     let rays = RaySlices::new(&[[0.0f64; 3]; 2], &[[0.0; 3]; 2]).unwrap();
     let (mut t, mut object) = ([0.0f64; 2], [0i64; 1]);
-    let err = cast(&s, &rays, Hits { t: &mut t, object: Some(&mut object), primitive: None, normal: None }, 1).unwrap_err();
+    let err = cast(&s, &rays, Hits { t: &mut t, object: Some(&mut object), primitive: None, normal: None, error: None }, 1).unwrap_err();
     assert_eq!(err.to_string(), "invalid object: 1 outputs for 2 rays: lengths must agree");
-    let err = cast(&s, &rays, Hits { t: &mut t, object: None, primitive: None, normal: None }, MAX_THREADS + 1).unwrap_err();
+    let err = cast(&s, &rays, Hits { t: &mut t, object: None, primitive: None, normal: None, error: None }, MAX_THREADS + 1).unwrap_err();
     assert_eq!(err.to_string(), "invalid threads: 1025: at most 1024 (0 uses the current pool)");
     let err = occluded(&s, &rays, Some(&[1.0]), &mut [false; 2], 1).unwrap_err();
     assert!(err.to_string().contains("lengths must agree"), "{err}");
     let empty = RaySlices::<f32>::new(&[], &[]).unwrap();
     assert!(empty.is_empty());
-    cast(&s, &empty, Hits { t: &mut [0.0f32; 0], object: None, primitive: None, normal: None }, 0).unwrap();
+    cast(&s, &empty, Hits { t: &mut [0.0f32; 0], object: None, primitive: None, normal: None, error: None }, 0).unwrap();
+}
+
+/// `t` and its error bound for each ray against `target`, in `f64`.
+fn distances_and_errors<T: Float>(target: &Scene, origins: &[[T; 3]], dirs: &[[T; 3]]) -> (Vec<T>, Vec<T>) {
+    let n = origins.len();
+    let (mut t, mut error) = (vec![T::from_f64(0.0); n], vec![T::from_f64(0.0); n]);
+    let out = Hits { error: Some(&mut error), ..Hits::distances(&mut t) };
+    cast(target, &RaySlices::new(origins, dirs).unwrap(), out, 1).unwrap();
+    (t, error)
+}
+
+/// A scene of one sphere.
+fn sphere_scene(center: Vec3, radius: f64) -> Scene {
+    let camera = Perspective::look_at(Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO, Vec3::Y, Fov::VerticalDeg(30.0)).unwrap();
+    let mut b = SceneBuilder::new(camera);
+    let m = b.material(Material::plastic(Rgb::splat(0.5), 0.1, 0.8, 0.0, 1.0)).unwrap();
+    b.object(Sphere::new(center, radius).unwrap(), m).unwrap();
+    b.build().unwrap()
+}
+
+#[test]
+fn error_bounds_hold_and_flag_far_hits() {
+    let s = sphere_scene(Vec3::new(0.0, 0.0, -5.0), 1.0);
+    // Down the z axis onto the sphere at (0, 0, -5): exactly t = z + 4. `t - z`
+    // is exact (Sterbenz), so the true error `(t - z) - 4` is too.
+    for z in [5.0f64, 1e3, 1e8, 1e12, 1e15, 1e17, 1e20] {
+        let (t, error) = distances_and_errors(&s, &[[0.0, 0.0, z]], &[[0.0, 0.0, -1.0]]);
+        let true_error = ((t[0] - z) - 4.0).abs();
+        assert!(true_error <= error[0], "z = {z}: t = {}, off by {true_error}, bound {}", t[0], error[0]);
+        assert!(error[0] <= 1e-13 * (z + 10.0), "z = {z}: the bound {} is a few ulps, not vacuous", error[0]);
+    }
+    // Far away the bound exceeds the sphere itself: the caller can tell that
+    // the distance no longer resolves it.
+    let (_, error) = distances_and_errors(&s, &[[0.0, 0.0, 1e17]], &[[0.0, 0.0, -1.0]]);
+    assert!(error[0] > 2.0, "bound {}", error[0]);
+    // f32 answers add their own rounding, half an ulp of t at least.
+    let (t, error) = distances_and_errors(&s, &[[0.0f32, 0.0, 1e3]], &[[0.0, 0.0, -1.0]]);
+    assert_eq!(t[0], 1004.0);
+    assert!(error[0] >= f32::EPSILON * 1004.0 / 2.0);
+    // A miss has an infinite bound.
+    let (t, error) = distances_and_errors(&s, &[[0.0, 10.0, 0.0]], &[[0.0, 1.0, 0.0]]);
+    assert_eq!((t[0], error[0]), (f64::INFINITY, f64::INFINITY));
+}
+
+#[test]
+fn error_bounds_cover_a_large_shape_seen_from_close_by() {
+    // A sphere of radius 1e6 whose top is at z = 0, hit from z = 1: t is about
+    // 1, but it is computed from magnitudes of 1e12, which the bound must count.
+    let s = sphere_scene(Vec3::new(0.0, 0.0, -1e6), 1e6);
+    for x in [0.0f64, 0.5, 3.0, 100.0] {
+        // Exactly 1 + (1e6 - sqrt(1e12 - x^2)), written without cancellation.
+        let exact = 1.0 + x * x / (1e6 + (1e12 - x * x).sqrt());
+        let (t, error) = distances_and_errors(&s, &[[x, 0.0, 1.0]], &[[0.0, 0.0, -1.0]]);
+        assert!((t[0] - exact).abs() <= error[0], "x = {x}: t = {}, exact {exact}, bound {}", t[0], error[0]);
+    }
+}
+
+#[test]
+fn a_mesh_target_does_not_claim_error_bounds() {
+    let accel = MeshAccel::new(&SQUARE.0, &SQUARE.1).unwrap();
+    let (mut t, mut error) = (vec![0.0f32], vec![0.0f32]);
+    let out = Hits { error: Some(&mut error), ..Hits::distances(&mut t) };
+    let err = cast(&accel, &RaySlices::new(&[[0.5, 0.5, 1.0]], &[[0.0, 0.0, -1.0]]).unwrap(), out, 1).unwrap_err();
+    assert_eq!(err.to_string(), "invalid error: this target does not bound its errors");
 }
