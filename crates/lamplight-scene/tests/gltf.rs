@@ -195,6 +195,24 @@ fn malformed_files_give_one_exact_error() {
             "a.gltf: at nodes[7].children[0]: node 6 is reached twice (a cycle or a shared child): glTF nodes must form trees",
         ),
         (
+            "image in a buffer view without a mimeType (gltf 1.4.1 unwrapped it: fuzz finding)",
+            "a.gltf".into(),
+            with_images(&scene_json(Some(&uri), 3, ""), r#"[{"bufferView": 0}]"#),
+            "a.gltf: at images[0].mimeType: an image in a bufferView needs a mimeType",
+        ),
+        (
+            "image with neither uri nor bufferView",
+            "a.gltf".into(),
+            with_images(&scene_json(Some(&uri), 3, ""), r#"[{"mimeType": "image/png"}]"#),
+            "a.gltf: at images[0]: expected a uri or a bufferView",
+        ),
+        (
+            "image in a missing buffer view",
+            "a.gltf".into(),
+            with_images(&scene_json(Some(&uri), 3, ""), r#"[{"bufferView": 9, "mimeType": "image/png"}]"#),
+            "a.gltf: at images[0].bufferView: buffer view 9 does not exist (2 views)",
+        ),
+        (
             "glb without bin",
             "a.glb".into(),
             glb(&scene_json(None, 3, ""), &[]),
@@ -254,6 +272,11 @@ proptest::proptest! {
         let binary = glb(&scene_json(None, 3, ""), &buffer);
         let _ = import::load_bytes(&common::fake_path("x.glb"), &common::mutate(&binary, &edits, cut));
     }
+}
+
+/// `json` with an `images` array added.
+fn with_images(json: &str, images: &str) -> Vec<u8> {
+    json.replacen("\"materials\"", &format!("\"images\": {images},\n  \"materials\""), 1).into_bytes()
 }
 
 /// The test scene with its camera made orthographic with half-extents `xmag x ymag`.

@@ -45,6 +45,7 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
     let gltf::Gltf { document, blob } = gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| gltf_error(path, bytes, e))?;
     let root = document.into_json();
     check_position_accessors(path, &root)?;
+    super::gltf_images::check_sources(path, &root)?;
     let document = gltf::Document::from_json(root).map_err(|e| gltf_error(path, bytes, e))?;
     let buffers = load_buffers(path, &document, blob)?;
     let mut reader = Reader {

@@ -11,6 +11,24 @@ use lamplight_core::materials::ImageData;
 
 use crate::error::LoadError;
 
+/// Checks what gltf 1.4.1's `Image::source` unwraps without validating (found
+/// by the `gltf` fuzz target: an image with a `bufferView` but no `mimeType`
+/// panicked): an image has a `bufferView` with a `mimeType`, or a `uri`.
+pub(super) fn check_sources(path: &Path, root: &gltf::json::Root) -> Result<(), LoadError> {
+    for (i, image) in root.images.iter().enumerate() {
+        let fail = |at: &str, message: &str| Err(LoadError::json(path, format!("images[{i}]{at}"), message));
+        match (&image.buffer_view, &image.uri) {
+            (Some(_), _) if image.mime_type.is_none() => return fail(".mimeType", "an image in a bufferView needs a mimeType"),
+            (Some(view), _) if view.value() >= root.buffer_views.len() => {
+                return fail(".bufferView", &format!("buffer view {} does not exist ({} views)", view.value(), root.buffer_views.len()))
+            }
+            (None, None) => return fail("", "expected a uri or a bufferView"),
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
 /// Decoded images by (image index, sRGB).
 pub(super) struct GltfImages<'p> {
     path: &'p Path,
@@ -32,12 +50,12 @@ impl<'p> GltfImages<'p> {
         let fail = |where_: &str, message: String| LoadError::json(self.path, format!("{at}{where_}"), message);
         let (name, bytes): (std::path::PathBuf, std::borrow::Cow<'_, [u8]>) = match image.source() {
             gltf::image::Source::View { view, .. } => {
-                let buffer = &buffers[view.buffer().index()];
                 let (start, len) = (view.offset(), view.length());
-                let Some(bytes) = start.checked_add(len).and_then(|end| buffer.get(start..end)) else {
+                let buffer = buffers.get(view.buffer().index());
+                let Some(bytes) = start.checked_add(len).and_then(|end| buffer?.get(start..end)) else {
                     return Err(fail(
                         ".bufferView",
-                        format!("bytes {start}..{} lie outside buffer {}", start + len, view.buffer().index()),
+                        format!("bytes {start}..{} lie outside buffer {}", start.saturating_add(len), view.buffer().index()),
                     ));
                 };
                 (
