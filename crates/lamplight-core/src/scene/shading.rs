@@ -1,6 +1,6 @@
 //! Shading a hit: the material's textures evaluated at the hit's surface
 //! coordinates (computed only for materials that read them), its normal map
-//! applied, and the pixel footprint carried into `(u, v)` for MIP-mapping.
+//! and bump map applied, and the pixel footprint carried into `(u, v)` for MIP-mapping.
 
 use std::borrow::Cow;
 
@@ -26,7 +26,8 @@ impl Scene {
     /// Shades `hit`, seen from the unit direction `wo` by a ray whose pixel
     /// footprint there is `footprint` wide (0: unknown): the material with its
     /// textures evaluated there ([`Material::at`]), and the shading normal
-    /// turned by the material's normal map ([`crate::materials::normal_map`]).
+    /// turned by the material's bump map ([`crate::materials::bump`]) and
+    /// normal map ([`crate::materials::normal_map`]).
     /// The surface coordinates are computed once, and only when the material
     /// reads them.
     #[inline]
@@ -46,6 +47,10 @@ impl Scene {
             if footprint > 0.0 {
                 (at.duv_dx, at.duv_dy) = footprint_in_uv(c, hit.geometric_normal, wo, footprint);
             }
+        }
+        if let (Some(bump), Some(c)) = (&material.bump, &coords) {
+            let outward = if hit.front_face { hit.geometric_normal } else { -hit.geometric_normal };
+            hit.normal = bump.apply(&at, c, outward, hit.normal, hit.geometric_normal, wo);
         }
         if let (Some(map), Some(c)) = (&material.normal_map, &coords) {
             hit.normal = map.apply(&at, c, hit.normal, hit.geometric_normal, wo);

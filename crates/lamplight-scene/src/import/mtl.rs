@@ -23,15 +23,16 @@
 //! | `map_Ns FILE` | `shininess` = `Ns x` the image's first channel (linear) |
 //! | `norm FILE` (with `-bm s`) | a tangent-space normal map of scale `s` |
 //! | `map_d FILE` | a cut-out where the image's first channel (linear) is below 0.5 |
+//! | `bump FILE`, `map_Bump FILE` (with `-bm s`) | a bump map ([`lamplight_core::materials::bump`]): height = the image's first channel (linear), displacement `s` x height |
 //!
 //! `Tr` follows the specification (`Tr = 1 - d`); whichever of `d`/`Tr` comes
 //! last wins. A map statement's options (`-s`, `-o`, `-bm`, `-clamp`, ...) are
-//! read past (`-bm` is the normal map's scale, `-clamp on` its wrap mode) and
+//! read past (`-bm` is the normal or bump map's scale, `-clamp on` its wrap mode) and
 //! its file is found beside the `.mtl`; a file that cannot be read is reported
 //! as a warning naming it and its line, and the material is kept without it.
-//! Height bump maps (`bump`, `map_Bump`), `map_Ka`,
-//! `disp`, `decal`, `refl` and other statements are not supported: each kind is
-//! reported once as a warning.
+//! Map keywords are matched without regard to case (`map_bump`, `Bump` are
+//! `map_Bump`). `map_Ka`, `disp`, `decal`, `refl` and other statements are
+//! not supported: each kind is reported once as a warning.
 
 use std::collections::HashMap;
 use std::path::Path;
@@ -40,7 +41,9 @@ use std::sync::Arc;
 
 use lamplight_core::materials::alpha::AlphaMask;
 use lamplight_core::materials::image::{Channel, Filter, Wrap};
-use lamplight_core::materials::{ImageData, ImageTexture, Material, NormalMap, Reflection, Refraction, Slot, Texture, UvTransform};
+use lamplight_core::materials::{
+    BumpMap, ImageData, ImageTexture, Material, NormalMap, Reflection, Refraction, Slot, Texture, UvTransform,
+};
 use lamplight_core::math::Rgb;
 
 use super::{number, words, Warnings};
@@ -61,6 +64,7 @@ struct MtlValues {
     map_ks: Option<Texture>,
     map_ns: Option<Texture>,
     norm: Option<NormalMap>,
+    bump: Option<BumpMap>,
     map_d: Option<Texture>,
 }
 
@@ -97,6 +101,17 @@ pub(super) fn parse(path: &Path, text: &str, warnings: &mut Warnings) -> Result<
         let line = raw.split('#').next().unwrap_or("");
         let w = words(line);
         let Some(&(_, keyword)) = w.first() else { continue };
+        // Map keywords in any case; the bump map's two names as one.
+        let written = keyword;
+        let keyword = match keyword.to_ascii_lowercase().as_str() {
+            "map_kd" => "map_Kd",
+            "map_ks" => "map_Ks",
+            "map_ns" => "map_Ns",
+            "map_d" => "map_d",
+            "norm" => "norm",
+            "bump" | "map_bump" => "map_Bump",
+            _ => keyword,
+        };
         if keyword == "newmtl" {
             if let Some((name, values)) = current.take() {
                 done.insert(name, to_material(&values));
@@ -109,14 +124,14 @@ pub(super) fn parse(path: &Path, text: &str, warnings: &mut Warnings) -> Result<
             continue;
         }
         let is_map = keyword.starts_with("map_") || matches!(keyword, "bump" | "disp" | "decal" | "refl" | "norm");
-        let read_map = matches!(keyword, "map_Kd" | "map_Ks" | "map_Ns" | "norm" | "map_d");
+        let read_map = matches!(keyword, "map_Kd" | "map_Ks" | "map_Ns" | "norm" | "map_d" | "map_Bump");
         if read_map {
             let Some((_, values)) = current.as_mut() else {
-                return Err(LoadError::at(path, line_no, w[0].0, format!("`{keyword}` before any `newmtl`")));
+                return Err(LoadError::at(path, line_no, w[0].0, format!("`{written}` before any `newmtl`")));
             };
             let Some((file, bm, clamp)) = map_statement(&w) else {
                 let end = line.trim_end().chars().count() + 1;
-                return Err(LoadError::at(path, line_no, end, format!("expected a file name after `{keyword}`")));
+                return Err(LoadError::at(path, line_no, end, format!("expected a file name after `{written}`")));
             };
             let srgb = matches!(keyword, "map_Kd" | "map_Ks");
             let key = (file.clone(), srgb);
@@ -129,13 +144,13 @@ pub(super) fn parse(path: &Path, text: &str, warnings: &mut Warnings) -> Result<
                         Some(i)
                     }
                     Err(e) => {
-                        warnings.once(format!("MTL {keyword} at line {line_no} ignored: {e}"));
+                        warnings.once(format!("MTL {written} at line {line_no} ignored: {e}"));
                         None
                     }
                 },
             };
             if let Some(image) = image {
-                let channel = if matches!(keyword, "map_Ns" | "map_d") { Channel::One(0) } else { Channel::Rgb };
+                let channel = if matches!(keyword, "map_Ns" | "map_d" | "map_Bump") { Channel::One(0) } else { Channel::Rgb };
                 let wrap = if clamp { Wrap::Clamp } else { Wrap::Repeat };
                 let texture = Texture::Image(Arc::new(ImageTexture {
                     image,
@@ -149,6 +164,7 @@ pub(super) fn parse(path: &Path, text: &str, warnings: &mut Warnings) -> Result<
                     "map_Ks" => values.map_ks = Some(texture),
                     "map_Ns" => values.map_ns = Some(texture),
                     "map_d" => values.map_d = Some(texture),
+                    "map_Bump" => values.bump = Some(BumpMap { texture, scale: bm }),
                     _ => values.norm = Some(NormalMap { texture, scale: bm }),
                 }
             }
@@ -157,7 +173,7 @@ pub(super) fn parse(path: &Path, text: &str, warnings: &mut Warnings) -> Result<
         let known = matches!(keyword, "Ka" | "Kd" | "Ks" | "Ke" | "Ns" | "Ni" | "d" | "Tr" | "illum");
         if !known {
             let what = if is_map {
-                format!("MTL {keyword} ignored: only map_Kd, map_Ks, map_Ns, map_d and norm maps are read")
+                format!("MTL {keyword} ignored: only map_Kd, map_Ks, map_Ns, map_d, bump/map_Bump and norm maps are read")
             } else {
                 format!("MTL statement `{keyword}` ignored")
             };
@@ -232,7 +248,8 @@ fn to_material(v: &MtlValues) -> Material {
         shininess: ns,
         emission: v.ke.unwrap_or(Rgb::ZERO),
         normal_map: v.norm.clone().map(Arc::new),
-        alpha: v.map_d.clone().map(|texture| Arc::new(AlphaMask { texture, cutoff: 0.5 })),
+        bump: v.bump.clone().map(Arc::new),
+        alpha: v.map_d.clone().map(|texture| Arc::new(AlphaMask::mask(texture, 0.5))),
         ..Material::default()
     };
     if let Some(t) = &v.map_kd {
@@ -306,16 +323,18 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         image::RgbImage::from_pixel(1, 1, image::Rgb([255, 0, 0])).save(dir.path().join("red.png")).unwrap();
         let mut w = Warnings::default();
-        let text = "newmtl m\nKd 0.5\nmap_Kd -s 1 1 red.png\nnorm -bm 2 red.png\nmap_Ks missing.png\nbump b.png\n";
+        let text =
+            "newmtl m\nKd 0.5\nmap_Kd -s 1 1 red.png\nnorm -bm 2 red.png\nmap_Ks missing.png\ndisp b.png\nmap_bump -bm 0.25 red.png\n";
         let m = parse(&dir.path().join("t.mtl"), text, &mut w).unwrap().remove("m").unwrap();
         assert!(matches!(m.color, Texture::Image(_)));
         assert_eq!(m.normal_map.as_ref().map(|n| n.scale), Some(2.0));
+        assert_eq!(m.bump.as_ref().map(|b| b.scale), Some(0.25));
         let warnings = w.into_vec();
         assert!(
             warnings[0].starts_with("MTL map_Ks at line 5 ignored: cannot read texture") && warnings[0].contains("missing.png"),
             "{warnings:?}"
         );
-        assert_eq!(warnings[1], "MTL bump ignored: only map_Kd, map_Ks, map_Ns, map_d and norm maps are read");
+        assert_eq!(warnings[1], "MTL disp ignored: only map_Kd, map_Ks, map_Ns, map_d, bump/map_Bump and norm maps are read");
     }
 
     #[test]
