@@ -58,8 +58,10 @@ impl Specular {
     /// (ior + 1))^2 color, 1) factor`, `f90 = factor`.
     pub fn khr(ior: f64, factor: f64, color: Rgb) -> Specular {
         let r = (ior - 1.0) / (ior + 1.0);
+        // Index 1.5 is exactly glTF's 0.04 (0.2^2 rounds to 0.04000000000000001).
+        let f0_ior = if ior == 1.5 { 0.04 } else { r * r };
         let factor = factor.clamp(0.0, 1.0);
-        Specular { f0: (r * r * color.max(Rgb::ZERO)).min(Rgb::ONE) * factor, f90: factor }
+        Specular { f0: (f0_ior * color.max(Rgb::ZERO)).min(Rgb::ONE) * factor, f90: factor }
     }
 
     /// `F_d` at Schlick weight `s`.
@@ -174,7 +176,7 @@ mod tests {
         assert!((f(base, 0.4, spec, alpha, wo, wi) - f(base, 0.4, spec, alpha, wi, wo)).length() < 1e-12);
         // Index 1.5, factor 1, white: the extension-free model.
         let plain = Specular::khr(1.5, 1.0, Rgb::ONE);
-        assert!((plain.f0 - Rgb::splat(0.04)).length() < 1e-15 && plain.f90 == 1.0);
+        assert_eq!(plain, Specular::GLTF);
         // Factor 0: a Lambert surface.
         let lambert = f(base, 0.0, Specular::khr(1.5, 0.0, Rgb::ONE), alpha, wo, wi);
         assert!((lambert - base / std::f64::consts::PI).length() < 1e-12);
