@@ -78,12 +78,11 @@ impl AlphaMask {
     /// Whether the surface exists at `hit` of `shape` along `ray`.
     pub fn covers(&self, shape: &dyn Shape, ray: &Ray, hit: &SurfaceHit) -> bool {
         let p = ray.at(hit.t);
-        let mut at = ShadingPoint::at(p);
-        if self.texture.needs_coords() {
-            let c = shape.surface_coords(p, hit.normal, hit.primitive);
-            at.uv = c.uv;
-            at.color = c.color;
-        }
+        let at = if self.texture.needs_coords() {
+            ShadingPoint::with_coords(p, &shape.surface_coords(p, hit.normal, hit.primitive))
+        } else {
+            ShadingPoint::at(p)
+        };
         let alpha = self.texture.evaluate(&at).x;
         if self.blend {
             // Fully opaque and fully clear points need no draw.

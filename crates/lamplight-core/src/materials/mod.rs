@@ -22,6 +22,7 @@ pub mod phong;
 pub mod texture;
 pub mod textured;
 pub mod uv_checker;
+pub mod uv_set;
 pub mod uv_transform;
 
 pub use bump::BumpMap;

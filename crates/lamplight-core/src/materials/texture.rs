@@ -110,13 +110,41 @@ pub struct ShadingPoint {
     pub duv_dy: [f64; 2],
     /// A mesh's interpolated vertex colour.
     pub color: Option<Rgb>,
+    /// The second texture coordinates (glTF `TEXCOORD_1`), the first where the shape has none.
+    pub uv1: [f64; 2],
+    /// Change of `uv1` from one pixel to the next in x.
+    pub duv1_dx: [f64; 2],
+    /// Change of `uv1` from one pixel to the next in y.
+    pub duv1_dy: [f64; 2],
 }
 
 impl ShadingPoint {
     /// The point `p` with no surface coordinates.
     #[inline]
     pub fn at(p: Vec3) -> ShadingPoint {
-        ShadingPoint { p, uv: [0.0; 2], duv_dx: [0.0; 2], duv_dy: [0.0; 2], color: None }
+        ShadingPoint {
+            p,
+            uv: [0.0; 2],
+            duv_dx: [0.0; 2],
+            duv_dy: [0.0; 2],
+            color: None,
+            uv1: [0.0; 2],
+            duv1_dx: [0.0; 2],
+            duv1_dy: [0.0; 2],
+        }
+    }
+
+    /// The point `p` with the surface coordinates `c` (no footprint).
+    #[inline]
+    pub fn with_coords(p: Vec3, c: &crate::shapes::SurfaceCoords) -> ShadingPoint {
+        let uv1 = c.uv1.map_or(c.uv, |s| s.uv);
+        ShadingPoint { uv: c.uv, color: c.color, uv1, ..ShadingPoint::at(p) }
+    }
+
+    /// The same point seen through its second texture coordinates.
+    #[inline]
+    pub fn second_uv(&self) -> ShadingPoint {
+        ShadingPoint { uv: self.uv1, duv_dx: self.duv1_dx, duv_dy: self.duv1_dy, ..*self }
     }
 }
 
@@ -152,6 +180,8 @@ pub enum Texture {
     Mix(Arc<[Texture; 3]>),
     /// A mesh's vertex colour, 1 where the shape has none ([`super::combine`]).
     VertexColor,
+    /// A texture read at the second texture coordinates ([`super::uv_set`]).
+    SecondUv(Arc<Texture>),
 }
 
 impl Texture {
@@ -183,6 +213,7 @@ impl Texture {
                 f[0].evaluate(at) * (Rgb::ONE - t) + f[1].evaluate(at) * t
             }
             Texture::VertexColor => at.color.unwrap_or(Rgb::ONE),
+            Texture::SecondUv(t) => t.evaluate(&at.second_uv()),
         }
     }
 
@@ -203,6 +234,7 @@ impl Texture {
             Texture::Image(i) => i.filter == super::image::Filter::Trilinear,
             Texture::Scale(f) => f.iter().any(Texture::uses_footprint),
             Texture::Mix(f) => f.iter().any(Texture::uses_footprint),
+            Texture::SecondUv(t) => t.uses_footprint(),
             _ => false,
         }
     }

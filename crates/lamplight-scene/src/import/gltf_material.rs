@@ -17,7 +17,9 @@
 //! | `alphaMode` `MASK`, `alphaCutoff`; `BLEND` | coverage base colour alpha x `baseColorTexture` alpha ([`lamplight_core::materials::alpha`]): a cut-out at `alphaCutoff`; `BLEND` stochastic transparency |
 //!
 //! `occlusionTexture` is not read: the path tracer computes the occlusion it
-//! stands for. Texture coordinates other than `TEXCOORD_0` are read as
+//! stands for. A textureInfo's `texCoord` (or its `KHR_texture_transform`
+//! `texCoord`) chooses `TEXCOORD_0` or `TEXCOORD_1` (a `uv_set` texture,
+//! [`lamplight_core::materials::uv_set`]); sets from 2 up are read as
 //! `TEXCOORD_0` (a warning says so). Numbers are clamped to their valid range
 //! (non-finite ones become 0) so no NaN reaches the renderer.
 
@@ -71,8 +73,10 @@ fn image_texture(
     load: &mut LoadImage<'_>,
     warnings: &mut Warnings,
 ) -> Result<Texture, LoadError> {
-    if tex_coord != 0 || transform.as_ref().and_then(|t| t.tex_coord()).is_some_and(|c| c != 0) {
-        warnings.once("glTF textures on TEXCOORD_1 and above are read with TEXCOORD_0".to_string());
+    // KHR_texture_transform's texCoord overrides the textureInfo's.
+    let set = transform.as_ref().and_then(|t| t.tex_coord()).unwrap_or(tex_coord);
+    if set > 1 {
+        warnings.once("glTF textures on TEXCOORD_2 and above are read with TEXCOORD_0".to_string());
     }
     let image = load(&texture.source(), srgb)?;
     let sampler = texture.sampler();
@@ -109,7 +113,8 @@ fn image_texture(
             }
         }
     };
-    Ok(Texture::Image(Arc::new(ImageTexture { image, wrap, filter, transform, channel })))
+    let texture = Texture::Image(Arc::new(ImageTexture { image, wrap, filter, transform, channel }));
+    Ok(if set == 1 { Texture::SecondUv(Arc::new(texture)) } else { texture })
 }
 
 /// Maps one glTF material (module doc); `vertex_colors` when the primitive has

@@ -25,6 +25,18 @@
 //! | `map_d FILE` | a cut-out where the image's first channel (linear) is below 0.5 |
 //! | `bump FILE`, `map_Bump FILE` (with `-bm s`) | a bump map ([`lamplight_core::materials::bump`]): height = the image's first channel (linear), displacement `s` x height |
 //!
+//! The PBR extension keys (Exocortex's, as Blender and tinyobjloader write
+//! them) make the material a `pbr` one ([`lamplight_core::materials::pbr`]):
+//!
+//! | MTL | lamplight `pbr` |
+//! |---|---|
+//! | `Kd` x `map_Kd` | `base_color` |
+//! | `Pm` x `map_Pm` (first channel, linear) | `metallic` (default 0) |
+//! | `Pr` x `map_Pr` (first channel, linear) | perceptual `roughness` (default 0.5) |
+//! | `Ke`, `norm`, `bump`, `map_d` | emission, normal map, bump map, cut-out, as above |
+//!
+//! `Ka`, `Ks`, `Ns`, `map_Ks`, `map_Ns`, `illum`, `d` and `Ni` do not apply to it.
+//!
 //! `Tr` follows the specification (`Tr = 1 - d`); whichever of `d`/`Tr` comes
 //! last wins. A map statement's options (`-s`, `-o`, `-bm`, `-clamp`, ...) are
 //! read past (`-bm` is the normal or bump map's scale, `-clamp on` its wrap mode) and
@@ -66,6 +78,10 @@ struct MtlValues {
     norm: Option<NormalMap>,
     bump: Option<BumpMap>,
     map_d: Option<Texture>,
+    pr: Option<f64>,
+    pm: Option<f64>,
+    map_pr: Option<Texture>,
+    map_pm: Option<Texture>,
 }
 
 /// A map statement's file and options: `(file, -bm value, -clamp on)`.
@@ -110,6 +126,8 @@ pub(super) fn parse(path: &Path, text: &str, warnings: &mut Warnings) -> Result<
             "map_d" => "map_d",
             "norm" => "norm",
             "bump" | "map_bump" => "map_Bump",
+            "map_pr" => "map_Pr",
+            "map_pm" => "map_Pm",
             _ => keyword,
         };
         if keyword == "newmtl" {
@@ -124,7 +142,7 @@ pub(super) fn parse(path: &Path, text: &str, warnings: &mut Warnings) -> Result<
             continue;
         }
         let is_map = keyword.starts_with("map_") || matches!(keyword, "bump" | "disp" | "decal" | "refl" | "norm");
-        let read_map = matches!(keyword, "map_Kd" | "map_Ks" | "map_Ns" | "norm" | "map_d" | "map_Bump");
+        let read_map = matches!(keyword, "map_Kd" | "map_Ks" | "map_Ns" | "norm" | "map_d" | "map_Bump" | "map_Pr" | "map_Pm");
         if read_map {
             let Some((_, values)) = current.as_mut() else {
                 return Err(LoadError::at(path, line_no, w[0].0, format!("`{written}` before any `newmtl`")));
@@ -150,7 +168,8 @@ pub(super) fn parse(path: &Path, text: &str, warnings: &mut Warnings) -> Result<
                 },
             };
             if let Some(image) = image {
-                let channel = if matches!(keyword, "map_Ns" | "map_d" | "map_Bump") { Channel::One(0) } else { Channel::Rgb };
+                let channel =
+                    if matches!(keyword, "map_Ns" | "map_d" | "map_Bump" | "map_Pr" | "map_Pm") { Channel::One(0) } else { Channel::Rgb };
                 let wrap = if clamp { Wrap::Clamp } else { Wrap::Repeat };
                 let texture = Texture::Image(Arc::new(ImageTexture {
                     image,
@@ -165,15 +184,17 @@ pub(super) fn parse(path: &Path, text: &str, warnings: &mut Warnings) -> Result<
                     "map_Ns" => values.map_ns = Some(texture),
                     "map_d" => values.map_d = Some(texture),
                     "map_Bump" => values.bump = Some(BumpMap { texture, scale: bm }),
+                    "map_Pr" => values.map_pr = Some(texture),
+                    "map_Pm" => values.map_pm = Some(texture),
                     _ => values.norm = Some(NormalMap { texture, scale: bm }),
                 }
             }
             continue;
         }
-        let known = matches!(keyword, "Ka" | "Kd" | "Ks" | "Ke" | "Ns" | "Ni" | "d" | "Tr" | "illum");
+        let known = matches!(keyword, "Ka" | "Kd" | "Ks" | "Ke" | "Ns" | "Ni" | "d" | "Tr" | "illum" | "Pr" | "Pm");
         if !known {
             let what = if is_map {
-                format!("MTL {keyword} ignored: only map_Kd, map_Ks, map_Ns, map_d, bump/map_Bump and norm maps are read")
+                format!("MTL {keyword} ignored: only map_Kd, map_Ks, map_Ns, map_d, bump/map_Bump, norm, map_Pr and map_Pm maps are read")
             } else {
                 format!("MTL statement `{keyword}` ignored")
             };
@@ -200,6 +221,13 @@ pub(super) fn parse(path: &Path, text: &str, warnings: &mut Warnings) -> Result<
             "Ks" => values.ks = Some(rgb("Ks colour")?),
             "Ke" => values.ke = Some(rgb("Ke colour")?),
             "Ns" => values.ns = Some(num(1, "Ns exponent")?.max(0.0)),
+            "Pr" | "Pm" => {
+                let v = num(1, if keyword == "Pr" { "Pr roughness" } else { "Pm metallic" })?;
+                if !(0.0..=1.0).contains(&v) {
+                    return Err(LoadError::at(path, line_no, w[1].0, format!("expected a value in [0, 1], found {v}")));
+                }
+                *(if keyword == "Pr" { &mut values.pr } else { &mut values.pm }) = Some(v);
+            }
             "Ni" => {
                 let ni = num(1, "Ni index of refraction")?;
                 if !(ni > 0.0) {
@@ -233,8 +261,36 @@ pub(super) fn parse(path: &Path, text: &str, warnings: &mut Warnings) -> Result<
     Ok(done)
 }
 
+/// The PBR extension's mapping (module doc), when the block uses its keys.
+fn to_pbr(v: &MtlValues) -> Option<Material> {
+    if v.pr.is_none() && v.pm.is_none() && v.map_pr.is_none() && v.map_pm.is_none() {
+        return None;
+    }
+    let kd = v.kd.unwrap_or(Rgb::splat(0.8));
+    let base = match &v.map_kd {
+        None => Texture::Constant(kd),
+        Some(t) if kd == Rgb::ONE => t.clone(),
+        Some(t) => Texture::Scale(Arc::new([t.clone(), Texture::Constant(kd)])),
+    };
+    let (metallic, roughness) = (v.pm.unwrap_or(0.0), v.pr.unwrap_or(0.5));
+    let mut maps = Vec::new();
+    for (slot, map, factor) in [(Slot::Metallic, &v.map_pm, metallic), (Slot::Roughness, &v.map_pr, roughness)] {
+        if let Some(t) = map {
+            maps.push((slot, Texture::Scale(Arc::new([t.clone(), Texture::Constant(Rgb::splat(factor))]))));
+        }
+    }
+    let mut m = lamplight_core::materials::pbr::material(base, metallic, roughness, v.ke.unwrap_or(Rgb::ZERO), maps);
+    m.normal_map = v.norm.clone().map(Arc::new);
+    m.bump = v.bump.clone().map(Arc::new);
+    m.alpha = v.map_d.clone().map(|texture| Arc::new(AlphaMask::mask(texture, 0.5)));
+    Some(m)
+}
+
 /// The mapping of the module doc.
 fn to_material(v: &MtlValues) -> Material {
+    if let Some(m) = to_pbr(v) {
+        return m;
+    }
     let kd = v.kd.unwrap_or(Rgb::splat(0.8));
     let ka = v.ka.unwrap_or(0.1 * kd);
     let ks = v.ks.unwrap_or(Rgb::ZERO);
@@ -334,7 +390,10 @@ mod tests {
             warnings[0].starts_with("MTL map_Ks at line 5 ignored: cannot read texture") && warnings[0].contains("missing.png"),
             "{warnings:?}"
         );
-        assert_eq!(warnings[1], "MTL disp ignored: only map_Kd, map_Ks, map_Ns, map_d, bump/map_Bump and norm maps are read");
+        assert_eq!(
+            warnings[1],
+            "MTL disp ignored: only map_Kd, map_Ks, map_Ns, map_d, bump/map_Bump, norm, map_Pr and map_Pm maps are read"
+        );
     }
 
     #[test]
@@ -344,5 +403,20 @@ mod tests {
         assert_eq!(a, b);
         assert_eq!(a.refraction, Refraction::Constant { ior: 1.0, weight: Rgb::splat(0.75) });
         assert_eq!(a.kd, Rgb::splat(0.25));
+    }
+
+    #[test]
+    fn the_pbr_extension_makes_a_metallic_roughness_material() {
+        let m = one("newmtl m\nKd 1 0.5 0.25\nPr 0.3\nPm 1\n");
+        let pbr = m.pbr.as_ref().expect("a pbr material");
+        assert_eq!((pbr.metallic, m.roughness, m.color.constant()), (1.0, 0.3, Some(Rgb::new(1.0, 0.5, 0.25))));
+        // A metal's lecture terms: no diffuse, ks = the base colour.
+        assert_eq!((m.kd, m.ks), (Rgb::ZERO, Rgb::new(1.0, 0.5, 0.25)));
+        let plain = one("newmtl m\nKd 0.5\nPr 0.7\n");
+        assert_eq!((plain.pbr.as_ref().map(|p| p.metallic), plain.roughness), (Some(0.0), 0.7));
+        assert!(one("newmtl m\nKd 0.5\n").pbr.is_none());
+        let mut w = Warnings::default();
+        let e = parse(Path::new("t.mtl"), "newmtl m\nPm 2\n", &mut w).unwrap_err().to_string();
+        assert_eq!(e, "t.mtl:2:4: expected a value in [0, 1], found 2");
     }
 }
