@@ -140,7 +140,11 @@ fn gltf_texcoord_1_is_read_and_chosen_by_a_texture_info() {
     assert!(matches!(base, lamplight_core::materials::Texture::SecondUv(_)), "{base:?}");
     // Read at the second set: the green texel; at the first: red.
     use lamplight_core::materials::ShadingPoint;
-    let at = ShadingPoint { uv: [0.25, 0.5], uv1: [0.75, 0.5], ..ShadingPoint::at(lamplight_core::math::Vec3::ZERO) };
+    let at = ShadingPoint {
+        uv: [0.25, 0.5],
+        second: Some([[0.75, 0.5], [0.0; 2], [0.0; 2]]),
+        ..ShadingPoint::at(lamplight_core::math::Vec3::ZERO)
+    };
     assert_eq!(base.evaluate(&at), Rgb::new(0.0, 1.0, 0.0));
     // texCoord 2 is read with TEXCOORD_0, with a warning.
     let two = gltf.replace(r#""texCoord": 1"#, r#""texCoord": 2"#);

@@ -116,6 +116,8 @@ fn mix(z: u64) -> u64 {
 }
 
 /// The nearest hit of `shape` in `(t_min, t_max)` where `mask` covers it.
+/// (Not inlined: shadow rays' traversal stays as small as without masks.)
+#[inline(never)]
 pub fn first_covered(shape: &dyn Shape, mask: &AlphaMask, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
     let mut from = t_min;
     // Each miss moves past the hit by at least the relative offset, so the loop ends.

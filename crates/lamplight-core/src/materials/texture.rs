@@ -110,41 +110,34 @@ pub struct ShadingPoint {
     pub duv_dy: [f64; 2],
     /// A mesh's interpolated vertex colour.
     pub color: Option<Rgb>,
-    /// The second texture coordinates (glTF `TEXCOORD_1`), the first where the shape has none.
-    pub uv1: [f64; 2],
-    /// Change of `uv1` from one pixel to the next in x.
-    pub duv1_dx: [f64; 2],
-    /// Change of `uv1` from one pixel to the next in y.
-    pub duv1_dy: [f64; 2],
+    /// The second texture coordinates (glTF `TEXCOORD_1`) and their changes
+    /// from pixel to pixel in x and y, where the shape has them. (An option, so
+    /// that a point without them costs one byte to make, not six numbers.)
+    pub second: Option<[[f64; 2]; 3]>,
 }
 
 impl ShadingPoint {
     /// The point `p` with no surface coordinates.
     #[inline]
     pub fn at(p: Vec3) -> ShadingPoint {
-        ShadingPoint {
-            p,
-            uv: [0.0; 2],
-            duv_dx: [0.0; 2],
-            duv_dy: [0.0; 2],
-            color: None,
-            uv1: [0.0; 2],
-            duv1_dx: [0.0; 2],
-            duv1_dy: [0.0; 2],
-        }
+        ShadingPoint { p, uv: [0.0; 2], duv_dx: [0.0; 2], duv_dy: [0.0; 2], color: None, second: None }
     }
 
     /// The point `p` with the surface coordinates `c` (no footprint).
     #[inline]
     pub fn with_coords(p: Vec3, c: &crate::shapes::SurfaceCoords) -> ShadingPoint {
-        let uv1 = c.uv1.map_or(c.uv, |s| s.uv);
-        ShadingPoint { uv: c.uv, color: c.color, uv1, ..ShadingPoint::at(p) }
+        let second = c.uv1.map(|s| [s.uv, [0.0; 2], [0.0; 2]]);
+        ShadingPoint { uv: c.uv, color: c.color, second, ..ShadingPoint::at(p) }
     }
 
-    /// The same point seen through its second texture coordinates.
+    /// The same point seen through its second texture coordinates; itself
+    /// where it has none.
     #[inline]
     pub fn second_uv(&self) -> ShadingPoint {
-        ShadingPoint { uv: self.uv1, duv_dx: self.duv1_dx, duv_dy: self.duv1_dy, ..*self }
+        match self.second {
+            Some([uv, duv_dx, duv_dy]) => ShadingPoint { uv, duv_dx, duv_dy, ..*self },
+            None => *self,
+        }
     }
 }
 

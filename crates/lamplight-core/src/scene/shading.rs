@@ -43,10 +43,9 @@ impl Scene {
             at = ShadingPoint::with_coords(hit.point, c);
             if footprint > 0.0 {
                 (at.duv_dx, at.duv_dy) = footprint_in_uv(c.dpdu, c.dpdv, hit.geometric_normal, wo, footprint);
-                (at.duv1_dx, at.duv1_dy) = match &c.uv1 {
-                    Some(s) => footprint_in_uv(s.dpdu, s.dpdv, hit.geometric_normal, wo, footprint),
-                    None => (at.duv_dx, at.duv_dy),
-                };
+                if let (Some(second), Some(s)) = (&mut at.second, &c.uv1) {
+                    (second[1], second[2]) = footprint_in_uv(s.dpdu, s.dpdv, hit.geometric_normal, wo, footprint);
+                }
             }
         }
         if let (Some(bump), Some(c)) = (&material.bump, &coords) {
