@@ -1,13 +1,15 @@
 #!/usr/bin/env python3
 """Textured scenes against Mitsuba 3: image textures with each wrap mode and
-filter on a diffuse quad, and a normal-mapped rough conductor, per-pixel z-tested.
+filter on a diffuse quad, a normal-mapped rough conductor, an alpha cut-out and
+stochastic transparency (alpha_mode = "blend", against Mitsuba's `mask`), per-pixel z-tested.
 
 Every scene is a 2 x 2 quad read from the same OBJ file by both renderers, its
 texture coordinates running from -0.5 to 1.5 so that the wrap mode shows,
 seen at an angle by a perspective camera with a box pixel filter and lit by a
 uniform sky (the conductors by a point light). The textures are PNGs
-this script writes: a 16 x 16 image of random sRGB colours, and a tangent-space
-normal map of a sinusoidal height field.
+this script writes: a 16 x 16 image of random sRGB colours, a tangent-space
+normal map of a sinusoidal height field, a binary 8 x 8 coverage pattern and a
+coverage ramp from 0.1 to 0.9.
 
 Both renderers render each scene K times with different seeds. Per pixel and
 channel, the means of the K renders are compared with
@@ -87,6 +89,11 @@ def write_inputs(d):
     nrm = np.stack([-dhds, -dhdt, np.ones_like(S)], axis=-1)
     nrm /= np.linalg.norm(nrm, axis=-1, keepdims=True)
     png(os.path.join(d, "normals.png"), np.round((nrm * 0.5 + 0.5) * 255))
+    # Coverage: a binary 8 x 8 pattern (cut-outs), and a smooth ramp (blending).
+    cut = (rng.random((8, 8)) < 0.5) * 255
+    png(os.path.join(d, "cutout.png"), np.repeat(cut[:, :, None], 3, axis=2))
+    ramp = np.round(np.linspace(0.1, 0.9, 32)[None, :].repeat(32, 0) * 255)
+    png(os.path.join(d, "coverage.png"), np.repeat(ramp[:, :, None], 3, axis=2))
     with open(os.path.join(d, "quad.obj"), "w") as f:
         f.write(QUAD_OBJ)
 
@@ -104,6 +111,15 @@ def scenes(d):
 
     out = {f"diffuse bitmap, {w}, {f}": diffuse(w, f) for w, f in
            (("repeat", "bilinear"), ("mirror", "bilinear"), ("clamp", "bilinear"), ("repeat", "nearest"))}
+    grey = 'kd = 1\nka = 0\ncolor = 0.2\n'
+    white = {"type": "diffuse", "reflectance": {"type": "rgb", "value": 0.2}}
+    ll = grey + 'alpha = { type = "image", file = "cutout.png", color_space = "linear", channel = "r", filter = "nearest" }'
+    out["alpha cut-out (nearest)"] = (ll, {"type": "mask", "opacity": bitmap("cutout.png", "repeat", "nearest", raw=True),
+                                            "bsdf": white}, False, SKY)
+    ll = grey + ('alpha = { type = "image", file = "coverage.png", color_space = "linear", channel = "r" }\n'
+                 'alpha_mode = "blend"')
+    out["alpha blend (stochastic, vs Mitsuba's mask)"] = (
+        ll, {"type": "mask", "opacity": bitmap("coverage.png", "repeat", "bilinear", raw=True), "bsdf": white}, False, SKY)
     conductor = {"type": "roughconductor", "distribution": "ggx", "alpha": ALPHA,
                  "eta": {"type": "rgb", "value": ETA}, "k": {"type": "rgb", "value": K}}
     ll = f'kd = 0\nka = 0\nroughness = {ALPHA}\nreflection = {{ type = "conductor", eta = {ETA}, k = {K} }}\n'
