@@ -245,7 +245,7 @@ impl SceneBuilder {
         let plain = self
             .materials
             .iter()
-            .map(|m| m.normal_map.is_none() && m.textures.is_none() && m.pbr.is_none() && !m.color.needs_coords())
+            .map(|m| m.normal_map.is_none() && m.bump.is_none() && m.textures.is_none() && m.pbr.is_none() && !m.color.needs_coords())
             .collect();
         Ok(Scene {
             plain,

@@ -63,6 +63,7 @@ pub static TEXTURES: &[&TextureKind] = &[
     &materials::combine::SCALE,
     &materials::combine::MIX,
     &materials::combine::VERTEX_COLOR,
+    &materials::uv_set::KIND,
 ];
 
 /// A node type the builder handles itself.

@@ -346,3 +346,27 @@ fn a_metallic_roughness_texture_drives_metallic_and_roughness() {
     std::fs::remove_file(dir.path().join("mr.png")).unwrap();
     assert_eq!(error_of(dir.path(), "mr.gltf", json.as_bytes()), "mr.gltf: at images[0].uri: cannot read image `mr.png`: no such file");
 }
+
+#[test]
+fn specular_ior_and_blend_extensions_reach_the_pbr_material() {
+    // KHR_materials_specular with KHR_materials_ior, and alphaMode BLEND with a
+    // base colour alpha of 0.4: stochastic transparency of coverage 0.4.
+    let dir = tempfile::tempdir().unwrap();
+    let metal = r#"{"pbrMetallicRoughness": {"baseColorFactor": [1, 0.5, 0.25, 1], "metallicFactor": 1, "roughnessFactor": 0.5}}"#;
+    let extended = r#"{"pbrMetallicRoughness": {"baseColorFactor": [1, 0.5, 0.25, 0.4], "metallicFactor": 0, "roughnessFactor": 0.5},
+        "alphaMode": "BLEND",
+        "extensions": {"KHR_materials_specular": {"specularFactor": 0.5, "specularColorFactor": [1, 0.5, 4]},
+                       "KHR_materials_ior": {"ior": 2.0}}}"#;
+    let json = scene_json(Some(&data_uri(&triangle_buffer([0, 1, 2], 0.0))), 3, "").replace(metal, extended);
+    let imported = write_and_load(dir.path(), "spec.gltf", json.as_bytes()).unwrap();
+    assert!(!imported.warnings.iter().any(|w| w.contains("BLEND")), "{:?}", imported.warnings);
+    let m = imported.instances[0].material.as_ref().unwrap();
+    let pbr = m.pbr.as_ref().unwrap();
+    assert_eq!((pbr.ior, pbr.specular, pbr.specular_color), (2.0, 0.5, Rgb::new(1.0, 0.5, 4.0)));
+    // The Whitted tracer's ks is the dielectric's f0: min(((2 - 1) / (2 + 1))^2 color, 1) x 0.5.
+    let f0 = 1.0 / 9.0;
+    assert!((m.ks - Rgb::new(f0, 0.5 * f0, 4.0 * f0) * 0.5).length() < 1e-12, "{}", m.ks);
+    let alpha = m.alpha.as_ref().unwrap();
+    assert!(alpha.blend);
+    assert_eq!(alpha.texture, lamplight_core::materials::Texture::Constant(Rgb::splat(f64::from(0.4f32))));
+}

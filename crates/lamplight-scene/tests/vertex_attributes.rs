@@ -98,3 +98,56 @@ fn gltf_texcoord_color_and_tangent() {
         "bad.gltf: at meshes[0].primitives[0].attributes.TEXCOORD_0: expected floats or normalized integers, found U16 that are not normalized"
     );
 }
+
+#[test]
+fn gltf_texcoord_1_is_read_and_chosen_by_a_texture_info() {
+    let mut b = Vec::new();
+    // Positions, TEXCOORD_0 all (0.25, 0.5), TEXCOORD_1 all (0.75, 0.5).
+    for v in [0.0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0] {
+        b.extend(v.to_le_bytes());
+    }
+    for uv in [[0.25f32, 0.5], [0.75, 0.5]] {
+        for _ in 0..3 {
+            b.extend(uv[0].to_le_bytes());
+            b.extend(uv[1].to_le_bytes());
+        }
+    }
+    let data = base64::engine::general_purpose::STANDARD.encode(&b);
+    let dir = tempfile::tempdir().unwrap();
+    // Left texel red, right texel green.
+    image::RgbImage::from_fn(2, 1, |x, _| image::Rgb(if x == 0 { [255, 0, 0] } else { [0, 255, 0] }))
+        .save(dir.path().join("rg.png"))
+        .unwrap();
+    let gltf = format!(
+        r#"{{"asset": {{"version": "2.0"}}, "scenes": [{{"nodes": [0]}}], "nodes": [{{"mesh": 0}}],
+  "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0, "TEXCOORD_0": 1, "TEXCOORD_1": 2}}, "material": 0}}]}}],
+  "materials": [{{"pbrMetallicRoughness": {{"baseColorTexture": {{"index": 0, "texCoord": 1}}}}}}],
+  "textures": [{{"source": 0}}], "images": [{{"uri": "rg.png"}}],
+  "accessors": [
+    {{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0,0,0], "max": [1,1,0]}},
+    {{"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC2"}},
+    {{"bufferView": 2, "componentType": 5126, "count": 3, "type": "VEC2"}}],
+  "bufferViews": [{{"buffer": 0, "byteLength": 36}}, {{"buffer": 0, "byteOffset": 36, "byteLength": 24}},
+    {{"buffer": 0, "byteOffset": 60, "byteLength": 24}}],
+  "buffers": [{{"byteLength": {}, "uri": "data:application/octet-stream;base64,{data}"}}]}}"#,
+        b.len()
+    );
+    let imported = write_and_load(dir.path(), "t.gltf", gltf.as_bytes()).unwrap();
+    assert!(imported.warnings.is_empty(), "{:?}", imported.warnings);
+    let a = &imported.meshes[0].attributes;
+    assert_eq!(a.uvs1.as_deref(), Some(&[[0.75, 0.5]; 3][..]), "v flipped as for TEXCOORD_0");
+    let base = &imported.instances[0].material.as_ref().unwrap().color;
+    assert!(matches!(base, lamplight_core::materials::Texture::SecondUv(_)), "{base:?}");
+    // Read at the second set: the green texel; at the first: red.
+    use lamplight_core::materials::ShadingPoint;
+    let at = ShadingPoint {
+        uv: [0.25, 0.5],
+        second: Some([[0.75, 0.5], [0.0; 2], [0.0; 2]]),
+        ..ShadingPoint::at(lamplight_core::math::Vec3::ZERO)
+    };
+    assert_eq!(base.evaluate(&at), Rgb::new(0.0, 1.0, 0.0));
+    // texCoord 2 is read with TEXCOORD_0, with a warning.
+    let two = gltf.replace(r#""texCoord": 1"#, r#""texCoord": 2"#);
+    let imported = write_and_load(dir.path(), "two.gltf", two.as_bytes()).unwrap();
+    assert_eq!(imported.warnings, ["glTF textures on TEXCOORD_2 and above are read with TEXCOORD_0"]);
+}

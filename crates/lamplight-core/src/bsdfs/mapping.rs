@@ -35,7 +35,7 @@ pub fn bsdf_for(material: &Material, point: Vec3, front_face: bool) -> Bsdf {
     let color = material.color.evaluate(&crate::materials::ShadingPoint::at(point));
     if let Some(pbr) = &material.pbr {
         let alpha = (material.roughness * material.roughness).max(microfacet::MIN_ALPHA);
-        return Bsdf::new(&[Lobe::MetallicRoughness { base: color.min(Rgb::ONE), metallic: pbr.metallic, alpha }]);
+        return Bsdf::new(&[Lobe::MetallicRoughness { base: color.min(Rgb::ONE), metallic: pbr.metallic, spec: pbr.specular(), alpha }]);
     }
     let relative = |ior: f64| if front_face { ior } else { 1.0 / ior };
     let mut lobes: [Lobe; 4] = [Lobe::Diffuse(Rgb::ZERO); 4];

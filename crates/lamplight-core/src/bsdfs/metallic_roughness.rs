@@ -1,23 +1,26 @@
-//! The glTF 2.0 metallic-roughness BRDF (specification, Appendix B):
+//! The glTF 2.0 metallic-roughness BRDF (specification, Appendix B), with the
+//! dielectric's reflectance of `KHR_materials_ior` and `KHR_materials_specular`:
 //!
 //! ```text
 //! material = mix(dielectric_brdf, metal_brdf, metallic)
-//! metal_brdf      = conductor_fresnel(f0 = C, specular_brdf(alpha))
-//! dielectric_brdf = fresnel_mix(ior = 1.5, diffuse_brdf(C), specular_brdf(alpha))
+//! metal_brdf      = specular_brdf(alpha) * (C + (1 - C) s)
+//! dielectric_brdf = mix(diffuse_brdf(C), specular_brdf(alpha), F_d)
+//! F_d = f0_d + (f90_d - f0_d) s
 //! ```
 //!
-//! with Schlick's Fresnel `F(f0) = f0 + (1 - f0)(1 - |v.h|)^5`, `f0 = 0.04` for
-//! the dielectric (index 1.5), `diffuse_brdf = C / pi` and `specular_brdf` the
-//! GGX lobe `D G2 / (4 |n.l| |n.v|)` of `alpha = roughness^2`
-//! ([`super::microfacet`]). Written out, with `s = (1 - |v.h|)^5`:
+//! with Schlick's weight `s = (1 - |v.h|)^5`, `diffuse_brdf = C / pi` and
+//! `specular_brdf` the GGX lobe `D G2 / (4 |n.l| |n.v|)` of `alpha =
+//! roughness^2` ([`super::microfacet`]). Without the extensions `f0_d = 0.04`
+//! (index 1.5) and `f90_d = 1`; [`Specular`] gives them from the index and the
+//! specular factor and colour. Written out:
 //!
-//! `f = (1 - m)(1 - (0.04 + 0.96 s)) C / pi + (F0 + (1 - F0) s) D G2 / (4 cos_o cos_i)`,
-//! `F0 = (1 - m) 0.04 + m C`,
+//! `f = (1 - m)(1 - F_d) C / pi + ((1 - m) F_d + m (C + (1 - C) s)) D G2 / (4 cos_o cos_i)`,
 //!
-//! since `(1 - m) F(0.04) + m F(C) = F(F0)`. Sampling picks the GGX visible
-//! normals with probability `p_s = w_s / (w_s + w_d)`, `w_s = mean(F0)` lifted
-//! towards 1 at grazing angles by `s(cos_o)`, `w_d = (1 - m) 0.96 mean(C)`, and
-//! the cosine hemisphere otherwise; the density is the mixture of both.
+//! which for the defaults is `F0 + (1 - F0) s` with `F0 = (1 - m) 0.04 + m C`.
+//! Sampling picks the GGX visible normals with probability `p_s = w_s / (w_s +
+//! w_d)`, `w_s` the mean of the specular Fresnel at `cos_o`, `w_d = (1 - m)
+//! mean(C (1 - f0_d))`, and the cosine hemisphere otherwise; the density is the
+//! mixture of both.
 //!
 //! Energy: metals and rough surfaces reflect at most what they receive, and
 //! lose some at high roughness (single scattering drops the light the
@@ -38,37 +41,69 @@ fn schlick(c: f64) -> f64 {
     m2 * m2 * m
 }
 
-/// `F0 = mix(0.04, C, metallic)`.
+/// The dielectric's Fresnel at normal and grazing incidence, `f0_d` and `f90_d`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Specular {
+    /// `f0_d`, per channel.
+    pub f0: Rgb,
+    /// `f90_d`.
+    pub f90: f64,
+}
+
+impl Specular {
+    /// glTF's dielectric without extensions: index 1.5, `f0 = 0.04`, `f90 = 1`.
+    pub const GLTF: Specular = Specular { f0: Rgb::splat(0.04), f90: 1.0 };
+
+    /// `KHR_materials_specular` over `KHR_materials_ior`: `f0 = min(((ior - 1) /
+    /// (ior + 1))^2 color, 1) factor`, `f90 = factor`.
+    pub fn khr(ior: f64, factor: f64, color: Rgb) -> Specular {
+        let r = (ior - 1.0) / (ior + 1.0);
+        // Index 1.5 is exactly glTF's 0.04 (0.2^2 rounds to 0.04000000000000001).
+        let f0_ior = if ior == 1.5 { 0.04 } else { r * r };
+        let factor = factor.clamp(0.0, 1.0);
+        Specular { f0: (f0_ior * color.max(Rgb::ZERO)).min(Rgb::ONE) * factor, f90: factor }
+    }
+
+    /// `F_d` at Schlick weight `s`.
+    #[inline]
+    fn fresnel(self, s: f64) -> Rgb {
+        self.f0 + (Rgb::splat(self.f90) - self.f0) * s
+    }
+}
+
+/// The specular lobe's Fresnel at Schlick weight `s`: `(1 - m) F_d + m (C + (1 - C) s)`.
 #[inline]
-pub fn f0(base: Rgb, metallic: f64) -> Rgb {
-    Rgb::splat(0.04 * (1.0 - metallic)) + base * metallic
+fn specular_fresnel(base: Rgb, metallic: f64, spec: Specular, s: f64) -> Rgb {
+    (1.0 - metallic) * spec.fresnel(s) + metallic * (base + (Rgb::ONE - base) * s)
+}
+
+/// The specular colour at normal incidence, `(1 - m) f0_d + m C`.
+#[inline]
+pub fn f0(base: Rgb, metallic: f64, spec: Specular) -> Rgb {
+    specular_fresnel(base, metallic, spec, 0.0)
 }
 
 /// The BRDF for `wo`, `wi` above the surface.
 #[inline]
-pub fn f(base: Rgb, metallic: f64, alpha: f64, wo: Vec3, wi: Vec3) -> Rgb {
+pub fn f(base: Rgb, metallic: f64, spec: Specular, alpha: f64, wo: Vec3, wi: Vec3) -> Rgb {
     if wo.z <= 0.0 || wi.z <= 0.0 {
         return Rgb::ZERO;
     }
     let h = (wo + wi).normalize();
     let s = schlick(wo.dot(h).abs());
-    let f0 = f0(base, metallic);
-    let fresnel = f0 + (Rgb::ONE - f0) * s;
-    let diffuse = base * ((1.0 - metallic) * (1.0 - (0.04 + 0.96 * s)) * std::f64::consts::FRAC_1_PI);
-    diffuse + microfacet::f(fresnel, alpha, wo, wi)
+    let diffuse = base * (Rgb::ONE - spec.fresnel(s)) * ((1.0 - metallic) * std::f64::consts::FRAC_1_PI);
+    diffuse + microfacet::f(specular_fresnel(base, metallic, spec, s), alpha, wo, wi)
 }
 
 /// The probability of sampling the specular lobe for `wo`.
 #[inline]
-fn specular_probability(base: Rgb, metallic: f64, wo: Vec3) -> f64 {
-    let f0 = f0(base, metallic);
-    let w_s = {
-        let s = schlick(wo.z);
-        (f0 + (Rgb::ONE - f0) * s).element_sum() / 3.0
-    };
-    let w_d = (1.0 - metallic) * 0.96 * base.element_sum() / 3.0;
+fn specular_probability(base: Rgb, metallic: f64, spec: Specular, wo: Vec3) -> f64 {
+    let w_s = specular_fresnel(base, metallic, spec, schlick(wo.z)).element_sum() / 3.0;
+    let w_d = (1.0 - metallic) * (base * (Rgb::ONE - spec.f0)).element_sum() / 3.0;
     if w_d <= 0.0 {
         1.0
+    } else if w_s <= 0.0 {
+        0.0
     } else {
         (w_s / (w_s + w_d)).clamp(0.05, 0.95)
     }
@@ -76,17 +111,17 @@ fn specular_probability(base: Rgb, metallic: f64, wo: Vec3) -> f64 {
 
 /// Density of [`sample`] in solid angle.
 #[inline]
-pub fn pdf(base: Rgb, metallic: f64, alpha: f64, wo: Vec3, wi: Vec3) -> f64 {
-    let p = specular_probability(base, metallic, wo);
+pub fn pdf(base: Rgb, metallic: f64, spec: Specular, alpha: f64, wo: Vec3, wi: Vec3) -> f64 {
+    let p = specular_probability(base, metallic, spec, wo);
     p * microfacet::pdf(alpha, wo, wi) + (1.0 - p) * lambertian::pdf(wo, wi)
 }
 
 /// A direction: the specular lobe when `u_choice < p_s`, else the diffuse one.
-pub fn sample(base: Rgb, metallic: f64, alpha: f64, wo: Vec3, u_choice: f64, u: (f64, f64)) -> Option<Vec3> {
+pub fn sample(base: Rgb, metallic: f64, spec: Specular, alpha: f64, wo: Vec3, u_choice: f64, u: (f64, f64)) -> Option<Vec3> {
     if wo.z <= 0.0 {
         return None;
     }
-    if u_choice < specular_probability(base, metallic, wo) {
+    if u_choice < specular_probability(base, metallic, spec, wo) {
         microfacet::sample(alpha, wo, u)
     } else {
         Some(lambertian::sample(u))
@@ -94,9 +129,12 @@ pub fn sample(base: Rgb, metallic: f64, alpha: f64, wo: Vec3, u_choice: f64, u: 
 }
 
 /// Per-channel bound of the directional albedo: the diffuse weight plus the
-/// Fresnel's largest value, `(1 - m) 0.96 C + F0 + (1 - F0)`, capped at 1.
-pub fn bound(base: Rgb, metallic: f64) -> Rgb {
-    ((1.0 - metallic) * 0.96 * base + f0(base, metallic)).min(Rgb::ONE)
+/// specular Fresnel's largest value, `(1 - m) C (1 - min(f0_d, f90_d)) + (1 -
+/// m) max(f0_d, f90_d) + m`, capped at 1.
+pub fn bound(base: Rgb, metallic: f64, spec: Specular) -> Rgb {
+    let lo = spec.f0.min(Rgb::splat(spec.f90));
+    let hi = spec.f0.max(Rgb::splat(spec.f90));
+    ((1.0 - metallic) * (base * (Rgb::ONE - lo) + hi) + Rgb::splat(metallic)).min(Rgb::ONE)
 }
 
 #[cfg(test)]
@@ -116,22 +154,44 @@ mod tests {
         let h = (wo + wi).normalize();
         let s = (1.0 - wo.dot(h)).powi(5);
         // Metal: Schlick with f0 = C times the GGX lobe, no diffuse term.
-        let metal = f(base, 1.0, alpha, wo, wi);
+        let metal = f(base, 1.0, Specular::GLTF, alpha, wo, wi);
         let expected = microfacet::f(base + (Rgb::ONE - base) * s, alpha, wo, wi);
         assert!((metal - expected).length() < 1e-12, "{metal} vs {expected}");
         // Dielectric: Lambert weighted by 1 - F plus F times GGX, F0 = 0.04.
         let fd = 0.04 + 0.96 * s;
-        let dielectric = f(base, 0.0, alpha, wo, wi);
+        let dielectric = f(base, 0.0, Specular::GLTF, alpha, wo, wi);
         let expected = base * ((1.0 - fd) / std::f64::consts::PI) + microfacet::f(Rgb::splat(fd), alpha, wo, wi);
         assert!((dielectric - expected).length() < 1e-12, "{dielectric} vs {expected}");
         // Reciprocity.
-        assert!((f(base, 0.4, alpha, wo, wi) - f(base, 0.4, alpha, wi, wo)).length() < 1e-12);
+        assert!((f(base, 0.4, Specular::GLTF, alpha, wo, wi) - f(base, 0.4, Specular::GLTF, alpha, wi, wo)).length() < 1e-12);
+        // KHR_materials_specular: f0 = min(F0(ior) color, 1) factor, f90 = factor, and
+        // F_d = f0 + (f90 - f0) s weighs the lobes (the extension's formulas).
+        let spec = Specular::khr(2.0, 0.5, Rgb::new(1.0, 2.0, 20.0));
+        let f0_ior = (1.0_f64 / 3.0).powi(2);
+        assert_eq!(spec, Specular { f0: Rgb::new(f0_ior, 2.0 * f0_ior, 1.0) * 0.5, f90: 0.5 });
+        let fd = spec.f0 + (Rgb::splat(0.5) - spec.f0) * s;
+        let expected = base * (Rgb::ONE - fd) / std::f64::consts::PI + microfacet::f(fd, alpha, wo, wi);
+        let got = f(base, 0.0, spec, alpha, wo, wi);
+        assert!((got - expected).length() < 1e-12, "{got} vs {expected}");
+        assert!((f(base, 0.4, spec, alpha, wo, wi) - f(base, 0.4, spec, alpha, wi, wo)).length() < 1e-12);
+        // Index 1.5, factor 1, white: the extension-free model.
+        let plain = Specular::khr(1.5, 1.0, Rgb::ONE);
+        assert_eq!(plain, Specular::GLTF);
+        // Factor 0: a Lambert surface.
+        let lambert = f(base, 0.0, Specular::khr(1.5, 0.0, Rgb::ONE), alpha, wo, wi);
+        assert!((lambert - base / std::f64::consts::PI).length() < 1e-12);
     }
 
     /// Chi-square-lite: the density integrates to one over the hemisphere and
     /// matches the histogram of the samples in a coarse grid.
     #[test]
     fn sampling_density_matches_the_pdf() {
+        for spec in [Specular::GLTF, Specular::khr(1.8, 0.7, Rgb::new(1.0, 0.5, 2.0))] {
+            sampling_density_matches_the_pdf_for(spec);
+        }
+    }
+
+    fn sampling_density_matches_the_pdf_for(spec: Specular) {
         let (base, metallic, alpha) = (Rgb::new(0.5, 0.4, 0.3), 0.3, 0.4);
         let wo = dir(40.0, 20.0);
         let (nt, np) = (16, 32);
@@ -144,7 +204,7 @@ mod tests {
                 let sin_t = (1.0 - cos_t * cos_t).sqrt();
                 let wi = Vec3::new(sin_t * phi.cos(), sin_t * phi.sin(), cos_t);
                 let cell_area = std::f64::consts::TAU / (nt * np * sub * sub) as f64;
-                expected[(i / sub) * np + j / sub] += pdf(base, metallic, alpha, wo, wi) * cell_area;
+                expected[(i / sub) * np + j / sub] += pdf(base, metallic, spec, alpha, wo, wi) * cell_area;
             }
         }
         let total: f64 = expected.iter().sum();
@@ -154,7 +214,7 @@ mod tests {
         let mut counts = vec![0.0; nt * np];
         let mut rng = crate::sampling::Rng::for_sample(3, 0, 0);
         for _ in 0..n {
-            if let Some(wi) = sample(base, metallic, alpha, wo, rng.uniform(), (rng.uniform(), rng.uniform())) {
+            if let Some(wi) = sample(base, metallic, spec, alpha, wo, rng.uniform(), (rng.uniform(), rng.uniform())) {
                 let i = (((1.0 - wi.z) * nt as f64) as usize).min(nt - 1);
                 let phi = super::super::super::shapes::surface::azimuth(wi.x, wi.y);
                 let j = ((phi / std::f64::consts::TAU * np as f64) as usize).min(np - 1);

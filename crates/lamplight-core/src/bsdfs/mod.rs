@@ -101,6 +101,8 @@ pub enum Lobe {
         base: Rgb,
         /// Metallic, 0 to 1.
         metallic: f64,
+        /// The dielectric's Fresnel (`KHR_materials_ior`, `KHR_materials_specular`).
+        spec: metallic_roughness::Specular,
         /// GGX roughness (glTF's `roughness^2`).
         alpha: f64,
     },
@@ -131,7 +133,7 @@ impl Lobe {
             Lobe::RoughConductor { .. } => Rgb::ONE,
             Lobe::Glass { tint, .. } | Lobe::RoughGlass { tint, .. } => tint,
             Lobe::Refract { weight, .. } => weight.unwrap_or(Rgb::ONE),
-            Lobe::MetallicRoughness { base, metallic, .. } => metallic_roughness::bound(base, metallic),
+            Lobe::MetallicRoughness { base, metallic, spec, .. } => metallic_roughness::bound(base, metallic, spec),
         }
     }
 
@@ -259,7 +261,9 @@ impl Bsdf {
                 Lobe::Glossy { ks, alpha } => sum += microfacet::f(ks, alpha, wo, wi),
                 Lobe::RoughGlass { eta, alpha, tint } => sum += tint * rough_dielectric::f(alpha, eta, wo, wi),
                 Lobe::RoughConductor { eta, k, alpha } => sum += rough_conductor::f(eta, k, alpha, wo, wi),
-                Lobe::MetallicRoughness { base, metallic, alpha } => sum += metallic_roughness::f(base, metallic, alpha, wo, wi),
+                Lobe::MetallicRoughness { base, metallic, spec, alpha } => {
+                    sum += metallic_roughness::f(base, metallic, spec, alpha, wo, wi)
+                }
                 _ => {}
             }
         }
@@ -280,7 +284,9 @@ impl Bsdf {
                 Lobe::Diffuse(_) => pdf += p * lambertian::pdf(wo, wi),
                 Lobe::Glossy { alpha, .. } | Lobe::RoughConductor { alpha, .. } => pdf += p * microfacet::pdf(alpha, wo, wi),
                 Lobe::RoughGlass { eta, alpha, .. } => pdf += p * rough_dielectric::pdf(alpha, eta, wo, wi),
-                Lobe::MetallicRoughness { base, metallic, alpha } => pdf += p * metallic_roughness::pdf(base, metallic, alpha, wo, wi),
+                Lobe::MetallicRoughness { base, metallic, spec, alpha } => {
+                    pdf += p * metallic_roughness::pdf(base, metallic, spec, alpha, wo, wi)
+                }
                 _ => {}
             }
         }
@@ -316,7 +322,9 @@ impl Bsdf {
             Lobe::Diffuse(_) => lambertian::sample(u),
             Lobe::Glossy { alpha, .. } | Lobe::RoughConductor { alpha, .. } => microfacet::sample(alpha, wo, u)?,
             Lobe::RoughGlass { eta, alpha, .. } => rough_dielectric::sample(alpha, eta, wo, u_rest, u)?,
-            Lobe::MetallicRoughness { base, metallic, alpha } => metallic_roughness::sample(base, metallic, alpha, wo, u_rest, u)?,
+            Lobe::MetallicRoughness { base, metallic, spec, alpha } => {
+                metallic_roughness::sample(base, metallic, spec, alpha, wo, u_rest, u)?
+            }
             Lobe::Mirror(m) => return delta(dielectric::reflect_local(wo), m.reflectance(wo.z), 1.0),
             Lobe::Glass { eta, tint } => {
                 let s = dielectric::sample(wo, eta, u_rest);

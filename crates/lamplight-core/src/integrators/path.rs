@@ -16,6 +16,7 @@
 //! refracted BSDF paths), so nothing is counted twice.
 
 use super::trace::{NeeMiss, NeeSample, NoTrace, PathEnd, PathTrace, Trace};
+use super::whitted::Cone;
 use super::{Integrator, IntegratorEntry, IntegratorSettings, RayCounts, Schedule, View};
 use crate::bsdfs::{bsdf_for, Bsdf, Frame};
 use crate::film::Filter;
@@ -112,14 +113,22 @@ impl PathTracer {
 
     /// Radiance along camera ray `ray`, drawing sample values from `sampler`.
     pub fn li(&self, scene: &Scene, camera_ray: &Ray, sampler: &mut PixelSampler, counts: &mut RayCounts) -> Rgb {
-        self.li_traced(scene, camera_ray, sampler, counts, &mut NoTrace)
+        self.li_traced(scene, camera_ray, Cone::default(), sampler, counts, &mut NoTrace)
     }
 
     /// [`PathTracer::li`], telling `trace` each vertex, light sample and BSDF sample.
+    ///
+    /// Textures are filtered over the pixel footprint `cone` of the camera ray
+    /// (zero: point lookups): at the first hit the cone's width there; at later
+    /// hits the width the camera's cone has at that point's distance from the
+    /// camera, pbrt-v4's approximation (`Camera::Approximate_dp_dxy`) of ray
+    /// differentials through diffuse and glossy bounces, which keeps a far
+    /// texture seen in a mirror or through a bounce filtered as if seen directly.
     fn li_traced<T: PathTrace + ?Sized>(
         &self,
         scene: &Scene,
         camera_ray: &Ray,
+        cone: Cone,
         sampler: &mut PixelSampler,
         counts: &mut RayCounts,
         trace: &mut T,
@@ -150,7 +159,14 @@ impl PathTracer {
                 trace.end(PathEnd::Escaped);
                 break;
             };
-            let material = &*scene.shade(&mut hit, -ray.dir, 0.0);
+            let footprint = if cone.spread == 0.0 && cone.width == 0.0 {
+                0.0
+            } else if depth == 1 {
+                cone.width + cone.spread * hit.t
+            } else {
+                cone.width + cone.spread * (hit.point - camera_ray.origin).length()
+            };
+            let material = &*scene.shade(&mut hit, -ray.dir, footprint);
             trace.path_hit(scene, &hit);
             if material.emits_towards(hit.front_face) {
                 let w = match self.lights.area_light_of(hit.object) {
@@ -339,7 +355,9 @@ impl PathTracer {
         let mut sampler = PixelSampler::new(view.seed, view.pixel_index(x, y), index);
         let (dx, dy) = self.filter.sample(sampler.get_2d());
         let lens = if view.lens { sampler.get_2d() } else { (0.5, 0.5) };
-        let ray = view.camera.ray(x as f64 + 0.5 + dx, y as f64 + 0.5 + dy, view.width, view.height, lens);
-        self.li_traced(view.scene, &ray, &mut sampler, counts, trace)
+        let (fx, fy) = (x as f64 + 0.5 + dx, y as f64 + 0.5 + dy);
+        let ray = view.camera.ray(fx, fy, view.width, view.height, lens);
+        let cone = if view.scene.uses_footprints() { Cone::of_pixel(view, &ray, fx, fy, lens) } else { Cone::default() };
+        self.li_traced(view.scene, &ray, cone, &mut sampler, counts, trace)
     }
 }

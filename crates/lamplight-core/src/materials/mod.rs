@@ -11,6 +11,7 @@
 //! [`Refraction`].
 
 pub mod alpha;
+pub mod bump;
 pub mod combine;
 mod fresnel;
 pub mod image;
@@ -21,8 +22,10 @@ pub mod phong;
 pub mod texture;
 pub mod textured;
 pub mod uv_checker;
+pub mod uv_set;
 pub mod uv_transform;
 
+pub use bump::BumpMap;
 pub use fresnel::{fresnel_conductor, fresnel_conductor_channel, fresnel_dielectric};
 pub use image::{ImageData, ImageLoader, ImageTexture};
 pub use metals::Metal;
@@ -141,6 +144,8 @@ pub struct Material {
     /// A tangent-space normal map ([`normal_map`]), applied where the surface is shaded.
     /// (Shared: rare and large, kept out of the material's cache lines.)
     pub normal_map: Option<Arc<NormalMap>>,
+    /// A height map ([`bump`]) that turns the shading normal, applied before the normal map.
+    pub bump: Option<Arc<BumpMap>>,
     /// A cut-out mask ([`alpha`]): where it is below its cutoff the surface is not there.
     pub alpha: Option<Arc<alpha::AlphaMask>>,
 }
@@ -163,6 +168,7 @@ impl Default for Material {
             textures: None,
             pbr: None,
             normal_map: None,
+            bump: None,
             alpha: None,
         }
     }
@@ -221,12 +227,14 @@ impl Material {
         self.color.uses_footprint()
             || self.textures.as_ref().is_some_and(|t| t.iter().any(|(_, t)| t.uses_footprint()))
             || self.normal_map.as_ref().is_some_and(|n| n.texture.uses_footprint())
+            || self.bump.is_some()
     }
 
     /// Whether evaluating the material needs the hit's surface coordinates.
     pub fn needs_coords(&self) -> bool {
         self.color.needs_coords()
             || self.normal_map.is_some()
+            || self.bump.is_some()
             || self.textures.as_ref().is_some_and(|t| t.iter().any(|(_, t)| t.needs_coords()))
             || self.pbr.as_ref().is_some_and(Pbr::needs_coords)
     }

@@ -9,7 +9,7 @@
 //! | lecture | from |
 //! |---|---|
 //! | `kd` (times `C`) | `1 - m` |
-//! | `ks` | `0.04 (1 - m) + m C`, the specular colour at normal incidence |
+//! | `ks` | `(1 - m) f0_d + m C`, the specular colour at normal incidence (`f0_d = 0.04` without `ior`, `specular`) |
 //! | `shininess` | `clamp(2 / max(r^4, 1e-4) - 2, 1, 10000)`: the Blinn exponent of GGX `alpha = r^2` |
 //! | mirror | `m C (1 - r)`: a metal mirrors its base colour, fading as it roughens |
 //! | `ka` (times `C`) | `0.1 ((1 - m) + m r)`: the diffuse part, and the part of a metal's reflection its roughness spreads, both under the ambient light (the importers' `ka = 0.1 kd` convention), so that under a uniform surround the terms add to `C` |
@@ -19,6 +19,9 @@
 //! | `base_color` | colour or texture | 1 | `C` (glTF `baseColorFactor x baseColorTexture`) |
 //! | `metallic` | number or texture | 0 | `m`, 0 to 1 (glTF's metallicRoughness texture's blue channel) |
 //! | `roughness` | number or texture | 0.5 | perceptual `r`, 0 to 1; GGX `alpha = r^2` (the texture's green channel) |
+//! | `ior` | number | 1.5 | the dielectric's index (`KHR_materials_ior`): `f0_d = ((ior - 1) / (ior + 1))^2` |
+//! | `specular` | number or texture | 1 | `KHR_materials_specular`'s `specularFactor` x `specularTexture.a`: scales `f0_d` and sets `f90_d` |
+//! | `specular_color` | colour or texture | 1 | `specularColorFactor` x `specularColorTexture`: tints `f0_d` (capped at 1) |
 //! | `emission` | colour or texture | 0 | emitted radiance |
 //! | `emission_strength` | number | 1 | multiplies `emission` (`KHR_materials_emissive_strength`) |
 //! | `two_sided` | boolean | false | emit from both sides |
@@ -41,9 +44,25 @@ use crate::params::{Kind, Param, ParamResult, ParamType as T, Params};
 pub struct Pbr {
     /// Metallic `m`, 0 to 1.
     pub metallic: f64,
+    /// The dielectric's index of refraction (`KHR_materials_ior`), 1.5 by default.
+    pub ior: f64,
+    /// `KHR_materials_specular`'s strength, 0 to 1 (1 by default).
+    pub specular: f64,
+    /// `KHR_materials_specular`'s colour (1 by default).
+    pub specular_color: Rgb,
 }
 
 impl Pbr {
+    /// Metallic `metallic` and glTF's dielectric (no extensions).
+    pub fn new(metallic: f64) -> Pbr {
+        Pbr { metallic: metallic.clamp(0.0, 1.0), ior: 1.5, specular: 1.0, specular_color: Rgb::ONE }
+    }
+
+    /// The dielectric's Fresnel for the BSDF.
+    pub fn specular(&self) -> crate::bsdfs::metallic_roughness::Specular {
+        crate::bsdfs::metallic_roughness::Specular::khr(self.ior, self.specular, self.specular_color)
+    }
+
     /// Whether nothing of its own varies over the surface.
     pub fn is_constant(&self) -> bool {
         true
@@ -69,7 +88,7 @@ pub fn derive_lecture_terms(m: &mut Material) {
     let r = m.roughness.clamp(0.0, 1.0);
     m.kd = Rgb::splat(1.0 - metal);
     m.ka = Rgb::splat(0.1 * ((1.0 - metal) + metal * r));
-    m.ks = Rgb::splat(0.04 * (1.0 - metal)) + metal * base;
+    m.ks = crate::bsdfs::metallic_roughness::f0(base, metal, pbr.specular());
     m.shininess = shininess(r);
     m.reflection = if metal > 0.0 { Reflection::Constant(metal * base * (1.0 - r)) } else { Reflection::None };
 }
@@ -82,7 +101,7 @@ pub fn material(base: Texture, metallic: f64, roughness: f64, emission: Rgb, tex
         roughness: roughness.clamp(0.0, 1.0),
         emission,
         textures: (!textures.is_empty()).then(|| Arc::from(textures)),
-        pbr: Some(Pbr { metallic: metallic.clamp(0.0, 1.0) }),
+        pbr: Some(Pbr::new(metallic)),
         ..Material::default()
     };
     derive_lecture_terms(&mut m);
@@ -97,13 +116,25 @@ pub const KIND: MaterialKind = Kind {
         Param::new("base_color", T::Texture, "1", "", "base colour `C`"),
         Param::new("metallic", T::ScalarTexture, "0", "0 to 1", "metalness `m`"),
         Param::new("roughness", T::ScalarTexture, "0.5", "0 to 1", "perceptual roughness `r`; GGX `alpha = r^2`"),
+        Param::new("ior", T::Number, "1.5", "> 0", "the dielectric's index of refraction (`KHR_materials_ior`)"),
+        Param::new("specular", T::ScalarTexture, "1", "0 to 1", "strength of the dielectric's reflection (`KHR_materials_specular`)"),
+        Param::new(
+            "specular_color",
+            T::Texture,
+            "1",
+            "",
+            "tint of the dielectric's reflection at normal incidence (`KHR_materials_specular`)",
+        ),
         Param::new("emission", T::Texture, "0", "radiance", "emitted radiance"),
         Param::new("emission_strength", T::Number, "1", ">= 0", "multiplies `emission` (`KHR_materials_emissive_strength`)"),
         Param::new("two_sided", T::Bool, "false", "", "emit from both sides of the surface, not only the front"),
         super::normal_map::NORMAL_MAP_PARAMS[0],
         super::normal_map::NORMAL_MAP_PARAMS[1],
+        super::bump::BUMP_PARAMS[0],
+        super::bump::BUMP_PARAMS[1],
         super::alpha::ALPHA_PARAMS[0],
         super::alpha::ALPHA_PARAMS[1],
+        super::alpha::ALPHA_PARAMS[2],
     ],
     build,
 };
@@ -118,6 +149,15 @@ fn build(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Material> {
             return Err(p.key_error(key, format!("must be between 0 and 1, got {x}")));
         }
     }
+    let ior = p.number_or("ior", 1.5)?;
+    if !(ior.is_finite() && ior > 0.0) {
+        return Err(p.key_error("ior", format!("must be a positive number, got {ior}")));
+    }
+    let specular = scalar_param(p, textures, "specular", 1.0, Slot::Specular, &mut maps)?;
+    if !(0.0..=1.0).contains(&specular) {
+        return Err(p.key_error("specular", format!("must be between 0 and 1, got {specular}")));
+    }
+    let specular_color = super::textured::color_param(p, textures, "specular_color", Rgb::ONE, Slot::SpecularColor, &mut maps)?;
     let strength = p.number_or("emission_strength", 1.0)?;
     if !(strength.is_finite() && strength >= 0.0) {
         return Err(p.key_error("emission_strength", format!("must be a non-negative number, got {strength}")));
@@ -132,8 +172,13 @@ fn build(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Material> {
         }
     };
     let mut m = material(base, metallic, roughness, emission, maps);
+    if let Some(pbr) = &mut m.pbr {
+        (pbr.ior, pbr.specular, pbr.specular_color) = (ior, specular, specular_color);
+    }
+    derive_lecture_terms(&mut m);
     m.two_sided = p.boolean("two_sided")?.unwrap_or(false);
     m.normal_map = super::normal_map::read(p, textures)?;
+    m.bump = super::bump::read(p, textures)?;
     m.alpha = super::alpha::read(p, textures)?;
     m.validate().map_err(|e| p.core_error(e))?;
     Ok(m)

@@ -58,8 +58,11 @@ pub const KIND: MaterialKind = Kind {
         Param::new("roughness", T::ScalarTexture, "0", "0 to 1", "GGX roughness of Fresnel glass and conductors in the path tracer"),
         NORMAL_MAP_PARAMS[0],
         NORMAL_MAP_PARAMS[1],
+        super::bump::BUMP_PARAMS[0],
+        super::bump::BUMP_PARAMS[1],
         super::alpha::ALPHA_PARAMS[0],
         super::alpha::ALPHA_PARAMS[1],
+        super::alpha::ALPHA_PARAMS[2],
     ],
     build,
 };
@@ -97,6 +100,7 @@ fn build(p: &mut Params<'_>, textures: &super::Textures<'_>) -> ParamResult<Mate
         textures: None,
         pbr: None,
         normal_map: normal_map::read(p, textures)?,
+        bump: super::bump::read(p, textures)?,
         alpha: super::alpha::read(p, textures)?,
     };
     let material = Material { textures: (!maps.is_empty()).then(|| maps.into()), ..material };

@@ -110,13 +110,34 @@ pub struct ShadingPoint {
     pub duv_dy: [f64; 2],
     /// A mesh's interpolated vertex colour.
     pub color: Option<Rgb>,
+    /// The second texture coordinates (glTF `TEXCOORD_1`) and their changes
+    /// from pixel to pixel in x and y, where the shape has them. (An option, so
+    /// that a point without them costs one byte to make, not six numbers.)
+    pub second: Option<[[f64; 2]; 3]>,
 }
 
 impl ShadingPoint {
     /// The point `p` with no surface coordinates.
     #[inline]
     pub fn at(p: Vec3) -> ShadingPoint {
-        ShadingPoint { p, uv: [0.0; 2], duv_dx: [0.0; 2], duv_dy: [0.0; 2], color: None }
+        ShadingPoint { p, uv: [0.0; 2], duv_dx: [0.0; 2], duv_dy: [0.0; 2], color: None, second: None }
+    }
+
+    /// The point `p` with the surface coordinates `c` (no footprint).
+    #[inline]
+    pub fn with_coords(p: Vec3, c: &crate::shapes::SurfaceCoords) -> ShadingPoint {
+        let second = c.uv1.map(|s| [s.uv, [0.0; 2], [0.0; 2]]);
+        ShadingPoint { uv: c.uv, color: c.color, second, ..ShadingPoint::at(p) }
+    }
+
+    /// The same point seen through its second texture coordinates; itself
+    /// where it has none.
+    #[inline]
+    pub fn second_uv(&self) -> ShadingPoint {
+        match self.second {
+            Some([uv, duv_dx, duv_dy]) => ShadingPoint { uv, duv_dx, duv_dy, ..*self },
+            None => *self,
+        }
     }
 }
 
@@ -152,6 +173,8 @@ pub enum Texture {
     Mix(Arc<[Texture; 3]>),
     /// A mesh's vertex colour, 1 where the shape has none ([`super::combine`]).
     VertexColor,
+    /// A texture read at the second texture coordinates ([`super::uv_set`]).
+    SecondUv(Arc<Texture>),
 }
 
 impl Texture {
@@ -183,6 +206,7 @@ impl Texture {
                 f[0].evaluate(at) * (Rgb::ONE - t) + f[1].evaluate(at) * t
             }
             Texture::VertexColor => at.color.unwrap_or(Rgb::ONE),
+            Texture::SecondUv(t) => t.evaluate(&at.second_uv()),
         }
     }
 
@@ -203,6 +227,7 @@ impl Texture {
             Texture::Image(i) => i.filter == super::image::Filter::Trilinear,
             Texture::Scale(f) => f.iter().any(Texture::uses_footprint),
             Texture::Mix(f) => f.iter().any(Texture::uses_footprint),
+            Texture::SecondUv(t) => t.uses_footprint(),
             _ => false,
         }
     }

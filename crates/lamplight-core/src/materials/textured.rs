@@ -8,7 +8,7 @@
 //! need no per-parameter code. A material without textures is borrowed as it is.
 //!
 //! Values from textures are clamped where the field requires it: colours to
-//! `>= 0`, `shininess` to `>= 0`, `roughness` and `metallic` to `[0, 1]`. A
+//! `>= 0`, `shininess` to `>= 0`, `roughness`, `metallic` and `specular` to `[0, 1]`. A
 //! scalar slot reads the texture's first channel (an image's `channel` chooses it).
 
 use super::{Material, Texture, Textures};
@@ -34,6 +34,10 @@ pub enum Slot {
     Roughness,
     /// The metallic-roughness model's `metallic` ([`super::pbr`]).
     Metallic,
+    /// Its `specular` strength (`KHR_materials_specular`).
+    Specular,
+    /// Its `specular_color`.
+    SpecularColor,
 }
 
 impl Slot {
@@ -52,6 +56,16 @@ impl Slot {
             Slot::Metallic => {
                 if let Some(pbr) = &mut m.pbr {
                     pbr.metallic = value.x.clamp(0.0, 1.0);
+                }
+            }
+            Slot::Specular => {
+                if let Some(pbr) = &mut m.pbr {
+                    pbr.specular = value.x.clamp(0.0, 1.0);
+                }
+            }
+            Slot::SpecularColor => {
+                if let Some(pbr) = &mut m.pbr {
+                    pbr.specular_color = colour;
                 }
             }
         }

@@ -1,6 +1,6 @@
 //! Shading a hit: the material's textures evaluated at the hit's surface
 //! coordinates (computed only for materials that read them), its normal map
-//! applied, and the pixel footprint carried into `(u, v)` for MIP-mapping.
+//! and bump map applied, and the pixel footprint carried into `(u, v)` for MIP-mapping.
 
 use std::borrow::Cow;
 
@@ -14,19 +14,18 @@ impl Scene {
     /// only then, [`Scene::surface_coords`]).
     #[inline]
     pub fn shading_point(&self, hit: &Hit) -> ShadingPoint {
-        let mut at = ShadingPoint::at(hit.point);
         if self.materials[hit.material].needs_coords() {
-            let c = self.surface_coords(hit);
-            at.uv = c.uv;
-            at.color = c.color;
+            ShadingPoint::with_coords(hit.point, &self.surface_coords(hit))
+        } else {
+            ShadingPoint::at(hit.point)
         }
-        at
     }
 
     /// Shades `hit`, seen from the unit direction `wo` by a ray whose pixel
     /// footprint there is `footprint` wide (0: unknown): the material with its
     /// textures evaluated there ([`Material::at`]), and the shading normal
-    /// turned by the material's normal map ([`crate::materials::normal_map`]).
+    /// turned by the material's bump map ([`crate::materials::bump`]) and
+    /// normal map ([`crate::materials::normal_map`]).
     /// The surface coordinates are computed once, and only when the material
     /// reads them.
     #[inline]
@@ -41,11 +40,17 @@ impl Scene {
         let mut at = ShadingPoint::at(hit.point);
         let coords = material.needs_coords().then(|| self.surface_coords(hit));
         if let Some(c) = &coords {
-            at.uv = c.uv;
-            at.color = c.color;
+            at = ShadingPoint::with_coords(hit.point, c);
             if footprint > 0.0 {
-                (at.duv_dx, at.duv_dy) = footprint_in_uv(c, hit.geometric_normal, wo, footprint);
+                (at.duv_dx, at.duv_dy) = footprint_in_uv(c.dpdu, c.dpdv, hit.geometric_normal, wo, footprint);
+                if let (Some(second), Some(s)) = (&mut at.second, &c.uv1) {
+                    (second[1], second[2]) = footprint_in_uv(s.dpdu, s.dpdv, hit.geometric_normal, wo, footprint);
+                }
             }
+        }
+        if let (Some(bump), Some(c)) = (&material.bump, &coords) {
+            let outward = if hit.front_face { hit.geometric_normal } else { -hit.geometric_normal };
+            hit.normal = bump.apply(&at, c, outward, hit.normal, hit.geometric_normal, wo);
         }
         if let (Some(map), Some(c)) = (&material.normal_map, &coords) {
             hit.normal = map.apply(&at, c, hit.normal, hit.geometric_normal, wo);
@@ -79,12 +84,12 @@ impl Scene {
 /// `(u, v)` along its two axes: the long one in the plane of the view and the
 /// normal `ng`, stretched by `1 / cos` (to at most 100x), and the one across it
 /// (ray cones' elliptical footprint). Each world step `a` in the tangent plane
-/// becomes the least-squares `(du, dv)` of `a = du dp/du + dv dp/dv`.
-fn footprint_in_uv(c: &crate::shapes::SurfaceCoords, ng: Vec3, wo: Vec3, width: f64) -> ([f64; 2], [f64; 2]) {
+/// becomes the least-squares `(du, dv)` of `a = du dp/du + dv dp/dv` (`dpdu`, `dpdv`).
+fn footprint_in_uv(dpdu: Vec3, dpdv: Vec3, ng: Vec3, wo: Vec3, width: f64) -> ([f64; 2], [f64; 2]) {
     let cos = ng.dot(wo).abs().max(0.01);
     let along = (wo - ng * ng.dot(wo)).try_normalize().unwrap_or_else(|| crate::math::orthonormal_basis(ng).0);
     let across = ng.cross(along);
-    let (a, b) = (c.dpdu, c.dpdv);
+    let (a, b) = (dpdu, dpdv);
     let (aa, ab, bb) = (a.dot(a), a.dot(b), b.dot(b));
     let det = aa * bb - ab * ab;
     if !(det > 0.0 && det.is_finite()) {

@@ -55,6 +55,8 @@ pub struct TriangleMesh {
 pub struct VertexAttributes {
     /// Texture coordinates (glTF `TEXCOORD_0`, OBJ `vt`, PLY `u v`).
     pub uvs: Option<Vec<[f64; 2]>>,
+    /// A second set of texture coordinates (glTF `TEXCOORD_1`).
+    pub uvs1: Option<Vec<[f64; 2]>>,
     /// Linear RGB colours (glTF `COLOR_0`, PLY `red green blue`).
     pub colors: Option<Vec<Rgb>>,
     /// Tangents `(x, y, z, w)`, `w = +-1` the bitangent's sign (glTF `TANGENT`, or MikkTSpace).
@@ -143,6 +145,7 @@ impl TriangleMesh {
             }
         }
         check("texture coordinates", &attributes.uvs, n, |uv| uv.iter().all(|x| x.is_finite()))?;
+        check("second texture coordinates", &attributes.uvs1, n, |uv| uv.iter().all(|x| x.is_finite()))?;
         check("colors", &attributes.colors, n, |c| c.is_finite())?;
         check("tangents", &attributes.tangents, n, |t| t.iter().all(|x| x.is_finite()))?;
         self.attributes = attributes;
@@ -271,6 +274,10 @@ impl Shape for TriangleMesh {
         let uv = a.uvs.as_ref().map_or(DEFAULT_UV, |uvs| idx.map(|i| uvs[i]));
         let normal = face_normal(v[0], v[1], v[2]).unwrap_or(n);
         let mut coords = interpolated_coords(p, v, uv, normal);
+        coords.uv1 = a.uvs1.as_ref().map(|uvs| {
+            let c = interpolated_coords(p, v, idx.map(|i| uvs[i]), normal);
+            super::surface::SecondUv { uv: c.uv, dpdu: c.dpdu, dpdv: c.dpdv }
+        });
         let b = barycentric(p, v[0], v[1], v[2]);
         coords.color = a.colors.as_ref().map(|c| c[idx[0]] * b[0] + c[idx[1]] * b[1] + c[idx[2]] * b[2]);
         coords.tangent = a.tangents.as_ref().and_then(|t| {

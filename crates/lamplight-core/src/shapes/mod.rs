@@ -40,7 +40,7 @@ pub use mesh::{TriangleMesh, VertexAttributes};
 pub use plane::{Disk, Plane, Rectangle};
 pub use quadric::{Clip, Quadric, Sheets};
 pub use sphere::Sphere;
-pub use surface::SurfaceCoords;
+pub use surface::{SecondUv, SurfaceCoords};
 pub use torus::Torus;
 pub use triangle::{intersect_triangle, Triangle, TriangleHit, WatertightRay};
 

@@ -33,13 +33,26 @@ pub struct SurfaceCoords {
     /// The mesh's unit tangent and bitangent sign (glTF `TANGENT`'s `w`: the
     /// bitangent is `w (n x t)`), interpolated; `None` elsewhere.
     pub tangent: Option<(Vec3, f64)>,
+    /// The mesh's second texture coordinates (glTF `TEXCOORD_1`); `None` elsewhere.
+    pub uv1: Option<SecondUv>,
+}
+
+/// A second set of texture coordinates with its own tangents.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SecondUv {
+    /// Texture coordinates.
+    pub uv: [f64; 2],
+    /// `dp/du` of this set.
+    pub dpdu: Vec3,
+    /// `dp/dv` of this set.
+    pub dpdv: Vec3,
 }
 
 impl SurfaceCoords {
     /// `(u, v)` with its tangents, no vertex data.
     #[inline]
     pub fn new(uv: [f64; 2], dpdu: Vec3, dpdv: Vec3) -> SurfaceCoords {
-        SurfaceCoords { uv, dpdu, dpdv, color: None, tangent: None }
+        SurfaceCoords { uv, dpdu, dpdv, color: None, tangent: None, uv1: None }
     }
 
     /// The coordinates of a shape with no parametrization: `(0, 0)`, with an
@@ -54,6 +67,7 @@ impl SurfaceCoords {
         self.dpdu = m.transform_vector3(self.dpdu);
         self.dpdv = m.transform_vector3(self.dpdv);
         self.tangent = self.tangent.and_then(|(t, w)| m.transform_vector3(t).try_normalize().map(|t| (t, w)));
+        self.uv1 = self.uv1.map(|s| SecondUv { uv: s.uv, dpdu: m.transform_vector3(s.dpdu), dpdv: m.transform_vector3(s.dpdv) });
         self
     }
 }

@@ -160,6 +160,7 @@ pub fn build() -> Result<Scene, Error> {
             textures: None,
             pbr: None,
             normal_map: None,
+            bump: None,
             alpha: None,
         })?;
         let center = Vec3::from_array(s.center);

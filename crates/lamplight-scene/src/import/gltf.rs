@@ -227,7 +227,7 @@ impl Reader<'_> {
             }
             for (semantic, _) in p.attributes() {
                 use gltf::Semantic as S;
-                if !matches!(semantic, S::Positions | S::Normals | S::TexCoords(0) | S::Colors(0) | S::Tangents) {
+                if !matches!(semantic, S::Positions | S::Normals | S::TexCoords(0) | S::TexCoords(1) | S::Colors(0) | S::Tangents) {
                     self.warnings.once(format!("glTF vertex attribute {semantic:?} ignored"));
                 }
             }
@@ -297,7 +297,7 @@ impl Reader<'_> {
         Ok(list)
     }
 
-    /// `TEXCOORD_0` (its `v` flipped: glTF's `v = 0` is the image's top row,
+    /// `TEXCOORD_0` and `TEXCOORD_1` (their `v` flipped: glTF's `v = 0` is the image's top row,
     /// lamplight's the bottom), `COLOR_0` (rgb; alpha is not used) and `TANGENT`.
     fn vertex_attributes(&self, p: &gltf::Primitive, at: &str, count: usize) -> Result<VertexAttributes, LoadError> {
         use gltf::Semantic as S;
@@ -305,6 +305,10 @@ impl Reader<'_> {
         if let Some(acc) = p.get(&S::TexCoords(0)) {
             let (v, _) = self.normalized(&acc, &[Dimensions::Vec2], &format!("{at}.attributes.TEXCOORD_0"), count)?;
             out.uvs = Some(v.chunks_exact(2).map(|c| [c[0], 1.0 - c[1]]).collect());
+        }
+        if let Some(acc) = p.get(&S::TexCoords(1)) {
+            let (v, _) = self.normalized(&acc, &[Dimensions::Vec2], &format!("{at}.attributes.TEXCOORD_1"), count)?;
+            out.uvs1 = Some(v.chunks_exact(2).map(|c| [c[0], 1.0 - c[1]]).collect());
         }
         if let Some(acc) = p.get(&S::Colors(0)) {
             let (v, n) = self.normalized(&acc, &[Dimensions::Vec3, Dimensions::Vec4], &format!("{at}.attributes.COLOR_0"), count)?;

@@ -8,14 +8,18 @@
 //! | `metallicFactor` x `metallicRoughnessTexture`.b, `roughnessFactor` x its .g (linear) | `metallic`, `roughness` |
 //! | `emissiveFactor` x `emissiveTexture` (sRGB) x `KHR_materials_emissive_strength` | `emission` (an emitting surface with a texture is not sampled as an area light) |
 //! | sampler `wrapS`, `minFilter`/`magFilter` | `wrap`; `nearest` for NEAREST filters, `trilinear` for mipmapped ones, else `bilinear` |
+//! | `KHR_materials_ior` `ior` | `ior`: the dielectric's `f0 = ((ior - 1) / (ior + 1))^2` |
+//! | `KHR_materials_specular`: `specularFactor` x `specularTexture`.a (linear), `specularColorFactor` x `specularColorTexture` (sRGB) | `specular`, `specular_color` |
 //! | `normalTexture`, its `scale` | the normal map (linear; the tangents from `TANGENT`, else MikkTSpace) |
 //! | `KHR_texture_transform` | the texture's UV transform, in lamplight's `v`-up convention (`F T R S F`, `F(u, v) = (u, 1 - v)`) |
 //! | `KHR_materials_transmission` `t > 0` | `Material::glass(ior, ..)` (index from `KHR_materials_ior`, default 1.5) with `kd`, `ka` scaled by `1 - t`, shadow rays passing `t B`, and GGX `roughness = r^2` (textures not read) |
 //!
-//! | `alphaMode` `MASK`, `alphaCutoff`; `BLEND` | a cut-out of base colour alpha x `baseColorTexture` alpha ([`lamplight_core::materials::alpha`]); `BLEND` as `MASK` at 0.5, with a warning |
+//! | `alphaMode` `MASK`, `alphaCutoff`; `BLEND` | coverage base colour alpha x `baseColorTexture` alpha ([`lamplight_core::materials::alpha`]): a cut-out at `alphaCutoff`; `BLEND` stochastic transparency |
 //!
 //! `occlusionTexture` is not read: the path tracer computes the occlusion it
-//! stands for. Texture coordinates other than `TEXCOORD_0` are read as
+//! stands for. A textureInfo's `texCoord` (or its `KHR_texture_transform`
+//! `texCoord`) chooses `TEXCOORD_0` or `TEXCOORD_1` (a `uv_set` texture,
+//! [`lamplight_core::materials::uv_set`]); sets from 2 up are read as
 //! `TEXCOORD_0` (a warning says so). Numbers are clamped to their valid range
 //! (non-finite ones become 0) so no NaN reaches the renderer.
 
@@ -69,8 +73,10 @@ fn image_texture(
     load: &mut LoadImage<'_>,
     warnings: &mut Warnings,
 ) -> Result<Texture, LoadError> {
-    if tex_coord != 0 || transform.as_ref().and_then(|t| t.tex_coord()).is_some_and(|c| c != 0) {
-        warnings.once("glTF textures on TEXCOORD_1 and above are read with TEXCOORD_0".to_string());
+    // KHR_texture_transform's texCoord overrides the textureInfo's.
+    let set = transform.as_ref().and_then(|t| t.tex_coord()).unwrap_or(tex_coord);
+    if set > 1 {
+        warnings.once("glTF textures on TEXCOORD_2 and above are read with TEXCOORD_0".to_string());
     }
     let image = load(&texture.source(), srgb)?;
     let sampler = texture.sampler();
@@ -107,7 +113,8 @@ fn image_texture(
             }
         }
     };
-    Ok(Texture::Image(Arc::new(ImageTexture { image, wrap, filter, transform, channel })))
+    let texture = Texture::Image(Arc::new(ImageTexture { image, wrap, filter, transform, channel }));
+    Ok(if set == 1 { Texture::SecondUv(Arc::new(texture)) } else { texture })
 }
 
 /// Maps one glTF material (module doc); `vertex_colors` when the primitive has
@@ -143,13 +150,11 @@ pub(super) fn map(
             ..glass
         });
     }
+    // `Some(None)`: blend; `Some(Some(c))`: a cut-out at `c`.
     let cutoff = match m.alpha_mode() {
         gltf::material::AlphaMode::Opaque => None,
-        gltf::material::AlphaMode::Mask => Some(m.alpha_cutoff().map_or(0.5, |c| clean(c).min(1.0))),
-        gltf::material::AlphaMode::Blend => {
-            warnings.once("glTF alphaMode BLEND read as MASK with cutoff 0.5: blending is not done".to_string());
-            Some(0.5)
-        }
+        gltf::material::AlphaMode::Mask => Some(Some(m.alpha_cutoff().map_or(0.5, |c| clean(c).min(1.0)))),
+        gltf::material::AlphaMode::Blend => Some(None),
     };
     let mut texture = |info: Option<gltf::texture::Info>, srgb: bool, channel: Channel| -> Result<Option<Texture>, LoadError> {
         match info {
@@ -183,10 +188,31 @@ pub(super) fn map(
         None => None,
         Some(cutoff) => {
             let coverage = texture(pbr_json.base_color_texture(), true, Channel::One(3))?;
-            Some(Arc::new(AlphaMask { texture: scaled(coverage, Rgb::splat(clean(alpha_factor).min(1.0))), cutoff }))
+            let coverage = scaled(coverage, Rgb::splat(clean(alpha_factor).min(1.0)));
+            Some(Arc::new(match cutoff {
+                Some(c) => AlphaMask::mask(coverage, c),
+                None => AlphaMask::blend(coverage),
+            }))
         }
     };
+    // KHR_materials_ior and KHR_materials_specular: the dielectric's Fresnel.
+    let ior = m.ior().map(f64::from).filter(|i| i.is_finite() && *i > 0.0).unwrap_or(1.5);
+    let (mut specular, mut specular_color) = (1.0, Rgb::ONE);
+    if let Some(spec) = m.specular() {
+        specular = clean(spec.specular_factor()).min(1.0);
+        specular_color = rgb(spec.specular_color_factor());
+        if let Some(t) = texture(spec.specular_texture(), false, Channel::One(3))? {
+            maps.push((Slot::Specular, scaled(Some(t), Rgb::splat(specular))));
+        }
+        if let Some(t) = texture(spec.specular_color_texture(), true, Channel::Rgb)? {
+            maps.push((Slot::SpecularColor, scaled(Some(t), specular_color)));
+        }
+    }
     let mut material = pbr::material(base, metal, rough, emission, maps);
+    if let Some(p) = &mut material.pbr {
+        (p.ior, p.specular, p.specular_color) = (ior, specular, specular_color);
+    }
+    pbr::derive_lecture_terms(&mut material);
     material.alpha = alpha;
     if let Some(n) = m.normal_texture() {
         let texture = image_texture(&n.texture(), n.tex_coord(), None, false, Channel::Rgb, load, warnings)?;

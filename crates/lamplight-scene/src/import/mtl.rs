@@ -23,15 +23,28 @@
 //! | `map_Ns FILE` | `shininess` = `Ns x` the image's first channel (linear) |
 //! | `norm FILE` (with `-bm s`) | a tangent-space normal map of scale `s` |
 //! | `map_d FILE` | a cut-out where the image's first channel (linear) is below 0.5 |
+//! | `bump FILE`, `map_Bump FILE` (with `-bm s`) | a bump map ([`lamplight_core::materials::bump`]): height = the image's first channel (linear), displacement `s` x height |
+//!
+//! The PBR extension keys (Exocortex's, as Blender and tinyobjloader write
+//! them) make the material a `pbr` one ([`lamplight_core::materials::pbr`]):
+//!
+//! | MTL | lamplight `pbr` |
+//! |---|---|
+//! | `Kd` x `map_Kd` | `base_color` |
+//! | `Pm` x `map_Pm` (first channel, linear) | `metallic` (default 0) |
+//! | `Pr` x `map_Pr` (first channel, linear) | perceptual `roughness` (default 0.5) |
+//! | `Ke`, `norm`, `bump`, `map_d` | emission, normal map, bump map, cut-out, as above |
+//!
+//! `Ka`, `Ks`, `Ns`, `map_Ks`, `map_Ns`, `illum`, `d` and `Ni` do not apply to it.
 //!
 //! `Tr` follows the specification (`Tr = 1 - d`); whichever of `d`/`Tr` comes
 //! last wins. A map statement's options (`-s`, `-o`, `-bm`, `-clamp`, ...) are
-//! read past (`-bm` is the normal map's scale, `-clamp on` its wrap mode) and
+//! read past (`-bm` is the normal or bump map's scale, `-clamp on` its wrap mode) and
 //! its file is found beside the `.mtl`; a file that cannot be read is reported
 //! as a warning naming it and its line, and the material is kept without it.
-//! Height bump maps (`bump`, `map_Bump`), `map_Ka`,
-//! `disp`, `decal`, `refl` and other statements are not supported: each kind is
-//! reported once as a warning.
+//! Map keywords are matched without regard to case (`map_bump`, `Bump` are
+//! `map_Bump`). `map_Ka`, `disp`, `decal`, `refl` and other statements are
+//! not supported: each kind is reported once as a warning.
 
 use std::collections::HashMap;
 use std::path::Path;
@@ -40,7 +53,9 @@ use std::sync::Arc;
 
 use lamplight_core::materials::alpha::AlphaMask;
 use lamplight_core::materials::image::{Channel, Filter, Wrap};
-use lamplight_core::materials::{ImageData, ImageTexture, Material, NormalMap, Reflection, Refraction, Slot, Texture, UvTransform};
+use lamplight_core::materials::{
+    BumpMap, ImageData, ImageTexture, Material, NormalMap, Reflection, Refraction, Slot, Texture, UvTransform,
+};
 use lamplight_core::math::Rgb;
 
 use super::{number, words, Warnings};
@@ -61,7 +76,12 @@ struct MtlValues {
     map_ks: Option<Texture>,
     map_ns: Option<Texture>,
     norm: Option<NormalMap>,
+    bump: Option<BumpMap>,
     map_d: Option<Texture>,
+    pr: Option<f64>,
+    pm: Option<f64>,
+    map_pr: Option<Texture>,
+    map_pm: Option<Texture>,
 }
 
 /// A map statement's file and options: `(file, -bm value, -clamp on)`.
@@ -97,6 +117,19 @@ pub(super) fn parse(path: &Path, text: &str, warnings: &mut Warnings) -> Result<
         let line = raw.split('#').next().unwrap_or("");
         let w = words(line);
         let Some(&(_, keyword)) = w.first() else { continue };
+        // Map keywords in any case; the bump map's two names as one.
+        let written = keyword;
+        let keyword = match keyword.to_ascii_lowercase().as_str() {
+            "map_kd" => "map_Kd",
+            "map_ks" => "map_Ks",
+            "map_ns" => "map_Ns",
+            "map_d" => "map_d",
+            "norm" => "norm",
+            "bump" | "map_bump" => "map_Bump",
+            "map_pr" => "map_Pr",
+            "map_pm" => "map_Pm",
+            _ => keyword,
+        };
         if keyword == "newmtl" {
             if let Some((name, values)) = current.take() {
                 done.insert(name, to_material(&values));
@@ -109,14 +142,14 @@ pub(super) fn parse(path: &Path, text: &str, warnings: &mut Warnings) -> Result<
             continue;
         }
         let is_map = keyword.starts_with("map_") || matches!(keyword, "bump" | "disp" | "decal" | "refl" | "norm");
-        let read_map = matches!(keyword, "map_Kd" | "map_Ks" | "map_Ns" | "norm" | "map_d");
+        let read_map = matches!(keyword, "map_Kd" | "map_Ks" | "map_Ns" | "norm" | "map_d" | "map_Bump" | "map_Pr" | "map_Pm");
         if read_map {
             let Some((_, values)) = current.as_mut() else {
-                return Err(LoadError::at(path, line_no, w[0].0, format!("`{keyword}` before any `newmtl`")));
+                return Err(LoadError::at(path, line_no, w[0].0, format!("`{written}` before any `newmtl`")));
             };
             let Some((file, bm, clamp)) = map_statement(&w) else {
                 let end = line.trim_end().chars().count() + 1;
-                return Err(LoadError::at(path, line_no, end, format!("expected a file name after `{keyword}`")));
+                return Err(LoadError::at(path, line_no, end, format!("expected a file name after `{written}`")));
             };
             let srgb = matches!(keyword, "map_Kd" | "map_Ks");
             let key = (file.clone(), srgb);
@@ -129,13 +162,14 @@ pub(super) fn parse(path: &Path, text: &str, warnings: &mut Warnings) -> Result<
                         Some(i)
                     }
                     Err(e) => {
-                        warnings.once(format!("MTL {keyword} at line {line_no} ignored: {e}"));
+                        warnings.once(format!("MTL {written} at line {line_no} ignored: {e}"));
                         None
                     }
                 },
             };
             if let Some(image) = image {
-                let channel = if matches!(keyword, "map_Ns" | "map_d") { Channel::One(0) } else { Channel::Rgb };
+                let channel =
+                    if matches!(keyword, "map_Ns" | "map_d" | "map_Bump" | "map_Pr" | "map_Pm") { Channel::One(0) } else { Channel::Rgb };
                 let wrap = if clamp { Wrap::Clamp } else { Wrap::Repeat };
                 let texture = Texture::Image(Arc::new(ImageTexture {
                     image,
@@ -149,15 +183,18 @@ pub(super) fn parse(path: &Path, text: &str, warnings: &mut Warnings) -> Result<
                     "map_Ks" => values.map_ks = Some(texture),
                     "map_Ns" => values.map_ns = Some(texture),
                     "map_d" => values.map_d = Some(texture),
+                    "map_Bump" => values.bump = Some(BumpMap { texture, scale: bm }),
+                    "map_Pr" => values.map_pr = Some(texture),
+                    "map_Pm" => values.map_pm = Some(texture),
                     _ => values.norm = Some(NormalMap { texture, scale: bm }),
                 }
             }
             continue;
         }
-        let known = matches!(keyword, "Ka" | "Kd" | "Ks" | "Ke" | "Ns" | "Ni" | "d" | "Tr" | "illum");
+        let known = matches!(keyword, "Ka" | "Kd" | "Ks" | "Ke" | "Ns" | "Ni" | "d" | "Tr" | "illum" | "Pr" | "Pm");
         if !known {
             let what = if is_map {
-                format!("MTL {keyword} ignored: only map_Kd, map_Ks, map_Ns, map_d and norm maps are read")
+                format!("MTL {keyword} ignored: only map_Kd, map_Ks, map_Ns, map_d, bump/map_Bump, norm, map_Pr and map_Pm maps are read")
             } else {
                 format!("MTL statement `{keyword}` ignored")
             };
@@ -184,6 +221,13 @@ pub(super) fn parse(path: &Path, text: &str, warnings: &mut Warnings) -> Result<
             "Ks" => values.ks = Some(rgb("Ks colour")?),
             "Ke" => values.ke = Some(rgb("Ke colour")?),
             "Ns" => values.ns = Some(num(1, "Ns exponent")?.max(0.0)),
+            "Pr" | "Pm" => {
+                let v = num(1, if keyword == "Pr" { "Pr roughness" } else { "Pm metallic" })?;
+                if !(0.0..=1.0).contains(&v) {
+                    return Err(LoadError::at(path, line_no, w[1].0, format!("expected a value in [0, 1], found {v}")));
+                }
+                *(if keyword == "Pr" { &mut values.pr } else { &mut values.pm }) = Some(v);
+            }
             "Ni" => {
                 let ni = num(1, "Ni index of refraction")?;
                 if !(ni > 0.0) {
@@ -217,8 +261,36 @@ pub(super) fn parse(path: &Path, text: &str, warnings: &mut Warnings) -> Result<
     Ok(done)
 }
 
+/// The PBR extension's mapping (module doc), when the block uses its keys.
+fn to_pbr(v: &MtlValues) -> Option<Material> {
+    if v.pr.is_none() && v.pm.is_none() && v.map_pr.is_none() && v.map_pm.is_none() {
+        return None;
+    }
+    let kd = v.kd.unwrap_or(Rgb::splat(0.8));
+    let base = match &v.map_kd {
+        None => Texture::Constant(kd),
+        Some(t) if kd == Rgb::ONE => t.clone(),
+        Some(t) => Texture::Scale(Arc::new([t.clone(), Texture::Constant(kd)])),
+    };
+    let (metallic, roughness) = (v.pm.unwrap_or(0.0), v.pr.unwrap_or(0.5));
+    let mut maps = Vec::new();
+    for (slot, map, factor) in [(Slot::Metallic, &v.map_pm, metallic), (Slot::Roughness, &v.map_pr, roughness)] {
+        if let Some(t) = map {
+            maps.push((slot, Texture::Scale(Arc::new([t.clone(), Texture::Constant(Rgb::splat(factor))]))));
+        }
+    }
+    let mut m = lamplight_core::materials::pbr::material(base, metallic, roughness, v.ke.unwrap_or(Rgb::ZERO), maps);
+    m.normal_map = v.norm.clone().map(Arc::new);
+    m.bump = v.bump.clone().map(Arc::new);
+    m.alpha = v.map_d.clone().map(|texture| Arc::new(AlphaMask::mask(texture, 0.5)));
+    Some(m)
+}
+
 /// The mapping of the module doc.
 fn to_material(v: &MtlValues) -> Material {
+    if let Some(m) = to_pbr(v) {
+        return m;
+    }
     let kd = v.kd.unwrap_or(Rgb::splat(0.8));
     let ka = v.ka.unwrap_or(0.1 * kd);
     let ks = v.ks.unwrap_or(Rgb::ZERO);
@@ -232,7 +304,8 @@ fn to_material(v: &MtlValues) -> Material {
         shininess: ns,
         emission: v.ke.unwrap_or(Rgb::ZERO),
         normal_map: v.norm.clone().map(Arc::new),
-        alpha: v.map_d.clone().map(|texture| Arc::new(AlphaMask { texture, cutoff: 0.5 })),
+        bump: v.bump.clone().map(Arc::new),
+        alpha: v.map_d.clone().map(|texture| Arc::new(AlphaMask::mask(texture, 0.5))),
         ..Material::default()
     };
     if let Some(t) = &v.map_kd {
@@ -306,16 +379,21 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         image::RgbImage::from_pixel(1, 1, image::Rgb([255, 0, 0])).save(dir.path().join("red.png")).unwrap();
         let mut w = Warnings::default();
-        let text = "newmtl m\nKd 0.5\nmap_Kd -s 1 1 red.png\nnorm -bm 2 red.png\nmap_Ks missing.png\nbump b.png\n";
+        let text =
+            "newmtl m\nKd 0.5\nmap_Kd -s 1 1 red.png\nnorm -bm 2 red.png\nmap_Ks missing.png\ndisp b.png\nmap_bump -bm 0.25 red.png\n";
         let m = parse(&dir.path().join("t.mtl"), text, &mut w).unwrap().remove("m").unwrap();
         assert!(matches!(m.color, Texture::Image(_)));
         assert_eq!(m.normal_map.as_ref().map(|n| n.scale), Some(2.0));
+        assert_eq!(m.bump.as_ref().map(|b| b.scale), Some(0.25));
         let warnings = w.into_vec();
         assert!(
             warnings[0].starts_with("MTL map_Ks at line 5 ignored: cannot read texture") && warnings[0].contains("missing.png"),
             "{warnings:?}"
         );
-        assert_eq!(warnings[1], "MTL bump ignored: only map_Kd, map_Ks, map_Ns, map_d and norm maps are read");
+        assert_eq!(
+            warnings[1],
+            "MTL disp ignored: only map_Kd, map_Ks, map_Ns, map_d, bump/map_Bump, norm, map_Pr and map_Pm maps are read"
+        );
     }
 
     #[test]
@@ -325,5 +403,20 @@ mod tests {
         assert_eq!(a, b);
         assert_eq!(a.refraction, Refraction::Constant { ior: 1.0, weight: Rgb::splat(0.75) });
         assert_eq!(a.kd, Rgb::splat(0.25));
+    }
+
+    #[test]
+    fn the_pbr_extension_makes_a_metallic_roughness_material() {
+        let m = one("newmtl m\nKd 1 0.5 0.25\nPr 0.3\nPm 1\n");
+        let pbr = m.pbr.as_ref().expect("a pbr material");
+        assert_eq!((pbr.metallic, m.roughness, m.color.constant()), (1.0, 0.3, Some(Rgb::new(1.0, 0.5, 0.25))));
+        // A metal's lecture terms: no diffuse, ks = the base colour.
+        assert_eq!((m.kd, m.ks), (Rgb::ZERO, Rgb::new(1.0, 0.5, 0.25)));
+        let plain = one("newmtl m\nKd 0.5\nPr 0.7\n");
+        assert_eq!((plain.pbr.as_ref().map(|p| p.metallic), plain.roughness), (Some(0.0), 0.7));
+        assert!(one("newmtl m\nKd 0.5\n").pbr.is_none());
+        let mut w = Warnings::default();
+        let e = parse(Path::new("t.mtl"), "newmtl m\nPm 2\n", &mut w).unwrap_err().to_string();
+        assert_eq!(e, "t.mtl:2:4: expected a value in [0, 1], found 2");
     }
 }

@@ -244,7 +244,7 @@ fn attributes_are_interpolated_at_the_hit() {
     let tangents = vec![[1.0, 0.0, 0.0, 1.0]; 4];
     let mesh = TriangleMesh::new(positions, vec![[0, 1, 2], [0, 2, 3]], None)
         .unwrap()
-        .with_attributes(VertexAttributes { uvs: Some(uvs), colors: Some(colors), tangents: Some(tangents) })
+        .with_attributes(VertexAttributes { uvs: Some(uvs), colors: Some(colors), tangents: Some(tangents), ..Default::default() })
         .unwrap();
     for (x, y) in [(1.5, 0.25), (0.5, 0.75)] {
         let hit = mesh.intersect(&Ray::new(Vec3::new(x, y, 1.0), -Vec3::Z), 0.0, f64::INFINITY).unwrap();
