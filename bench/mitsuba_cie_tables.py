@@ -19,8 +19,6 @@ lines = [
     "",
     "/// Mitsuba's `MI_CIE_Y_NORMALIZATION`: one over the integral of `y`.",
     f"pub const CIE_Y_NORMALIZATION: f64 = {mi.MI_CIE_Y_NORMALIZATION!r};",
-    "/// Mitsuba's `MI_CIE_D65_NORMALIZATION`: one over the integral of `y` times D65.",
-    f"pub const CIE_D65_NORMALIZATION: f64 = {mi.MI_CIE_D65_NORMALIZATION!r};",
     "",
     "/// `[x, y, z, d65]` at `360 + i` nm.",
     "#[rustfmt::skip]",

@@ -4,8 +4,6 @@
 
 /// Mitsuba's `MI_CIE_Y_NORMALIZATION`: one over the integral of `y`.
 pub const CIE_Y_NORMALIZATION: f64 = 0.009367658735689113;
-/// Mitsuba's `MI_CIE_D65_NORMALIZATION`: one over the integral of `y` times D65.
-pub const CIE_D65_NORMALIZATION: f64 = 0.010101273599490354;
 
 /// `[x, y, z, d65]` at `360 + i` nm.
 #[rustfmt::skip]

@@ -80,6 +80,9 @@ pub fn read_table(path: &Path, defines: &[(String, String)]) -> Result<(Table, S
 
 /// Parses Mitsuba XML `text` (errors and relative files against `path`).
 pub fn parse_table(path: &Path, text: String, defines: &[(String, String)]) -> Result<(Table, Source), LoadError> {
+    if text.trim().is_empty() {
+        return Err(LoadError::file(path, "is empty, expected a Mitsuba scene (<scene version=\"3.0.0\">)"));
+    }
     let source = |text: Option<String>| Source { path: path.to_path_buf(), text, warnings: Vec::new() };
     let doc = match xml::read(path, text, defines) {
         Ok(doc) => doc,

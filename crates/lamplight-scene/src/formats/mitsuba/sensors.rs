@@ -53,7 +53,7 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<(), ParamError> {
     let loc = el.loc.clone();
     let camera = match p.kind.as_str() {
         "perspective" | "thinlens" => {
-            let (tx, ty, axis_x, floc) = field_of_view(ctx, &mut p, aspect)?;
+            let (tx, ty, fov, floc) = field_of_view(&mut p, aspect)?;
             let lens = if p.kind == "thinlens" {
                 let (r, rloc) = p.number_or("aperture_radius", 0.03)?;
                 let (f, dloc) = p.number("focus_distance")?.ok_or_else(|| err(&loc, "sensor \"thinlens\": needs focus_distance"))?;
@@ -77,7 +77,6 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<(), ParamError> {
                     &loc,
                 )
             } else {
-                let fov = if axis_x { ("hfov", 2.0 * tx.atan().to_degrees()) } else { ("vfov", 2.0 * ty.atan().to_degrees()) };
                 let mut pairs = vec![
                     ("type", text(if lens.is_some() { "thin_lens" } else { "perspective" }, &loc)),
                     ("eye", vec3(eye, &mloc)),
@@ -122,9 +121,10 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<(), ParamError> {
     Ok(())
 }
 
-/// `tan` of half the horizontal and vertical fields of view, whether the
-/// field of view is kept horizontally, and where it is written.
-fn field_of_view(ctx: &mut Ctx<'_>, p: &mut Plugin<'_>, aspect: f64) -> Result<(f64, f64, bool, Loc), ParamError> {
+/// `tan` of half the horizontal and vertical fields of view, the camera key
+/// that keeps the field of view (`hfov` for axis x, else `vfov`) with its
+/// degrees, and where it is written.
+fn field_of_view(p: &mut Plugin<'_>, aspect: f64) -> Result<(f64, f64, (&'static str, f64), Loc), ParamError> {
     let (fov, floc) = match (p.number("fov")?, p.string("focal_length")?) {
         (Some(f), _) => f,
         (None, Some((mm, loc))) => {
@@ -157,8 +157,12 @@ fn field_of_view(ctx: &mut Ctx<'_>, p: &mut Plugin<'_>, aspect: f64) -> Result<(
             (t * aspect / d, t / d)
         }
     };
-    let _ = ctx;
-    Ok((tx, ty, axis == "x", floc))
+    let kept = match axis.as_str() {
+        "x" => ("hfov", fov),
+        "y" => ("vfov", fov),
+        _ => ("vfov", 2.0 * ty.atan().to_degrees()),
+    };
+    Ok((tx, ty, kept, floc))
 }
 
 /// The film's size and filter into `[render]`.

@@ -14,7 +14,8 @@
 //! | a nested `<bsdf>` or `<ref>` | `material` (default: Mitsuba's diffuse 0.5) |
 //! | a nested `<emitter type="area">` | the material with `emission` |
 //!
-//! `flip_normals` and `face_normals` are not supported: a warning.
+//! `flip_normals` is not supported (a warning). Meshes without normals are shaded
+//! flat, as Mitsuba's `face_normals = true` (Mitsuba's default smooths them).
 
 use lamplight_core::math::{Mat4, Vec3};
 use lamplight_core::params::{Item, Loc, ParamError, Value};
@@ -104,11 +105,12 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El, out: &mut Vec<Item>) -> Result<()
             node.push(("matrix", matrix(&m, &mloc)));
         }
     }
-    for key in ["flip_normals", "face_normals"] {
-        if let Some((true, bloc)) = p.boolean(key)? {
-            ctx.warn(&bloc, format!("{}: {key} is not supported, ignored", p.label));
-        }
+    if let Some((true, bloc)) = p.boolean("flip_normals")? {
+        ctx.warn(&bloc, format!("{}: flip_normals is not supported, ignored", p.label));
     }
+    // lamplight shades meshes without normals flat, as face_normals = true asks;
+    // Mitsuba's default smooths them (a known difference, docs/mitsuba.md).
+    let _ = p.boolean("face_normals")?;
     if p.kind != "instance" {
         let material = material(ctx, &p)?;
         node.push(("material", text(&material, &loc)));

@@ -5,16 +5,16 @@
 //! - `value="l1:v1, l2:v2, ..."` (nm, increasing): the piecewise linear spectrum
 //!   `s(l)`, zero outside `[l1, ln]`, integrated against the CIE 1931 matching
 //!   functions on 1000 evenly spaced wavelengths `l_i` of `[360, 830]` nm:
-//!   `XYZ = (470 / 1000) N sum_i xyz(l_i) s(l_i) w(l_i)`, where a reflectance
-//!   is weighted by the D65 illuminant (`w = D65`, `N = 1 / int y D65`, so a flat 1 is
-//!   white) and emission is not (`w = 1`, `N = 1 / int y`); then linear sRGB
+//!   `XYZ = (470 / 1000) N sum_i xyz(l_i) s(l_i) w(l_i)` with `N = 1 / int y`,
+//!   where a reflectance is weighted by the D65 illuminant (`w = D65`, so a flat 1
+//!   is white to 0.1 %) and emission is not (`w = 1`); then linear sRGB
 //!   by the XYZ to sRGB (D65) matrix, a reflectance clamped to `[0, 1]`, emission to `>= 0`.
 //! - `filename="f.spd"`: the same, with the pairs read from lines `l v`.
 
 use lamplight_core::math::Rgb;
 use lamplight_core::params::{Loc, ParamError};
 
-use super::cie_tables::{CIE_D65_NORMALIZATION, CIE_Y_NORMALIZATION, TABLE};
+use super::cie_tables::{CIE_Y_NORMALIZATION, TABLE};
 use super::properties::parse_float;
 use super::xml::El;
 
@@ -106,7 +106,7 @@ pub fn to_srgb(pairs: &[(f64, f64)], reflectance: bool) -> Rgb {
             xyz[k] += c[k] * value * w;
         }
     }
-    let norm = (CIE_MAX - CIE_MIN) / STEPS as f64 * if reflectance { CIE_D65_NORMALIZATION } else { CIE_Y_NORMALIZATION };
+    let norm = (CIE_MAX - CIE_MIN) / STEPS as f64 * CIE_Y_NORMALIZATION;
     let [x, y, z] = xyz.map(|v| v * norm);
     let rgb = Rgb::new(
         3.240479 * x - 1.537150 * y - 0.498535 * z,

@@ -3,14 +3,16 @@
 //! | Mitsuba | lamplight |
 //! |---|---|
 //! | `bitmap` `filename`, `filter_type` (`bilinear`, `nearest`), `wrap_mode` (`repeat`, `mirror`, `clamp`), `raw` | `image` `file`, `filter`, `wrap`, `color_space` (`raw = true`: `"linear"`) |
-//! | `to_uv` (a scale and a translation) | `uv_scale`, `uv_offset` |
-//! | `checkerboard` `color0` (0.4), `color1` (0.2), `to_uv` | `uv_checker` `even`, `odd`, cells of half a unit: `uv_scale` doubled |
+//! | `to_uv` `(u, v) -> (s_u u + t_u, s_v v + t_v)` | `uv_scale = [s_u, s_v]`, `uv_offset = [t_u, 1 - s_v - t_v]` |
+//! | `checkerboard` `color0` (0.4), `color1` (0.2), `to_uv` | `uv_checker` `even = color0`, `odd = color1`, `uv_scale = [2 s_u, -2 s_v]`, `uv_offset = [2 t_u, 2 (s_v + t_v)]` |
 //! | `mesh_attribute` `name = "vertex_color"` | `vertex_color` |
 //!
-//! Texture coordinates are the shapes' own: meshes read theirs from the file
-//! (Mitsuba flips OBJ's `v` and reads images from the top row, lamplight reads
-//! images from the bottom row, so the two agree); lamplight's built-in shapes'
-//! coordinates differ from Mitsuba's (see docs/mitsuba.md).
+//! Mitsuba's `v` is lamplight's `1 - v`: Mitsuba flips a mesh file's `v` and
+//! reads images from the top row, lamplight keeps the file's `v` and reads
+//! images from the bottom row. So an image agrees without a flip and `to_uv`'s
+//! offset and the checkerboard's cells are mirrored in `v` (the formulas above
+//! follow from `v_mitsuba = 1 - v`). Built-in shapes' own coordinates differ
+//! from Mitsuba's (see docs/mitsuba.md).
 
 use lamplight_core::math::{Mat4, Rgb};
 use lamplight_core::params::{Item, Loc, ParamError};
@@ -85,7 +87,7 @@ pub fn texture<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<Item, ParamError> {
             }
             if let Some((s, o, l)) = uv(&mut p)? {
                 pairs.push(("uv_scale", pair(s[0], s[1], &l)));
-                pairs.push(("uv_offset", pair(o[0], o[1], &l)));
+                pairs.push(("uv_offset", pair(o[0], 1.0 - s[1] - o[1], &l)));
             }
             let _ = p.string("format")?;
             table_of(pairs, &loc)
@@ -99,8 +101,8 @@ pub fn texture<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<Item, ParamError> {
                     ("type", text("uv_checker", &loc)),
                     ("even", even),
                     ("odd", odd),
-                    ("uv_scale", pair(2.0 * s[0], 2.0 * s[1], &l)),
-                    ("uv_offset", pair(2.0 * o[0], 2.0 * o[1], &l)),
+                    ("uv_scale", pair(2.0 * s[0], -2.0 * s[1], &l)),
+                    ("uv_offset", pair(2.0 * o[0], 2.0 * (s[1] + o[1]), &l)),
                 ],
                 &loc,
             )
