@@ -120,7 +120,7 @@ ka = 0
 ks = 0
 
 [materials.light]
-color = 0.5
+color = 0
 kd = 1
 ka = 0
 ks = 0

@@ -5,6 +5,7 @@
 //! | Mitsuba | lamplight `phong` |
 //! |---|---|
 //! | `diffuse` `reflectance` (0.5, colour or texture) | `color = reflectance`, `kd = 1`, `ka = ks = 0` |
+//! | none (Mitsuba's default) | diffuse 0.5; on an emitting shape diffuse 0 (black), as Mitsuba |
 //! | `conductor` `material` (`none`: a perfect mirror) or `eta`, `k` | `kd = 0`, `reflection = { type = "conductor", eta, k }` ([`super::conductors`]: Mitsuba's table, as `scalar_rgb` reduces it) |
 //! | `roughconductor` `alpha` (0.1), `distribution` | the same with `roughness = alpha` (GGX) |
 //! | `dielectric` `int_ior` (`bk7`), `ext_ior` (`air`): numbers or names | `reflection = { type = "dielectric", ior }`, `refraction = { type = "fresnel", ior }`, `ior = int_ior / ext_ior` |
@@ -57,6 +58,8 @@ pub const IORS: &[(&str, f64)] = &[
 
 /// The name of Mitsuba's default BSDF (diffuse 0.5) as a material.
 pub const DEFAULT_MATERIAL: &str = "mitsuba_default_diffuse";
+/// The name of the BSDF Mitsuba gives an emitting shape without one (diffuse 0: black).
+pub const DEFAULT_EMITTER_MATERIAL: &str = "mitsuba_default_emitter";
 
 fn err(loc: &Loc, message: impl Into<String>) -> ParamError {
     ParamError { loc: loc.clone(), message: message.into() }
@@ -81,14 +84,15 @@ pub fn material_name<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<String, ParamE
     Ok(name)
 }
 
-/// Mitsuba's default BSDF, made once.
-pub fn default_material(ctx: &mut Ctx<'_>) -> String {
-    if !ctx.materials.iter().any(|m| m.key == DEFAULT_MATERIAL) {
+/// Mitsuba's default BSDF, made once: diffuse 0.5, or 0 (black) on an emitting shape.
+pub fn default_material(ctx: &mut Ctx<'_>, emitting: bool) -> String {
+    let (name, albedo) = if emitting { (DEFAULT_EMITTER_MATERIAL, 0.0) } else { (DEFAULT_MATERIAL, 0.5) };
+    if !ctx.materials.iter().any(|m| m.key == name) {
         let loc = Loc::Unknown;
-        let t = table(diffuse(vec3(Rgb::splat(0.5), &loc), &loc), loc.clone());
-        ctx.materials.push(entry(DEFAULT_MATERIAL, t));
+        let t = table(diffuse(vec3(Rgb::splat(albedo), &loc), &loc), loc.clone());
+        ctx.materials.push(entry(name, t));
     }
-    DEFAULT_MATERIAL.to_string()
+    name.to_string()
 }
 
 fn diffuse(color: Item, loc: &Loc) -> Vec<Entry> {

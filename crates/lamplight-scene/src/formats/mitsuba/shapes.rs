@@ -11,7 +11,7 @@
 //! | `obj`, `ply` `filename` | a `[meshes]` entry and a `mesh` node |
 //! | `serialized` `filename`, `shape_index` ([`super::serialized`]) | an inline `[meshes]` entry |
 //! | `shapegroup` (with an `id`) and `instance` | `[definitions]` and `instance` nodes |
-//! | a nested `<bsdf>` or `<ref>` | `material` (default: Mitsuba's diffuse 0.5) |
+//! | a nested `<bsdf>` or `<ref>` | `material` (default: Mitsuba's diffuse 0.5, black on an emitter) |
 //! | a nested `<emitter type="area">` | the material with `emission` |
 //!
 //! `flip_normals` is not supported (a warning). Meshes without normals are shaded
@@ -139,7 +139,7 @@ fn material<'a>(ctx: &mut Ctx<'a>, p: &Plugin<'a>) -> Result<String, ParamError>
     }
     let name = match bsdf {
         Some(b) => bsdfs::material_name(ctx, b)?,
-        None => bsdfs::default_material(ctx),
+        None => bsdfs::default_material(ctx, emitter.is_some()),
     };
     let Some(e) = emitter else { return Ok(name) };
     let (radiance, rloc) = emitters::area_radiance(ctx, e)?;
