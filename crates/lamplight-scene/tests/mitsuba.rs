@@ -314,3 +314,35 @@ fn spectra_become_rgb_as_in_scalar_rgb() {
     let i = numbers(get(&t, &["objects", "2", "intensity"]));
     assert!(i.iter().zip([1.20488, 0.948229, 0.909267]).all(|(a, b)| (a - b).abs() < 2e-4), "{i:?}");
 }
+
+#[test]
+fn mutated_scenes_never_panic() {
+    // A fixed-seed stand-in for the `mitsuba` fuzz target: byte edits and cuts of a
+    // whole scene read to a scene or to one error, never a panic.
+    let base = scene(BODY).into_bytes();
+    let mut state = 0x2545_f491_4f6c_dd1du64;
+    let mut next = || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        state
+    };
+    let path = Path::new("/nonexistent-lamplight-fuzz/s.xml");
+    for _ in 0..400 {
+        let mut bytes = base.clone();
+        for _ in 0..1 + next() % 4 {
+            let at = (next() % bytes.len() as u64) as usize;
+            bytes[at] = b"<>/=\"$ 0a-.x"[(next() % 12) as usize];
+        }
+        if next() % 4 == 0 {
+            bytes.truncate((next() % bytes.len() as u64) as usize);
+        }
+        let Ok(text) = String::from_utf8(bytes) else { continue };
+        if let Ok((table, source)) = mitsuba::parse_table(path, text, &[]) {
+            if let Ok(description) = lamplight_scene::description::SceneDescription::from_table(table) {
+                let file = lamplight_scene::build::SceneFile { description, source };
+                let _ = file.build();
+            }
+        }
+    }
+}
