@@ -127,6 +127,14 @@ CASES = [
             <bsdf type="diffuse"><rgb name="reflectance" value="0.2, 0.5, 0.8"/></bsdf></bsdf>
     </shape>
 """))),
+    Case("mask_bitmap_twosided", "mask (bitmap opacity) of twosided", scene(lit(sphere(DIFFUSE_RED, center="0, 0.6, -0.8") + """
+    <shape type="obj"><string name="filename" value="quad.obj"/>
+        <transform name="to_world"><rotate x="1" angle="90"/><scale value="0.7"/><translate y="0.8" z="0.6"/></transform>
+        <bsdf type="mask"><texture type="bitmap" name="opacity"><string name="filename" value="mask.png"/>
+            <boolean name="raw" value="true"/><string name="filter_type" value="nearest"/></texture>
+            <bsdf type="twosided"><bsdf type="diffuse"><rgb name="reflectance" value="0.2, 0.5, 0.8"/></bsdf></bsdf></bsdf>
+    </shape>
+"""))),
     Case("bitmap_obj", "bitmap (filter_type, wrap_mode), obj", scene(LIGHT + """
     <shape type="obj"><string name="filename" value="quad.obj"/>
         <transform name="to_world"><scale value="2"/></transform>
@@ -165,6 +173,9 @@ CASES = [
     Case("disk", "disk", scene(lit("""
     <shape type="disk"><transform name="to_world"><scale value="0.8"/><rotate x="1" angle="-60"/><translate y="0.7"/></transform>
     """ + DIFFUSE_RED + "</shape>\n"))),
+    Case("disk_twosided", "disk in twosided", scene(lit("""
+    <shape type="disk"><transform name="to_world"><scale value="0.8"/><rotate x="1" angle="-60"/><translate y="0.7"/></transform>
+    <bsdf type="twosided">""" + DIFFUSE_RED + "</bsdf></shape>\n"))),
     Case("cylinder", "cylinder", scene(lit("""
     <shape type="cylinder"><point name="p0" value="-0.8, 0.4, 0"/><point name="p1" value="0.8, 0.4, 0"/>
         <float name="radius" value="0.4"/>""" + DIFFUSE_RED + "</shape>\n"))),

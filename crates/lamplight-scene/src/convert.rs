@@ -26,7 +26,10 @@ pub struct Converted {
 pub fn convert(input: &Path, output: &Path, defines: &[(String, String)]) -> Result<Converted, LoadError> {
     let ext = input.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
     if ext.as_deref() != Some("xml") {
-        return Err(LoadError::file(input, "convert reads Mitsuba scenes (.xml); mesh files render directly (`lamplight render model.obj`)"));
+        return Err(LoadError::file(
+            input,
+            "convert reads Mitsuba scenes (.xml); mesh files render directly (`lamplight render model.obj`)",
+        ));
     }
     let (mut table, source) = mitsuba::read_table(input, defines)?;
     let from = input.parent().unwrap_or(Path::new(""));

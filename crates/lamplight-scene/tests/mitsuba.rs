@@ -234,10 +234,15 @@ fn malformed_and_unsupported_scenes_give_their_exact_errors() {
         ("<scene version=\"3.0.0\">\n  <float name=\"x\" value=\"1\"/>\n</scene>\n<x/>", "s.xml:4:1: malformed XML: unknown token"),
         ("<scene>\n</scene>\n", "s.xml:1:1: <scene>: needs the attribute `version` (such as \"3.0.0\")"),
         ("<shape version=\"3.0.0\"/>\n", "s.xml:1:1: expected a <scene> root element, got <shape>"),
-        ("<scene version=\"3.0.0\">\n  <float name=\"x\" value=\"$nope\"/>\n</scene>\n",
-         "s.xml:2:26: undefined parameter $nope (give it with <default name=\"nope\" value=\"...\"/> or -D nope=VALUE)"),
+        (
+            "<scene version=\"3.0.0\">\n  <float name=\"x\" value=\"$nope\"/>\n</scene>\n",
+            "s.xml:2:26: undefined parameter $nope (give it with <default name=\"nope\" value=\"...\"/> or -D nope=VALUE)",
+        ),
         ("<scene version=\"3.0.0\">\n</scene>\n", "s.xml:1:1: scene: has no <sensor>, expected one (lamplight renders one camera)"),
-        ("<scene version=\"3.0.0\">\n  <include filename=\"missing.xml\"/>\n</scene>\n", "s.xml:2:22: include: no such file \"missing.xml\""),
+        (
+            "<scene version=\"3.0.0\">\n  <include filename=\"missing.xml\"/>\n</scene>\n",
+            "s.xml:2:22: include: no such file \"missing.xml\"",
+        ),
     ];
     for (text, expected) in cases {
         assert_eq!(&error(text), expected, "{text}");
@@ -291,10 +296,10 @@ fn includes_paths_and_old_names_are_read() {
     let (t, _) = mitsuba::read_table(&path, &[]).unwrap();
     assert_eq!(numbers(get(&t, &["materials", "inc", "color"])), [0.25, 0.5, 0.5]);
     // Version 0.6 names: fovAxis, sampleCount.
-    let old = scene("").replace("3.0.0", "0.6.0").replace("sample_count", "sampleCount").replace(
-        r#"<float name="fov" value="45"/>"#,
-        r#"<float name="fov" value="30"/><string name="fovAxis" value="y"/>"#,
-    );
+    let old = scene("")
+        .replace("3.0.0", "0.6.0")
+        .replace("sample_count", "sampleCount")
+        .replace(r#"<float name="fov" value="45"/>"#, r#"<float name="fov" value="30"/><string name="fovAxis" value="y"/>"#);
     let (t, _) = table(&old, &[]);
     assert_eq!(numbers(get(&t, &["camera", "vfov"])), [30.0]);
     assert_eq!(numbers(get(&t, &["render", "spp"])), [4.0]);

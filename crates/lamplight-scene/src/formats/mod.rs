@@ -16,14 +16,15 @@ pub struct Format {
     /// The extension, without the dot.
     pub extension: &'static str,
     /// Reads a file.
-    pub read: fn(&Path, &[(String, String)]) -> Result<(SceneDescription, native::Source), LoadError>,
+    pub read: fn(&Path, &[(String, String)]) -> Read,
 }
 
+/// What a reader returns: the description and its source, or the error.
+pub type Read = Result<(SceneDescription, native::Source), LoadError>;
+
 /// The scene formats.
-pub static FORMATS: &[Format] = &[
-    Format { extension: "toml", read: |path, _| native::read(path) },
-    Format { extension: "xml", read: mitsuba::read },
-];
+pub static FORMATS: &[Format] =
+    &[Format { extension: "toml", read: |path, _| native::read(path) }, Format { extension: "xml", read: mitsuba::read }];
 
 /// The format of files ending in `.extension`.
 pub fn find(extension: &str) -> Option<&'static Format> {

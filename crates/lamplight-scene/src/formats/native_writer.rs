@@ -97,7 +97,10 @@ fn value(item: &Item) -> String {
             if t.entries.is_empty() {
                 "{}".to_string()
             } else {
-                format!("{{ {} }}", t.entries.iter().map(|e| format!("{} = {}", key(&e.key), value(&e.item))).collect::<Vec<_>>().join(", "))
+                format!(
+                    "{{ {} }}",
+                    t.entries.iter().map(|e| format!("{} = {}", key(&e.key), value(&e.item))).collect::<Vec<_>>().join(", ")
+                )
             }
         }
     }
@@ -118,7 +121,11 @@ mod tests {
             entries: vec![
                 Entry { key: "a b".into(), key_loc: Loc::Unknown, item: item(Value::Number(0.1)) },
                 Entry { key: "s".into(), key_loc: Loc::Unknown, item: item(Value::String("q\"\\\n".into())) },
-                Entry { key: "n".into(), key_loc: Loc::Unknown, item: item(Value::Array(vec![item(Value::Number(1e-7)), item(Value::Integer(-3))])) },
+                Entry {
+                    key: "n".into(),
+                    key_loc: Loc::Unknown,
+                    item: item(Value::Array(vec![item(Value::Number(1e-7)), item(Value::Integer(-3))])),
+                },
             ],
             loc: Loc::Unknown,
         };

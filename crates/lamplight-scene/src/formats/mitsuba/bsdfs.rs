@@ -96,7 +96,13 @@ pub fn default_material(ctx: &mut Ctx<'_>, emitting: bool) -> String {
 }
 
 fn diffuse(color: Item, loc: &Loc) -> Vec<Entry> {
-    vec![entry("type", text("phong", loc)), entry("color", color), entry("kd", num(1.0, loc)), entry("ka", num(0.0, loc)), entry("ks", num(0.0, loc))]
+    vec![
+        entry("type", text("phong", loc)),
+        entry("color", color),
+        entry("kd", num(1.0, loc)),
+        entry("ka", num(0.0, loc)),
+        entry("ks", num(0.0, loc)),
+    ]
 }
 
 fn black(loc: &Loc) -> Vec<Entry> {
@@ -125,7 +131,13 @@ fn ior(p: &mut Plugin<'_>, key: &str, default: &str) -> Result<(f64, Loc), Param
     let label = p.label.clone();
     let named = |name: &str, loc: &Loc| -> Result<f64, ParamError> {
         IORS.iter().find(|(n, _)| *n == name.to_ascii_lowercase()).map(|(_, v)| *v).ok_or_else(|| {
-            err(loc, format!("{label}: {key}: unknown material \"{name}\" (expected a number or {})", IORS.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ")))
+            err(
+                loc,
+                format!(
+                    "{label}: {key}: unknown material \"{name}\" (expected a number or {})",
+                    IORS.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ")
+                ),
+            )
         })
     };
     match p.take(key) {
@@ -198,7 +210,14 @@ pub fn material<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<Vec<Entry>, ParamEr
                 (None, None) => {
                     let (name, l) = p.string("material")?.unwrap_or(("none".into(), loc.clone()));
                     let (_, eta, k) = CONDUCTORS.iter().find(|(n, _, _)| *n == name).ok_or_else(|| {
-                        err(&l, format!("{}: material: unknown conductor \"{name}\" (expected one of {})", p.label, CONDUCTORS.iter().map(|c| c.0).collect::<Vec<_>>().join(", ")))
+                        err(
+                            &l,
+                            format!(
+                                "{}: material: unknown conductor \"{name}\" (expected one of {})",
+                                p.label,
+                                CONDUCTORS.iter().map(|c| c.0).collect::<Vec<_>>().join(", ")
+                            ),
+                        )
                     })?;
                     (Rgb::from_array(*eta), Rgb::from_array(*k), l)
                 }
@@ -207,7 +226,10 @@ pub fn material<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<Vec<Entry>, ParamEr
             let _ = ior(&mut p, "ext_eta", "air").ok();
             unit_factor(ctx, &mut p, "specular_reflectance")?;
             let mut e = black(&loc);
-            e.push(entry("reflection", table_of(vec![("type", text("conductor", &eloc)), ("eta", vec3(eta, &eloc)), ("k", vec3(k, &eloc))], &eloc)));
+            e.push(entry(
+                "reflection",
+                table_of(vec![("type", text("conductor", &eloc)), ("eta", vec3(eta, &eloc)), ("k", vec3(k, &eloc))], &eloc),
+            ));
             if p.kind == "roughconductor" {
                 let (a, aloc) = alpha(ctx, &mut p)?;
                 e.push(entry("roughness", num(a, &aloc)));
@@ -244,7 +266,10 @@ pub fn material<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<Vec<Entry>, ParamEr
                 None => {
                     let (a, aloc) = p.number_or("opacity", 0.5)?;
                     if a > 0.0 && a < 1.0 {
-                        ctx.warn(&aloc, format!("{}: opacity {a} cuts the surface out below 0.5 (lamplight's alpha), Mitsuba blends", p.label));
+                        ctx.warn(
+                            &aloc,
+                            format!("{}: opacity {a} cuts the surface out below 0.5 (lamplight's alpha), Mitsuba blends", p.label),
+                        );
                     }
                     num(a, &aloc)
                 }
@@ -272,13 +297,22 @@ pub fn material<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<Vec<Entry>, ParamEr
             nested(ctx, &p)?
         }
         "principled" => {
-            ctx.warn(&loc, "bsdf \"principled\": approximated by lamplight's pbr (glTF metallic-roughness) material, not Mitsuba's principled BSDF");
+            ctx.warn(
+                &loc,
+                "bsdf \"principled\": approximated by lamplight's pbr (glTF metallic-roughness) material, not Mitsuba's principled BSDF",
+            );
             let base = colour_or_texture(ctx, &mut p, "base_color", Rgb::splat(0.5))?;
             let (metallic, mloc) = number(&mut p, "metallic", 0.0)?;
             let (rough, rloc) = number(&mut p, "roughness", 0.5)?;
-            vec![entry("type", text("pbr", &loc)), entry("base_color", base), entry("metallic", num(metallic, &mloc)), entry("roughness", num(rough, &rloc))]
+            vec![
+                entry("type", text("pbr", &loc)),
+                entry("base_color", base),
+                entry("metallic", num(metallic, &mloc)),
+                entry("roughness", num(rough, &rloc)),
+            ]
         }
-        "plastic" | "roughplastic" | "thindielectric" | "blendbsdf" | "principledthin" | "hair" | "measured" | "polarizer" | "retarder" | "pplastic" => {
+        "plastic" | "roughplastic" | "thindielectric" | "blendbsdf" | "principledthin" | "hair" | "measured" | "polarizer" | "retarder"
+        | "pplastic" => {
             return Err(err(&p.el.require("type")?.loc, format!("{}: not yet supported (no lamplight material gives its image)", p.label)))
         }
         other => return Err(err(&p.el.require("type")?.loc, format!("bsdf \"{other}\": unknown BSDF"))),

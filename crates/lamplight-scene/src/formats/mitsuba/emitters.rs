@@ -63,7 +63,10 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<(), ParamError> {
             let (cutoff, cloc) = p.number_or("cutoff_angle", 20.0)?;
             let (beam, bloc) = p.number_or("beam_width", cutoff * 0.75)?;
             if !(cutoff > 0.0 && cutoff <= 90.0 && beam >= 0.0 && beam <= cutoff) {
-                return Err(err(&cloc, format!("emitter \"spot\": expected 0 <= beam_width <= cutoff_angle <= 90, got {beam} and {cutoff}")));
+                return Err(err(
+                    &cloc,
+                    format!("emitter \"spot\": expected 0 <= beam_width <= cutoff_angle <= 90, got {beam} and {cutoff}"),
+                ));
             }
             node.push(("type", text("spot_light", &loc)));
             node.push(("position", vec3(Vec3::ZERO, &loc)));
@@ -93,12 +96,12 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<(), ParamError> {
             let (scale, sloc) = p.number_or("scale", 1.0)?;
             let degrees = match &to_world {
                 None => 0.0,
-                Some((m, mloc)) => y_turn(m).ok_or_else(|| err(mloc, "emitter \"envmap\": to_world must be a turn about +y (lamplight turns maps about +y only)"))?,
+                Some((m, mloc)) => y_turn(m).ok_or_else(|| {
+                    err(mloc, "emitter \"envmap\": to_world must be a turn about +y (lamplight turns maps about +y only)")
+                })?,
             };
-            let env = table_of(
-                vec![("file", text(&file, &floc)), ("strength", num(scale, &sloc)), ("rotate", num(degrees + 180.0, &loc))],
-                &loc,
-            );
+            let env =
+                table_of(vec![("file", text(&file, &floc)), ("strength", num(scale, &sloc)), ("rotate", num(degrees + 180.0, &loc))], &loc);
             ctx.globals.retain(|e| e.key != "background" && e.key != "environment");
             ctx.globals.push(entry("environment", env));
             ctx.finish(p);

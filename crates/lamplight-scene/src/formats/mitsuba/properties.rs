@@ -94,7 +94,8 @@ impl<'a> Plugin<'a> {
             if props.iter().any(|p| p.name == name.value) {
                 return Err(err(&name.loc, format!("{label}: property \"{}\" is given twice", name.value)));
             }
-            let (value, loc) = property(child, el.tag == "emitter").map_err(|e| ParamError { message: format!("{label}: {}: {}", name.value, e.message), ..e })?;
+            let (value, loc) = property(child, el.tag == "emitter")
+                .map_err(|e| ParamError { message: format!("{label}: {}: {}", name.value, e.message), ..e })?;
             props.push(Prop { name: name.value.clone(), value, loc, used: false });
         }
         Ok(Plugin { el, kind, label, props, objects })

@@ -109,7 +109,12 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<(), ParamError> {
                 &loc,
             )
         }
-        other => return Err(err(&p.el.require("type")?.loc, format!("sensor: unknown sensor type \"{other}\" (lamplight reads perspective, thinlens, orthographic)"))),
+        other => {
+            return Err(err(
+                &p.el.require("type")?.loc,
+                format!("sensor: unknown sensor type \"{other}\" (lamplight reads perspective, thinlens, orthographic)"),
+            ))
+        }
     };
     ctx.camera = Some(camera);
     for o in p.objects.clone() {
@@ -121,14 +126,21 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<(), ParamError> {
     Ok(())
 }
 
+/// `tan(hfov / 2)`, `tan(vfov / 2)`, the kept key and degrees, and where the field of view is written.
+type FieldOfView = (f64, f64, (&'static str, f64), Loc);
+
 /// `tan` of half the horizontal and vertical fields of view, the camera key
 /// that keeps the field of view (`hfov` for axis x, else `vfov`) with its
 /// degrees, and where it is written.
-fn field_of_view(p: &mut Plugin<'_>, aspect: f64) -> Result<(f64, f64, (&'static str, f64), Loc), ParamError> {
+fn field_of_view(p: &mut Plugin<'_>, aspect: f64) -> Result<FieldOfView, ParamError> {
     let (fov, floc) = match (p.number("fov")?, p.string("focal_length")?) {
         (Some(f), _) => f,
         (None, Some((mm, loc))) => {
-            let v: f64 = mm.trim_end_matches("mm").trim().parse().map_err(|_| err(&loc, format!("{}: focal_length: expected such as \"50mm\", got \"{mm}\"", p.label)))?;
+            let v: f64 = mm
+                .trim_end_matches("mm")
+                .trim()
+                .parse()
+                .map_err(|_| err(&loc, format!("{}: focal_length: expected such as \"50mm\", got \"{mm}\"", p.label)))?;
             // A 35 mm film's diagonal is 43.27 mm (Mitsuba's focal-length conversion).
             (2.0 * (43.266615 / (2.0 * v)).atan().to_degrees(), loc)
         }

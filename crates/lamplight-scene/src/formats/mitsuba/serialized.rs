@@ -43,7 +43,10 @@ impl Mesh {
                 list(
                     self.indices
                         .iter()
-                        .map(|t| Item { value: Value::Array(t.iter().map(|&i| Item { value: Value::Integer(i as i64), loc: loc.clone() }).collect()), loc: loc.clone() })
+                        .map(|t| Item {
+                            value: Value::Array(t.iter().map(|&i| Item { value: Value::Integer(i as i64), loc: loc.clone() }).collect()),
+                            loc: loc.clone(),
+                        })
                         .collect(),
                 ),
             ),
@@ -74,7 +77,11 @@ impl Cursor<'_> {
         Ok(u64::from_le_bytes(self.take(8)?.try_into().expect("8 bytes")))
     }
     fn real(&mut self, double: bool) -> Result<f64, String> {
-        Ok(if double { f64::from_le_bytes(self.take(8)?.try_into().expect("8 bytes")) } else { f32::from_le_bytes(self.take(4)?.try_into().expect("4 bytes")) as f64 })
+        Ok(if double {
+            f64::from_le_bytes(self.take(8)?.try_into().expect("8 bytes"))
+        } else {
+            f32::from_le_bytes(self.take(4)?.try_into().expect("4 bytes")) as f64
+        })
     }
 }
 

@@ -172,7 +172,10 @@ fn shapegroup<'a>(ctx: &mut Ctx<'a>, el: &'a El, p: Plugin<'a>) -> Result<(), Pa
             ctx.warn(&o.loc, format!("shape \"shapegroup\": nested <{}> is not supported, ignored", o.tag));
         }
     }
-    let group = table_of(vec![("type", text("group", &el.loc)), ("children", Item { value: Value::Array(children), loc: el.loc.clone() })], &el.loc);
+    let group = table_of(
+        vec![("type", text("group", &el.loc)), ("children", Item { value: Value::Array(children), loc: el.loc.clone() })],
+        &el.loc,
+    );
     ctx.definitions.push(entry(&id.value, group));
     ctx.finish(p);
     let _ = table;

@@ -47,11 +47,14 @@ pub fn number<'a>(p: &mut Plugin<'a>, key: &str, default: f64) -> Result<(f64, L
     p.number_or(key, default)
 }
 
+/// A `to_uv`'s scale, offset and place.
+type UvTransform = ([f64; 2], [f64; 2], Loc);
+
 /// A `<texture>` element as a texture table.
 pub fn texture<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<Item, ParamError> {
     let mut p = Plugin::new(el)?;
     let loc = el.loc.clone();
-    let uv = |p: &mut Plugin<'_>| -> Result<Option<([f64; 2], [f64; 2], Loc)>, ParamError> {
+    let uv = |p: &mut Plugin<'_>| -> Result<Option<UvTransform>, ParamError> {
         let Some((m, mloc)) = p.transform("to_uv")? else { return Ok(None) };
         scale_offset(&m).map(|(s, o)| Some((s, o, mloc.clone()))).ok_or_else(|| {
             err(&mloc, format!("{}: to_uv: only a scale and a translation are supported (lamplight's uv_scale and uv_offset)", p.label))
@@ -114,13 +117,22 @@ pub fn texture<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<Item, ParamError> {
             }
             if let Some((s, sl)) = p.number("scale")? {
                 return Ok(table_of(
-                    vec![("type", text("scale", &loc)), ("texture", table_of(vec![("type", text("vertex_color", &loc))], &loc)), ("scale", num(s, &sl))],
+                    vec![
+                        ("type", text("scale", &loc)),
+                        ("texture", table_of(vec![("type", text("vertex_color", &loc))], &loc)),
+                        ("scale", num(s, &sl)),
+                    ],
                     &loc,
                 ));
             }
             table_of(vec![("type", text("vertex_color", &l))], &loc)
         }
-        other => return Err(err(&p.el.require("type")?.loc, format!("texture \"{other}\": not supported (lamplight reads bitmap, checkerboard, mesh_attribute)"))),
+        other => {
+            return Err(err(
+                &p.el.require("type")?.loc,
+                format!("texture \"{other}\": not supported (lamplight reads bitmap, checkerboard, mesh_attribute)"),
+            ))
+        }
     };
     ctx.finish(p);
     Ok(table)

@@ -58,7 +58,8 @@ impl El {
 
     /// The value of attribute `name`, or an error naming the element.
     pub fn require(&self, name: &str) -> Result<&Attr, ParamError> {
-        self.attr(name).ok_or_else(|| ParamError { loc: self.loc.clone(), message: format!("<{}>: needs the attribute `{name}`", self.tag) })
+        self.attr(name)
+            .ok_or_else(|| ParamError { loc: self.loc.clone(), message: format!("<{}>: needs the attribute `{name}`", self.tag) })
     }
 
     /// `<tag type="...">` as messages name it.
@@ -92,7 +93,8 @@ struct Reader {
 /// Reads the Mitsuba scene at `path`; `defines` are `-D name=value` pairs
 /// (they win over `<default>`).
 pub fn read(path: &Path, text: String, defines: &[(String, String)]) -> Result<Document, (ParamError, Option<String>)> {
-    let mut reader = Reader { params: defines.iter().cloned().collect(), search_paths: Vec::new(), elements: 0, stack: vec![path.to_path_buf()] };
+    let mut reader =
+        Reader { params: defines.iter().cloned().collect(), search_paths: Vec::new(), elements: 0, stack: vec![path.to_path_buf()] };
     let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
     reader.search_paths.push(dir);
     match reader.document(&text, None) {
@@ -139,7 +141,10 @@ impl Reader {
                     Some(m) => m < 2,
                     None => {
                         let loc = place(text, file, root.attribute_node("version").expect("present").range_value());
-                        return Err(ParamError { loc, message: format!("<scene>: version: expected a version such as \"3.0.0\", got \"{v}\"") });
+                        return Err(ParamError {
+                            loc,
+                            message: format!("<scene>: version: expected a version such as \"3.0.0\", got \"{v}\""),
+                        });
                     }
                 }
             }
@@ -147,7 +152,14 @@ impl Reader {
         self.element(root, text, file, 0, upgrade)
     }
 
-    fn element(&mut self, node: roxmltree::Node<'_, '_>, text: &str, file: Option<&Path>, depth: usize, upgrade: bool) -> Result<El, ParamError> {
+    fn element(
+        &mut self,
+        node: roxmltree::Node<'_, '_>,
+        text: &str,
+        file: Option<&Path>,
+        depth: usize,
+        upgrade: bool,
+    ) -> Result<El, ParamError> {
         let loc = place(text, file, node.range());
         if depth > MAX_DEPTH {
             return Err(ParamError { loc, message: format!("elements nest more than {MAX_DEPTH} deep, expected at most {MAX_DEPTH}") });
@@ -209,7 +221,8 @@ impl Reader {
         if self.stack.iter().any(|p| same_file(p, &path)) {
             return Err(err(format!("include: \"{}\" includes itself", name.value)));
         }
-        let bytes = crate::input::read_regular(&path, MAX_FILE_BYTES).map_err(|_| err(format!("include: cannot read \"{}\"", path.display())))?;
+        let bytes =
+            crate::input::read_regular(&path, MAX_FILE_BYTES).map_err(|_| err(format!("include: cannot read \"{}\"", path.display())))?;
         let text = String::from_utf8(bytes).map_err(|_| err(format!("include: \"{}\" is not UTF-8 text", path.display())))?;
         self.stack.push(path.clone());
         let root = self.document(&text, Some(&path));
