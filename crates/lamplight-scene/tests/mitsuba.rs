@@ -38,7 +38,7 @@ const BODY: &str = r#"    <bsdf type="diffuse" id="red"><rgb name="reflectance" 
         <transform name="to_world"><scale value="0.5"/><rotate x="1" angle="90"/><translate y="2"/></transform>
         <emitter type="area"><rgb name="radiance" value="10"/></emitter>
     </shape>
-    <emitter type="point"><point name="position" value="1, 2, 1"/><float name="intensity" value="3.14159"/></emitter>
+    <emitter type="point"><point name="position" value="1, 2, 1"/><float name="intensity" value="2.5"/></emitter>
 "#;
 
 /// The error of reading `text`, with the folder stripped.
@@ -146,7 +146,7 @@ position = [1, 2, 1]
 intensity = {i}
 "#,
         c = 0.5 * (pi / 2.0).cos(),
-        i = 3.14159 / pi
+        i = 2.5 / pi
     );
     let toml = write(dir.path(), "s.toml", &toml);
     // The camera's look_at differs (0.9 vs the normalized direction); compare the
