@@ -41,6 +41,31 @@ pub enum Command {
     Raycast(crate::raycast::RaycastArgs),
     /// Show why a pixel has its colour: the ray tree of each sample (Whitted) or its paths (path tracer).
     Explain(ExplainArgs),
+    /// Write a Mitsuba scene (.xml) as a lamplight scene file (.toml) that renders the same.
+    Convert(ConvertArgs),
+}
+
+/// `lamplight convert` flags.
+#[derive(Debug, Args)]
+pub struct ConvertArgs {
+    /// The scene to convert (Mitsuba 3 XML).
+    #[arg(value_name = "SCENE")]
+    pub input: PathBuf,
+    /// The TOML file to write.
+    #[arg(short, long, value_name = "FILE")]
+    pub output: PathBuf,
+    /// Set the scene parameter $NAME (Mitsuba XML), as `mitsuba -D`; repeatable.
+    #[arg(short = 'D', value_name = "NAME=VALUE", value_parser = define)]
+    pub define: Vec<(String, String)>,
+}
+
+/// `NAME=VALUE` of `-D`.
+pub fn define(text: &str) -> Result<(String, String), String> {
+    let (name, value) = text.split_once('=').ok_or_else(|| format!("must be NAME=VALUE, got {text:?}"))?;
+    if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
+        return Err(format!("NAME must be letters, digits and _, got {name:?}"));
+    }
+    Ok((name.to_string(), value.to_string()))
 }
 
 /// `lamplight explain` flags: the scene and render settings of `render`, and the pixel.
@@ -101,9 +126,12 @@ pub struct SceneArgs {
     /// Scale every sample whose brightest channel exceeds V down to V: removes fireflies, but biased (darker where it acts). Off by default.
     #[arg(long, value_name = "V", allow_negative_numbers = true)]
     pub clamp: Option<f64>,
-    /// Path tracer: pixel reconstruction filter, `box` or `gaussian` (sigma 0.5 pixel).
-    #[arg(long, value_name = "NAME", default_value = "box")]
-    pub filter: String,
+    /// Path tracer: pixel reconstruction filter, `box` or `gaussian` (sigma 0.5 pixel) [default: the file's, else box].
+    #[arg(long, value_name = "NAME")]
+    pub filter: Option<String>,
+    /// Set the scene parameter $NAME of a Mitsuba XML scene, as `mitsuba -D`; repeatable.
+    #[arg(short = 'D', value_name = "NAME=VALUE", value_parser = define)]
+    pub define: Vec<(String, String)>,
     /// Path tracer: light the scene with this equirectangular HDR map (.exr or .hdr), importance-sampled.
     #[arg(long, value_name = "FILE")]
     pub environment: Option<PathBuf>,
@@ -125,7 +153,7 @@ impl SceneArgs {
             integrator: self.integrator.clone(),
             time_limit: None,
             clamp: self.clamp,
-            filter: Some(self.filter.clone()),
+            filter: self.filter.clone(),
             window: None,
             environment: self.environment.clone(),
             layers: Vec::new(),
@@ -159,7 +187,7 @@ pub struct ExplainJob {
 impl ExplainArgs {
     /// Reads the scene and resolves the render settings as `render` does.
     pub fn validate(self) -> Result<ExplainJob, UsageError> {
-        let scene = SceneRequest::resolve(&self.render.scene)?;
+        let scene = SceneRequest::resolve_with(&self.render.scene, &self.render.define)?;
         let job = self.render.request(1).resolve(&scene.defaults, Naming::Flags)?;
         Ok(ExplainJob { scene, job, pixel: self.pixel, sample: self.sample, json: self.json })
     }
@@ -307,7 +335,7 @@ impl RenderArgs {
     /// the scene crate's request layer (shared with Python): flags override the
     /// file's settings, which override the program's defaults.
     pub fn validate(self) -> Result<RenderJob, UsageError> {
-        let scene = SceneRequest::resolve(&self.scene.scene)?;
+        let scene = SceneRequest::resolve_with(&self.scene.scene, &self.scene.define)?;
         if !self.exposure.is_finite() {
             return Err(usage("--exposure must be a finite number"));
         }
@@ -354,7 +382,7 @@ mod tests {
         let cli = Cli::try_parse_from(["lamplight", "render"].iter().chain(args)).expect("clap accepts the flags");
         match cli.command {
             Command::Render(render) => render.validate(),
-            Command::List | Command::Info(_) | Command::Raycast(_) | Command::Explain(_) => unreachable!(),
+            Command::List | Command::Info(_) | Command::Raycast(_) | Command::Explain(_) | Command::Convert(_) => unreachable!(),
         }
     }
 
@@ -421,7 +449,7 @@ mod tests {
             (&["--threads", "1025"], "--threads must be at most 1024 (0 uses all cores), got 1025"),
             (&["--width", "100000"], "image 100000x56250 is too large (at most 268435456 pixels)"),
             (&["-o", "out.jpg"], "cannot write out.jpg: unknown image format \"jpg\" (supported: .png, .ppm, .exr)"),
-            (&["scene.txt"], "scene.txt: unknown scene file type, expected .toml or a mesh file (.obj, .ply, .gltf, .glb)"),
+            (&["scene.txt"], "scene.txt: unknown scene file type, expected .toml, .xml or a mesh file (.obj, .ply, .gltf, .glb)"),
             (&["missing.toml"], "missing.toml: no such file"),
         ];
         for (args, expected) in cases {

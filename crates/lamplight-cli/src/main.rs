@@ -55,7 +55,16 @@ fn run() -> anyhow::Result<()> {
         Command::Info(info_args) => info_command(&info_args.file),
         Command::Raycast(raycast_args) => raycast::raycast_command(raycast_args),
         Command::Explain(explain_args) => explain_command(explain_args.validate()?),
+        Command::Convert(convert_args) => convert_command(&convert_args),
     }
+}
+
+fn convert_command(args: &args::ConvertArgs) -> anyhow::Result<()> {
+    let converted = lamplight_scene::convert::convert(&args.input, &args.output, &args.define).map_err(|e| UsageError(e.to_string()))?;
+    print_warnings(&converted.warnings);
+    lamplight_scene::atomic::write(&args.output, converted.toml.as_bytes())
+        .map_err(|e| UsageError(format!("{}: cannot write: {e}", args.output.display())))?;
+    Ok(())
 }
 
 /// The parsed command line. clap prints help, version and most usage errors

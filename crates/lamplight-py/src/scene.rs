@@ -188,13 +188,13 @@ impl Scene {
         Scene::new(Origin::Builtin(b), None)
     }
 
-    /// A scene file (`.toml`, read now) or a mesh file (`.obj`, `.ply`, `.gltf`,
-    /// `.glb`, read when the scene is built), by extension.
+    /// A scene file (`.toml` or Mitsuba `.xml`, read now) or a mesh file (`.obj`,
+    /// `.ply`, `.gltf`, `.glb`, read when the scene is built), by extension.
     #[staticmethod]
     fn from_file(path: PathBuf) -> PyResult<Scene> {
         let extension = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).unwrap_or_default();
-        if extension == "toml" {
-            return Scene::new(Origin::Toml(SceneFile::read(&path).map_err(load_error)?), None);
+        if let Some(format) = lamplight_scene::formats::find(&extension) {
+            return Scene::new(Origin::Toml(SceneFile::read_format(&path, format, &[]).map_err(load_error)?), None);
         }
         if import::EXTENSIONS.contains(&extension.as_str()) {
             if !path.is_file() {
@@ -204,7 +204,7 @@ impl Scene {
             return Scene::new(Origin::Mesh(path), None);
         }
         Err(PyValueError::new_err(format!(
-            "{}: unknown scene file type, expected .toml or a mesh file ({})",
+            "{}: unknown scene file type, expected .toml, .xml or a mesh file ({})",
             path.display(),
             import::EXTENSIONS.iter().map(|e| format!(".{e}")).collect::<Vec<_>>().join(", ")
         )))

@@ -12,6 +12,7 @@
 pub mod atomic;
 pub mod build;
 pub mod builtin;
+pub mod convert;
 pub mod description;
 pub mod env_map;
 mod error;

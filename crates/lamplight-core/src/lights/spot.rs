@@ -7,7 +7,8 @@
 //! the outer cone (`theta >= outer_angle`) and in between, with
 //! `x = (cos theta - cos outer) / (cos inner - cos outer)`:
 //! - `"smoothstep"` (pbrt-v4): `s = 3x^2 - 2x^3`;
-//! - `"gltf"` (the glTF spec's reference): `s = x^2`.
+//! - `"gltf"` (the glTF spec's reference): `s = x^2`;
+//! - `"angle"` (Mitsuba 3's `spot`): linear in the angle, `s = (outer - theta) / (outer - inner)`.
 //!
 //! pbrt's `coneangle` is `outer_angle` and its `conedelta` is
 //! `outer_angle - inner_angle`; glTF's `outerConeAngle` and `innerConeAngle` are
@@ -21,7 +22,7 @@
 //! | `intensity` | colour | required | `I`, radiance at unit distance on the axis |
 //! | `outer_angle` | number | 30 | degrees from the axis where the light ends |
 //! | `inner_angle` | number | min(25, outer_angle) | degrees from the axis where the falloff starts |
-//! | `profile` | string | `"smoothstep"` | `"smoothstep"` or `"gltf"` |
+//! | `profile` | string | `"smoothstep"` | `"smoothstep"`, `"gltf"` or `"angle"` |
 
 use std::sync::Arc;
 
@@ -37,6 +38,8 @@ pub enum SpotProfile {
     Smoothstep,
     /// `x^2` (glTF `KHR_lights_punctual`).
     Gltf,
+    /// Linear in the angle from the axis (Mitsuba 3's `spot`).
+    Angle,
 }
 
 /// A spot light; see the module documentation.
@@ -84,7 +87,7 @@ pub const KIND: LightKind = Kind {
             T::String,
             "\"smoothstep\"",
             "",
-            "`\"smoothstep\"` (pbrt: 3x^2 - 2x^3) or `\"gltf\"` (x^2) between the cones",
+            "`\"smoothstep\"` (pbrt: 3x^2 - 2x^3), `\"gltf\"` (x^2) or `\"angle\"` (linear in the angle, Mitsuba's) between the cones",
         ),
     ],
     build: |p, ctx| {
@@ -98,8 +101,9 @@ pub const KIND: LightKind = Kind {
         let intensity = p.color("intensity")?.ok_or_else(|| p.error("needs `intensity` (a colour)"))?;
         let outer = p.number_or("outer_angle", 30.0)?;
         let inner = p.number_or("inner_angle", outer.min(25.0))?;
-        let profile = match p.choice("profile", &["smoothstep", "gltf"])? {
+        let profile = match p.choice("profile", &["smoothstep", "gltf", "angle"])? {
             "smoothstep" => SpotProfile::Smoothstep,
+            "angle" => SpotProfile::Angle,
             _ => SpotProfile::Gltf,
         };
         let light =
@@ -148,6 +152,10 @@ impl SpotLight {
         match self.profile {
             SpotProfile::Smoothstep => x * x * (3.0 - 2.0 * x),
             SpotProfile::Gltf => x * x,
+            SpotProfile::Angle => {
+                let (inner, outer) = (self.cos_inner.acos(), self.cos_outer.acos());
+                ((outer - cos_theta.clamp(-1.0, 1.0).acos()) / (outer - inner)).clamp(0.0, 1.0)
+            }
         }
     }
 }
@@ -207,6 +215,14 @@ mod tests {
             // Continuous at both cones, and decreasing in between.
             assert!((light.falloff(ci) - 1.0).abs() < 1e-12 && light.falloff(co) == 0.0);
             assert!(irradiance(&light, 26.0) > irradiance(&light, 30.0) && irradiance(&light, 30.0) > irradiance(&light, 39.0));
+        }
+    }
+
+    #[test]
+    fn the_angle_profile_is_linear_in_the_angle() {
+        let light = spot(SpotProfile::Angle);
+        for (deg, expected) in [(25.0f64, 0.75), (30.0, 0.5), (35.0, 0.25)] {
+            assert!((light.falloff(deg.to_radians().cos()) - expected).abs() < 1e-12, "{deg}");
         }
     }
 

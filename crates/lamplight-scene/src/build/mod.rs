@@ -50,6 +50,8 @@ pub struct Settings {
     pub integrator: &'static IntegratorEntry,
     /// How PNG and PPM outputs store the linear values.
     pub transfer: crate::image_io::Transfer,
+    /// The path tracer's pixel filter, when given.
+    pub filter: Option<lamplight_core::film::Filter>,
 }
 
 /// Deepest `max_depth` a file may ask for (as the command line's `--max-depth`).
@@ -109,6 +111,7 @@ pub const RENDER_PARAMS: &[Param] = &[
         "",
         "how PNG and PPM store the values: `\"srgb\"`-encoded, or `\"linear\"` for display-referred numbers (POV-Ray's `File_Gamma 1`) (`--transfer`)",
     ),
+    Param::new("filter", T::String, "\"box\"", "", "path tracer: pixel filter, `\"box\"` or `\"gaussian\"` (sigma 0.5 pixel) (`--filter`)"),
 ];
 
 /// The top-level values.
@@ -147,6 +150,13 @@ impl SceneFile {
     /// Reads and parses the native scene file at `path`.
     pub fn read(path: &Path) -> Result<SceneFile, LoadError> {
         let (description, source) = native::read(path)?;
+        Ok(SceneFile { description, source })
+    }
+
+    /// Reads the scene file at `path` in the format `format` (see
+    /// [`crate::formats::FORMATS`]), with `-D name=value` definitions.
+    pub fn read_format(path: &Path, format: &crate::formats::Format, defines: &[(String, String)]) -> Result<SceneFile, LoadError> {
+        let (description, source) = (format.read)(path, defines)?;
         Ok(SceneFile { description, source })
     }
 
@@ -218,7 +228,14 @@ pub fn settings(desc: &SceneDescription, source: &Source) -> Result<Settings, Lo
             "linear" => crate::image_io::Transfer::Linear,
             _ => crate::image_io::Transfer::Srgb,
         };
-        Ok(Settings { width, height, spp, antialias, noise_threshold, min_spp, max_depth, min_weight, seed, integrator, transfer })
+        let filter = match p.string("filter")? {
+            None => None,
+            Some(name) => Some(
+                name.parse::<lamplight_core::film::Filter>()
+                    .map_err(|_| p.key_error("filter", format!("expected \"box\" or \"gaussian\", got \"{name}\"")))?,
+            ),
+        };
+        Ok(Settings { width, height, spp, antialias, noise_threshold, min_spp, max_depth, min_weight, seed, integrator, transfer, filter })
     };
     let settings = read(&mut p).map_err(|e| source.param_error(e))?;
     p.finish().map_err(|e| source.param_error(e))?;
@@ -247,7 +264,8 @@ pub fn build_with_warnings(desc: &SceneDescription, source: &Source) -> Result<B
     for (name, &index) in &materials {
         builder.name_material(index, name);
     }
-    let warnings = nodes::add_all(desc, source, &mut builder, materials)?;
+    let mut warnings = source.warnings.clone();
+    warnings.extend(nodes::add_all(desc, source, &mut builder, materials)?);
     let scene = builder.build().map_err(|e| LoadError::file(&source.path, e.to_string()))?;
     Ok(Built { scene, warnings })
 }

@@ -28,12 +28,14 @@ pub struct Source {
     pub path: PathBuf,
     /// Its text, when the description was parsed from text.
     pub text: Option<String>,
+    /// What the reader warned about, one line each (`FILE:LINE:COL: message`).
+    pub warnings: Vec<String>,
 }
 
 impl Source {
     /// A source with no text (data from elsewhere, named by `path`).
     pub fn without_text(path: impl Into<PathBuf>) -> Source {
-        Source { path: path.into(), text: None }
+        Source { path: path.into(), text: None, warnings: Vec::new() }
     }
 
     /// The location of byte span `span`: its start as `line:col`, or the whole file.
@@ -106,7 +108,7 @@ pub fn parse(path: &Path, text: String) -> Result<(SceneDescription, Source), Lo
     if text.trim().is_empty() {
         return Err(LoadError::file(path, "is empty, expected a scene (at least a [camera] table)"));
     }
-    let source = Source { path: path.to_path_buf(), text: None };
+    let source = Source { path: path.to_path_buf(), text: None, warnings: Vec::new() };
     if let Some(offset) = too_deep(&text) {
         let source = Source { text: Some(text), ..source };
         let message =

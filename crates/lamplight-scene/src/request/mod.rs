@@ -110,6 +110,8 @@ pub struct Defaults {
     pub integrator: &'static IntegratorEntry,
     /// How PNG and PPM outputs store the values.
     pub transfer: crate::image_io::Transfer,
+    /// The pixel filter, when the scene says.
+    pub filter: Option<Filter>,
 }
 
 impl Defaults {
@@ -124,6 +126,7 @@ impl Defaults {
             seed: s.seed,
             integrator: s.integrator,
             transfer: s.transfer,
+            filter: s.filter,
         }
     }
 }
@@ -139,6 +142,7 @@ pub fn program_defaults() -> Defaults {
         seed: 0,
         integrator: integrators::default_integrator(),
         transfer: Default::default(),
+        filter: None,
     }
 }
 
@@ -158,6 +162,12 @@ impl SceneRequest {
     /// a `.toml` scene file (read and parsed now, so that a bad file stops before
     /// any work), or a mesh file (read when built).
     pub fn resolve(arg: &str) -> Result<SceneRequest, RequestError> {
+        SceneRequest::resolve_with(arg, &[])
+    }
+
+    /// [`SceneRequest::resolve`] with `-D name=value` definitions for formats that
+    /// take parameters (Mitsuba XML's `$name`).
+    pub fn resolve_with(arg: &str, defines: &[(String, String)]) -> Result<SceneRequest, RequestError> {
         let path = Path::new(arg);
         let has_separator = arg.contains('/') || arg.contains(std::path::MAIN_SEPARATOR);
         let extension = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
@@ -167,15 +177,17 @@ impl SceneRequest {
         }
         let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "scene".into());
         match extension.as_deref() {
-            Some("toml") => {
-                let file = SceneFile::read(path).map_err(|e| bad(e.to_string()))?;
+            Some(ext) if crate::formats::find(ext).is_some() => {
+                let format = crate::formats::find(ext).expect("checked");
+                let file = SceneFile::read_format(path, format, defines).map_err(|e| bad(e.to_string()))?;
                 SceneRequest::file(file, stem)
             }
             Some(ext) if import::EXTENSIONS.contains(&ext) => {
                 Ok(SceneRequest { spec: SceneSpec::Mesh(path.to_path_buf()), name: stem, defaults: program_defaults() })
             }
             _ => Err(bad(format!(
-                "{arg}: unknown scene file type, expected .toml or a mesh file ({})",
+                "{arg}: unknown scene file type, expected {} or a mesh file ({})",
+                crate::formats::FORMATS.iter().map(|f| format!(".{}", f.extension)).collect::<Vec<_>>().join(", "),
                 import::EXTENSIONS.iter().map(|e| format!(".{e}")).collect::<Vec<_>>().join(", ")
             ))),
         }
@@ -330,7 +342,7 @@ impl Request {
                 .ok_or_else(|| bad(format!("{} must be {}, got {name:?}", n("integrator"), integrators::quoted_names())))?,
         };
         let filter: Filter = match &self.filter {
-            None => Filter::Box,
+            None => d.filter.unwrap_or(Filter::Box),
             Some(name) => name.parse().map_err(|_| bad(format!("{} must be \"box\" or \"gaussian\", got {name:?}", n("filter"))))?,
         };
         let window = self.window.map(|(x0, y0, w, h)| PixelWindow { x0, y0, width: w, height: h });

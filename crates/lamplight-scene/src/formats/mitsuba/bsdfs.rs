@@ -1,0 +1,328 @@
+//! `<bsdf>` to `[materials]`. lamplight's `phong` material is read by the path
+//! tracer as physically based lobes (`crates/lamplight-core/src/bsdfs/mapping.rs`),
+//! so each Mitsuba BSDF becomes the `phong` table of the same lobes:
+//!
+//! | Mitsuba | lamplight `phong` |
+//! |---|---|
+//! | `diffuse` `reflectance` (0.5, colour or texture) | `color = reflectance`, `kd = 1`, `ka = ks = 0` |
+//! | none (Mitsuba's default) | diffuse 0.5; on an emitting shape diffuse 0 (black), as Mitsuba |
+//! | `conductor` `material` (`none`: a perfect mirror) or `eta`, `k` | `kd = 0`, `reflection = { type = "conductor", eta, k }` ([`super::conductors`]: Mitsuba's table, as `scalar_rgb` reduces it) |
+//! | `roughconductor` `alpha` (0.1), `distribution` | the same with `roughness = alpha` (GGX) |
+//! | `dielectric` `int_ior` (`bk7`), `ext_ior` (`air`): numbers or names | `reflection = { type = "dielectric", ior }`, `refraction = { type = "fresnel", ior }`, `ior = int_ior / ext_ior` |
+//! | `roughdielectric` `alpha` | the same with `roughness = alpha` (GGX) |
+//! | `twosided` | its nested BSDF (lamplight's surfaces are two-sided) |
+//! | `null` | `alpha = 0`: cut out |
+//! | `mask` `opacity` | the nested BSDF with `alpha = opacity` (cut at 0.5, not blended) |
+//! | `normalmap` `normalmap` (a bitmap) | the nested BSDF with `normal_map` |
+//! | `bumpmap` | not yet supported: the nested BSDF without the bump (a warning) |
+//! | `principled` `base_color`, `metallic`, `roughness` | `pbr` (the glTF metallic-roughness BRDF, not Mitsuba's Disney BRDF: a warning) |
+//!
+//! `beckmann` rough surfaces are read as GGX of the same `alpha` (a warning).
+//! `plastic`, `roughplastic`, `thindielectric`, `blendbsdf` and `principledthin`
+//! are errors: no lamplight material gives their image yet.
+
+use lamplight_core::math::Rgb;
+use lamplight_core::params::{Entry, Item, Loc, ParamError, Value};
+
+use super::properties::{Plugin, PropValue};
+use super::textures::{colour_or_texture, number, texture};
+use super::xml::El;
+use super::{conductors::CONDUCTORS, entry, num, table, table_of, text, vec3, Ctx};
+
+/// Mitsuba's named indices of refraction (`include/mitsuba/render/ior.h`).
+pub const IORS: &[(&str, f64)] = &[
+    ("vacuum", 1.0),
+    ("helium", 1.00004),
+    ("hydrogen", 1.00013),
+    ("air", 1.00028),
+    ("carbon dioxide", 1.00045),
+    ("water", 1.333),
+    ("acetone", 1.36),
+    ("ethanol", 1.361),
+    ("carbon tetrachloride", 1.461),
+    ("glycerol", 1.4729),
+    ("benzene", 1.501),
+    ("silicone oil", 1.52045),
+    ("bromine", 1.661),
+    ("water ice", 1.31),
+    ("fused quartz", 1.458),
+    ("pyrex", 1.47),
+    ("acrylic glass", 1.49),
+    ("polypropylene", 1.49),
+    ("bk7", 1.5046),
+    ("sodium chloride", 1.544),
+    ("amber", 1.55),
+    ("pet", 1.575),
+    ("diamond", 2.419),
+];
+
+/// The name of Mitsuba's default BSDF (diffuse 0.5) as a material.
+pub const DEFAULT_MATERIAL: &str = "mitsuba_default_diffuse";
+/// The name of the BSDF Mitsuba gives an emitting shape without one (diffuse 0: black).
+pub const DEFAULT_EMITTER_MATERIAL: &str = "mitsuba_default_emitter";
+
+fn err(loc: &Loc, message: impl Into<String>) -> ParamError {
+    ParamError { loc: loc.clone(), message: message.into() }
+}
+
+/// The material name of the `<bsdf>` `el`, made on first use.
+pub fn material_name<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<String, ParamError> {
+    if let Some(id) = el.get("id") {
+        if let Some(name) = ctx.material_ids.get(id) {
+            return Ok(name.clone());
+        }
+    }
+    let entries = material(ctx, el)?;
+    let name = match el.get("id") {
+        Some(id) if !ctx.materials.iter().any(|m| m.key == id) => id.to_string(),
+        _ => ctx.fresh("bsdf"),
+    };
+    if let Some(id) = el.get("id") {
+        ctx.material_ids.insert(id.to_string(), name.clone());
+    }
+    ctx.materials.push(entry(&name, table(entries, el.loc.clone())));
+    Ok(name)
+}
+
+/// Mitsuba's default BSDF, made once: diffuse 0.5, or 0 (black) on an emitting shape.
+pub fn default_material(ctx: &mut Ctx<'_>, emitting: bool) -> String {
+    let (name, albedo) = if emitting { (DEFAULT_EMITTER_MATERIAL, 0.0) } else { (DEFAULT_MATERIAL, 0.5) };
+    if !ctx.materials.iter().any(|m| m.key == name) {
+        let loc = Loc::Unknown;
+        let t = table(diffuse(vec3(Rgb::splat(albedo), &loc), &loc), loc.clone());
+        ctx.materials.push(entry(name, t));
+    }
+    name.to_string()
+}
+
+fn diffuse(color: Item, loc: &Loc) -> Vec<Entry> {
+    vec![
+        entry("type", text("phong", loc)),
+        entry("color", color),
+        entry("kd", num(1.0, loc)),
+        entry("ka", num(0.0, loc)),
+        entry("ks", num(0.0, loc)),
+    ]
+}
+
+fn black(loc: &Loc) -> Vec<Entry> {
+    vec![entry("type", text("phong", loc)), entry("kd", num(0.0, loc)), entry("ka", num(0.0, loc)), entry("ks", num(0.0, loc))]
+}
+
+/// The nested BSDF of a wrapper (`twosided`, `mask`, `normalmap`, `bumpmap`).
+fn nested<'a>(ctx: &mut Ctx<'a>, p: &Plugin<'a>) -> Result<Vec<Entry>, ParamError> {
+    let mut found = None;
+    for &o in &p.objects {
+        let t = ctx.deref(o)?;
+        if t.tag == "bsdf" {
+            if found.is_some() {
+                ctx.warn(&o.loc, format!("{}: a second nested BSDF is not supported, the first is used", p.label));
+                continue;
+            }
+            found = Some(t);
+        }
+    }
+    let inner = found.ok_or_else(|| err(&p.el.loc, format!("{}: needs a nested <bsdf>", p.label)))?;
+    material(ctx, inner)
+}
+
+/// An index of refraction: a number or one of [`IORS`].
+fn ior(p: &mut Plugin<'_>, key: &str, default: &str) -> Result<(f64, Loc), ParamError> {
+    let label = p.label.clone();
+    let named = |name: &str, loc: &Loc| -> Result<f64, ParamError> {
+        IORS.iter().find(|(n, _)| *n == name.to_ascii_lowercase()).map(|(_, v)| *v).ok_or_else(|| {
+            err(
+                loc,
+                format!(
+                    "{label}: {key}: unknown material \"{name}\" (expected a number or {})",
+                    IORS.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ")
+                ),
+            )
+        })
+    };
+    match p.take(key) {
+        None => Ok((named(default, &p.el.loc)?, p.el.loc.clone())),
+        Some(prop) => match prop.value {
+            PropValue::Float(v) if v > 0.0 => Ok((v, prop.loc)),
+            PropValue::Str(s) => Ok((named(&s, &prop.loc)?, prop.loc)),
+            _ => Err(err(&prop.loc, format!("{label}: {key}: expected a positive number or a material name"))),
+        },
+    }
+}
+
+/// GGX `alpha` of a rough BSDF (`alpha`, or the mean of `alpha_u` and `alpha_v`).
+fn alpha(ctx: &mut Ctx<'_>, p: &mut Plugin<'_>) -> Result<(f64, Loc), ParamError> {
+    if let Some((d, loc)) = p.string("distribution")? {
+        match d.as_str() {
+            "ggx" => {}
+            "beckmann" => ctx.warn(&loc, format!("{}: the beckmann distribution is read as GGX of the same alpha", p.label)),
+            _ => return Err(err(&loc, format!("{}: distribution: expected beckmann or ggx, got \"{d}\"", p.label))),
+        }
+    } else {
+        ctx.warn(&p.el.loc, format!("{}: Mitsuba's default beckmann distribution is read as GGX of the same alpha", p.label));
+    }
+    let _ = p.boolean("sample_visible")?;
+    let (a, loc) = match (p.number("alpha_u")?, p.number("alpha_v")?) {
+        (Some((u, loc)), Some((v, _))) => {
+            if u != v {
+                ctx.warn(&loc, format!("{}: anisotropic roughness is read as the mean alpha {}", p.label, (u + v) / 2.0));
+            }
+            ((u + v) / 2.0, loc)
+        }
+        _ => number(p, "alpha", 0.1)?,
+    };
+    if !(0.0..=1.0).contains(&a) {
+        return Err(err(&loc, format!("{}: alpha: must be between 0 and 1, got {a}", p.label)));
+    }
+    Ok((a, loc))
+}
+
+/// Warns when the optional `key` (a colour factor lamplight does not have) is not 1.
+fn unit_factor(ctx: &mut Ctx<'_>, p: &mut Plugin<'_>, key: &str) -> Result<(), ParamError> {
+    if let Some(o) = p.object(key) {
+        return Err(err(&o.loc, format!("{}: {key}: a texture here is not supported", p.label)));
+    }
+    if let Some((c, loc)) = p.color(key)? {
+        if c != Rgb::ONE {
+            return Err(err(&loc, format!("{}: {key}: only 1 is supported, got {c}", p.label)));
+        }
+    }
+    let _ = ctx;
+    Ok(())
+}
+
+/// The `phong` or `pbr` entries of the `<bsdf>` `el`.
+pub fn material<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<Vec<Entry>, ParamError> {
+    let el = ctx.deref(el)?;
+    if el.tag != "bsdf" {
+        return Err(err(&el.loc, format!("expected a <bsdf>, got <{}>", el.tag)));
+    }
+    let mut p = Plugin::new(el)?;
+    let loc = el.loc.clone();
+    let entries = match p.kind.as_str() {
+        "diffuse" => {
+            let c = colour_or_texture(ctx, &mut p, "reflectance", Rgb::splat(0.5))?;
+            diffuse(c, &loc)
+        }
+        "conductor" | "roughconductor" => {
+            let (eta, k, eloc) = match (p.color("eta")?, p.color("k")?) {
+                (Some((eta, l)), Some((k, _))) => (eta, k, l),
+                (None, None) => {
+                    let (name, l) = p.string("material")?.unwrap_or(("none".into(), loc.clone()));
+                    let (_, eta, k) = CONDUCTORS.iter().find(|(n, _, _)| *n == name).ok_or_else(|| {
+                        err(
+                            &l,
+                            format!(
+                                "{}: material: unknown conductor \"{name}\" (expected one of {})",
+                                p.label,
+                                CONDUCTORS.iter().map(|c| c.0).collect::<Vec<_>>().join(", ")
+                            ),
+                        )
+                    })?;
+                    (Rgb::from_array(*eta), Rgb::from_array(*k), l)
+                }
+                _ => return Err(err(&loc, format!("{}: give both eta and k, or material", p.label))),
+            };
+            let _ = ior(&mut p, "ext_eta", "air").ok();
+            unit_factor(ctx, &mut p, "specular_reflectance")?;
+            let mut e = black(&loc);
+            e.push(entry(
+                "reflection",
+                table_of(vec![("type", text("conductor", &eloc)), ("eta", vec3(eta, &eloc)), ("k", vec3(k, &eloc))], &eloc),
+            ));
+            if p.kind == "roughconductor" {
+                let (a, aloc) = alpha(ctx, &mut p)?;
+                e.push(entry("roughness", num(a, &aloc)));
+            }
+            e
+        }
+        "dielectric" | "roughdielectric" => {
+            let (int, iloc) = ior(&mut p, "int_ior", "bk7")?;
+            let (ext, _) = ior(&mut p, "ext_ior", "air")?;
+            unit_factor(ctx, &mut p, "specular_reflectance")?;
+            unit_factor(ctx, &mut p, "specular_transmittance")?;
+            let eta = int / ext;
+            let mut e = black(&loc);
+            e.push(entry("reflection", table_of(vec![("type", text("dielectric", &iloc)), ("ior", num(eta, &iloc))], &iloc)));
+            e.push(entry("refraction", table_of(vec![("type", text("fresnel", &iloc)), ("ior", num(eta, &iloc))], &iloc)));
+            if p.kind == "roughdielectric" {
+                let (a, aloc) = alpha(ctx, &mut p)?;
+                e.push(entry("roughness", num(a, &aloc)));
+            }
+            e
+        }
+        "twosided" => nested(ctx, &p)?,
+        "null" => {
+            let mut e = black(&loc);
+            e.push(entry("alpha", num(0.0, &loc)));
+            e
+        }
+        "mask" => {
+            let opacity = match p.object("opacity") {
+                Some(o) => {
+                    let t = ctx.deref(o)?;
+                    texture(ctx, t)?
+                }
+                None => {
+                    let (a, aloc) = p.number_or("opacity", 0.5)?;
+                    if a > 0.0 && a < 1.0 {
+                        ctx.warn(
+                            &aloc,
+                            format!("{}: opacity {a} cuts the surface out below 0.5 (lamplight's alpha), Mitsuba blends", p.label),
+                        );
+                    }
+                    num(a, &aloc)
+                }
+            };
+            let mut e = nested(ctx, &p)?;
+            e.retain(|x| x.key != "alpha");
+            e.push(entry("alpha", opacity));
+            e
+        }
+        "normalmap" => {
+            let o = p.object("normalmap").ok_or_else(|| err(&loc, "bsdf \"normalmap\": needs a nested <texture name=\"normalmap\">"))?;
+            let t = ctx.deref(o)?;
+            let mut map = texture(ctx, t)?;
+            if let Value::Table(tt) = &mut map.value {
+                tt.entries.retain(|x| x.key != "color_space");
+                tt.entries.push(entry("color_space", text("linear", &t.loc)));
+            }
+            let mut e = nested(ctx, &p)?;
+            e.push(entry("normal_map", map));
+            e
+        }
+        "bumpmap" => {
+            ctx.warn(&loc, "bumpmap: not yet supported, the nested BSDF is used without the bump");
+            let _ = p.number("scale")?;
+            nested(ctx, &p)?
+        }
+        "principled" => {
+            ctx.warn(
+                &loc,
+                "bsdf \"principled\": approximated by lamplight's pbr (glTF metallic-roughness) material, not Mitsuba's principled BSDF",
+            );
+            let base = colour_or_texture(ctx, &mut p, "base_color", Rgb::splat(0.5))?;
+            let (metallic, mloc) = number(&mut p, "metallic", 0.0)?;
+            let (rough, rloc) = number(&mut p, "roughness", 0.5)?;
+            vec![
+                entry("type", text("pbr", &loc)),
+                entry("base_color", base),
+                entry("metallic", num(metallic, &mloc)),
+                entry("roughness", num(rough, &rloc)),
+            ]
+        }
+        "plastic" | "roughplastic" | "thindielectric" | "blendbsdf" | "principledthin" | "hair" | "measured" | "polarizer" | "retarder"
+        | "pplastic" => {
+            return Err(err(&p.el.require("type")?.loc, format!("{}: not yet supported (no lamplight material gives its image)", p.label)))
+        }
+        other => return Err(err(&p.el.require("type")?.loc, format!("bsdf \"{other}\": unknown BSDF"))),
+    };
+    for o in p.objects.clone() {
+        let t = ctx.deref(o)?;
+        if !matches!(t.tag.as_str(), "bsdf" | "texture") {
+            ctx.warn(&o.loc, format!("{}: nested <{}> is not supported, ignored", p.label, t.tag));
+        }
+    }
+    ctx.finish(p);
+    Ok(entries)
+}

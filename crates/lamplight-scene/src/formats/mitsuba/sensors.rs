@@ -1,0 +1,256 @@
+//! `<sensor>` with its `<film>`, `<rfilter>` and `<sampler>` to `[camera]` and
+//! `[render]`.
+//!
+//! | Mitsuba | lamplight |
+//! |---|---|
+//! | `perspective` `fov`, `fov_axis` (`x`, `y`, `diagonal`, `smaller`, `larger`) | `perspective` `hfov` (axis x) or `vfov` (axis y; diagonal converted at the film's aspect) |
+//! | a mirroring `to_world` (negative determinant) | the `window` camera with the mirrored `right` |
+//! | `thinlens` `aperture_radius`, `focus_distance` | `thin_lens` `lens_radius`, `focal_distance` |
+//! | `orthographic` | `orthographic`, `half_width` and `half_height` from `to_world`'s scale (`[-1, 1]` by `[-1/a, 1/a]`) |
+//! | `hdrfilm` `width`, `height` (768 x 576) | `width`, `height` |
+//! | `rfilter` `box`, `gaussian` (stddev 0.5, the default) | `filter` `box`, `gaussian` (others: warning, box) |
+//! | `sampler` `sample_count` (4) | `spp` |
+//!
+//! Mitsuba's camera looks down its local `+z` with `+y` up and `+x` to the
+//! left, so the image's right is `-to_world x`. With `fov_axis = "x"` the
+//! horizontal field of view is kept when the width changes, as in Mitsuba.
+
+use lamplight_core::math::{Mat4, Vec3};
+use lamplight_core::params::{Loc, ParamError};
+
+use super::properties::Plugin;
+use super::xml::El;
+use super::{entry, int, num, table_of, text, vec3, Ctx};
+
+fn err(loc: &Loc, message: impl Into<String>) -> ParamError {
+    ParamError { loc: loc.clone(), message: message.into() }
+}
+
+/// Reads a `<sensor>`.
+pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<(), ParamError> {
+    let mut p = Plugin::new(el)?;
+    let (width, height) = film(ctx, &p)?;
+    sampler(ctx, &p)?;
+    let aspect = width as f64 / height as f64;
+    let (m, mloc) = p.transform("to_world")?.unwrap_or((Mat4::IDENTITY, el.loc.clone()));
+    let eye = m.transform_point3(Vec3::ZERO);
+    let forward = m.transform_vector3(Vec3::Z);
+    let up = m.transform_vector3(Vec3::Y).normalize_or_zero();
+    let right = -m.transform_vector3(Vec3::X).normalize_or_zero();
+    let mirrored = m.determinant() < 0.0;
+    for key in ["near_clip", "far_clip"] {
+        if let Some((_, loc)) = p.number(key)? {
+            ctx.warn(&loc, format!("{}: {key} is not supported (lamplight does not clip), ignored", p.label));
+        }
+    }
+    for key in ["principal_point_offset_x", "principal_point_offset_y"] {
+        if let Some((v, loc)) = p.number(key)? {
+            if v != 0.0 {
+                return Err(err(&loc, format!("{}: {key} is not supported, expected 0", p.label)));
+            }
+        }
+    }
+    let loc = el.loc.clone();
+    let camera = match p.kind.as_str() {
+        "perspective" | "thinlens" => {
+            let (tx, ty, fov, floc) = field_of_view(&mut p, aspect)?;
+            let lens = if p.kind == "thinlens" {
+                let (r, rloc) = p.number_or("aperture_radius", 0.03)?;
+                let (f, dloc) = p.number("focus_distance")?.ok_or_else(|| err(&loc, "sensor \"thinlens\": needs focus_distance"))?;
+                Some((num(r, &rloc), num(f * forward.length(), &dloc)))
+            } else {
+                None
+            };
+            if mirrored {
+                if lens.is_some() {
+                    return Err(err(&mloc, "sensor \"thinlens\": a mirroring to_world is not supported"));
+                }
+                let f = forward.normalize();
+                table_of(
+                    vec![
+                        ("type", text("window", &loc)),
+                        ("eye", vec3(eye, &mloc)),
+                        ("window_center", vec3(eye + f, &mloc)),
+                        ("right", vec3(right * tx, &floc)),
+                        ("up", vec3(up * ty, &floc)),
+                    ],
+                    &loc,
+                )
+            } else {
+                let mut pairs = vec![
+                    ("type", text(if lens.is_some() { "thin_lens" } else { "perspective" }, &loc)),
+                    ("eye", vec3(eye, &mloc)),
+                    ("look_at", vec3(eye + forward, &mloc)),
+                    ("up", vec3(up, &mloc)),
+                    (fov.0, num(fov.1, &floc)),
+                ];
+                if let Some((r, f)) = lens {
+                    pairs.push(("lens_radius", r));
+                    pairs.push(("focal_distance", f));
+                }
+                table_of(pairs, &loc)
+            }
+        }
+        "orthographic" => {
+            if mirrored {
+                return Err(err(&mloc, "sensor \"orthographic\": a mirroring to_world is not supported"));
+            }
+            let half_w = m.transform_vector3(Vec3::X).length();
+            let half_h = m.transform_vector3(Vec3::Y).length() / aspect;
+            table_of(
+                vec![
+                    ("type", text("orthographic", &loc)),
+                    ("eye", vec3(eye, &mloc)),
+                    ("look_at", vec3(eye + forward, &mloc)),
+                    ("up", vec3(up, &mloc)),
+                    ("half_width", num(half_w, &mloc)),
+                    ("half_height", num(half_h, &mloc)),
+                ],
+                &loc,
+            )
+        }
+        other => {
+            return Err(err(
+                &p.el.require("type")?.loc,
+                format!("sensor: unknown sensor type \"{other}\" (lamplight reads perspective, thinlens, orthographic)"),
+            ))
+        }
+    };
+    ctx.camera = Some(camera);
+    for o in p.objects.clone() {
+        if !matches!(o.tag.as_str(), "film" | "sampler") {
+            ctx.warn(&o.loc, format!("{}: nested <{}> is not supported, ignored", p.label, o.tag));
+        }
+    }
+    ctx.finish(p);
+    Ok(())
+}
+
+/// `tan(hfov / 2)`, `tan(vfov / 2)`, the kept key and degrees, and where the field of view is written.
+type FieldOfView = (f64, f64, (&'static str, f64), Loc);
+
+/// `tan` of half the horizontal and vertical fields of view, the camera key
+/// that keeps the field of view (`hfov` for axis x, else `vfov`) with its
+/// degrees, and where it is written.
+fn field_of_view(p: &mut Plugin<'_>, aspect: f64) -> Result<FieldOfView, ParamError> {
+    let (fov, floc) = match (p.number("fov")?, p.string("focal_length")?) {
+        (Some(f), _) => f,
+        (None, Some((mm, loc))) => {
+            let v: f64 = mm
+                .trim_end_matches("mm")
+                .trim()
+                .parse()
+                .map_err(|_| err(&loc, format!("{}: focal_length: expected such as \"50mm\", got \"{mm}\"", p.label)))?;
+            // A 35 mm film's diagonal is 43.27 mm (Mitsuba's focal-length conversion).
+            (2.0 * (43.266615 / (2.0 * v)).atan().to_degrees(), loc)
+        }
+        (None, None) => (2.0 * (43.266615f64 / 100.0).atan().to_degrees(), p.el.loc.clone()),
+    };
+    let diagonal_default = !p.has("fov");
+    if !(fov > 0.0 && fov < 180.0) {
+        return Err(err(&floc, format!("{}: fov: must be between 0 and 180 degrees, got {fov}", p.label)));
+    }
+    let axis = match p.string("fov_axis")? {
+        None if diagonal_default => "diagonal".to_string(),
+        None => "x".to_string(),
+        Some((a, loc)) => match a.as_str() {
+            "x" | "y" | "diagonal" => a,
+            "smaller" => if aspect > 1.0 { "y" } else { "x" }.to_string(),
+            "larger" => if aspect > 1.0 { "x" } else { "y" }.to_string(),
+            _ => return Err(err(&loc, format!("{}: fov_axis: expected x, y, diagonal, smaller or larger, got \"{a}\"", p.label))),
+        },
+    };
+    let t = (fov.to_radians() / 2.0).tan();
+    let (tx, ty) = match axis.as_str() {
+        "x" => (t, t / aspect),
+        "y" => (t * aspect, t),
+        _ => {
+            let d = (1.0 + aspect * aspect).sqrt();
+            (t * aspect / d, t / d)
+        }
+    };
+    let kept = match axis.as_str() {
+        "x" => ("hfov", fov),
+        "y" => ("vfov", fov),
+        _ => ("vfov", 2.0 * ty.atan().to_degrees()),
+    };
+    Ok((tx, ty, kept, floc))
+}
+
+/// The film's size and filter into `[render]`.
+fn film(ctx: &mut Ctx<'_>, sensor: &Plugin<'_>) -> Result<(u32, u32), ParamError> {
+    let Some(el) = sensor.objects.iter().copied().find(|o| o.tag == "film") else {
+        ctx.render.push(entry("width", int(768, &sensor.el.loc)));
+        ctx.render.push(entry("height", int(576, &sensor.el.loc)));
+        ctx.render.push(entry("filter", text("gaussian", &sensor.el.loc)));
+        return Ok((768, 576));
+    };
+    let el = ctx.deref(el)?;
+    let mut p = Plugin::new(el)?;
+    if !matches!(p.kind.as_str(), "hdrfilm" | "specfilm") {
+        ctx.warn(&el.loc, format!("{}: read as hdrfilm (size and filter only)", p.label));
+    }
+    let mut side = |p: &mut Plugin<'_>, key: &str, default: i64| -> Result<i64, ParamError> {
+        let (v, loc) = p.integer(key)?.unwrap_or((default, el.loc.clone()));
+        if !(1..=1 << 16).contains(&v) {
+            return Err(err(&loc, format!("{}: {key}: must be between 1 and 65536, got {v}", p.label)));
+        }
+        ctx.render.push(entry(key, int(v, &loc)));
+        Ok(v)
+    };
+    let width = side(&mut p, "width", 768)?;
+    let height = side(&mut p, "height", 576)?;
+    for key in ["crop_offset_x", "crop_offset_y", "crop_width", "crop_height"] {
+        if let Some((_, loc)) = p.integer(key)? {
+            return Err(err(&loc, format!("{}: {key}: crop windows are not supported (render with --window)", p.label)));
+        }
+    }
+    for key in ["file_format", "pixel_format", "component_format", "banner", "high_quality_edges", "sample_border"] {
+        let _ = p.take(key);
+    }
+    let filter = match p.objects.iter().copied().find(|o| o.tag == "rfilter") {
+        None => "gaussian".to_string(),
+        Some(f) => {
+            let f = ctx.deref(f)?;
+            let mut fp = Plugin::new(f)?;
+            let name = match fp.kind.as_str() {
+                "box" => "box",
+                "gaussian" => {
+                    if let Some((s, loc)) = fp.number("stddev")? {
+                        if s != 0.5 {
+                            ctx.warn(&loc, format!("rfilter \"gaussian\": stddev {s} is read as 0.5 (lamplight's gaussian)"));
+                        }
+                    }
+                    "gaussian"
+                }
+                other => {
+                    ctx.warn(&f.loc, format!("rfilter \"{other}\": not supported, the box filter is used"));
+                    "box"
+                }
+            };
+            ctx.finish(fp);
+            name.to_string()
+        }
+    };
+    ctx.render.push(entry("filter", text(&filter, &el.loc)));
+    ctx.finish(p);
+    Ok((width as u32, height as u32))
+}
+
+/// `sample_count` into `spp`.
+fn sampler(ctx: &mut Ctx<'_>, sensor: &Plugin<'_>) -> Result<(), ParamError> {
+    let Some(el) = sensor.objects.iter().copied().find(|o| o.tag == "sampler") else {
+        ctx.render.push(entry("spp", int(4, &sensor.el.loc)));
+        return Ok(());
+    };
+    let el = ctx.deref(el)?;
+    let mut p = Plugin::new(el)?;
+    let (spp, loc) = p.integer("sample_count")?.unwrap_or((4, el.loc.clone()));
+    ctx.render.push(entry("spp", int(spp, &loc)));
+    // The sampler's pattern and seed change the noise, not the expected image.
+    for key in ["seed", "jitter", "scramble_type", "dimension"] {
+        let _ = p.take(key);
+    }
+    ctx.finish(p);
+    Ok(())
+}

@@ -1,0 +1,183 @@
+//! `<shape>` to nodes. Mitsuba's shapes are unit shapes placed by `to_world`,
+//! which becomes the node's `matrix`:
+//!
+//! | Mitsuba | lamplight |
+//! |---|---|
+//! | `sphere` `center` (0), `radius` (1) | `sphere` |
+//! | `rectangle` (`[-1, 1]^2` at `z = 0`, normal `+z`) | `rectangle` corner `[-1, -1, 0]`, edges `[2, 0, 0]`, `[0, 2, 0]` |
+//! | `disk` (radius 1 at `z = 0`, normal `+z`) | `disk` |
+//! | `cube` (`[-1, 1]^3`) | `box` |
+//! | `cylinder` `p0` (0), `p1` (`[0, 0, 1]`), `radius` (1), open | `cylinder` |
+//! | `obj`, `ply` `filename` | a `[meshes]` entry and a `mesh` node |
+//! | `serialized` `filename`, `shape_index` ([`super::serialized`]) | an inline `[meshes]` entry |
+//! | `shapegroup` (with an `id`) and `instance` | `[definitions]` and `instance` nodes |
+//! | a nested `<bsdf>` or `<ref>` | `material` (default: Mitsuba's diffuse 0.5, black on an emitter) |
+//! | a nested `<emitter type="area">` | the material with `emission` |
+//!
+//! `flip_normals` is not supported (a warning). Meshes without normals are shaded
+//! flat, as Mitsuba's `face_normals = true` (Mitsuba's default smooths them).
+
+use lamplight_core::math::{Mat4, Vec3};
+use lamplight_core::params::{Item, Loc, ParamError, Value};
+
+use super::properties::Plugin;
+use super::xml::El;
+use super::{bsdfs, emitters, entry, matrix, num, table, table_of, text, vec3, Ctx};
+
+fn err(loc: &Loc, message: impl Into<String>) -> ParamError {
+    ParamError { loc: loc.clone(), message: message.into() }
+}
+
+/// Reads `el` and pushes its node(s) to `out`.
+pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El, out: &mut Vec<Item>) -> Result<(), ParamError> {
+    let mut p = Plugin::new(el)?;
+    let loc = el.loc.clone();
+    let mut node: Vec<(&str, Item)> = Vec::new();
+    match p.kind.as_str() {
+        "shapegroup" => return shapegroup(ctx, el, p),
+        "instance" => {
+            let target = p.objects.iter().copied().find(|o| o.tag == "ref" || o.tag == "shape");
+            let target = target.ok_or_else(|| err(&loc, "shape \"instance\": needs a <ref id=\"...\"/> to a shapegroup"))?;
+            let group = ctx.deref(target)?;
+            let id = group.get("id").filter(|_| group.get("type") == Some("shapegroup"));
+            let id = id.ok_or_else(|| err(&target.loc, "shape \"instance\": the reference must name a shapegroup"))?;
+            node.push(("type", text("instance", &loc)));
+            node.push(("of", text(id, &target.loc)));
+        }
+        "sphere" => {
+            let (c, cloc) = p.vec3("center")?.unwrap_or((Vec3::ZERO, loc.clone()));
+            let (r, rloc) = p.number_or("radius", 1.0)?;
+            node.push(("type", text("sphere", &loc)));
+            node.push(("center", vec3(c, &cloc)));
+            node.push(("radius", num(r, &rloc)));
+        }
+        "rectangle" => {
+            node.push(("type", text("rectangle", &loc)));
+            node.push(("corner", vec3(Vec3::new(-1.0, -1.0, 0.0), &loc)));
+            node.push(("edge_u", vec3(Vec3::new(2.0, 0.0, 0.0), &loc)));
+            node.push(("edge_v", vec3(Vec3::new(0.0, 2.0, 0.0), &loc)));
+        }
+        "disk" => {
+            node.push(("type", text("disk", &loc)));
+            node.push(("center", vec3(Vec3::ZERO, &loc)));
+            node.push(("normal", vec3(Vec3::Z, &loc)));
+            node.push(("radius", num(1.0, &loc)));
+        }
+        "cube" => {
+            node.push(("type", text("box", &loc)));
+            node.push(("min", vec3(Vec3::splat(-1.0), &loc)));
+            node.push(("max", vec3(Vec3::splat(1.0), &loc)));
+        }
+        "cylinder" => {
+            let (a, aloc) = p.vec3("p0")?.unwrap_or((Vec3::ZERO, loc.clone()));
+            let (b, bloc) = p.vec3("p1")?.unwrap_or((Vec3::Z, loc.clone()));
+            let (r, rloc) = p.number_or("radius", 1.0)?;
+            node.push(("type", text("cylinder", &loc)));
+            node.push(("from", vec3(a, &aloc)));
+            node.push(("to", vec3(b, &bloc)));
+            node.push(("radius", num(r, &rloc)));
+        }
+        "obj" | "ply" => {
+            let (f, floc) = p.string("filename")?.ok_or_else(|| err(&loc, format!("{}: needs filename", p.label)))?;
+            let file = ctx.file(&f, &floc)?;
+            let name = mesh_name(ctx, el);
+            ctx.meshes.push(entry(&name, table_of(vec![("file", text(&file, &floc))], &floc)));
+            node.push(("type", text("mesh", &loc)));
+            node.push(("mesh", text(&name, &floc)));
+        }
+        "serialized" => {
+            let (f, floc) = p.string("filename")?.ok_or_else(|| err(&loc, format!("{}: needs filename", p.label)))?;
+            let file = ctx.file(&f, &floc)?;
+            let (index, iloc) = p.integer("shape_index")?.unwrap_or((0, loc.clone()));
+            let mesh = super::serialized::read(&ctx.full_path(&file), index).map_err(|m| err(&iloc, format!("{}: {m}", p.label)))?;
+            let name = mesh_name(ctx, el);
+            ctx.meshes.push(entry(&name, mesh.table(&floc)));
+            node.push(("type", text("mesh", &loc)));
+            node.push(("mesh", text(&name, &floc)));
+        }
+        other => {
+            ctx.warn(&p.el.require("type")?.loc, format!("shape \"{other}\": not supported, skipped"));
+            return Ok(());
+        }
+    }
+    if let Some((m, mloc)) = p.transform("to_world")? {
+        if m != Mat4::IDENTITY {
+            node.push(("matrix", matrix(&m, &mloc)));
+        }
+    }
+    if let Some((true, bloc)) = p.boolean("flip_normals")? {
+        ctx.warn(&bloc, format!("{}: flip_normals is not supported, ignored", p.label));
+    }
+    // lamplight shades meshes without normals flat, as face_normals = true asks;
+    // Mitsuba's default smooths them (a known difference, docs/mitsuba.md).
+    let _ = p.boolean("face_normals")?;
+    if p.kind != "instance" {
+        let material = material(ctx, &p)?;
+        node.push(("material", text(&material, &loc)));
+    }
+    for o in p.objects.clone() {
+        if !matches!(o.tag.as_str(), "bsdf" | "emitter" | "ref") {
+            ctx.warn(&o.loc, format!("{}: nested <{}> is not supported, ignored", p.label, o.tag));
+        }
+    }
+    ctx.finish(p);
+    out.push(table_of(node, &loc));
+    Ok(())
+}
+
+/// The material of a shape: its BSDF's, with its area emitter's emission.
+fn material<'a>(ctx: &mut Ctx<'a>, p: &Plugin<'a>) -> Result<String, ParamError> {
+    let mut bsdf = None;
+    let mut emitter = None;
+    for &o in &p.objects {
+        let target = ctx.deref(o)?;
+        match target.tag.as_str() {
+            "bsdf" => bsdf = Some(target),
+            "emitter" => emitter = Some(target),
+            _ => {}
+        }
+    }
+    let name = match bsdf {
+        Some(b) => bsdfs::material_name(ctx, b)?,
+        None => bsdfs::default_material(ctx, emitter.is_some()),
+    };
+    let Some(e) = emitter else { return Ok(name) };
+    let (radiance, rloc) = emitters::area_radiance(ctx, e)?;
+    let mut material = ctx.materials.iter().find(|m| m.key == name).map(|m| m.item.clone()).expect("made above");
+    if let Value::Table(t) = &mut material.value {
+        t.entries.retain(|en| en.key != "emission");
+        t.entries.push(entry("emission", radiance));
+    }
+    let emitting = ctx.fresh(&format!("{name}_emitting"));
+    let _ = rloc;
+    ctx.materials.push(entry(&emitting, material));
+    Ok(emitting)
+}
+
+fn mesh_name(ctx: &mut Ctx<'_>, el: &El) -> String {
+    match el.get("id") {
+        Some(id) if !ctx.meshes.iter().any(|m| m.key == id) => id.to_string(),
+        _ => ctx.fresh("mesh"),
+    }
+}
+
+/// A `shapegroup`: its shapes as a definition named by its id.
+fn shapegroup<'a>(ctx: &mut Ctx<'a>, el: &'a El, p: Plugin<'a>) -> Result<(), ParamError> {
+    let id = el.require("id").map_err(|_| err(&el.loc, "shape \"shapegroup\": needs an id (instances refer to it)"))?;
+    let mut children = Vec::new();
+    for &o in &p.objects {
+        if o.tag == "shape" {
+            read(ctx, o, &mut children)?;
+        } else {
+            ctx.warn(&o.loc, format!("shape \"shapegroup\": nested <{}> is not supported, ignored", o.tag));
+        }
+    }
+    let group = table_of(
+        vec![("type", text("group", &el.loc)), ("children", Item { value: Value::Array(children), loc: el.loc.clone() })],
+        &el.loc,
+    );
+    ctx.definitions.push(entry(&id.value, group));
+    ctx.finish(p);
+    let _ = table;
+    Ok(())
+}
