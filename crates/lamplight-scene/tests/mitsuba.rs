@@ -265,18 +265,47 @@ fn malformed_and_unsupported_scenes_give_their_exact_errors() {
 #[test]
 fn skipped_parts_are_warnings_at_their_place() {
     let body = r#"<shape type="hair"/>
-    <shape type="sphere"><float name="bogus" value="1"/><bsdf type="bumpmap"><bsdf type="diffuse"/></bsdf></shape>
+    <shape type="sphere"><float name="bogus" value="1"/><bsdf type="diffuse"/></shape>
     <medium type="homogeneous"/>"#;
     let (_, warnings) = table(&scene(body), &[]);
     assert_eq!(
         warnings,
         [
             "s.xml:10:14: shape \"hair\": not supported, skipped",
-            "s.xml:11:57: bumpmap: not yet supported, the nested BSDF is used without the bump",
             "s.xml:11:53: shape \"sphere\": property \"bogus\" is not supported, ignored",
             "s.xml:12:5: <medium>: not supported, ignored",
         ]
     );
+}
+
+/// A bump-mapped rectangle lit from the side: the height texture and scale of
+/// Mitsuba's `bumpmap`.
+fn bumped(scale: &str) -> String {
+    scene(&format!(
+        r#"<emitter type="directional"><vector name="direction" value="1, -0.5, -1"/><rgb name="irradiance" value="2"/></emitter>
+    <shape type="rectangle"><bsdf type="bumpmap"><float name="scale" value="{scale}"/>
+        <texture name="height" type="checkerboard"><transform name="to_uv"><scale value="3"/></transform></texture>
+        <bsdf type="diffuse"/></bsdf></shape>"#
+    ))
+}
+
+#[test]
+fn bumpmap_reads_as_the_nested_bsdf_with_its_bump() {
+    let dir = tempfile::tempdir().unwrap();
+    let xml = write(dir.path(), "b.xml", &bumped("0.5"));
+    let out = dir.path().join("b.toml");
+    let converted = lamplight_scene::convert::convert(&xml, &out, &[]).unwrap();
+    assert!(converted.toml.contains("bump = { type = \"uv_checker\""), "{}", converted.toml);
+    assert!(converted.toml.contains("bump_scale = 0.5\n"), "{}", converted.toml);
+    std::fs::write(&out, &converted.toml).unwrap();
+    let with_bump = render(&xml, &[]);
+    assert_eq!(with_bump, render(&out, &[]), "the XML and its TOML render alike");
+    let flat = render(&write(dir.path(), "f.xml", &bumped("0")), &[]);
+    assert_ne!(with_bump, flat, "the bump changes the shading");
+    let (_, warnings) = table(&bumped("0.5"), &[]);
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let two = bumped("1").replace("<bsdf type=\"diffuse\"/>", "<texture type=\"checkerboard\"/><bsdf type=\"diffuse\"/>");
+    assert_eq!(error(&two), "s.xml:13:9: bsdf \"bumpmap\": expected one nested <texture> (the height)");
 }
 
 #[test]

@@ -14,7 +14,7 @@
 //! | `null` | `alpha = 0`: cut out |
 //! | `mask` `opacity` | the nested BSDF with `alpha = opacity` (cut at 0.5, not blended) |
 //! | `normalmap` `normalmap` (a bitmap) | the nested BSDF with `normal_map` |
-//! | `bumpmap` | not yet supported: the nested BSDF without the bump (a warning) |
+//! | `bumpmap` (`scale`, one nested height `<texture>`) | the nested BSDF with `bump`, `bump_scale` |
 //! | `principled` `base_color`, `metallic`, `roughness` | `pbr` (the glTF metallic-roughness BRDF, not Mitsuba's Disney BRDF: a warning) |
 //!
 //! `beckmann` rough surfaces are read as GGX of the same `alpha` (a warning).
@@ -292,9 +292,29 @@ pub fn material<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<Vec<Entry>, ParamEr
             e
         }
         "bumpmap" => {
-            ctx.warn(&loc, "bumpmap: not yet supported, the nested BSDF is used without the bump");
-            let _ = p.number("scale")?;
-            nested(ctx, &p)?
+            // Mitsuba names the height texture freely; it is the one nested <texture>.
+            let mut height = None;
+            for &o in &p.objects {
+                let t = ctx.deref(o)?;
+                if t.tag == "texture" && height.replace(t).is_some() {
+                    return Err(err(&o.loc, "bsdf \"bumpmap\": expected one nested <texture> (the height)"));
+                }
+            }
+            let t = height.ok_or_else(|| err(&loc, "bsdf \"bumpmap\": needs a nested <texture> (the height)"))?;
+            let mut map = texture(ctx, t)?;
+            // A bitmap's heights are raw values, as Mitsuba reads them.
+            if let Value::Table(tt) = &mut map.value {
+                if tt.entries.iter().any(|x| x.key == "file") {
+                    tt.entries.retain(|x| x.key != "color_space");
+                    tt.entries.push(entry("color_space", text("linear", &t.loc)));
+                }
+            }
+            let (scale, sloc) = number(&mut p, "scale", 1.0)?;
+            let mut e = nested(ctx, &p)?;
+            e.retain(|x| x.key != "bump" && x.key != "bump_scale");
+            e.push(entry("bump", map));
+            e.push(entry("bump_scale", num(scale, &sloc)));
+            e
         }
         "principled" => {
             ctx.warn(
