@@ -41,6 +41,25 @@ pub enum Command {
     Raycast(crate::raycast::RaycastArgs),
     /// Show why a pixel has its colour: the ray tree of each sample (Whitted) or its paths (path tracer).
     Explain(ExplainArgs),
+    /// Look at a scene live in the browser: progressive rendering, mouse camera, live reload, pixel inspector.
+    View(ViewArgs),
+}
+
+/// `lamplight view` flags: the scene and render settings of `render`, and where to listen.
+#[derive(Debug, Args)]
+pub struct ViewArgs {
+    /// The scene and how it is rendered, as for `render` [default size: 640 pixels wide].
+    #[command(flatten)]
+    pub render: SceneArgs,
+    /// Worker threads; 0 uses all cores.
+    #[arg(long, value_name = "T", default_value_t = 0, allow_negative_numbers = true, value_parser = count::<usize>)]
+    pub threads: usize,
+    /// Listen on this address instead of 127.0.0.1:8765 (anything but loopback lets other machines connect, with the token).
+    #[arg(long, value_name = "ADDR:PORT")]
+    pub listen: Option<std::net::SocketAddr>,
+    /// Open the viewer's URL in a browser.
+    #[arg(long)]
+    pub open: bool,
 }
 
 /// `lamplight explain` flags: the scene and render settings of `render`, and the pixel.

@@ -5,6 +5,7 @@
 //!                  [--max-depth D] [--threads T] [--seed S] [--quiet]
 //! lamplight list
 //! lamplight info FILE
+//! lamplight view [SCENE|FILE] [--listen ADDR] [--open] [render flags]
 //! ```
 //!
 //! The binary is thin: it turns arguments into options ([`args`]), builds the
@@ -17,6 +18,7 @@
 mod args;
 mod raycast;
 mod signals;
+mod view;
 
 use std::io::{self, IsTerminal, Write};
 use std::process::ExitCode;
@@ -55,6 +57,7 @@ fn run() -> anyhow::Result<()> {
         Command::Info(info_args) => info_command(&info_args.file),
         Command::Raycast(raycast_args) => raycast::raycast_command(raycast_args),
         Command::Explain(explain_args) => explain_command(explain_args.validate()?),
+        Command::View(view_args) => view::view_command(view_args),
     }
 }
 
