@@ -48,6 +48,12 @@ impl ViewCamera {
         let vfov = if vfov.is_finite() && (1.0..=170.0).contains(&vfov) { vfov } else { 40.0 };
         let sky = top - bottom;
         let up = (sky - forward * sky.dot(forward)).try_normalize().unwrap_or(Vec3::Y);
+        // The same camera with a coordinate axis as its sky, when one gives it
+        // (no roll about that axis): the TOML then reads `up = [0, 1, 0]`.
+        let up = [Vec3::Y, Vec3::Z, Vec3::X]
+            .into_iter()
+            .find(|axis| (axis - forward * axis.dot(forward)).try_normalize().is_some_and(|a| a.dot(up) > 1.0 - 1e-12))
+            .unwrap_or(up);
         let distance = match scene.first_intersect(&centre, f64::INFINITY) {
             Some(hit) => (hit.point - centre.origin).length(),
             None => (scene.bounds().centroid() - centre.origin).length(),
@@ -92,7 +98,10 @@ impl ViewCamera {
 
     /// The `[camera]` table of a scene file (docs/scene-format.md) that gives this view.
     pub fn to_toml(&self) -> String {
-        let v = |x: Vec3| format!("[{}, {}, {}]", short(x.x), short(x.y), short(x.z));
+        // Rounding residue (1e-16 where 0 was meant) is written as 0.
+        let scale = self.eye.abs().max(self.look_at.abs()).max_element().max(1e-300);
+        let snap = |x: f64| if x.abs() < scale * 1e-12 { 0.0 } else { x };
+        let v = |x: Vec3| format!("[{}, {}, {}]", short(snap(x.x)), short(snap(x.y)), short(snap(x.z)));
         format!("[camera]\neye = {}\nlook_at = {}\nup = {}\nvfov = {}\n", v(self.eye), v(self.look_at), v(self.up), short(self.vfov))
     }
 }
@@ -128,6 +137,7 @@ mod tests {
         // luxo's camera: eye (1.3, 1.6, 3), vfov 40.
         assert!((probed.eye - Vec3::new(1.3, 1.6, 3.0)).length() < 1e-12, "{probed:?}");
         assert!((probed.vfov - 40.0).abs() < 1e-9, "{probed:?}");
+        assert_eq!(probed.up, Vec3::Y, "the scene's sky, not the orthonormal up");
         let built = probed.build().unwrap();
         for (x, y) in [(0.5, 0.5), (320.0, 180.0), (639.5, 10.25)] {
             let a = scene.camera.ray(x, y, 640, 360, (0.5, 0.5));
@@ -156,6 +166,13 @@ mod tests {
     fn the_toml_reads_back_as_the_same_view() {
         let c = ViewCamera { eye: Vec3::new(1.3, 1.6, 3.0), look_at: Vec3::new(-0.2, 0.25, 0.8), up: Vec3::Y, vfov: 42.0 };
         assert_eq!(c.to_toml(), "[camera]\neye = [1.3, 1.6, 3]\nlook_at = [-0.2, 0.25, 0.8]\nup = [0, 1, 0]\nvfov = 42\n");
+        let c = ViewCamera { eye: Vec3::new(0.3, 1.2e-17, 2.0), look_at: Vec3::new(-0.7173913, 0.0, -1.45217), up: Vec3::Y, vfov: 37.5 };
+        let file = lamplight_scene::build::SceneFile::parse(std::path::Path::new("view.toml"), &c.to_toml()).unwrap();
+        let (read, built) = (file.build().unwrap().camera, c.build().unwrap());
+        for (x, y) in [(0.5, 0.5), (99.5, 40.25)] {
+            let (a, b) = (read.ray(x, y, 100, 50, (0.5, 0.5)), built.ray(x, y, 100, 50, (0.5, 0.5)));
+            assert!((a.dir.normalize() - b.dir.normalize()).length() < 1e-5, "{a:?} {b:?}");
+        }
         assert_eq!(short(1.5e-7), "1.50000e-7");
         assert_eq!(short(-123.456789), "-123.457");
     }

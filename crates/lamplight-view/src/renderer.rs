@@ -1,11 +1,13 @@
 //! Progressive rendering on one thread, latest request wins.
 //!
 //! A [`Wanted`] is a scene, a camera and a resolved [`Job`]. The render thread
-//! renders it in [`stages`]: a quarter-resolution, one-sample preview (the
-//! frame that follows a drag at once), then the full image with one sample,
-//! then more samples (4, 16, 64, ... for fixed supersampling), and last the job
-//! exactly as `lamplight render` would run it, so the final frame is that
-//! render's image. Every stage is one call of the ordinary render entry
+//! renders it in [`stages`]: a one-sample preview at a fraction of the size
+//! (the frame that follows a drag at once; [`preview_divisor`] sizes it to
+//! render in about [`PREVIEW_BUDGET`], by the time per sample measured so
+//! far), then half the size, then the full image with one sample, then more
+//! samples (4, 16, 64, ... for fixed supersampling), and last the job exactly
+//! as `lamplight render` would run it, so the final frame is that render's
+//! image. Every stage is one call of the ordinary render entry
 //! ([`Job::run`]); the viewer adds nothing to the render loop.
 //!
 //! [`Renderer::submit`] replaces the one waiting request (there is never more
@@ -98,10 +100,33 @@ pub struct Frame {
     pub last: bool,
 }
 
-/// The stages of `last` (see the module doc).
-pub fn stages(last: &RenderOptions) -> Vec<RenderOptions> {
+/// How long the preview that follows a camera change should take to render.
+pub const PREVIEW_BUDGET: Duration = Duration::from_millis(30);
+
+/// The largest preview divisor (1/16 of the width: 40x23 pixels of a 640x360 image).
+pub const MAX_DIVISOR: u32 = 16;
+
+/// The power of two `d` (1 to [`MAX_DIVISOR`]) by which the preview divides
+/// the image's sides so that its `(w/d) (h/d)` samples take about
+/// [`PREVIEW_BUDGET`] at `seconds_per_sample` (4 before anything is measured).
+pub fn preview_divisor(width: u32, height: u32, seconds_per_sample: Option<f64>) -> u32 {
+    let Some(per_sample) = seconds_per_sample.filter(|s| s.is_finite() && *s > 0.0) else { return 4 };
+    let affordable = PREVIEW_BUDGET.as_secs_f64() / per_sample;
+    let mut d = 1;
+    while d < MAX_DIVISOR && (width / d).max(1) as f64 * (height / d).max(1) as f64 > affordable {
+        d *= 2;
+    }
+    d
+}
+
+/// The stages of `last`, the preview `divisor` times smaller on each side (see the module doc).
+pub fn stages(last: &RenderOptions, divisor: u32) -> Vec<RenderOptions> {
     let base = RenderOptions { spp: 1, adaptive: None, window: None, time_limit: None, ..last.clone() };
-    let mut out = vec![RenderOptions { width: (last.width / 4).max(1), height: (last.height / 4).max(1), ..base.clone() }];
+    let smaller = |d: u32| RenderOptions { width: (last.width / d).max(1), height: (last.height / d).max(1), ..base.clone() };
+    let mut out = vec![smaller(divisor)];
+    if divisor > 2 {
+        out.push(smaller(2));
+    }
     let mut spp = 1;
     while spp < last.spp || (spp == 1 && last.adaptive.is_some()) {
         out.push(RenderOptions { spp, ..base.clone() });
@@ -111,6 +136,8 @@ pub fn stages(last: &RenderOptions) -> Vec<RenderOptions> {
         }
     }
     out.push(last.clone());
+    // A full-size preview is the one-sample stage (and may be the job itself).
+    out.dedup();
     out
 }
 
@@ -182,6 +209,8 @@ impl Drop for Renderer {
 }
 
 fn render_loop(shared: &Shared, report: &dyn Fn(Report)) {
+    // Seconds per sample of the latest full-size stage (a preview's is noisier).
+    let mut per_sample: Option<f64> = None;
     loop {
         let (wanted, submitted, cancel) = {
             let mut slot = shared.lock();
@@ -198,7 +227,8 @@ fn render_loop(shared: &Shared, report: &dyn Fn(Report)) {
         };
         let camera = wanted.camera();
         let control = RenderControl { progress: &|_, _| {}, cancel: Some(&cancel), stop: None };
-        let stages = stages(&wanted.job.options);
+        let o = &wanted.job.options;
+        let stages = stages(o, preview_divisor(o.width, o.height, per_sample));
         let count = stages.len();
         for (i, options) in stages.into_iter().enumerate() {
             if cancel.load(Ordering::Relaxed) {
@@ -213,13 +243,16 @@ fn render_loop(shared: &Shared, report: &dyn Fn(Report)) {
             match rendered {
                 Ok(r) => {
                     let seconds = r.stats.elapsed.as_secs_f64().max(1e-9);
+                    if r.image.width == o.width && r.stats.pixel_samples > 0 {
+                        per_sample = Some(seconds / r.stats.pixel_samples as f64);
+                    }
                     report(Report::Frame(Frame {
                         wanted: wanted.clone(),
                         spp: r.stats.samples_per_pixel,
                         samples_per_second: r.stats.pixel_samples as f64 / seconds,
                         latency: submitted.elapsed(),
-                        image: r.image,
                         last: i + 1 == count,
+                        image: r.image,
                     }));
                 }
                 Err(_) if cancel.load(Ordering::Relaxed) => break,
@@ -240,17 +273,28 @@ mod tests {
     #[test]
     fn stages_preview_then_refine_then_end_with_the_job() {
         let fixed = RenderOptions { width: 640, height: 360, spp: 64, ..RenderOptions::default() };
-        let s = stages(&fixed);
+        let s = stages(&fixed, 4);
         let sizes: Vec<_> = s.iter().map(|o| (o.width, o.height, o.spp)).collect();
-        assert_eq!(sizes, [(160, 90, 1), (640, 360, 1), (640, 360, 4), (640, 360, 16), (640, 360, 64)]);
+        assert_eq!(sizes, [(160, 90, 1), (320, 180, 1), (640, 360, 1), (640, 360, 4), (640, 360, 16), (640, 360, 64)]);
         assert_eq!(s.last(), Some(&fixed));
         let adaptive = RenderOptions { adaptive: Some(Adaptive::Antialias(Default::default())), ..RenderOptions::default() };
-        let s = stages(&adaptive);
+        let s = stages(&adaptive, 2);
         assert_eq!(
             s.iter().map(|o| (o.width, o.spp, o.adaptive.is_some())).collect::<Vec<_>>(),
-            [(160, 1, false), (640, 1, false), (640, 1, true)]
+            [(320, 1, false), (640, 1, false), (640, 1, true)]
         );
         let one = RenderOptions { width: 3, height: 2, ..RenderOptions::default() };
-        assert_eq!(stages(&one).iter().map(|o| (o.width, o.height)).collect::<Vec<_>>(), [(1, 1), (3, 2)]);
+        assert_eq!(stages(&one, 4).iter().map(|o| (o.width, o.height)).collect::<Vec<_>>(), [(1, 1), (3, 2)]);
+    }
+
+    #[test]
+    fn the_preview_is_sized_to_its_time_budget() {
+        assert_eq!(preview_divisor(640, 360, None), 4, "before any measurement");
+        // 30 ms at 1 us a sample: 30,000 samples; 160x90 = 14,400 fits, 320x180 = 57,600 does not.
+        assert_eq!(preview_divisor(640, 360, Some(1e-6)), 4);
+        assert_eq!(preview_divisor(640, 360, Some(1e-9)), 1, "a fast scene previews at full size");
+        assert_eq!(preview_divisor(640, 360, Some(1.0)), MAX_DIVISOR, "never smaller than 1/16");
+        let one = RenderOptions { width: 64, height: 36, ..RenderOptions::default() };
+        assert_eq!(stages(&one, 1), [one.clone()], "at full size the preview is the job");
     }
 }

@@ -80,6 +80,8 @@ const scratch = document.createElement("canvas");
 function showFrame() {
   const { info, data } = frame;
   hooks.frames++; hooks.info = info;
+  // Milliseconds from the page's navigation to its first image.
+  if (hooks.frames === 1) hooks.firstFrameMs = performance.now();
   if (info.width === info.full_width && info.height === info.full_height) hooks.pixels = { info, data };
   const scale = Math.pow(2, exposure) * 65535;
   const image = new ImageData(info.width, info.height);
@@ -99,6 +101,14 @@ function showFrame() {
   $("status").textContent = `${info.width}x${info.height} · spp ${info.spp}/${target} · ${rate} samples/s · ${info.latency_ms.toFixed(0)} ms${info.last ? " · done" : ""}`;
   for (const w of waiters.splice(0)) w();
 }
+
+// A checksum of the pixels shown (tests compare images by it).
+hooks.checksum = () => {
+  const d = ctx.getImageData(0, 0, canvas.width, canvas.height).data;
+  let h = 0;
+  for (let i = 0; i < d.length; i++) h = (h * 31 + d[i]) >>> 0;
+  return h;
+};
 
 // The linear value of full-image pixel (x, y) of the latest full-size frame.
 hooks.pixel = (x, y) => {
@@ -226,6 +236,11 @@ function showExplain(m) {
     root.append(d);
   }
   drawRays(segments, m.camera);
+  // The pixel itself: the camera ray runs straight into the screen there.
+  const mark = document.createElementNS("http://www.w3.org/2000/svg", "circle");
+  mark.setAttribute("cx", m.x + 0.5); mark.setAttribute("cy", m.y + 0.5); mark.setAttribute("r", 5);
+  mark.setAttribute("stroke", COLOURS.camera); mark.setAttribute("class", "ray");
+  svg.append(mark);
 }
 
 function segment(segments, kind, from, to, extra) {
@@ -261,16 +276,37 @@ function rayNode(r, segments) {
   if (r.terms) {
     const t = r.terms;
     li(`colour C ${fmt(t.color)}, emission ${fmt(t.emission)}, ambient ka*C*La ${fmt(t.ambient)}`);
+    // Point, spot and directional lights one line each; an area light's
+    // samples folded into one entry per emitting object.
+    const groups = new Map();
     for (const l of t.lights) {
-      const name = l.light !== undefined ? `light ${l.light}` : `area light (object ${l.area_light_object})`;
-      if (l.unlit) { li(`${name} (${l.kind}): unlit, ${l.unlit}`); continue; }
-      const sr = l.shadow_ray;
-      const blocked = sr.blocked;
-      const to = sr.length === null ? farPoint(sr.origin, sr.direction) : add(sr.origin, mul(norm(sr.direction), sr.length));
-      const sid = segment(segments, blocked ? "blocked" : "shadow", sr.origin, to, {});
-      const by = sr.blocked_by.map((b) => b.name || `${b.kind} ${b.object}`).join(", ");
-      const e = li(`${name} (${l.kind}): L.N ${fmt(l["L.N"])}, H.N ${fmt(l["H.N"])}, kd C (L.N) ${fmt(l.diffuse)}, ks (H.N)^n ${fmt(l.specular)}; shadow ray ${blocked ? "blocked by " + by : "clear" + (by ? " (dimmed by " + by + ")" : "")} → ${fmt(l.radiance)}`, blocked ? "light k-blocked" : "light k-shadow");
-      hover(e, sid);
+      const key = l.light !== undefined ? `light ${l.light}` : `area light (object ${l.area_light_object})`;
+      if (!groups.has(key)) groups.set(key, []);
+      groups.get(key).push(l);
+    }
+    for (const [name, records] of groups) {
+      let parent = ul;
+      if (records.length > 1) {
+        const lit = records.filter((l) => !l.unlit).length;
+        const total = records.reduce((s, l) => add(s, l.radiance), [0, 0, 0]);
+        const g = el("details");
+        g.append(el("summary", "k-shadow", `${name} (${records[0].kind}): ${records.length} samples, ${lit} reach the point → ${fmt(total)}`));
+        parent = el("ul");
+        g.append(parent);
+        const item = el("li"); item.append(g); ul.append(item);
+      }
+      for (const l of records) {
+        if (l.unlit) { parent.append(el("li", "", `${name} (${l.kind}): unlit, ${l.unlit}`)); continue; }
+        const sr = l.shadow_ray;
+        const blocked = sr.blocked;
+        const to = sr.length === null ? farPoint(sr.origin, sr.direction) : add(sr.origin, mul(norm(sr.direction), sr.length));
+        const sid = segment(segments, blocked ? "blocked" : "shadow", sr.origin, to, {});
+        const by = sr.blocked_by.map((b) => b.name || `${b.kind} ${b.object}`).join(", ");
+        const e = el("li", blocked ? "light k-blocked" : "light k-shadow",
+          `${name} (${l.kind}): L.N ${fmt(l["L.N"])}, H.N ${fmt(l["H.N"])}, kd C (L.N) ${fmt(l.diffuse)}, ks (H.N)^n ${fmt(l.specular)}; shadow ray ${blocked ? "blocked by " + by : "clear" + (by ? " (dimmed by " + by + ")" : "")} → ${fmt(l.radiance)}`);
+        hover(e, sid);
+        parent.append(e);
+      }
     }
     li(`direct light ${fmt(t.direct)}`);
   }
