@@ -295,6 +295,6 @@ mod tests {
         assert_eq!(preview_divisor(640, 360, Some(1e-9)), 1, "a fast scene previews at full size");
         assert_eq!(preview_divisor(640, 360, Some(1.0)), MAX_DIVISOR, "never smaller than 1/16");
         let one = RenderOptions { width: 64, height: 36, ..RenderOptions::default() };
-        assert_eq!(stages(&one, 1), [one.clone()], "at full size the preview is the job");
+        assert_eq!(stages(&one, 1), vec![one], "at full size the preview is the job");
     }
 }
