@@ -5,6 +5,7 @@
 //! answer is `403 Forbidden` and nothing else runs. The routes:
 //! - `GET /`, `/app.js`, `/app.css`: the page, built into the binary;
 //! - `GET /files/NAME`: a file of the scene's folder ([`crate::confine`]);
+//!   a built-in scene has none;
 //! - `GET /ws`: the WebSocket. The server sends `state` messages (JSON text)
 //!   when the view changes, and each frame as a `frame` message (JSON text)
 //!   followed at once by its pixels (binary: `width * height * 3` little-endian
@@ -82,6 +83,9 @@ async fn index(State(app): State<Arc<App>>) -> Response {
 }
 
 async fn scene_file(State(app): State<Arc<App>>, UrlPath(name): UrlPath<String>) -> Response {
+    if app.scene_file.is_none() {
+        return (StatusCode::FORBIDDEN, format!("'{name}' is refused: a built-in scene has no files\n")).into_response();
+    }
     let root = app.root.clone();
     let read = tokio::task::spawn_blocking(move || -> Result<Vec<u8>, String> {
         let path = crate::confine::existing_file(&root, &name).map_err(|e| e.0)?;

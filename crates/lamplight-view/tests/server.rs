@@ -69,6 +69,8 @@ fn every_request_needs_the_token() {
     assert!(page.contains(&format!("app.js?token={token}")), "the page loads its script with the token");
     assert_eq!(get(&viewer, "/app.css", &format!("X-Lamplight-Token: {token}\r\n")).0, 200, "the token as a header");
     assert_eq!(get(&viewer, &format!("/nothing?token={token}"), "").0, 404);
+    let refused = (403, "'Cargo.toml' is refused: a built-in scene has no files\n".to_string());
+    assert_eq!(get(&viewer, &format!("/files/Cargo.toml?token={token}"), ""), refused, "not the working folder's files");
 }
 
 #[test]
