@@ -49,7 +49,7 @@ def main():
         start = driver.execute_script("return window.lamplight.state.camera;")
         eye, at = start["eye"], start["look_at"]
         offset = [eye[i] - at[i] for i in range(3)]
-        first, full, server = [], [], []
+        first, full, server, sizes = [], [], [], {}
         for i in range(1, args.moves + 1):
             a = 0.01 * i
             rotated = [offset[0] * math.cos(a) + offset[2] * math.sin(a), offset[1], -offset[0] * math.sin(a) + offset[2] * math.cos(a)]
@@ -62,6 +62,18 @@ def main():
             )
             first.append(t["first_ms"])
             full.append(t["full_ms"])
+        # The preview's size (chosen by the server for its time budget), from a few more changes.
+        for i in range(10):
+            info = driver.execute_async_script(
+                "const done = arguments[arguments.length - 1];"
+                "const h = window.lamplight, g = h.state.generation;"
+                "h.camera = arguments[0];"
+                "const wait = () => h.nextFrame().then(() => (h.info.generation > g ? done(h.info) : wait()));"
+                "wait(); h.timeCamera(arguments[0]);",
+                dict(start, vfov=start["vfov"] - 0.1 * (i + 1)),
+            )
+            size = f"{info['width']}x{info['height']}"
+            sizes[size] = sizes.get(size, 0) + 1
         # The server's own figure for the preview, from a last change made while idle.
         for _ in range(20):
             WebDriverWait(driver, 60).until(lambda d: d.execute_script("return window.lamplight.info.last"))
@@ -72,7 +84,7 @@ def main():
             )
             server.append(driver.execute_script("return window.lamplight.info.latency_ms;"))
         print(f"{args.scene} at 640x360, whitted; {args.moves} camera changes while refining")
-        print(f"  change -> first new frame (160x90 preview): {quartiles(first)}")
+        print(f"  change -> first new frame (the preview): {quartiles(first)}; preview sizes seen: {sizes}")
         print(f"  change -> first 640x360 frame (1 sample):   {quartiles(full)}")
         print(f"  server, change -> 640x360 frame rendered (idle before): {quartiles(server)}")
     finally:
