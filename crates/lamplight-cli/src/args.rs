@@ -43,6 +43,8 @@ pub enum Command {
     Explain(ExplainArgs),
     /// Write a Mitsuba scene (.xml) as a lamplight scene file (.toml) that renders the same.
     Convert(ConvertArgs),
+    /// Look at a scene live in the browser: progressive rendering, mouse camera, live reload, pixel inspector.
+    View(ViewArgs),
 }
 
 /// `lamplight convert` flags.
@@ -66,6 +68,23 @@ pub fn define(text: &str) -> Result<(String, String), String> {
         return Err(format!("NAME must be letters, digits and _, got {name:?}"));
     }
     Ok((name.to_string(), value.to_string()))
+}
+
+/// `lamplight view` flags: the scene and render settings of `render`, and where to listen.
+#[derive(Debug, Args)]
+pub struct ViewArgs {
+    /// The scene and how it is rendered, as for `render` [default size: 640 pixels wide].
+    #[command(flatten)]
+    pub render: SceneArgs,
+    /// Worker threads; 0 uses all cores.
+    #[arg(long, value_name = "T", default_value_t = 0, allow_negative_numbers = true, value_parser = count::<usize>)]
+    pub threads: usize,
+    /// Listen on this address instead of 127.0.0.1:8765 (anything but loopback lets other machines connect, with the token).
+    #[arg(long, value_name = "ADDR:PORT")]
+    pub listen: Option<std::net::SocketAddr>,
+    /// Open the viewer's URL in a browser.
+    #[arg(long)]
+    pub open: bool,
 }
 
 /// `lamplight explain` flags: the scene and render settings of `render`, and the pixel.
@@ -382,7 +401,7 @@ mod tests {
         let cli = Cli::try_parse_from(["lamplight", "render"].iter().chain(args)).expect("clap accepts the flags");
         match cli.command {
             Command::Render(render) => render.validate(),
-            Command::List | Command::Info(_) | Command::Raycast(_) | Command::Explain(_) | Command::Convert(_) => unreachable!(),
+            Command::List | Command::Info(_) | Command::Raycast(_) | Command::Explain(_) | Command::Convert(_) | Command::View(_) => unreachable!(),
         }
     }
 

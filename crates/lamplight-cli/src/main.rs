@@ -5,6 +5,7 @@
 //!                  [--max-depth D] [--threads T] [--seed S] [--quiet]
 //! lamplight list
 //! lamplight info FILE
+//! lamplight view [SCENE|FILE] [--listen ADDR] [--open] [render flags]
 //! ```
 //!
 //! The binary is thin: it turns arguments into options ([`args`]), builds the
@@ -17,6 +18,7 @@
 mod args;
 mod raycast;
 mod signals;
+mod view;
 
 use std::io::{self, IsTerminal, Write};
 use std::process::ExitCode;
@@ -56,6 +58,7 @@ fn run() -> anyhow::Result<()> {
         Command::Raycast(raycast_args) => raycast::raycast_command(raycast_args),
         Command::Explain(explain_args) => explain_command(explain_args.validate()?),
         Command::Convert(convert_args) => convert_command(&convert_args),
+        Command::View(view_args) => view::view_command(view_args),
     }
 }
 

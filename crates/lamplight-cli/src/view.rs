@@ -1,0 +1,32 @@
+//! `lamplight view`: starts the viewer ([`lamplight_view`]), prints its URL and
+//! serves until Ctrl-C.
+
+use lamplight_view::{ViewOptions, Viewer};
+
+use crate::args::{UsageError, ViewArgs};
+
+pub fn view_command(args: ViewArgs) -> anyhow::Result<()> {
+    let request = args.render.request(args.threads);
+    if let Some(address) = args.listen.filter(|a| !lamplight_view::is_loopback(a)) {
+        eprintln!(
+            "lamplight: warning: listening on {address}, not loopback: other machines can reach the viewer \
+             (each request still needs the token in the URL; the traffic is not encrypted)"
+        );
+    }
+    let viewer = Viewer::start(ViewOptions { scene: args.render.scene.clone(), listen: args.listen, request }).map_err(UsageError)?;
+    let url = viewer.url();
+    println!("lamplight view: {url}");
+    eprintln!("open that URL in a browser (it holds the access token); Ctrl-C stops the viewer");
+    if args.open {
+        open_browser(&url);
+    }
+    viewer.wait()
+}
+
+/// Opens `url` with the desktop's handler; a failure is a warning only.
+fn open_browser(url: &str) {
+    let opener = if cfg!(target_os = "macos") { "open" } else { "xdg-open" };
+    if let Err(e) = std::process::Command::new(opener).arg(url).stdin(std::process::Stdio::null()).spawn() {
+        eprintln!("lamplight: warning: cannot open a browser ({opener}: {e}); open the URL by hand");
+    }
+}

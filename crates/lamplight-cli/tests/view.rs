@@ -1,0 +1,56 @@
+//! `lamplight view` from the command line: bad input stops it before it
+//! listens (exit code 2, one line); started, it prints a loopback URL with the
+//! token, warns when told to listen beyond loopback, and opens nothing.
+
+use std::io::{BufRead, BufReader};
+use std::process::{Command, Stdio};
+
+fn lamplight(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_lamplight")).args(args).stdin(Stdio::null()).output().expect("the binary runs")
+}
+
+#[test]
+fn bad_input_stops_the_viewer_before_it_listens() {
+    let out = lamplight(&["view", "nosuch"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.starts_with("lamplight: error: unknown scene 'nosuch' (built-in scenes: "), "{err}");
+    let out = lamplight(&["view", "luxo", "--width", "100000", "--height", "100000"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(String::from_utf8_lossy(&out.stderr), "lamplight: error: image 100000x100000 is too large (at most 268435456 pixels)\n");
+    let out = lamplight(&["view", "luxo", "--max-depth", "65"]);
+    assert_eq!(
+        String::from_utf8_lossy(&out.stderr),
+        "lamplight: error: --max-depth must be between 1 and 64, got 65 (work grows as 2^depth)\n"
+    );
+}
+
+/// Starts the viewer, returns the first line it prints and its error output so far.
+fn first_line(args: &[&str]) -> (String, String) {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_lamplight"))
+        .args(args)
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut line = String::new();
+    BufReader::new(child.stdout.take().unwrap()).read_line(&mut line).unwrap();
+    let mut err = String::new();
+    BufReader::new(child.stderr.take().unwrap()).read_line(&mut err).unwrap();
+    child.kill().unwrap();
+    child.wait().unwrap();
+    (line, err)
+}
+
+#[test]
+fn it_prints_a_loopback_url_with_a_token() {
+    let (line, err) = first_line(&["view", "business-card", "--listen", "127.0.0.1:0"]);
+    let url = line.strip_prefix("lamplight view: http://127.0.0.1:").expect(&line);
+    let (_port, token) = url.trim_end().split_once("/?token=").expect(&line);
+    assert_eq!(token.len(), 32, "{line}");
+    assert!(!err.contains("warning"), "{err}");
+    let (line, err) = first_line(&["view", "business-card", "--listen", "0.0.0.0:0"]);
+    assert!(line.starts_with("lamplight view: http://0.0.0.0:"), "{line}");
+    assert!(err.starts_with("lamplight: warning: listening on 0.0.0.0:0, not loopback"), "{err}");
+}

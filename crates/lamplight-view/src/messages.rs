@@ -1,0 +1,133 @@
+//! The page's messages, JSON objects with a `type`:
+//!
+//! | type | fields | does |
+//! |---|---|---|
+//! | `camera` | `camera: {eye, look_at, up, vfov}` | looks through that camera |
+//! | `reset` | | back to the scene's own camera |
+//! | `settings` | `integrator`, `spp`, `max_depth` (each a value or `null` for the scene's) | renders with them |
+//! | `explain` | `x`, `y` (pixels of the full image) | answers `explain` with the ray tree of `lamplight explain --json` |
+//! | `save` | `name` (`.png`, `.ppm` or `.exr`), `exposure` (stops) | writes the latest frame into the scene's folder |
+//! | `save_camera` | `name` (`.toml`) | writes the camera's `[camera]` table there |
+//!
+//! Every value is checked here or by the request layer's limits
+//! (`lamplight_scene::request::limits`); a refused message is answered with
+//! `{"type": "error", "message": ...}` and changes nothing.
+
+use std::sync::Arc;
+
+use lamplight_scene::image_io::Format;
+use lamplight_scene::request::{self, DisplayTransform, Rendered};
+use serde_json::{json, Value};
+use tokio::sync::mpsc;
+
+use crate::camera::ViewCamera;
+use crate::state::{integrator_name, App};
+
+/// Largest exposure the page may ask a saved image for, in stops.
+pub const MAX_EXPOSURE: f64 = 32.0;
+
+/// `{"type": "error", "message": message}`.
+pub fn error_reply(message: &str) -> String {
+    json!({ "type": "error", "message": message }).to_string()
+}
+
+/// `value`, an integer from 0 to `u32::MAX`, or `null`.
+fn optional_count(value: &Value, key: &str) -> Result<Option<u32>, String> {
+    match value {
+        Value::Null => Ok(None),
+        v => v.as_u64().and_then(|n| u32::try_from(n).ok()).map(Some).ok_or_else(|| format!("{key} must be a whole number or null")),
+    }
+}
+
+/// Handles one message; returns the answer to send now, if any (slow work
+/// answers later through `answers`).
+pub fn handle(app: &Arc<App>, text: &str, answers: &mpsc::Sender<String>) -> Option<String> {
+    let message: Value = match serde_json::from_str(text) {
+        Ok(v) => v,
+        Err(e) => return Some(error_reply(&format!("the message is not JSON: {e}"))),
+    };
+    let result = match message["type"].as_str().unwrap_or("") {
+        "camera" => ViewCamera::from_json(&message["camera"]).and_then(|c| app.set_camera(Some(c))),
+        "reset" => app.set_camera(None),
+        "settings" => settings(app, &message),
+        "explain" => explain(app, &message, answers.clone()),
+        "save" | "save_camera" => save(app, &message, answers.clone()),
+        other => Err(format!("unknown message type {other:?} (camera, reset, settings, explain, save, save_camera)")),
+    };
+    result.err().map(|e| error_reply(&e))
+}
+
+fn settings(app: &App, message: &Value) -> Result<(), String> {
+    let integrator = integrator_name(&message["integrator"])?;
+    let spp = optional_count(&message["spp"], "spp")?;
+    let max_depth = optional_count(&message["max_depth"], "max_depth")?;
+    app.set_request(|r| {
+        r.integrator = integrator;
+        r.spp = spp;
+        r.max_depth = max_depth;
+    })
+}
+
+fn explain(app: &Arc<App>, message: &Value, answers: mpsc::Sender<String>) -> Result<(), String> {
+    let x = optional_count(&message["x"], "x")?.ok_or("x must be a whole number")?;
+    let y = optional_count(&message["y"], "y")?.ok_or("y must be a whole number")?;
+    let frame = app.latest_frame().ok_or("no frame yet")?;
+    let wanted = frame.wanted.clone();
+    let camera = wanted.camera.unwrap_or(app.lock().probed);
+    tokio::task::spawn_blocking(move || {
+        let reply = match wanted.explain(x, y) {
+            Ok(tree) => json!({
+                "type": "explain", "x": x, "y": y, "generation": wanted.generation,
+                "camera": camera.to_json(), "tree": tree,
+            })
+            .to_string(),
+            Err(e) => error_reply(&e),
+        };
+        let _ = answers.blocking_send(reply);
+    });
+    Ok(())
+}
+
+fn save(app: &Arc<App>, message: &Value, answers: mpsc::Sender<String>) -> Result<(), String> {
+    let name = message["name"].as_str().ok_or("name must be a file name in the scene's folder")?;
+    let camera_only = message["type"] == "save_camera";
+    let path = crate::confine::writable_file(&app.root, name).map_err(|e| e.0)?;
+    if app.scene_file.as_ref().is_some_and(|f| lamplight_scene::atomic::same_file(f, &path)) {
+        return Err(format!("'{name}' is the scene file itself; choose another name"));
+    }
+    let extension = path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
+    let exposure = match &message["exposure"] {
+        Value::Null => 0.0,
+        v => v
+            .as_f64()
+            .filter(|e| e.abs() <= MAX_EXPOSURE)
+            .ok_or(format!("exposure must be a number of stops from -{MAX_EXPOSURE} to {MAX_EXPOSURE}"))?,
+    };
+    let frame = app.latest_frame().ok_or("no frame yet")?;
+    if camera_only {
+        if extension != "toml" {
+            return Err(format!("'{name}': a camera is saved as .toml"));
+        }
+    } else {
+        Format::from_path(&path).map_err(|e| e.to_string())?;
+    }
+    let camera = frame.wanted.camera.unwrap_or(app.lock().probed);
+    let transfer = frame.wanted.loaded.defaults.transfer;
+    app.own_files.lock().unwrap_or_else(|p| p.into_inner()).insert(path.clone());
+    let name = name.to_string();
+    tokio::task::spawn_blocking(move || {
+        let written = if camera_only {
+            lamplight_scene::atomic::write(&path, camera.to_toml().as_bytes()).map_err(|e| format!("cannot write '{name}': {e}"))
+        } else {
+            let rendered = Rendered { image: frame.image.clone(), layers: Vec::new(), stats: Default::default() };
+            let display = DisplayTransform { exposure, tonemap: Default::default(), transfer };
+            request::write(&path, &rendered, display).map_err(|e| e.to_string())
+        };
+        let reply = match written {
+            Ok(()) => json!({ "type": "saved", "name": name, "spp": frame.spp, "last": frame.last }).to_string(),
+            Err(e) => error_reply(&e),
+        };
+        let _ = answers.blocking_send(reply);
+    });
+    Ok(())
+}

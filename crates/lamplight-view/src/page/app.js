@@ -1,0 +1,399 @@
+// lamplight view: the page. It shows the frames the server streams (linear
+// radiance, exposed and sRGB-encoded here), moves the camera with the mouse,
+// and draws the ray tree of a clicked pixel over the image.
+"use strict";
+
+const token = new URLSearchParams(location.search).get("token") || "";
+const $ = (id) => document.getElementById(id);
+const canvas = $("image"), ctx = canvas.getContext("2d"), svg = $("rays");
+
+// What tests and benchmarks read (window.lamplight).
+const hooks = { frames: 0, info: null, state: null, explain: null, errors: [], saved: [], pixels: null };
+window.lamplight = hooks;
+
+let state = null;       // the server's latest `state` message
+let camera = null;      // the camera shown (ahead of the server while dragging)
+let frameInfo = null;   // the `frame` message the next binary message belongs to
+let frame = null;       // { info, data: Float32Array }
+let exposure = 0;
+let explained = null;   // the latest explanation
+
+// ---- vectors
+const add = (a, b) => [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
+const sub = (a, b) => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+const mul = (a, s) => [a[0] * s, a[1] * s, a[2] * s];
+const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+const len = (a) => Math.sqrt(dot(a, a));
+const norm = (a) => mul(a, 1 / (len(a) || 1));
+// Rodrigues' rotation of v about the unit axis k by angle t.
+const rotate = (v, k, t) => add(add(mul(v, Math.cos(t)), mul(cross(k, v), Math.sin(t))), mul(k, dot(k, v) * (1 - Math.cos(t))));
+
+// ---- the connection
+const ws = new WebSocket(`ws://${location.host}/ws?token=${encodeURIComponent(token)}`);
+ws.binaryType = "arraybuffer";
+const send = (m) => { if (ws.readyState === 1) ws.send(JSON.stringify(m)); };
+ws.onclose = () => { $("status").textContent = "disconnected (the viewer stopped?)"; };
+ws.onmessage = (e) => {
+  if (typeof e.data !== "string") {
+    if (frameInfo) { frame = { info: frameInfo, data: new Float32Array(e.data) }; frameInfo = null; showFrame(); }
+    return;
+  }
+  const m = JSON.parse(e.data);
+  if (m.type === "state") applyState(m);
+  else if (m.type === "frame") frameInfo = m;
+  else if (m.type === "explain") showExplain(m);
+  else if (m.type === "saved") { hooks.saved.push(m); say(`saved ${m.name} (${m.spp} spp${m.last ? "" : ", still refining"})`); }
+  else if (m.type === "error") { hooks.errors.push(m.message); say(m.message); }
+};
+
+function say(text) { $("message").textContent = text; }
+
+function applyState(m) {
+  state = m; hooks.state = m;
+  $("scene").textContent = m.scene_file || m.scene;
+  if (!dragging) camera = m.camera;
+  $("camera_toml").value = m.camera_toml;
+  $("vfov").value = camera.vfov; $("vfov_value").textContent = (+camera.vfov).toFixed(1) + "°";
+  const sel = $("integrator");
+  if (sel.options.length === 1) for (const name of m.integrators) sel.add(new Option(name, name));
+  sel.value = m.settings.integrator || "";
+  if (document.activeElement !== $("spp")) $("spp").value = m.settings.spp ?? "";
+  if (document.activeElement !== $("max_depth")) $("max_depth").value = m.settings.max_depth ?? "";
+  const overlay = $("overlay");
+  overlay.hidden = !m.error;
+  overlay.textContent = m.error || "";
+  if (canvas.width !== m.settings.width || canvas.height !== m.settings.height) {
+    canvas.width = m.settings.width; canvas.height = m.settings.height;
+  }
+  svg.setAttribute("width", canvas.width); svg.setAttribute("height", canvas.height);
+}
+
+// ---- frames: linear radiance -> exposure -> sRGB bytes (a table of 2^16 steps)
+const SRGB = new Uint8ClampedArray(65536);
+for (let i = 0; i < 65536; i++) {
+  const v = i / 65535;
+  SRGB[i] = Math.round(255 * (v <= 0.0031308 ? 12.92 * v : 1.055 * Math.pow(v, 1 / 2.4) - 0.055));
+}
+const scratch = document.createElement("canvas");
+
+function showFrame() {
+  const { info, data } = frame;
+  hooks.frames++; hooks.info = info;
+  // Milliseconds from the page's navigation to its first image.
+  if (hooks.frames === 1) hooks.firstFrameMs = performance.now();
+  if (info.width === info.full_width && info.height === info.full_height) hooks.pixels = { info, data };
+  const scale = Math.pow(2, exposure) * 65535;
+  const image = new ImageData(info.width, info.height);
+  const out = image.data;
+  for (let i = 0, j = 0; i < data.length; i += 3, j += 4) {
+    out[j] = SRGB[Math.min(65535, Math.max(0, data[i] * scale)) | 0];
+    out[j + 1] = SRGB[Math.min(65535, Math.max(0, data[i + 1] * scale)) | 0];
+    out[j + 2] = SRGB[Math.min(65535, Math.max(0, data[i + 2] * scale)) | 0];
+    out[j + 3] = 255;
+  }
+  scratch.width = info.width; scratch.height = info.height;
+  scratch.getContext("2d").putImageData(image, 0, 0);
+  ctx.imageSmoothingEnabled = info.width !== info.full_width;
+  ctx.drawImage(scratch, 0, 0, canvas.width, canvas.height);
+  const rate = info.samples_per_second >= 1e6 ? (info.samples_per_second / 1e6).toFixed(2) + " M" : (info.samples_per_second / 1e3).toFixed(1) + " k";
+  const target = info.adaptive ? "adaptive" : info.target_spp;
+  $("status").textContent = `${info.width}x${info.height} · spp ${info.spp}/${target} · ${rate} samples/s · ${info.latency_ms.toFixed(0)} ms${info.last ? " · done" : ""}`;
+  for (const w of waiters.splice(0)) w();
+}
+
+// A checksum of the pixels shown (tests compare images by it).
+hooks.checksum = () => {
+  const d = ctx.getImageData(0, 0, canvas.width, canvas.height).data;
+  let h = 0;
+  for (let i = 0; i < d.length; i++) h = (h * 31 + d[i]) >>> 0;
+  return h;
+};
+
+// The linear value of full-image pixel (x, y) of the latest full-size frame.
+hooks.pixel = (x, y) => {
+  const p = hooks.pixels; if (!p) return null;
+  const i = 3 * (y * p.info.width + x);
+  return [p.data[i], p.data[i + 1], p.data[i + 2]];
+};
+
+// ---- camera controls
+let dragging = false, dragStart = null, last = null, moved = false, queued = false;
+function sendCamera() {
+  if (queued) return;
+  queued = true;
+  requestAnimationFrame(() => { queued = false; send({ type: "camera", camera }); hooks.sentAt = performance.now(); });
+}
+function basis(c) {
+  const w = norm(sub(c.look_at, c.eye));
+  const r = norm(cross(w, c.up));
+  return { w, r, u: cross(r, w), d: len(sub(c.look_at, c.eye)) };
+}
+function orbit(dx, dy) {
+  const { r } = basis(camera);
+  let offset = sub(camera.eye, camera.look_at);
+  offset = rotate(offset, norm(camera.up), -dx * 0.008);
+  const r2 = norm(cross(mul(offset, -1), camera.up));
+  const tilted = rotate(offset, r2.every((x) => isFinite(x)) ? r2 : r, -dy * 0.008);
+  // Stop short of looking straight along up.
+  if (Math.abs(dot(norm(tilted), norm(camera.up))) < 0.995) offset = tilted;
+  camera = { ...camera, eye: add(camera.look_at, offset) };
+}
+function pan(dx, dy) {
+  const { r, u, d } = basis(camera);
+  const perPixel = (2 * d * Math.tan((camera.vfov * Math.PI) / 360)) / canvas.clientHeight;
+  const shift = add(mul(r, -dx * perPixel), mul(u, dy * perPixel));
+  camera = { ...camera, eye: add(camera.eye, shift), look_at: add(camera.look_at, shift) };
+}
+function zoom(steps) {
+  const { w, d } = basis(camera);
+  camera = { ...camera, eye: sub(camera.look_at, mul(w, Math.max(1e-4, d * Math.exp(steps * 0.0015)))) };
+}
+function setFov(vfov) {
+  camera = { ...camera, vfov: Math.min(150, Math.max(5, vfov)) };
+  $("vfov").value = camera.vfov; $("vfov_value").textContent = camera.vfov.toFixed(1) + "°";
+}
+
+canvas.addEventListener("contextmenu", (e) => e.preventDefault());
+canvas.addEventListener("mousedown", (e) => {
+  if (!camera) return;
+  dragging = true; moved = false; dragStart = last = [e.clientX, e.clientY];
+  e.preventDefault();
+});
+window.addEventListener("mousemove", (e) => {
+  if (!dragging) return;
+  const dx = e.clientX - last[0], dy = e.clientY - last[1];
+  last = [e.clientX, e.clientY];
+  if (Math.abs(e.clientX - dragStart[0]) + Math.abs(e.clientY - dragStart[1]) > 3) moved = true;
+  if (!moved) return;
+  if (e.shiftKey || e.buttons === 2) pan(dx, dy); else orbit(dx, dy);
+  sendCamera();
+});
+window.addEventListener("mouseup", (e) => {
+  if (!dragging) return;
+  dragging = false;
+  if (!moved && e.target === canvas) {
+    const rect = canvas.getBoundingClientRect();
+    const x = Math.floor(((e.clientX - rect.left) * canvas.width) / rect.width);
+    const y = Math.floor(((e.clientY - rect.top) * canvas.height) / rect.height);
+    explainPixel(x, y);
+  }
+});
+canvas.addEventListener("wheel", (e) => {
+  if (!camera) return;
+  e.preventDefault();
+  if (e.altKey || e.ctrlKey) setFov(camera.vfov * Math.exp(e.deltaY * 0.001)); else zoom(e.deltaY);
+  sendCamera();
+}, { passive: false });
+$("vfov").addEventListener("input", (e) => { if (camera) { setFov(+e.target.value); sendCamera(); } });
+$("reset").onclick = () => send({ type: "reset" });
+$("copy").onclick = async () => {
+  const text = state ? state.camera_toml : "";
+  try { await navigator.clipboard.writeText(text); say("camera copied as TOML"); }
+  catch { $("camera_toml").select(); document.execCommand("copy"); say("camera copied as TOML"); }
+};
+const settings = () => {
+  const count = (id) => ($(id).value === "" ? null : Math.max(0, Math.floor(+$(id).value)));
+  send({ type: "settings", integrator: $("integrator").value || null, spp: count("spp"), max_depth: count("max_depth") });
+};
+$("integrator").onchange = settings; $("spp").onchange = settings; $("max_depth").onchange = settings;
+$("exposure").addEventListener("input", (e) => {
+  exposure = +e.target.value; $("exposure_value").textContent = exposure;
+  if (frame) showFrame();
+});
+$("save").onclick = () => send({ type: "save", name: $("save_name").value, exposure });
+$("save_camera").onclick = () => send({ type: "save_camera", name: $("camera_name").value });
+
+// ---- the pixel inspector
+function explainPixel(x, y) {
+  hooks.explain = null;
+  $("tree").textContent = `explaining pixel (${x}, ${y})...`;
+  send({ type: "explain", x, y });
+}
+hooks.explainPixel = explainPixel;
+
+const fmt = (v) => (Array.isArray(v) ? "(" + v.map((x) => (x === null ? "inf" : (+x).toPrecision(4))).join(", ") + ")" : typeof v === "number" ? (+v).toPrecision(4) : String(v));
+const el = (tag, cls, text) => { const e = document.createElement(tag); if (cls) e.className = cls; if (text !== undefined) e.textContent = text; return e; };
+
+let rayId = 0;
+function showExplain(m) {
+  explained = m; hooks.explain = m;
+  const t = m.tree, root = $("tree");
+  root.textContent = "";
+  const samples = t.samples;
+  const n = samples.length;
+  const sum = [0, 0, 0];
+  for (const s of samples) for (const c of s.contributions) for (let k = 0; k < 3; k++) sum[k] += c[k];
+  root.append(el("p", "", `pixel (${m.x}, ${m.y}) of ${t.width}x${t.height}, ${t.integrator}, ${t.spp} sample${t.spp === 1 ? "" : "s"}, max depth ${t.max_depth}`));
+  root.append(el("p", "sum", `pixel value ${fmt(t.value)} = mean over ${n} sample${n === 1 ? "" : "s"} of the sum of their contributions ${fmt(sum.map((x) => x / n))}`));
+  rayId = 0;
+  const segments = [];
+  for (const s of samples) {
+    const d = el("details"); d.open = n <= 2;
+    d.append(el("summary", "", `sample ${s.index}: radiance ${fmt(s.radiance)} = sum of ${s.contributions.length} contributions`));
+    if (s.ray) d.append(rayNode(s.ray, segments));
+    if (s.path) d.append(pathNode(s.path, segments));
+    root.append(d);
+  }
+  drawRays(segments, m.camera);
+  // The pixel itself: the camera ray runs straight into the screen there.
+  const mark = document.createElementNS("http://www.w3.org/2000/svg", "circle");
+  mark.setAttribute("cx", m.x + 0.5); mark.setAttribute("cy", m.y + 0.5); mark.setAttribute("r", 5);
+  mark.setAttribute("stroke", COLOURS.camera); mark.setAttribute("class", "ray");
+  svg.append(mark);
+}
+
+function segment(segments, kind, from, to, extra) {
+  const id = "ray" + rayId++;
+  segments.push({ id, kind, from, to, ...extra });
+  return id;
+}
+function hover(node, id) {
+  node.dataset.ray = id;
+  node.addEventListener("mouseenter", () => { const p = document.getElementById(id); if (p) p.classList.add("hl"); });
+  node.addEventListener("mouseleave", () => { const p = document.getElementById(id); if (p) p.classList.remove("hl"); });
+}
+function farPoint(origin, direction) {
+  const c = camera || { eye: origin, look_at: origin };
+  return add(origin, mul(norm(direction), 20 * (len(sub(c.look_at, c.eye)) || 1)));
+}
+
+function rayNode(r, segments) {
+  const d = el("details"); d.open = true;
+  const end = r.hit ? r.hit.point : farPoint(r.origin, r.direction);
+  const id = segment(segments, r.kind, r.origin, end, {});
+  const what = r.hit ? `hit ${r.hit.object_name ? "'" + r.hit.object_name + "' " : ""}${r.hit.object_kind} at t = ${fmt(r.hit.t)}` : r.miss ? `miss: sky ${fmt(r.miss.sky)}` : r.dropped || "";
+  const s = el("summary", "k-" + r.kind, `${r.kind} ray, depth ${r.depth}${r.inside ? ", inside" : ""}: ${what}${r.contribution ? " · contribution " + fmt(r.contribution) : ""}`);
+  hover(s, id);
+  d.append(s);
+  const ul = el("ul");
+  const li = (text, cls) => { const e = el("li", cls, text); ul.append(e); return e; };
+  li(`weight ${fmt(r.weight)}, origin ${fmt(r.origin)}, direction ${fmt(r.direction)}`);
+  if (r.hit) {
+    const h = r.hit;
+    li(`material ${h.material_name ? "'" + h.material_name + "'" : h.material}, point ${fmt(h.point)}, normal ${fmt(h.shading_normal)}${h.normal_flipped ? " (flipped: back face)" : ""}`);
+  }
+  if (r.terms) {
+    const t = r.terms;
+    li(`colour C ${fmt(t.color)}, emission ${fmt(t.emission)}, ambient ka*C*La ${fmt(t.ambient)}`);
+    // Point, spot and directional lights one line each; an area light's
+    // samples folded into one entry per emitting object.
+    const groups = new Map();
+    for (const l of t.lights) {
+      const key = l.light !== undefined ? `light ${l.light}` : `area light (object ${l.area_light_object})`;
+      if (!groups.has(key)) groups.set(key, []);
+      groups.get(key).push(l);
+    }
+    for (const [name, records] of groups) {
+      let parent = ul;
+      if (records.length > 1) {
+        const lit = records.filter((l) => !l.unlit).length;
+        const total = records.reduce((s, l) => add(s, l.radiance), [0, 0, 0]);
+        const g = el("details");
+        g.append(el("summary", "k-shadow", `${name} (${records[0].kind}): ${records.length} samples, ${lit} reach the point → ${fmt(total)}`));
+        parent = el("ul");
+        g.append(parent);
+        const item = el("li"); item.append(g); ul.append(item);
+      }
+      for (const l of records) {
+        if (l.unlit) { parent.append(el("li", "", `${name} (${l.kind}): unlit, ${l.unlit}`)); continue; }
+        const sr = l.shadow_ray;
+        const blocked = sr.blocked;
+        const to = sr.length === null ? farPoint(sr.origin, sr.direction) : add(sr.origin, mul(norm(sr.direction), sr.length));
+        const sid = segment(segments, blocked ? "blocked" : "shadow", sr.origin, to, {});
+        const by = sr.blocked_by.map((b) => b.name || `${b.kind} ${b.object}`).join(", ");
+        const e = el("li", blocked ? "light k-blocked" : "light k-shadow",
+          `${name} (${l.kind}): L.N ${fmt(l["L.N"])}, H.N ${fmt(l["H.N"])}, kd C (L.N) ${fmt(l.diffuse)}, ks (H.N)^n ${fmt(l.specular)}; shadow ray ${blocked ? "blocked by " + by : "clear" + (by ? " (dimmed by " + by + ")" : "")} → ${fmt(l.radiance)}`);
+        hover(e, sid);
+        parent.append(e);
+      }
+    }
+    li(`direct light ${fmt(t.direct)}`);
+  }
+  if (r.reflection) li(`reflection: ${r.reflection.how}${r.reflection.F !== undefined ? ", F = " + fmt(r.reflection.F) : ""}, weight ${fmt(r.reflection.weight)}`, "k-reflected");
+  if (r.refraction) li(r.refraction.total_internal_reflection ? "refraction: total internal reflection" : `refraction: 1 - F = ${fmt(r.refraction.one_minus_F)}, weight ${fmt(r.refraction.weight)}`, "k-refracted");
+  if (r.depth_cutoff) li("depth limit reached: the recursion stops here");
+  d.append(ul);
+  for (const c of r.children || []) d.append(rayNode(c, segments));
+  return d;
+}
+
+function pathNode(p, segments) {
+  const d = el("div");
+  for (const v of p.vertices) {
+    const end = v.hit ? v.hit.point : farPoint(v.origin, v.direction);
+    const id = segment(segments, v.depth === 1 ? "camera" : "reflected", v.origin, end, {});
+    const s = el("details"); s.open = true;
+    const sum = el("summary", v.depth === 1 ? "k-camera" : "k-reflected", `vertex ${v.depth}: ${v.hit ? "hit " + (v.hit.object_name || v.hit.object_kind) : "escaped"}, throughput ${fmt(v.throughput)}`);
+    hover(sum, id);
+    s.append(sum);
+    const ul = el("ul");
+    for (const [k, val] of Object.entries(v)) {
+      if (["origin", "direction", "hit", "depth", "throughput"].includes(k)) continue;
+      ul.append(el("li", "", `${k}: ${JSON.stringify(val)}`));
+    }
+    s.append(ul);
+    d.append(s);
+  }
+  if (p.end) d.append(el("p", "", `path ends: ${JSON.stringify(p.end)}`));
+  return d;
+}
+
+// Projects world point p into the image of camera c (the renderer's pinhole
+// camera: window one unit in front of the eye, tan(hfov/2) = aspect tan(vfov/2)).
+function project(c, p) {
+  const { w, r, u } = basis(c);
+  const d = sub(p, c.eye);
+  const z = dot(d, w);
+  const tv = Math.tan((c.vfov * Math.PI) / 360), th = (tv * canvas.width) / canvas.height;
+  const a = dot(d, r) / z / th, b = dot(d, u) / z / tv;
+  return [((a + 1) / 2) * canvas.width, ((1 - b) / 2) * canvas.height];
+}
+// The part of segment a-b in front of the eye (z >= near), projected.
+function clipProject(c, a, b) {
+  const { w } = basis(c);
+  const near = 1e-3 * (len(sub(c.look_at, c.eye)) || 1);
+  const za = dot(sub(a, c.eye), w), zb = dot(sub(b, c.eye), w);
+  if (za < near && zb < near) return null;
+  if (za < near) a = add(a, mul(sub(b, a), (near - za) / (zb - za)));
+  if (zb < near) b = add(b, mul(sub(a, b), (near - zb) / (za - zb)));
+  return [project(c, a), project(c, b)];
+}
+const COLOURS = { camera: "#ffd400", reflected: "#00c8ff", refracted: "#ff4fd8", shadow: "#7cfc00", blocked: "#ff4040" };
+function drawRays(segments, c) {
+  svg.textContent = "";
+  for (const s of segments) {
+    const pts = clipProject(c, s.from, s.to);
+    if (!pts) continue;
+    const line = document.createElementNS("http://www.w3.org/2000/svg", "line");
+    line.setAttribute("x1", pts[0][0]); line.setAttribute("y1", pts[0][1]);
+    line.setAttribute("x2", pts[1][0]); line.setAttribute("y2", pts[1][1]);
+    line.setAttribute("stroke", COLOURS[s.kind]);
+    line.setAttribute("class", "ray");
+    line.id = s.id;
+    if (s.kind === "blocked") line.setAttribute("stroke-dasharray", "5 3");
+    svg.append(line);
+  }
+  hooks.rays = segments.map((s) => s.kind);
+}
+// The rays belong to the camera they were traced with: moving clears them.
+const clearRays = () => { if (explained && dragging && moved) { svg.textContent = ""; explained = null; } };
+window.addEventListener("mousemove", clearRays);
+
+// ---- for tests and benchmarks: resolves when the next frame arrives.
+const waiters = [];
+hooks.nextFrame = () => new Promise((resolve) => waiters.push(resolve));
+// Sends `c` and times the first frame of it (the preview) and its first full-size frame.
+hooks.timeCamera = async (c) => {
+  const g0 = hooks.state ? hooks.state.generation : 0;
+  const t0 = performance.now();
+  camera = c; send({ type: "camera", camera: c });
+  let first = null;
+  for (;;) {
+    await hooks.nextFrame();
+    if (hooks.info.generation <= g0) continue;
+    const t = performance.now() - t0;
+    if (first === null) first = t;
+    if (hooks.info.width === hooks.info.full_width) return { first_ms: first, full_ms: t };
+  }
+};

@@ -1,0 +1,234 @@
+"""`lamplight view` in a real browser: headless Chromium (Debian's `chromium`
+and `chromium-driver`) driven by Selenium. scripts/test.sh installs them; where
+they cannot be installed these tests skip and say why.
+
+One viewer of a copy of examples/luxo.toml (640x360, Whitted, adaptive
+anti-aliasing) serves every test; each test opens the page afresh.
+"""
+
+import http.client
+import os
+import pathlib
+import shutil
+import subprocess
+import time
+import urllib.error
+import urllib.parse
+import urllib.request
+
+import pytest
+
+from conftest import EXAMPLES, ROOT
+
+CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
+CHROMEDRIVER = shutil.which("chromedriver")
+try:
+    from selenium import webdriver
+    from selenium.webdriver.chrome.service import Service
+    from selenium.webdriver.common.action_chains import ActionChains
+    from selenium.webdriver.common.by import By
+    from selenium.webdriver.support.ui import WebDriverWait
+except ImportError:  # pragma: no cover - depends on the machine
+    webdriver = None
+
+pytestmark = pytest.mark.skipif(
+    webdriver is None or CHROMIUM is None or CHROMEDRIVER is None,
+    reason="needs Selenium (pip install selenium) and headless Chromium with its driver "
+    "(apt-get install chromium chromium-driver); scripts/test.sh installs them where it can",
+)
+
+# A pixel of luxo at 640x360 that sees the glass sphere: its tree holds the
+# camera ray, refracted and reflected rays and shadow rays.
+GLASS_PIXEL = (240, 264)
+# Set to a path to save the inspector's screenshot there (docs/view-inspector.png).
+SCREENSHOT = os.environ.get("LAMPLIGHT_VIEW_SCREENSHOT")
+
+
+@pytest.fixture(scope="module")
+def viewer(cli, tmp_path_factory):
+    folder = tmp_path_factory.mktemp("scene")
+    scene = folder / "luxo.toml"
+    shutil.copy(EXAMPLES / "luxo.toml", scene)
+    (folder.parent / "secret.txt").write_text("not for the page")
+    os.symlink(folder.parent / "secret.txt", folder / "link.txt")
+    proc = subprocess.Popen(
+        [cli, "view", str(scene), "--listen", "127.0.0.1:0"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
+    )
+    line = proc.stdout.readline()
+    if not line.startswith("lamplight view: http://"):
+        proc.kill()
+        pytest.fail(f"the viewer did not start: {line!r} {proc.stderr.read()}")
+    url = line.split(": ", 1)[1].strip()
+    yield {"url": url, "scene": scene, "folder": folder, "text": scene.read_text()}
+    proc.terminate()
+    proc.wait(timeout=10)
+
+
+@pytest.fixture(scope="module")
+def browser():
+    options = webdriver.ChromeOptions()
+    options.binary_location = CHROMIUM
+    for arg in ["--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage", "--window-size=1280,760"]:
+        options.add_argument(arg)
+    driver = webdriver.Chrome(service=Service(CHROMEDRIVER), options=options)
+    driver.set_script_timeout(60)
+    yield driver
+    driver.quit()
+
+
+def hooks(driver, expression):
+    return driver.execute_script(f"return window.lamplight && window.lamplight.{expression};")
+
+
+def wait_for(driver, condition, timeout=30, what="a condition"):
+    return WebDriverWait(driver, timeout, poll_frequency=0.02).until(lambda d: condition(d), message=f"waited {timeout} s for {what}")
+
+
+def final_frame(driver, newer_than=0):
+    """Waits for the last stage of a generation above `newer_than`; returns its frame message."""
+    script = "const i = window.lamplight && window.lamplight.info; return i && i.last && i.generation > arguments[0] ? i : null;"
+    return wait_for(driver, lambda d: d.execute_script(script, newer_than), what="the final frame")
+
+
+def open_page(driver, viewer):
+    driver.get(viewer["url"])
+    wait_for(driver, lambda d: hooks(d, "frames") >= 1, what="a first frame")
+
+
+def test_the_first_image_comes_within_a_second_then_refines(browser, viewer):
+    open_page(browser, viewer)
+    first_ms = hooks(browser, "firstFrameMs")
+    assert first_ms < 1000, f"the first image came {first_ms:.0f} ms after the page was opened"
+    info = final_frame(browser)
+    assert (info["full_width"], info["full_height"]) == (640, 360)
+    assert hooks(browser, "frames") >= 2, "the first frame was refined"
+    assert info["adaptive"] and info["spp"] == 16, info
+    status = browser.find_element(By.ID, "status").text
+    assert "spp 16/adaptive" in status and "samples/s" in status, status
+
+
+def test_dragging_moves_the_camera_and_changes_the_image(browser, viewer):
+    open_page(browser, viewer)
+    info = final_frame(browser)
+    before = (hooks(browser, "state.camera"), hooks(browser, "checksum()"))
+    canvas = browser.find_element(By.ID, "image")
+    ActionChains(browser).move_to_element(canvas).click_and_hold().move_by_offset(40, 0).move_by_offset(40, 10).release().perform()
+    after_info = final_frame(browser, info["generation"])
+    camera, image = hooks(browser, "state.camera"), hooks(browser, "checksum()")
+    assert camera["eye"] != before[0]["eye"], "the drag orbited the eye"
+    assert camera["look_at"] == pytest.approx(before[0]["look_at"]), "orbiting keeps the point looked at"
+    assert image != before[1], "the image changed"
+    assert after_info["generation"] > info["generation"]
+    browser.find_element(By.ID, "reset").click()
+    final_frame(browser, after_info["generation"])
+    assert hooks(browser, "state.own_camera") is True
+
+
+def test_a_clicked_pixel_s_tree_adds_up_to_its_value(browser, viewer):
+    open_page(browser, viewer)
+    final_frame(browser)
+    canvas = browser.find_element(By.ID, "image")
+    x, y = GLASS_PIXEL
+    # Selenium's offsets are from the element's centre.
+    ActionChains(browser).move_to_element_with_offset(canvas, x - 320, y - 180).click().perform()
+    m = wait_for(browser, lambda d: hooks(d, "explain"), what="the explanation")
+    # The click lands within a pixel of the one aimed at (offsets round).
+    assert abs(m["x"] - x) <= 1 and abs(m["y"] - y) <= 1, (m["x"], m["y"])
+    x, y = m["x"], m["y"]
+    tree = m["tree"]
+    n = len(tree["samples"])
+    mean = [sum(c[k] for s in tree["samples"] for c in s["contributions"]) / n for k in range(3)]
+    shown = browser.execute_script("return window.lamplight.pixel(arguments[0], arguments[1]);", x, y)
+    assert tree["value"] == pytest.approx(shown, rel=1e-6, abs=1e-9), "the tree's value is the frame's pixel"
+    assert mean == pytest.approx(shown, rel=1e-5, abs=1e-9), "the contributions add up to the pixel"
+    kinds = set(hooks(browser, "rays"))
+    assert {"camera", "refracted", "reflected"} <= kinds and kinds & {"shadow", "blocked"}, kinds
+    lines = browser.find_elements(By.CSS_SELECTOR, "#rays line")
+    assert len(lines) >= 4
+    # Hovering a node highlights its ray.
+    summary = browser.find_element(By.CSS_SELECTOR, "#tree summary.k-refracted")
+    ActionChains(browser).move_to_element(summary).perform()
+    ray = browser.find_element(By.ID, summary.find_element(By.XPATH, ".").get_attribute("data-ray"))
+    assert "hl" in ray.get_attribute("class")
+    if SCREENSHOT:
+        browser.execute_script("document.getElementById('inspector').scrollTop = 0;")
+        browser.find_element(By.TAG_NAME, "main").screenshot(SCREENSHOT)
+
+
+def test_editing_the_scene_reloads_and_a_broken_file_shows_its_error(browser, viewer):
+    open_page(browser, viewer)
+    info = final_frame(browser)
+    reloads = hooks(browser, "state.reloads")
+    scene, text = viewer["scene"], viewer["text"]
+    image = hooks(browser, "checksum()")
+    try:
+        # More ambient light: every lit pixel changes.
+        assert "ambient = 1.0" in text
+        edited = text.replace("ambient = 1.0", "ambient = 2.5", 1)
+        scene.write_text(edited)
+        info = final_frame(browser, info["generation"])
+        assert hooks(browser, "state.reloads") > reloads
+        good = hooks(browser, "checksum()")
+        assert good != image, "the edit re-rendered the scene"
+        scene.write_text(edited + "\n[camera\n")
+        overlay = browser.find_element(By.ID, "overlay")
+        wait_for(browser, lambda d: overlay.is_displayed(), what="the error overlay")
+        assert f"{scene}:" in overlay.text, overlay.text
+        line_col = overlay.text.split(f"{scene}:", 1)[1].split(":")[:2]
+        assert all(part.isdigit() for part in line_col), f"file:line:col in {overlay.text!r}"
+        assert hooks(browser, "checksum()") == good, "the last good image stays under the overlay"
+        scene.write_text(text)
+        wait_for(browser, lambda d: not overlay.is_displayed(), what="the overlay to clear")
+        final_frame(browser, info["generation"])
+        assert hooks(browser, "checksum()") == image, "the original scene is back"
+    finally:
+        scene.write_text(text)
+
+
+def test_saving_writes_the_image_and_the_camera_into_the_scene_s_folder(browser, viewer):
+    open_page(browser, viewer)
+    final_frame(browser)
+    name = browser.find_element(By.ID, "save_name")
+    name.clear()
+    name.send_keys("saved/out.png")
+    browser.find_element(By.ID, "save").click()
+    error = wait_for(browser, lambda d: hooks(d, "errors.length") and hooks(d, "errors[0]"), what="the refusal")
+    assert error == "'saved/out.png' is refused: its folder does not exist in the scene's folder"
+    name.clear()
+    name.send_keys("out.png")
+    browser.find_element(By.ID, "save").click()
+    browser.find_element(By.ID, "save_camera").click()
+    wait_for(browser, lambda d: hooks(d, "saved.length") == 2, what="both saves")
+    png = (viewer["folder"] / "out.png").read_bytes()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n"
+    assert (int.from_bytes(png[16:20], "big"), int.from_bytes(png[20:24], "big")) == (640, 360)
+    camera = (viewer["folder"] / "camera.toml").read_text()
+    assert camera == hooks(browser, "state.camera_toml")
+    assert camera.startswith("[camera]\neye = [1.3, 1.6, 3]\n") and "up = [0, 1, 0]" in camera, camera
+    assert [p.name for p in viewer["folder"].iterdir() if p.name.endswith(".tmp")] == [], "no temporary file left"
+
+
+def test_requests_without_the_token_and_files_outside_the_folder_are_refused(browser, viewer):
+    parts = urllib.parse.urlsplit(viewer["url"])
+    token = urllib.parse.parse_qs(parts.query)["token"][0]
+    base = f"http://{parts.netloc}"
+    for target in ["/", "/app.js", "/ws", "/files/luxo.toml"]:
+        with pytest.raises(urllib.error.HTTPError) as refused:
+            urllib.request.urlopen(base + target, timeout=10)
+        assert refused.value.code == 403, target
+    with urllib.request.urlopen(f"{base}/files/luxo.toml?token={token}", timeout=10) as r:
+        assert r.read().decode() == viewer["text"]
+
+    def raw(target):
+        c = http.client.HTTPConnection(parts.netloc, timeout=10)
+        c.request("GET", target)
+        r = c.getresponse()
+        return r.status, r.read().decode()
+
+    assert raw(f"/files/../secret.txt?token={token}") == (403, "'../secret.txt' is refused: '..' may not leave the scene's folder\n")
+    secret = str(viewer["folder"].parent / "secret.txt")
+    assert raw(f"/files/{secret}?token={token}") == (403, f"'{secret}' is refused: absolute paths are outside the scene's folder\n")
+    assert raw(f"/files/link.txt?token={token}") == (403, "'link.txt' is refused: it links outside the scene's folder\n")
+    # The browser without the token gets the refusal, not the page.
+    browser.get(base + "/")
+    assert "forbidden" in browser.find_element(By.TAG_NAME, "body").text
