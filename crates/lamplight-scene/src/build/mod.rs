@@ -19,7 +19,7 @@ pub mod implicit;
 pub mod imported;
 mod materials;
 mod nodes;
-mod transform;
+pub(crate) mod transform;
 pub mod viewer;
 
 pub use nodes::{MAX_NESTING, MAX_OBJECTS, MESH_PARAMS};

@@ -72,16 +72,7 @@ fn rotation(p: &mut Params<'_>) -> ParamResult<Mat4> {
                         return Err(r.error("takes either axis and degrees or x, y, z, not both"));
                     }
                     let axis = axis.try_normalize().ok_or_else(|| r.key_error("axis", "must not be zero"))?;
-                    let rad = deg.to_radians();
-                    if axis == Vec3::X {
-                        Mat4::from_rotation_x(rad)
-                    } else if axis == Vec3::Y {
-                        Mat4::from_rotation_y(rad)
-                    } else if axis == Vec3::Z {
-                        Mat4::from_rotation_z(rad)
-                    } else {
-                        Mat4::from_axis_angle(axis, rad)
-                    }
+                    axis_rotation(axis, deg.to_radians())
                 }
                 (None, None) => {
                     let (x, y, z) = (r.number_or("x", 0.0)?, r.number_or("y", 0.0)?, r.number_or("z", 0.0)?);
@@ -109,6 +100,20 @@ const ROTATE_KEYS: [lamplight_core::params::Param; 5] = {
 
 fn bad_rotate(p: &Params<'_>, item: &Item) -> lamplight_core::params::ParamError {
     p.key_error("rotate", format!("{ROTATE_FORMS}, got {}", item.value.describe()))
+}
+
+/// The rotation by `rad` about the unit `axis`; about a coordinate axis it is
+/// glam's exact one (`from_axis_angle` rounds its off-axis terms).
+pub(crate) fn axis_rotation(axis: Vec3, rad: f64) -> Mat4 {
+    if axis == Vec3::X {
+        Mat4::from_rotation_x(rad)
+    } else if axis == Vec3::Y {
+        Mat4::from_rotation_y(rad)
+    } else if axis == Vec3::Z {
+        Mat4::from_rotation_z(rad)
+    } else {
+        Mat4::from_axis_angle(axis, rad)
+    }
 }
 
 #[cfg(test)]

@@ -15,7 +15,6 @@ use toml::de::{DeTable, DeValue};
 
 use crate::description::SceneDescription;
 use crate::error::{LoadError, Location};
-use crate::input::{self, Refusal};
 
 /// Largest scene file read, in bytes. Mesh data belongs in mesh files; this
 /// bounds the memory a malformed or hostile file can make the parser use.
@@ -83,23 +82,7 @@ pub fn line_column(text: &str, offset: usize) -> (usize, usize) {
 
 /// Reads and parses the scene file at `path`.
 pub fn read(path: &Path) -> Result<(SceneDescription, Source), LoadError> {
-    let bytes = input::read_regular(path, MAX_FILE_BYTES).map_err(|r| {
-        LoadError::file(
-            path,
-            match r {
-                Refusal::NotFound => "no such file".to_string(),
-                Refusal::PermissionDenied => "permission denied".to_string(),
-                Refusal::Directory => "is a directory, expected a scene file".to_string(),
-                Refusal::NotRegular(kind) => format!("is {kind}, expected a scene file"),
-                Refusal::TooLarge { len, max } => format!("is {len} bytes, larger than the {max} bytes a scene file may have"),
-                Refusal::Io(e) => format!("cannot read: {e}"),
-            },
-        )
-    })?;
-    let text = String::from_utf8(bytes).map_err(|e| {
-        let (line, column) = line_column(&String::from_utf8_lossy(e.as_bytes()), e.utf8_error().valid_up_to());
-        LoadError::at(path, line, column, "invalid UTF-8, expected a text file")
-    })?;
+    let text = super::read_text(path, MAX_FILE_BYTES)?;
     parse(path, text)
 }
 

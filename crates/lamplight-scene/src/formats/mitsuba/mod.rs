@@ -28,7 +28,6 @@ use lamplight_core::params::{Entry, Item, Loc, ParamError, Table, Value};
 use crate::description::SceneDescription;
 use crate::error::LoadError;
 use crate::formats::native::Source;
-use crate::input::{self, Refusal};
 
 pub mod bsdfs;
 mod cie_tables;
@@ -58,23 +57,7 @@ pub fn read(path: &Path, defines: &[(String, String)]) -> Result<(SceneDescripti
 
 /// Reads the Mitsuba scene at `path` to the table a TOML scene file would give.
 pub fn read_table(path: &Path, defines: &[(String, String)]) -> Result<(Table, Source), LoadError> {
-    let bytes = input::read_regular(path, xml::MAX_FILE_BYTES).map_err(|r| {
-        LoadError::file(
-            path,
-            match r {
-                Refusal::NotFound => "no such file".to_string(),
-                Refusal::PermissionDenied => "permission denied".to_string(),
-                Refusal::Directory => "is a directory, expected a scene file".to_string(),
-                Refusal::NotRegular(kind) => format!("is {kind}, expected a scene file"),
-                Refusal::TooLarge { len, max } => format!("is {len} bytes, larger than the {max} bytes a scene file may have"),
-                Refusal::Io(e) => format!("cannot read: {e}"),
-            },
-        )
-    })?;
-    let text = String::from_utf8(bytes).map_err(|e| {
-        let (line, column) = crate::formats::native::line_column(&String::from_utf8_lossy(e.as_bytes()), e.utf8_error().valid_up_to());
-        LoadError::at(path, line, column, "invalid UTF-8, expected a text file")
-    })?;
+    let text = crate::formats::read_text(path, xml::MAX_FILE_BYTES)?;
     parse_table(path, text, defines)
 }
 

@@ -58,16 +58,8 @@ fn operation(op: &El) -> Result<Mat4, ParamError> {
             let axis = axis_or(0.0)?;
             let angle = op.require("angle")?;
             let rad = parse_float(&angle.value, &angle.loc)?.to_radians();
-            Ok(if axis == Vec3::X {
-                Mat4::from_rotation_x(rad)
-            } else if axis == Vec3::Y {
-                Mat4::from_rotation_y(rad)
-            } else if axis == Vec3::Z {
-                Mat4::from_rotation_z(rad)
-            } else {
-                let unit = axis.try_normalize().ok_or_else(|| err(&op.loc, "rotate: the axis must not be zero"))?;
-                Mat4::from_axis_angle(unit, rad)
-            })
+            let unit = axis.try_normalize().ok_or_else(|| err(&op.loc, "rotate: the axis must not be zero"))?;
+            Ok(crate::build::transform::axis_rotation(unit, rad))
         }
         "matrix" => {
             let v = op.require("value")?;
