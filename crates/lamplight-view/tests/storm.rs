@@ -62,7 +62,9 @@ fn a_thousand_camera_changes_keep_memory_flat_and_end_on_the_right_frame() {
         }
     }
     let storm = start.elapsed();
-    assert!(storm < Duration::from_secs(10), "1,000 changes took {storm:?}");
+    // Not a speed test (that is bench/view_latency.py): a bound that only a
+    // change blocking on the render thread would exceed, so a hang fails here.
+    assert!(storm < Duration::from_secs(120), "1,000 changes took {storm:?}");
     // Flat: after the first 250 changes (thread pools and allocator arenas
     // warmed up) resident memory does not grow with the number of changes.
     let mib: Vec<f64> = memory.iter().map(|m| *m as f64 / 1048576.0).collect();

@@ -81,7 +81,7 @@ function showFrame() {
   const { info, data } = frame;
   hooks.frames++; hooks.info = info;
   // Milliseconds from the page's navigation to its first image.
-  if (hooks.frames === 1) hooks.firstFrameMs = performance.now();
+  if (hooks.frames === 1) { hooks.firstFrameMs = performance.now(); hooks.firstInfo = info; }
   if (info.width === info.full_width && info.height === info.full_height) hooks.pixels = { info, data };
   const scale = Math.pow(2, exposure) * 65535;
   const image = new ImageData(info.width, info.height);
