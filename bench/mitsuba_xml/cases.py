@@ -255,3 +255,7 @@ def write_assets(d):
     with open(os.path.join(d, "included.xml"), "w") as f:
         f.write('<scene version="3.0.0">\n    <default name="inc_r" value="0.7"/>\n'
                 '    <bsdf type="diffuse" id="inc_red"><rgb name="reflectance" value="$inc_r, 0.2, 0.15"/></bsdf>\n</scene>\n')
+
+from .cases_bsdfs2 import CASES as _BSDFS2_CASES  # noqa: E402 (it uses the helpers above)
+
+CASES += _BSDFS2_CASES

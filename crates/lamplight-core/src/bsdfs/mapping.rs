@@ -12,6 +12,9 @@
 //! | `Refraction::Fresnel` alone | refraction of weight `1 - F` |
 //! | `Refraction::Constant(w)` | refraction of weight `w` |
 //! | `emission` | area light radiance (see [`crate::lights::area`]) |
+//! | [`Material::model`] plastic | the coating over a diffuse base of albedo `C` (capped at 1), smooth ([`super::plastic`]) or rough ([`super::rough_plastic`]), alone |
+//! | [`Material::model`] thin dielectric | a thin sheet ([`super::thin_dielectric`]), alone |
+//! | [`Material::distribution`] | the distribution of the rough glass and metal lobes (GGX or Beckmann, [`super::distribution`]) |
 //! | [`Material::pbr`] (glTF metallic-roughness) | the glTF BRDF ([`super::metallic_roughness`]) of base colour `C`, `metallic`, `alpha = max(roughness^2, 0.001)`, alone |
 //! | `ka` | nothing: it stands for the indirect light the path tracer computes (the background is the sky, [`crate::lights::LightSet`]) |
 //!
@@ -25,8 +28,10 @@
 //! Then every lobe is scaled per channel so that the reflectance bounds sum to at
 //! most 1 ([`Bsdf::new`]): the lecture lets `kd + ks + kr` exceed 1, physics does not.
 
+use super::plastic::Plastic;
+use super::rough_plastic::RoughPlastic;
 use super::{microfacet, Bsdf, Lobe, MirrorFresnel};
-use crate::materials::{Material, Reflection, Refraction};
+use crate::materials::{Material, Model, Reflection, Refraction};
 use crate::math::{Rgb, Vec3};
 
 /// The BSDF of `material` at `point`, for a ray that arrived on the outward side when
@@ -36,6 +41,19 @@ pub fn bsdf_for(material: &Material, point: Vec3, front_face: bool) -> Bsdf {
     if let Some(pbr) = &material.pbr {
         let alpha = (material.roughness * material.roughness).max(microfacet::MIN_ALPHA);
         return Bsdf::new(&[Lobe::MetallicRoughness { base: color.min(Rgb::ONE), metallic: pbr.metallic, spec: pbr.specular(), alpha }]);
+    }
+    match &material.model {
+        Some(Model::Plastic(coating)) => {
+            let base = color.clamp(Rgb::ZERO, Rgb::ONE);
+            let lobe = match coating.rough {
+                Some((m, table)) => Lobe::RoughPlastic(RoughPlastic::new(base, coating, m, table)),
+                None => Lobe::Plastic(Plastic::new(base, coating)),
+            };
+            return Bsdf::new(&[lobe]);
+        }
+        // The sheet has the same medium on both sides: the face does not matter.
+        Some(Model::ThinDielectric { eta }) => return Bsdf::new(&[Lobe::ThinGlass { eta: *eta, tint: Rgb::ONE }]),
+        None => {}
     }
     let relative = |ior: f64| if front_face { ior } else { 1.0 / ior };
     let mut lobes: [Lobe; 4] = [Lobe::Diffuse(Rgb::ZERO); 4];
@@ -59,7 +77,12 @@ pub fn bsdf_for(material: &Material, point: Vec3, front_face: bool) -> Bsdf {
         if let Refraction::Fresnel { ior } = material.refraction {
             // Below the smallest GGX roughness the lobe is a mirror that f64 cannot sample.
             if material.roughness >= microfacet::MIN_ALPHA {
-                push(Lobe::RoughGlass { eta: relative(ior), alpha: material.roughness, tint: Rgb::ONE });
+                push(Lobe::RoughGlass {
+                    eta: relative(ior),
+                    alpha: material.roughness,
+                    tint: Rgb::ONE,
+                    distribution: material.distribution,
+                });
             } else {
                 push(Lobe::Glass { eta: relative(ior), tint: Rgb::ONE });
             }
@@ -70,7 +93,7 @@ pub fn bsdf_for(material: &Material, point: Vec3, front_face: bool) -> Bsdf {
             Reflection::Constant(w) => push(Lobe::Mirror(MirrorFresnel::Constant(w))),
             Reflection::Dielectric { ior, min, max } => push(Lobe::Mirror(MirrorFresnel::Dielectric { eta: relative(ior), min, max })),
             Reflection::Conductor { eta, k } if material.roughness >= microfacet::MIN_ALPHA => {
-                push(Lobe::RoughConductor { eta, k, alpha: material.roughness })
+                push(Lobe::RoughConductor { eta, k, alpha: material.roughness, distribution: material.distribution })
             }
             Reflection::Conductor { eta, k } => push(Lobe::Mirror(MirrorFresnel::Conductor { eta, k })),
         }

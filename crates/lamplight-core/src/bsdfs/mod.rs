@@ -13,14 +13,21 @@
 
 pub mod conductor;
 pub mod dielectric;
+pub mod distribution;
 pub mod lambertian;
 pub mod mapping;
 pub mod metallic_roughness;
 pub mod microfacet;
+pub mod plastic;
 pub mod rough_conductor;
 pub mod rough_dielectric;
+pub mod rough_plastic;
+#[cfg(test)]
+mod test_support;
+pub mod thin_dielectric;
 
 pub use conductor::MirrorFresnel;
+pub use distribution::{Distribution, Microfacet};
 pub use mapping::bsdf_for;
 
 use crate::math::{orthonormal_basis, Rgb, Vec3};
@@ -77,22 +84,37 @@ pub enum Lobe {
         /// Colour filter of both branches (1 for clear glass).
         tint: Rgb,
     },
-    /// Rough metal: GGX reflection with conductor Fresnel ([`rough_conductor`]).
+    /// Rough metal: microfacet reflection with conductor Fresnel ([`rough_conductor`]).
     RoughConductor {
         /// Real part of the index, per channel.
         eta: Rgb,
         /// Extinction coefficient, per channel.
         k: Rgb,
-        /// GGX roughness.
+        /// Roughness.
         alpha: f64,
+        /// GGX or Beckmann.
+        distribution: Distribution,
     },
-    /// Rough glass: GGX microfacet reflection and refraction ([`rough_dielectric`]).
+    /// Rough glass: microfacet reflection and refraction ([`rough_dielectric`]).
     RoughGlass {
         /// Relative index across the boundary.
         eta: f64,
-        /// GGX roughness.
+        /// Roughness.
         alpha: f64,
         /// Colour filter of both branches (1 for clear glass).
+        tint: Rgb,
+        /// GGX or Beckmann.
+        distribution: Distribution,
+    },
+    /// Smooth plastic: a delta coating reflection over a diffuse lobe ([`plastic`]).
+    Plastic(plastic::Plastic),
+    /// Rough plastic: a microfacet coating over a diffuse base ([`rough_plastic`]).
+    RoughPlastic(rough_plastic::RoughPlastic),
+    /// A thin dielectric sheet: reflection `R'` and straight transmission `1 - R'` ([`thin_dielectric`], delta).
+    ThinGlass {
+        /// Relative index of the sheet.
+        eta: f64,
+        /// Colour filter of both branches.
         tint: Rgb,
     },
     /// The glTF metallic-roughness BRDF ([`metallic_roughness`]).
@@ -120,7 +142,13 @@ impl Lobe {
     pub fn is_delta(&self) -> bool {
         !matches!(
             self,
-            Lobe::Diffuse(_) | Lobe::Glossy { .. } | Lobe::RoughConductor { .. } | Lobe::RoughGlass { .. } | Lobe::MetallicRoughness { .. }
+            Lobe::Diffuse(_)
+                | Lobe::Glossy { .. }
+                | Lobe::RoughConductor { .. }
+                | Lobe::RoughGlass { .. }
+                | Lobe::MetallicRoughness { .. }
+                | Lobe::Plastic(_)
+                | Lobe::RoughPlastic(_)
         )
     }
 
@@ -130,8 +158,8 @@ impl Lobe {
             Lobe::Diffuse(a) => a,
             Lobe::Glossy { ks, .. } => ks,
             Lobe::Mirror(m) => m.bound(),
-            Lobe::RoughConductor { .. } => Rgb::ONE,
-            Lobe::Glass { tint, .. } | Lobe::RoughGlass { tint, .. } => tint,
+            Lobe::RoughConductor { .. } | Lobe::Plastic(_) | Lobe::RoughPlastic(_) => Rgb::ONE,
+            Lobe::Glass { tint, .. } | Lobe::RoughGlass { tint, .. } | Lobe::ThinGlass { tint, .. } => tint,
             Lobe::Refract { weight, .. } => weight.unwrap_or(Rgb::ONE),
             Lobe::MetallicRoughness { base, metallic, spec, .. } => metallic_roughness::bound(base, metallic, spec),
         }
@@ -152,13 +180,14 @@ impl Lobe {
                 }
             }
             Lobe::Glass { eta, tint } => Lobe::Glass { eta, tint: tint * s },
-            Lobe::RoughGlass { eta, alpha, tint } => Lobe::RoughGlass { eta, alpha, tint: tint * s },
+            Lobe::RoughGlass { eta, alpha, tint, distribution } => Lobe::RoughGlass { eta, alpha, tint: tint * s, distribution },
+            Lobe::ThinGlass { eta, tint } => Lobe::ThinGlass { eta, tint: tint * s },
             // Like the conductor mirror: physics when unscaled, else a constant-reflectance GGX lobe.
             Lobe::RoughConductor { alpha, .. } if s != Rgb::ONE => Lobe::Glossy { ks: s, alpha },
             Lobe::RoughConductor { .. } => self,
             Lobe::Refract { eta, weight } => Lobe::Refract { eta, weight: Some(weight.unwrap_or(Rgb::ONE) * s) },
-            // Its bound is at most 1 and the mapping uses it alone: never scaled.
-            Lobe::MetallicRoughness { .. } => self,
+            // Their bounds are at most 1 and the mapping uses them alone: never scaled.
+            Lobe::MetallicRoughness { .. } | Lobe::Plastic(_) | Lobe::RoughPlastic(_) => self,
         }
     }
 }
@@ -259,8 +288,14 @@ impl Bsdf {
             match *lobe {
                 Lobe::Diffuse(a) => sum += lambertian::f(a, wo, wi),
                 Lobe::Glossy { ks, alpha } => sum += microfacet::f(ks, alpha, wo, wi),
-                Lobe::RoughGlass { eta, alpha, tint } => sum += tint * rough_dielectric::f(alpha, eta, wo, wi),
-                Lobe::RoughConductor { eta, k, alpha } => sum += rough_conductor::f(eta, k, alpha, wo, wi),
+                Lobe::RoughGlass { eta, alpha, tint, distribution } => {
+                    sum += tint * rough_dielectric::f(Microfacet::new(distribution, alpha), eta, wo, wi)
+                }
+                Lobe::RoughConductor { eta, k, alpha, distribution } => {
+                    sum += rough_conductor::f(eta, k, Microfacet::new(distribution, alpha), wo, wi)
+                }
+                Lobe::Plastic(p) => sum += p.f(wo, wi),
+                Lobe::RoughPlastic(p) => sum += p.f(wo, wi),
                 Lobe::MetallicRoughness { base, metallic, spec, alpha } => {
                     sum += metallic_roughness::f(base, metallic, spec, alpha, wo, wi)
                 }
@@ -282,8 +317,13 @@ impl Bsdf {
         for (lobe, p) in self.lobes().iter().zip(self.probs) {
             match *lobe {
                 Lobe::Diffuse(_) => pdf += p * lambertian::pdf(wo, wi),
-                Lobe::Glossy { alpha, .. } | Lobe::RoughConductor { alpha, .. } => pdf += p * microfacet::pdf(alpha, wo, wi),
-                Lobe::RoughGlass { eta, alpha, .. } => pdf += p * rough_dielectric::pdf(alpha, eta, wo, wi),
+                Lobe::Glossy { alpha, .. } => pdf += p * microfacet::pdf(alpha, wo, wi),
+                Lobe::RoughConductor { alpha, distribution, .. } => pdf += p * Microfacet::new(distribution, alpha).pdf(wo, wi),
+                Lobe::RoughGlass { eta, alpha, distribution, .. } => {
+                    pdf += p * rough_dielectric::pdf(Microfacet::new(distribution, alpha), eta, wo, wi)
+                }
+                Lobe::Plastic(lobe) => pdf += p * lobe.pdf(wo, wi),
+                Lobe::RoughPlastic(lobe) => pdf += p * lobe.pdf(wo, wi),
                 Lobe::MetallicRoughness { base, metallic, spec, alpha } => {
                     pdf += p * metallic_roughness::pdf(base, metallic, spec, alpha, wo, wi)
                 }
@@ -320,8 +360,17 @@ impl Bsdf {
         let delta = |wi: Vec3, weight: Rgb, eta: f64| Some(BsdfSample { wi, weight: weight / p, pdf: 0.0, delta: true, eta });
         let wi = match self.lobes[chosen] {
             Lobe::Diffuse(_) => lambertian::sample(u),
-            Lobe::Glossy { alpha, .. } | Lobe::RoughConductor { alpha, .. } => microfacet::sample(alpha, wo, u)?,
-            Lobe::RoughGlass { eta, alpha, .. } => rough_dielectric::sample(alpha, eta, wo, u_rest, u)?,
+            Lobe::Glossy { alpha, .. } => microfacet::sample(alpha, wo, u)?,
+            Lobe::RoughConductor { alpha, distribution, .. } => Microfacet::new(distribution, alpha).sample(wo, u)?,
+            Lobe::RoughGlass { eta, alpha, distribution, .. } => {
+                rough_dielectric::sample(Microfacet::new(distribution, alpha), eta, wo, u_rest, u)?
+            }
+            Lobe::Plastic(lobe) => match lobe.sample(wo, u_rest, u)? {
+                plastic::PlasticSample::Specular(wi, weight) => return delta(wi, weight, 1.0),
+                plastic::PlasticSample::Diffuse(wi) => wi,
+            },
+            Lobe::RoughPlastic(lobe) => lobe.sample(wo, u_rest, u)?,
+            Lobe::ThinGlass { eta, tint } => return delta(thin_dielectric::sample(wo, eta, u_rest).0, tint, 1.0),
             Lobe::MetallicRoughness { base, metallic, spec, alpha } => {
                 metallic_roughness::sample(base, metallic, spec, alpha, wo, u_rest, u)?
             }

@@ -2,26 +2,27 @@
 //! facets are conductor mirrors, `f = F(wo.h) D(h) G2(wo, wi) / (4 cos(theta_o) cos(theta_i))`,
 //! with `F` the conductor Fresnel reflectance of complex index `eta + i k` per channel
 //! ([`fresnel_conductor`]) and `D`, `G2` and the visible-normal sampling of
-//! [`microfacet`] (pbrt-v4's `ConductorBxDF`). Since `F <= 1` and `G2 <= G1`, no
+//! [`super::microfacet`], or Beckmann's ([`super::distribution`]) (pbrt-v4's `ConductorBxDF`). Since `F <= 1` and `G2 <= G1`, no
 //! direction reflects more than it receives; the single-scattering loss grows with
 //! the roughness as for [`super::rough_dielectric`].
 
-use super::microfacet;
+use super::distribution::Microfacet;
 use crate::materials::fresnel_conductor;
 use crate::math::{Rgb, Vec3};
 
 /// The BRDF value for `wo`, `wi` above the surface.
-pub fn f(eta: Rgb, k: Rgb, alpha: f64, wo: Vec3, wi: Vec3) -> Rgb {
+pub fn f(eta: Rgb, k: Rgb, m: Microfacet, wo: Vec3, wi: Vec3) -> Rgb {
     if wo.z <= 0.0 || wi.z <= 0.0 {
         return Rgb::ZERO;
     }
     let Some(h) = (wo + wi).try_normalize() else { return Rgb::ZERO };
-    fresnel_conductor(wo.dot(h), eta, k) * microfacet::f(Rgb::ONE, alpha, wo, wi)
+    fresnel_conductor(wo.dot(h), eta, k) * m.f(Rgb::ONE, wo, wi)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::bsdfs::microfacet;
     use crate::materials::Metal;
 
     /// Albedo `E[f cos / pdf]` under visible-normal sampling.
@@ -32,7 +33,7 @@ mod tests {
             for j in 0..n {
                 let u = ((i as f64 + 0.5) / n as f64, (j as f64 + 0.5) / n as f64);
                 if let Some(wi) = microfacet::sample(alpha, wo, u) {
-                    sum += f(eta, k, alpha, wo, wi) * wi.z / microfacet::pdf(alpha, wo, wi);
+                    sum += f(eta, k, Microfacet::ggx(alpha), wo, wi) * wi.z / microfacet::pdf(alpha, wo, wi);
                 }
             }
         }

@@ -16,15 +16,16 @@
 //! denser side, as for smooth glass ([`super::dielectric`]). Microfacets facing away
 //! from `wo` or `wi` (`(wo.h) cos_o < 0` or `(wi.h) cos_i < 0`) contribute nothing.
 //!
-//! Sampling draws `h` from the normals visible from `wo` ([`microfacet::visible_normal`],
-//! density `D_wo(h) = G1(wo) (wo.h) D(h) / cos_o`), then reflects with probability
+//! Sampling draws `h` from the normals visible from `wo` for GGX
+//! ([`super::microfacet::visible_normal`], density `D_wo(h) = G1(wo) (wo.h) D(h) / cos_o`),
+//! from `D(h) cos(theta_h)` for Beckmann ([`Microfacet::sample_normal`]), then reflects with probability
 //! `F(wo.h)` and refracts otherwise. The solid-angle densities are
 //! `pdf_r = D_wo(h) F / (4 wo.h)` and `pdf_t = D_wo(h) (1 - F) |wi.h| / (wi.h + wo.h / eta)^2`,
 //! the Jacobians `dh / dwi` of the two half-vector maps. Energy that the
 //! single-scattering model leaves on the microsurface (`G2 < G1`) is lost: the
 //! lobe's albedo is below 1 and falls with the roughness.
 
-use super::microfacet;
+use super::distribution::Microfacet;
 use crate::materials::fresnel_dielectric;
 use crate::math::Vec3;
 
@@ -45,12 +46,12 @@ fn half_vector(eta: f64, wo: Vec3, wi: Vec3) -> Option<(Vec3, bool)> {
     Some((h, reflect))
 }
 
-/// The BSDF value (one channel; a tint multiplies it) for roughness `alpha` and
+/// The BSDF value (one channel; a tint multiplies it) for the distribution `m` and
 /// relative index `eta`.
-pub fn f(alpha: f64, eta: f64, wo: Vec3, wi: Vec3) -> f64 {
+pub fn f(m: Microfacet, eta: f64, wo: Vec3, wi: Vec3) -> f64 {
     let Some((h, reflect)) = half_vector(eta, wo, wi) else { return 0.0 };
-    let d = microfacet::d(alpha, h);
-    let g2 = 1.0 / (1.0 + microfacet::lambda(alpha, wo) + microfacet::lambda(alpha, wi));
+    let d = m.d(h);
+    let g2 = m.g2(wo, wi);
     let fr = fresnel_dielectric(wo.dot(h), eta);
     let (cos_o, cos_i) = (wo.z, wi.z.abs());
     if reflect {
@@ -65,11 +66,11 @@ pub fn f(alpha: f64, eta: f64, wo: Vec3, wi: Vec3) -> f64 {
 }
 
 /// Solid-angle density with which [`sample`] returns `wi`.
-pub fn pdf(alpha: f64, eta: f64, wo: Vec3, wi: Vec3) -> f64 {
+pub fn pdf(m: Microfacet, eta: f64, wo: Vec3, wi: Vec3) -> f64 {
     let Some((h, reflect)) = half_vector(eta, wo, wi) else { return 0.0 };
     let wo_h = wo.dot(h);
-    // Density of h among the visible normals.
-    let d_vis = microfacet::g1(alpha, wo) * wo_h * microfacet::d(alpha, h) / wo.z;
+    // Density of the sampled normal h (for GGX, among the visible normals).
+    let d_vis = m.normal_pdf(wo, h);
     let fr = fresnel_dielectric(wo_h, eta);
     if reflect {
         return d_vis * fr / (4.0 * wo_h);
@@ -99,11 +100,11 @@ pub fn refract(wo: Vec3, h: Vec3, eta: f64) -> Option<Vec3> {
 /// An incident direction for `wo` (`wo.z > 0`): a visible normal from `u`, then
 /// reflection when `u_branch < F(wo.h)`, else refraction. `None` when the direction
 /// ends on the wrong side of the macro-surface (the single-scattering loss).
-pub fn sample(alpha: f64, eta: f64, wo: Vec3, u_branch: f64, u: (f64, f64)) -> Option<Vec3> {
+pub fn sample(m: Microfacet, eta: f64, wo: Vec3, u_branch: f64, u: (f64, f64)) -> Option<Vec3> {
     if wo.z <= 0.0 {
         return None;
     }
-    let h = microfacet::visible_normal(alpha, wo, u);
+    let h = m.sample_normal(wo, u);
     let wo_h = wo.dot(h);
     if wo_h <= 0.0 {
         return None;

@@ -32,6 +32,12 @@ fn presets() -> Vec<(&'static str, Material)> {
         ("rough gold", Material { roughness: 0.3, ..Material::metal(Metal::Gold, 0.5, 50.0) }),
         ("rough diffuse copper", Material { roughness: 0.6, kd: Rgb::splat(0.5), ..Material::metal(Metal::Copper, 0.0, 1.0) }),
         ("heckbert mirror", Material { reflection: Reflection::Constant(Rgb::splat(0.7)), kd: Rgb::splat(0.6), ..Material::default() }),
+        ("mitsuba plastic", coated(Rgb::new(0.8, 0.5, 0.2), 0.0, Distribution::Ggx)),
+        ("mitsuba rough plastic", coated(Rgb::splat(0.8), 0.3, Distribution::Ggx)),
+        ("mitsuba beckmann plastic", coated(Rgb::splat(0.8), 0.5, Distribution::Beckmann)),
+        ("thin glass", Material { model: Some(crate::materials::Model::ThinDielectric { eta: 1.5 }), ..Material::default() }),
+        ("beckmann gold", Material { roughness: 0.3, distribution: Distribution::Beckmann, ..Material::metal(Metal::Gold, 0.5, 50.0) }),
+        ("beckmann glass", Material { roughness: 0.4, distribution: Distribution::Beckmann, ..Material::glass(1.5, 0.5, 50.0) }),
         (
             "constant glass",
             Material {
@@ -44,6 +50,49 @@ fn presets() -> Vec<(&'static str, Material)> {
 }
 
 use crate::materials::{Reflection, Refraction};
+
+/// A Mitsuba plastic of base `d`, roughness `alpha` (0: smooth).
+fn coated(d: Rgb, alpha: f64, distribution: Distribution) -> Material {
+    let mut coating = plastic::Coating::new(1.5, Rgb::ONE, false, d.element_sum() / 3.0);
+    if alpha > 0.0 {
+        let m = Microfacet::new(distribution, alpha);
+        coating.rough = Some((m, rough_plastic::table(m, 1.5)));
+    }
+    Material {
+        color: crate::materials::Texture::Constant(d),
+        model: Some(crate::materials::Model::Plastic(coating)),
+        ..Material::default()
+    }
+}
+
+#[test]
+fn new_lobes_sample_their_pdf_through_the_mixture() {
+    use test_support::{chi_square_z, Sampled};
+    let wo = Vec3::new(0.5, 0.2, 0.8).normalize();
+    for (name, material) in presets().into_iter().filter(|(n, _)| n.starts_with("mitsuba") || n.starts_with("beckmann")) {
+        let bsdf = bsdf_for(&material, Vec3::ZERO, true);
+        let z = chi_square_z(
+            |wi| bsdf.pdf(wo, wi),
+            |a, u| bsdf.sample(wo, a, u).map(|s| if s.delta { Sampled::Delta(s.weight.x) } else { Sampled::Smooth(s.wi, s.weight.x) }),
+            200_000,
+            9,
+        );
+        assert!(z < 4.0, "{name}: z {z:.2}");
+    }
+}
+
+#[test]
+fn thin_glass_keeps_all_energy_and_does_not_bend() {
+    let bsdf =
+        bsdf_for(&Material { model: Some(crate::materials::Model::ThinDielectric { eta: 1.5 }), ..Material::default() }, Vec3::ZERO, false);
+    for k in 0..9 {
+        let theta = (k as f64 * 10.0).to_radians();
+        let wo = Vec3::new(theta.sin(), 0.0, theta.cos());
+        assert!((albedo(&bsdf, wo).x - 1.0).abs() < 1e-12);
+        let through = bsdf.sample(wo, 0.999, (0.5, 0.5)).unwrap();
+        assert!(through.delta && through.wi == -wo && through.eta == 1.0);
+    }
+}
 
 #[test]
 fn no_material_reflects_more_than_it_receives() {

@@ -19,8 +19,10 @@ mod metals;
 pub mod normal_map;
 pub mod pbr;
 pub mod phong;
+pub mod plastic;
 pub mod texture;
 pub mod textured;
+pub mod thin_dielectric;
 pub mod uv_checker;
 pub mod uv_set;
 pub mod uv_transform;
@@ -106,6 +108,21 @@ impl Refraction {
     }
 }
 
+/// A scattering model of its own, which then decides the path tracer's BSDF; the
+/// lecture's fields are its Whitted approximation.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Model {
+    /// A diffuse base (albedo `color`) under a dielectric coating, smooth or rough
+    /// (Mitsuba's `plastic` and `roughplastic`; [`crate::bsdfs::plastic`]).
+    Plastic(crate::bsdfs::plastic::Coating),
+    /// A thin dielectric sheet of relative index `eta` (Mitsuba's `thindielectric`;
+    /// [`crate::bsdfs::thin_dielectric`]).
+    ThinDielectric {
+        /// Relative index of the sheet.
+        eta: f64,
+    },
+}
+
 /// Every property of a surface, the lecture's `Material`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Material {
@@ -136,6 +153,10 @@ pub struct Material {
     /// tracer (0: smooth; see [`crate::bsdfs::mapping`]); the Whitted tracer ignores it.
     /// Under [`Material::pbr`], glTF's perceptual roughness `r` (GGX `alpha = r^2`).
     pub roughness: f64,
+    /// The microfacet distribution of the rough glass and conductor lobes (GGX by default).
+    pub distribution: crate::bsdfs::Distribution,
+    /// A scattering model of its own ([`Model`]), which then decides the path tracer's BSDF.
+    pub model: Option<Model>,
     /// Parameters driven by textures ([`textured`]); `None` when all are constant.
     pub textures: Option<Arc<[(Slot, Texture)]>>,
     /// The glTF metallic-roughness model ([`pbr`]), which then decides the path
@@ -165,6 +186,8 @@ impl Default for Material {
             refraction: Refraction::None,
             shadow_transmittance: Rgb::ZERO,
             roughness: 0.0,
+            distribution: crate::bsdfs::Distribution::Ggx,
+            model: None,
             textures: None,
             pbr: None,
             normal_map: None,

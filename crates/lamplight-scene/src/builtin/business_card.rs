@@ -157,6 +157,8 @@ pub fn build() -> Result<Scene, Error> {
             refraction: Refraction::Constant { ior: s.ir, weight: Rgb::splat(s.kt) },
             shadow_transmittance: Rgb::ZERO,
             roughness: 0.0,
+            distribution: Default::default(),
+            model: None,
             textures: None,
             pbr: None,
             normal_map: None,

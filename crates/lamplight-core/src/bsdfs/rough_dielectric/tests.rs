@@ -5,6 +5,17 @@
 use std::f64::consts::PI;
 
 use super::*;
+
+// The GGX tests below name the roughness; Beckmann's are in `bsdfs::coated_tests`.
+fn f(alpha: f64, eta: f64, wo: Vec3, wi: Vec3) -> f64 {
+    super::f(Microfacet::ggx(alpha), eta, wo, wi)
+}
+fn pdf(alpha: f64, eta: f64, wo: Vec3, wi: Vec3) -> f64 {
+    super::pdf(Microfacet::ggx(alpha), eta, wo, wi)
+}
+fn sample(alpha: f64, eta: f64, wo: Vec3, u_branch: f64, u: (f64, f64)) -> Option<Vec3> {
+    super::sample(Microfacet::ggx(alpha), eta, wo, u_branch, u)
+}
 use crate::bsdfs::dielectric::refract_local;
 use crate::sampling::Rng;
 

@@ -7,9 +7,12 @@
 //! | `diffuse` `reflectance` (0.5, colour or texture) | `color = reflectance`, `kd = 1`, `ka = ks = 0` |
 //! | none (Mitsuba's default) | diffuse 0.5; on an emitting shape diffuse 0 (black), as Mitsuba |
 //! | `conductor` `material` (`none`: a perfect mirror) or `eta`, `k` | `kd = 0`, `reflection = { type = "conductor", eta, k }` ([`super::conductors`]: Mitsuba's table, as `scalar_rgb` reduces it) |
-//! | `roughconductor` `alpha` (0.1), `distribution` | the same with `roughness = alpha` (GGX) |
+//! | `roughconductor` `alpha` (0.1), `distribution` (`beckmann`) | the same with `roughness = alpha`, `distribution` |
 //! | `dielectric` `int_ior` (`bk7`), `ext_ior` (`air`): numbers or names | `reflection = { type = "dielectric", ior }`, `refraction = { type = "fresnel", ior }`, `ior = int_ior / ext_ior` |
-//! | `roughdielectric` `alpha` | the same with `roughness = alpha` (GGX) |
+//! | `roughdielectric` `alpha`, `distribution` | the same with `roughness = alpha`, `distribution` |
+//! | `plastic` `diffuse_reflectance` (0.5), `specular_reflectance` (1), `int_ior` (`polypropylene`), `ext_ior` (`air`), `nonlinear` | `plastic` of the same parameters |
+//! | `roughplastic` (the same and `alpha`, `distribution`) | `plastic` with `roughness = alpha`, `distribution` |
+//! | `thindielectric` `int_ior` (`bk7`), `ext_ior` (`air`) | `thin_dielectric` |
 //! | `twosided` | its nested BSDF (lamplight's surfaces are two-sided) |
 //! | `null` | `alpha = 0`: cut out |
 //! | `mask` `opacity` | the nested BSDF with `alpha = opacity` (cut at 0.5, not blended) |
@@ -17,9 +20,8 @@
 //! | `bumpmap` (`scale`, one nested height `<texture>`) | the nested BSDF with `bump`, `bump_scale` |
 //! | `principled` `base_color`, `metallic`, `roughness` | `pbr` (the glTF metallic-roughness BRDF, not Mitsuba's Disney BRDF: a warning) |
 //!
-//! `beckmann` rough surfaces are read as GGX of the same `alpha` (a warning).
-//! `plastic`, `roughplastic`, `thindielectric`, `blendbsdf` and `principledthin`
-//! are errors: no lamplight material gives their image yet.
+//! `blendbsdf` and `principledthin` are errors: no lamplight material gives their
+//! image yet.
 
 use lamplight_core::math::Rgb;
 use lamplight_core::params::{Entry, Item, Loc, ParamError, Value};
@@ -150,17 +152,20 @@ fn ior(p: &mut Plugin<'_>, key: &str, default: &str) -> Result<(f64, Loc), Param
     }
 }
 
-/// GGX `alpha` of a rough BSDF (`alpha`, or the mean of `alpha_u` and `alpha_v`).
-fn alpha(ctx: &mut Ctx<'_>, p: &mut Plugin<'_>) -> Result<(f64, Loc), ParamError> {
-    if let Some((d, loc)) = p.string("distribution")? {
-        match d.as_str() {
-            "ggx" => {}
-            "beckmann" => ctx.warn(&loc, format!("{}: the beckmann distribution is read as GGX of the same alpha", p.label)),
-            _ => return Err(err(&loc, format!("{}: distribution: expected beckmann or ggx, got \"{d}\"", p.label))),
-        }
-    } else {
-        ctx.warn(&p.el.loc, format!("{}: Mitsuba's default beckmann distribution is read as GGX of the same alpha", p.label));
+/// The `roughness` and `distribution` entries of a rough BSDF: `alpha` (or the mean
+/// of `alpha_u` and `alpha_v`) and `distribution` (Mitsuba's default `beckmann`).
+fn rough(ctx: &mut Ctx<'_>, p: &mut Plugin<'_>) -> Result<Vec<Entry>, ParamError> {
+    let (name, dloc) = p.string("distribution")?.unwrap_or(("beckmann".into(), p.el.loc.clone()));
+    if name != "ggx" && name != "beckmann" {
+        return Err(err(&dloc, format!("{}: distribution: expected beckmann or ggx, got \"{name}\"", p.label)));
     }
+    let (a, aloc) = alpha(ctx, p)?;
+    Ok(vec![entry("roughness", num(a, &aloc)), entry("distribution", text(&name, &dloc))])
+}
+
+/// `alpha` of a rough BSDF (`alpha`, or the mean of `alpha_u` and `alpha_v`).
+fn alpha(ctx: &mut Ctx<'_>, p: &mut Plugin<'_>) -> Result<(f64, Loc), ParamError> {
+    // Only the sampling changes with it, not the image.
     let _ = p.boolean("sample_visible")?;
     let (a, loc) = match (p.number("alpha_u")?, p.number("alpha_v")?) {
         (Some((u, loc)), Some((v, _))) => {
@@ -231,8 +236,7 @@ pub fn material<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<Vec<Entry>, ParamEr
                 table_of(vec![("type", text("conductor", &eloc)), ("eta", vec3(eta, &eloc)), ("k", vec3(k, &eloc))], &eloc),
             ));
             if p.kind == "roughconductor" {
-                let (a, aloc) = alpha(ctx, &mut p)?;
-                e.push(entry("roughness", num(a, &aloc)));
+                e.extend(rough(ctx, &mut p)?);
             }
             e
         }
@@ -246,10 +250,48 @@ pub fn material<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<Vec<Entry>, ParamEr
             e.push(entry("reflection", table_of(vec![("type", text("dielectric", &iloc)), ("ior", num(eta, &iloc))], &iloc)));
             e.push(entry("refraction", table_of(vec![("type", text("fresnel", &iloc)), ("ior", num(eta, &iloc))], &iloc)));
             if p.kind == "roughdielectric" {
-                let (a, aloc) = alpha(ctx, &mut p)?;
-                e.push(entry("roughness", num(a, &aloc)));
+                e.extend(rough(ctx, &mut p)?);
             }
             e
+        }
+        "plastic" | "roughplastic" => {
+            let base = colour_or_texture(ctx, &mut p, "diffuse_reflectance", Rgb::splat(0.5))?;
+            let (int, iloc) = ior(&mut p, "int_ior", "polypropylene")?;
+            let (ext, eloc) = ior(&mut p, "ext_ior", "air")?;
+            if p.kind == "roughplastic" && int == ext {
+                return Err(err(&iloc, format!("{}: int_ior and ext_ior must differ", p.label)));
+            }
+            let mut e = vec![
+                entry("type", text("plastic", &loc)),
+                entry("diffuse_reflectance", base),
+                entry("int_ior", num(int, &iloc)),
+                entry("ext_ior", num(ext, &eloc)),
+            ];
+            if let Some(o) = p.object("specular_reflectance") {
+                return Err(err(&o.loc, format!("{}: specular_reflectance: a texture here is not supported", p.label)));
+            }
+            if let Some((c, cloc)) = p.color("specular_reflectance")? {
+                e.push(entry("specular_reflectance", vec3(c, &cloc)));
+            }
+            if let Some((b, bloc)) = p.boolean("nonlinear")? {
+                e.push(entry("nonlinear", super::boolean(b, &bloc)));
+            }
+            if p.kind == "roughplastic" {
+                e.extend(rough(ctx, &mut p)?);
+                if e.iter().any(|x| x.key == "roughness" && matches!(x.item.value, Value::Number(a) if a == 0.0)) {
+                    // lamplight's roughness 0 is the smooth coating; Mitsuba clamps to 1e-4.
+                    e.retain(|x| x.key != "roughness");
+                    e.push(entry("roughness", num(1e-4, &loc)));
+                }
+            }
+            e
+        }
+        "thindielectric" => {
+            let (int, iloc) = ior(&mut p, "int_ior", "bk7")?;
+            let (ext, eloc) = ior(&mut p, "ext_ior", "air")?;
+            unit_factor(ctx, &mut p, "specular_reflectance")?;
+            unit_factor(ctx, &mut p, "specular_transmittance")?;
+            vec![entry("type", text("thin_dielectric", &loc)), entry("int_ior", num(int, &iloc)), entry("ext_ior", num(ext, &eloc))]
         }
         "twosided" => nested(ctx, &p)?,
         "null" => {
@@ -331,8 +373,7 @@ pub fn material<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<Vec<Entry>, ParamEr
                 entry("roughness", num(rough, &rloc)),
             ]
         }
-        "plastic" | "roughplastic" | "thindielectric" | "blendbsdf" | "principledthin" | "hair" | "measured" | "polarizer" | "retarder"
-        | "pplastic" => {
+        "blendbsdf" | "principledthin" | "hair" | "measured" | "polarizer" | "retarder" | "pplastic" => {
             return Err(err(&p.el.require("type")?.loc, format!("{}: not yet supported (no lamplight material gives its image)", p.label)))
         }
         other => return Err(err(&p.el.require("type")?.loc, format!("bsdf \"{other}\": unknown BSDF"))),

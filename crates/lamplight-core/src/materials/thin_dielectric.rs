@@ -1,0 +1,64 @@
+//! `thin_dielectric`: a thin dielectric sheet (a window pane), Mitsuba 3's
+//! `thindielectric` ([`crate::bsdfs::thin_dielectric`]): it reflects
+//! `R' = R + T^2 R / (1 - R^2)` of the light and lets the rest through without bending it.
+//!
+//! | parameter | type | default | meaning |
+//! |---|---|---|---|
+//! | `int_ior`, `ext_ior` | number | 1.5046, 1.00028 | indices of the sheet and outside (Mitsuba's `bk7` and `air`); `eta = int_ior / ext_ior` |
+//! | `emission`, `two_sided` | colour or texture, boolean | 0, false | emitted radiance, from both sides |
+//! | `normal_map`, `bump`, `alpha` | | | as for `phong` |
+//!
+//! Shadow rays stop at the sheet, as they do at glass and in Mitsuba. The Whitted
+//! tracer sees a mirror of weight `R'` at normal incidence and a refraction of index 1.
+
+use std::sync::Arc;
+
+use super::plastic::{emission, ior};
+use super::{Material, MaterialKind, Model, Reflection, Refraction, Texture, Textures};
+use crate::math::Rgb;
+use crate::params::{Kind, Param, ParamResult, ParamType as T, Params};
+
+/// `thin_dielectric`.
+pub const KIND: MaterialKind = Kind {
+    name: "thin_dielectric",
+    summary:
+        "a thin dielectric sheet: Fresnel reflection summed over its two faces, transmission without bending (Mitsuba's `thindielectric`)",
+    params: &[
+        Param::new("int_ior", T::Number, "1.5046", "> 0", "index of refraction of the sheet"),
+        Param::new("ext_ior", T::Number, "1.00028", "> 0", "index of refraction outside"),
+        Param::new("emission", T::Texture, "0", "radiance", "emitted radiance"),
+        Param::new("two_sided", T::Bool, "false", "", "emit from both sides of the surface, not only the front"),
+        super::normal_map::NORMAL_MAP_PARAMS[0],
+        super::normal_map::NORMAL_MAP_PARAMS[1],
+        super::bump::BUMP_PARAMS[0],
+        super::bump::BUMP_PARAMS[1],
+        super::alpha::ALPHA_PARAMS[0],
+        super::alpha::ALPHA_PARAMS[1],
+        super::alpha::ALPHA_PARAMS[2],
+    ],
+    build,
+};
+
+fn build(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Material> {
+    let eta = ior(p, "int_ior", 1.5046)? / ior(p, "ext_ior", 1.00028)?;
+    let mut maps = Vec::new();
+    let emission = emission(p, textures, &mut maps)?;
+    let r = crate::bsdfs::thin_dielectric::reflectance(1.0, eta);
+    let mut m = Material {
+        color: Texture::Constant(Rgb::ONE),
+        ka: Rgb::ZERO,
+        kd: Rgb::ZERO,
+        emission,
+        reflection: Reflection::Constant(Rgb::splat(r)),
+        refraction: Refraction::Constant { ior: 1.0, weight: Rgb::splat(1.0 - r) },
+        model: Some(Model::ThinDielectric { eta }),
+        textures: (!maps.is_empty()).then(|| Arc::from(maps)),
+        ..Material::default()
+    };
+    m.two_sided = p.boolean("two_sided")?.unwrap_or(false);
+    m.normal_map = super::normal_map::read(p, textures)?;
+    m.bump = super::bump::read(p, textures)?;
+    m.alpha = super::alpha::read(p, textures)?;
+    m.validate().map_err(|e| p.core_error(e))?;
+    Ok(m)
+}
