@@ -239,7 +239,7 @@ impl SceneBuilder {
         let bsdfs = self
             .materials
             .iter()
-            .map(|m| m.is_constant().then(|| [bsdf_for(m, Vec3::ZERO, false), bsdf_for(m, Vec3::ZERO, true)]))
+            .map(|m| m.is_constant().then(|| [surface_bsdf(m, Vec3::ZERO, false), surface_bsdf(m, Vec3::ZERO, true)]))
             .collect();
         let uses_footprints = self.materials.iter().any(Material::uses_footprint);
         let plain = self
@@ -433,14 +433,14 @@ impl Scene {
     }
 
     /// The path tracer's BSDF at `hit`, whose material evaluated there
-    /// ([`Scene::material_at`]) is `material` ([`bsdf_for`]). Constant materials
+    /// ([`Scene::material_at`]) is `material` ([`surface_bsdf`]). Constant materials
     /// have it built once with the scene: making it per hit (scaling the lobes so
     /// they conserve energy) was an eighth of the path tracer's time.
     #[inline]
     pub fn bsdf(&self, hit: &Hit, material: &Material) -> Cow<'_, Bsdf> {
         match self.prebuilt_bsdf(hit.material, hit.front_face) {
             Some(bsdf) => Cow::Borrowed(bsdf),
-            None => Cow::Owned(bsdf_for(material, hit.point, hit.front_face)),
+            None => Cow::Owned(surface_bsdf(material, hit.point, hit.front_face)),
         }
     }
 
@@ -463,6 +463,18 @@ impl Scene {
     /// Total primitives (triangles count one each).
     pub fn primitive_count(&self) -> usize {
         self.objects.iter().map(|o| o.shape.primitive_count()).sum()
+    }
+}
+
+/// The path tracer's BSDF of `material` at `point` seen from the front face
+/// (`front_face`) or the back: [`bsdf_for`], or no lobe at all (black, and no
+/// light from the back arrives through it) on the back of a
+/// [`Material::one_sided`] surface.
+pub fn surface_bsdf(material: &Material, point: Vec3, front_face: bool) -> Bsdf {
+    if material.scatters_at(front_face) {
+        bsdf_for(material, point, front_face)
+    } else {
+        Bsdf::new(&[])
     }
 }
 

@@ -380,3 +380,43 @@ fn mutated_scenes_never_panic() {
         }
     }
 }
+
+#[test]
+fn one_sided_bsdfs_read_as_front_sided_materials() {
+    // Mitsuba's reflecting BSDFs are black from the back; twosided, dielectrics and null are not;
+    // wrappers are what they wrap.
+    let body = r#"    <bsdf type="diffuse" id="d"/>
+    <bsdf type="conductor" id="c"/>
+    <bsdf type="twosided" id="t"><bsdf type="diffuse"/></bsdf>
+    <bsdf type="dielectric" id="g"/>
+    <bsdf type="mask" id="m"><float name="opacity" value="1"/><bsdf type="roughconductor"><string name="distribution" value="ggx"/></bsdf></bsdf>
+    <bsdf type="mask" id="mt"><float name="opacity" value="1"/><bsdf type="twosided"><bsdf type="diffuse"/></bsdf></bsdf>
+    <bsdf type="null" id="n"/>
+"#;
+    let shapes: String =
+        ["d", "c", "t", "g", "m", "mt", "n"].iter().map(|id| format!("    <shape type=\"sphere\"><ref id=\"{id}\"/></shape>\n")).collect();
+    let (t, _) = table(&scene(&format!("{body}{shapes}    <shape type=\"disk\"/>\n")), &[]);
+    let materials = t.entries.iter().find(|e| e.key == "materials").expect("materials");
+    let Value::Table(materials) = &materials.item.value else { panic!("materials is a table") };
+    let sided = |name: &str| -> Option<String> {
+        let m = materials.entries.iter().find(|e| e.key == name).unwrap_or_else(|| panic!("no material {name}"));
+        let Value::Table(m) = &m.item.value else { panic!("{name} is a table") };
+        m.entries.iter().find(|e| e.key == "sided").map(|e| match &e.item.value {
+            Value::String(s) => s.clone(),
+            other => panic!("{other:?}"),
+        })
+    };
+    for (name, expected) in [
+        ("d", Some("front")),
+        ("c", Some("front")),
+        ("t", None),
+        ("g", None),
+        ("m", Some("front")),
+        ("mt", None),
+        ("n", None),
+        // The default BSDF of the bare disk: Mitsuba's diffuse 0.5, one-sided too.
+        (mitsuba::bsdfs::DEFAULT_MATERIAL, Some("front")),
+    ] {
+        assert_eq!(sided(name).as_deref(), expected, "material {name}");
+    }
+}

@@ -18,7 +18,7 @@
 use super::trace::{NeeMiss, NeeSample, NoTrace, PathEnd, PathTrace, Trace};
 use super::whitted::Cone;
 use super::{Integrator, IntegratorEntry, IntegratorSettings, RayCounts, Schedule, View};
-use crate::bsdfs::{bsdf_for, Bsdf, Frame};
+use crate::bsdfs::{Bsdf, Frame};
 use crate::film::Filter;
 use crate::lights::LightSet;
 use crate::materials::{Reflection, Refraction};
@@ -192,7 +192,7 @@ impl PathTracer {
             let bsdf = match scene.prebuilt_bsdf(hit.material, hit.front_face) {
                 Some(bsdf) => bsdf,
                 None => {
-                    textured = bsdf_for(material, hit.point, hit.front_face);
+                    textured = crate::scene::surface_bsdf(material, hit.point, hit.front_face);
                     &textured
                 }
             };

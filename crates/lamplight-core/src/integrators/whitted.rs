@@ -212,6 +212,9 @@ impl Whitted {
                 trace.depth_cutoff();
                 continue;
             }
+            if !material.scatters_at(hit.front_face) {
+                continue;
+            }
             for (dir, w) in smooth_directions(&ray, &hit, material, trace) {
                 let w = weight * w;
                 if max_component(w) <= self.min_weight {
@@ -250,10 +253,12 @@ pub fn direct_light<T: WhittedTrace + ?Sized>(
     // constant, or the 3D checker, which needs only the point.
     let color = material.color.evaluate(&crate::materials::ShadingPoint::at(hit.point));
     let emission = if material.emits_towards(hit.front_face) { material.emission } else { Rgb::ZERO };
-    let ambient = material.ka * color * scene.ambient;
+    // The back of a one-sided surface scatters nothing, not even the ambient light.
+    let scatters = material.scatters_at(hit.front_face);
+    let ambient = if scatters { material.ka * color * scene.ambient } else { Rgb::ZERO };
     trace.surface(color, emission, ambient);
     let mut radiance = emission + ambient;
-    if !material.is_lit() {
+    if !material.is_lit() || !scatters {
         return radiance;
     }
     for (i, light) in scene.lights.iter().enumerate() {
