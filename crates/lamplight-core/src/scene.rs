@@ -75,6 +75,10 @@ pub struct Scene {
     /// Secondary rays whose weight falls to or below this (every channel) are not
     /// traced (POV-Ray's `adc_bailout`; 0 traces every ray up to the depth limit).
     pub min_weight: f64,
+    /// Camera rays go through emitting surfaces and see black where they leave
+    /// to the sky (Mitsuba's `hide_emitters`, [`Scene::first_camera_hit`]);
+    /// the light those give the scene is kept.
+    pub hide_emitters: bool,
     bvh: Bvh,
     /// Objects in the BVH, in BVH primitive order.
     bounded: Vec<PrimRef>,
@@ -138,6 +142,8 @@ pub struct SceneBuilder {
     pub max_depth: u32,
     /// Weight cut-off, 0.
     pub min_weight: f64,
+    /// [`Scene::hide_emitters`], `false`.
+    pub hide_emitters: bool,
     names: Names,
 }
 
@@ -159,6 +165,7 @@ impl SceneBuilder {
             camera,
             max_depth: 5,
             min_weight: 0.0,
+            hide_emitters: false,
             names: Names::default(),
         }
     }
@@ -264,6 +271,7 @@ impl SceneBuilder {
             camera: self.camera,
             max_depth: self.max_depth,
             min_weight: self.min_weight,
+            hide_emitters: self.hide_emitters,
             names: self.names,
         })
     }
@@ -315,6 +323,23 @@ impl Scene {
             error: h.error,
             primitive: h.primitive,
         })
+    }
+
+    /// The first hit of a camera ray `ray` (depth 1): [`Scene::first_intersect`],
+    /// or under [`Scene::hide_emitters`] the first hit past every emitting
+    /// surface, which a camera ray then goes through as Mitsuba's does (the
+    /// surface still casts shadows and is seen by later segments).
+    pub fn first_camera_hit(&self, ray: &Ray) -> Option<Hit> {
+        let mut ray = *ray;
+        // Each pass moves past one emitting surface; a bound keeps pathological stacks finite.
+        for _ in 0..64 {
+            let hit = self.first_intersect(&ray, f64::INFINITY)?;
+            if !self.hide_emitters || self.materials[hit.material].emission == Rgb::ZERO {
+                return Some(hit);
+            }
+            ray = Ray { origin: crate::ray::offset_origin(hit.point, hit.geometric_normal, ray.dir, hit.t, hit.error), dir: ray.dir };
+        }
+        None
     }
 
     /// Whether some material reads a footprint (a trilinear image texture), so

@@ -420,3 +420,20 @@ fn one_sided_bsdfs_read_as_front_sided_materials() {
         assert_eq!(sided(name).as_deref(), expected, "material {name}");
     }
 }
+
+#[test]
+fn hide_emitters_reads_as_the_render_setting() {
+    let hidden = scene(BODY).replace(
+        r#"<integer name="max_depth" value="4"/>"#,
+        r#"<integer name="max_depth" value="4"/><boolean name="hide_emitters" value="true"/>"#,
+    );
+    let (t, warnings) = table(&hidden, &[]);
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let render = t.entries.iter().find(|e| e.key == "render").expect("render");
+    let Value::Table(render) = &render.item.value else { panic!("render is a table") };
+    let hide = render.entries.iter().find(|e| e.key == "hide_emitters").expect("hide_emitters");
+    assert!(matches!(hide.item.value, Value::Bool(true)), "{:?}", hide.item.value);
+    let (t, _) = table(&scene(BODY), &[]);
+    let Value::Table(render) = &t.entries.iter().find(|e| e.key == "render").unwrap().item.value else { panic!() };
+    assert!(render.entries.iter().all(|e| e.key != "hide_emitters"));
+}

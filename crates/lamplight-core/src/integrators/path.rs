@@ -148,8 +148,11 @@ impl PathTracer {
             // the intersection's latency. Unused if the path ends here.
             let (u_light, u_bsdf) = (sampler.peek_2d(1), sampler.peek_2d(3));
             trace.segment(depth, &ray, beta);
-            let Some(mut hit) = scene.first_intersect(&ray, f64::INFINITY) else {
-                if let Some(env) = &self.lights.environment {
+            // Mitsuba's `hide_emitters`: the camera sees through emitters, and black sky.
+            let hidden = depth == 1 && scene.hide_emitters;
+            let found = if hidden { scene.first_camera_hit(&ray) } else { scene.first_intersect(&ray, f64::INFINITY) };
+            let Some(mut hit) = found else {
+                if let Some(env) = self.lights.environment.as_ref().filter(|_| !hidden) {
                     let w = if prev_delta { 1.0 } else { power_heuristic(prev_pdf, p_pick * env.pdf(ray.dir)) };
                     let le = env.radiance(ray.dir);
                     let contribution = beta * le * w;

@@ -193,8 +193,11 @@ impl Whitted {
             // `work[pending]` and then increments it).
             let Pending { ray, weight, depth, width } = unsafe { work[pending].assume_init_read() };
             trace.ray(&ray, weight, depth);
-            let Some(mut hit) = scene.first_intersect(&ray, f64::INFINITY) else {
-                let sky = scene.environment.as_ref().map_or(scene.background, |env| env.radiance(ray.dir));
+            // Mitsuba's `hide_emitters`: the camera sees through emitters, and black sky.
+            let hidden = depth == 1 && scene.hide_emitters;
+            let found = if hidden { scene.first_camera_hit(&ray) } else { scene.first_intersect(&ray, f64::INFINITY) };
+            let Some(mut hit) = found else {
+                let sky = if hidden { Rgb::ZERO } else { scene.environment.as_ref().map_or(scene.background, |env| env.radiance(ray.dir)) };
                 let contribution = weight * sky;
                 trace.miss(sky, contribution);
                 total += contribution;

@@ -52,6 +52,8 @@ pub struct Settings {
     pub transfer: crate::image_io::Transfer,
     /// The path tracer's pixel filter, when given.
     pub filter: Option<lamplight_core::film::Filter>,
+    /// Camera rays see emitters and the sky as black (default `false`).
+    pub hide_emitters: bool,
 }
 
 /// Deepest `max_depth` a file may ask for (as the command line's `--max-depth`).
@@ -112,6 +114,13 @@ pub const RENDER_PARAMS: &[Param] = &[
         "how PNG and PPM store the values: `\"srgb\"`-encoded, or `\"linear\"` for display-referred numbers (POV-Ray's `File_Gamma 1`) (`--transfer`)",
     ),
     Param::new("filter", T::String, "\"box\"", "", "path tracer: pixel filter, `\"box\"` or `\"gaussian\"` (sigma 0.5 pixel) (`--filter`)"),
+    Param::new(
+        "hide_emitters",
+        T::Bool,
+        "false",
+        "",
+        "camera rays that meet an emitting surface or leave to the sky or background see black; the light they give the scene stays (Mitsuba's `hide_emitters`)",
+    ),
 ];
 
 /// The top-level values.
@@ -235,7 +244,22 @@ pub fn settings(desc: &SceneDescription, source: &Source) -> Result<Settings, Lo
                     .map_err(|_| p.key_error("filter", format!("expected \"box\" or \"gaussian\", got \"{name}\"")))?,
             ),
         };
-        Ok(Settings { width, height, spp, antialias, noise_threshold, min_spp, max_depth, min_weight, seed, integrator, transfer, filter })
+        let hide_emitters = p.boolean("hide_emitters")?.unwrap_or(false);
+        Ok(Settings {
+            width,
+            height,
+            spp,
+            antialias,
+            noise_threshold,
+            min_spp,
+            max_depth,
+            min_weight,
+            seed,
+            integrator,
+            transfer,
+            filter,
+            hide_emitters,
+        })
     };
     let settings = read(&mut p).map_err(|e| source.param_error(e))?;
     p.finish().map_err(|e| source.param_error(e))?;
@@ -259,6 +283,7 @@ pub fn build_with_warnings(desc: &SceneDescription, source: &Source) -> Result<B
     builder.background = background;
     builder.environment = environment;
     builder.max_depth = settings.max_depth;
+    builder.hide_emitters = settings.hide_emitters;
     builder.min_weight = settings.min_weight;
     let materials = materials::add_all(desc, source, &mut builder)?;
     for (name, &index) in &materials {

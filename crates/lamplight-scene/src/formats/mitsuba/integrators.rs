@@ -6,7 +6,9 @@
 //! (lamplight's path tracer counts the same way, camera ray = 1); Mitsuba's
 //! `-1` (no limit, its default) is lamplight's deepest, 64. `direct` is
 //! `max_depth = 2`. `rr_depth` changes only the noise (Russian roulette keeps
-//! the estimate unbiased) and is read but not used. `moment` is read as the
+//! the estimate unbiased) and is read but not used. `hide_emitters = true` is
+//! `[render] hide_emitters = true`: camera rays go through emitting surfaces
+//! and see black where they leave the scene, as Mitsuba's do. `moment` is read as the
 //! integrator it wraps: pass `--exr-layers variance` for the variance layer.
 
 use lamplight_core::params::{Loc, ParamError};
@@ -65,10 +67,11 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<(), ParamError> {
             ))
         }
     };
-    if let Some((true, loc)) = p.boolean("hide_emitters")? {
-        return Err(err(&loc, format!("{}: hide_emitters = true is not supported (lamplight's camera sees emitters)", p.label)));
-    }
+    let hide = p.boolean("hide_emitters")?;
     ctx.render.push(entry("integrator", text("path", &el.loc)));
+    if let Some((true, loc)) = hide {
+        ctx.render.push(entry("hide_emitters", super::boolean(true, &loc)));
+    }
     ctx.render.push(entry("max_depth", int(depth.0, &depth.1)));
     ctx.finish(p);
     Ok(())
