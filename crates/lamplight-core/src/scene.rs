@@ -75,6 +75,9 @@ pub struct Scene {
     /// Secondary rays whose weight falls to or below this (every channel) are not
     /// traced (POV-Ray's `adc_bailout`; 0 traces every ray up to the depth limit).
     pub min_weight: f64,
+    /// Path segments before the path tracer's Russian roulette starts
+    /// ([`crate::integrators::PathTracer::rr_depth`], camera ray = 1; default 4).
+    pub rr_depth: u32,
     /// Camera rays go through emitting surfaces and see black where they leave
     /// to the sky (Mitsuba's `hide_emitters`, [`Scene::first_camera_hit`]);
     /// the light those give the scene is kept.
@@ -142,6 +145,8 @@ pub struct SceneBuilder {
     pub max_depth: u32,
     /// Weight cut-off, 0.
     pub min_weight: f64,
+    /// [`Scene::rr_depth`], 4.
+    pub rr_depth: u32,
     /// [`Scene::hide_emitters`], `false`.
     pub hide_emitters: bool,
     names: Names,
@@ -165,6 +170,7 @@ impl SceneBuilder {
             camera,
             max_depth: 5,
             min_weight: 0.0,
+            rr_depth: 4,
             hide_emitters: false,
             names: Names::default(),
         }
@@ -271,6 +277,7 @@ impl SceneBuilder {
             camera: self.camera,
             max_depth: self.max_depth,
             min_weight: self.min_weight,
+            rr_depth: self.rr_depth,
             hide_emitters: self.hide_emitters,
             names: self.names,
         })

@@ -437,3 +437,31 @@ fn hide_emitters_reads_as_the_render_setting() {
     let Value::Table(render) = &t.entries.iter().find(|e| e.key == "render").unwrap().item.value else { panic!() };
     assert!(render.entries.iter().all(|e| e.key != "hide_emitters"));
 }
+
+#[test]
+fn rr_depth_reaches_the_path_tracer_with_mitsubas_counting_and_default() {
+    let rr = |value: Option<&str>| {
+        let extra = value.map_or(String::new(), |v| format!(r#"<integer name="rr_depth" value="{v}"/>"#));
+        scene(BODY).replace(r#"<integer name="max_depth" value="4"/>"#, &format!(r#"<integer name="max_depth" value="4"/>{extra}"#))
+    };
+    let read = |text: &str| {
+        let (t, _) = table(text, &[]);
+        let Value::Table(render) = &t.entries.iter().find(|e| e.key == "render").unwrap().item.value else { panic!() };
+        match render.entries.iter().find(|e| e.key == "rr_depth").map(|e| &e.item.value) {
+            Some(Value::Integer(i)) => *i,
+            other => panic!("{other:?}"),
+        }
+    };
+    assert_eq!(read(&rr(None)), 5, "Mitsuba's default");
+    assert_eq!(read(&rr(Some("2"))), 2);
+    assert_eq!(read(&rr(Some("1000"))), 64, "past the deepest path it never starts");
+    assert_eq!(error(&rr(Some("0"))), "s.xml:3:98: integrator \"path\": rr_depth: must be a positive integer, got 0");
+    // Roulette from the first bounce changes the noise (the bytes) of light that
+    // bounces (off a floor here), not what the image means.
+    let floor = r#"<shape type="rectangle"><transform name="to_world"><rotate x="1" angle="-90"/><scale value="3"/></transform></shape>"#;
+    let rr = |value: Option<&str>| rr(value).replace("</scene>", &format!("{floor}\n</scene>"));
+    let dir = tempfile::tempdir().unwrap();
+    let early = render(&write(dir.path(), "a.xml", &rr(Some("1"))), &[]);
+    let late = render(&write(dir.path(), "b.xml", &rr(Some("64"))), &[]);
+    assert_ne!(early, late);
+}

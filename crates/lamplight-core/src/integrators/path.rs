@@ -45,7 +45,8 @@ fn build_path(scene: &Scene, settings: &IntegratorSettings) -> Result<Box<dyn In
 pub struct PathTracer {
     /// Longest path in segments (camera ray = 1).
     pub max_depth: u32,
-    /// Segments before Russian roulette starts.
+    /// Segments before Russian roulette starts: the scene's [`Scene::rr_depth`]
+    /// (4 unless it says), the same counting as Mitsuba's `rr_depth`.
     pub rr_depth: u32,
     lights: LightSet,
     /// Every material stops shadow rays: visibility can use the BVH's any-hit query.
@@ -98,7 +99,7 @@ impl PathTracer {
     /// A path tracer for `scene` (its lights are collected here).
     pub fn new(scene: &Scene, max_depth: u32) -> PathTracer {
         let all_opaque = scene.materials.iter().all(|m| m.shadow_transmittance == Rgb::ZERO);
-        PathTracer { max_depth, rr_depth: 4, lights: LightSet::new(scene), all_opaque, filter: Filter::Box }
+        PathTracer { max_depth, rr_depth: scene.rr_depth, lights: LightSet::new(scene), all_opaque, filter: Filter::Box }
     }
 
     /// The same tracer with film positions drawn from `filter` (default: the box).

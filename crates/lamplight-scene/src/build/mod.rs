@@ -42,6 +42,8 @@ pub struct Settings {
     pub min_spp: Option<u32>,
     /// Depth limit (default 5).
     pub max_depth: u32,
+    /// Segments before the path tracer's Russian roulette (default 4).
+    pub rr_depth: u32,
     /// Weight cut-off (default 0).
     pub min_weight: f64,
     /// Seed (default 0).
@@ -97,6 +99,13 @@ pub const RENDER_PARAMS: &[Param] = &[
     ),
     Param::new("min_spp", T::Integer, "16", "1 to spp", "path tracer with `noise_threshold`: samples before any pixel stops (`--min-spp`)"),
     Param::new("max_depth", T::Integer, "5", "1 to 64, camera ray = 1", "ray depth limit (`--max-depth`)"),
+    Param::new(
+        "rr_depth",
+        T::Integer,
+        "4",
+        "1 to 64, camera ray = 1",
+        "path tracer: segments before Russian roulette starts (Mitsuba's `rr_depth`, counted the same); changes only the noise",
+    ),
     Param::new("min_weight", T::Number, "0", ">= 0", "secondary rays of weight <= this are not traced"),
     Param::new("seed", T::Integer, "0", ">= 0", "seed of the per-sample random numbers (`--seed`)"),
     Param::new(
@@ -222,6 +231,7 @@ pub fn settings(desc: &SceneDescription, source: &Source) -> Result<Settings, Lo
         }
         let min_spp = p.integer("min_spp", 1..=MAX_SPP as i64)?.map(|v| v as u32);
         let max_depth = p.integer("max_depth", 1..=MAX_DEPTH_LIMIT as i64)?.unwrap_or(5) as u32;
+        let rr_depth = p.integer("rr_depth", 1..=MAX_DEPTH_LIMIT as i64)?.unwrap_or(4) as u32;
         let min_weight = p.number_or("min_weight", 0.0)?;
         if min_weight < 0.0 {
             return Err(p.key_error("min_weight", format!("must be a non-negative number, got {min_weight}")));
@@ -253,6 +263,7 @@ pub fn settings(desc: &SceneDescription, source: &Source) -> Result<Settings, Lo
             noise_threshold,
             min_spp,
             max_depth,
+            rr_depth,
             min_weight,
             seed,
             integrator,
@@ -284,6 +295,7 @@ pub fn build_with_warnings(desc: &SceneDescription, source: &Source) -> Result<B
     builder.environment = environment;
     builder.max_depth = settings.max_depth;
     builder.hide_emitters = settings.hide_emitters;
+    builder.rr_depth = settings.rr_depth;
     builder.min_weight = settings.min_weight;
     let materials = materials::add_all(desc, source, &mut builder)?;
     for (name, &index) in &materials {
