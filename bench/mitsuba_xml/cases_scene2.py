@@ -1,5 +1,5 @@
 """More scenes of bench/mitsuba_xml_compare.py: scene-level parameters
-(hide_emitters) and the textures and wrappers that had no case
+(hide_emitters, moment) and the textures and wrappers that had no case
 (mesh_attribute, bumpmap). write_assets writes the files they read."""
 import os
 
@@ -12,7 +12,11 @@ GLOW = """    <shape type="sphere"><point name="center" value="0.9, 0.25, 0.7"/>
     </shape>
 """
 
+MOMENT = ('<integrator type="moment"><integrator type="path"><integer name="max_depth" value="6"/></integrator>'
+          '</integrator>')
+
 CASES = [
+    Case("moment", "moment (of path)", scene(lit(sphere(DIFFUSE_RED)), integrator=MOMENT)),
     Case("hide_emitters", "path (hide_emitters), area, constant", scene(lit(SKY + GLOW + sphere(DIFFUSE_RED)), integrator=HIDE)),
     Case("mesh_attribute", "mesh_attribute (vertex_color), ply", scene(lit("""
     <shape type="ply"><string name="filename" value="tetra_colors.ply"/><boolean name="face_normals" value="true"/>
@@ -35,6 +39,7 @@ def write_assets(d):
     """The files these cases read, into folder d."""
     import mitsuba as mi
     import numpy as np
+    # Float colours: Mitsuba reads integer ones unscaled (0 to 255, with a warning).
     verts = [(-0.6, 0, -0.5), (0.6, 0, -0.5), (0, 0, 0.6), (0, 1.0, 0)]
     colors = [(0.9, 0.15, 0.1), (0.1, 0.8, 0.25), (0.15, 0.25, 0.85), (0.95, 0.9, 0.8)]
     faces = [(0, 1, 2), (0, 3, 1), (1, 3, 2), (2, 3, 0)]  # counter-clockwise seen from outside

@@ -56,6 +56,8 @@ pub struct Settings {
     pub filter: Option<lamplight_core::film::Filter>,
     /// Camera rays see emitters and the sky as black (default `false`).
     pub hide_emitters: bool,
+    /// An `.exr` output holds the variance layer too (default `false`).
+    pub variance: bool,
 }
 
 /// Deepest `max_depth` a file may ask for (as the command line's `--max-depth`).
@@ -123,6 +125,13 @@ pub const RENDER_PARAMS: &[Param] = &[
         "how PNG and PPM store the values: `\"srgb\"`-encoded, or `\"linear\"` for display-referred numbers (POV-Ray's `File_Gamma 1`) (`--transfer`)",
     ),
     Param::new("filter", T::String, "\"box\"", "", "path tracer: pixel filter, `\"box\"` or `\"gaussian\"` (sigma 0.5 pixel) (`--filter`)"),
+    Param::new(
+        "variance",
+        T::Bool,
+        "false",
+        "",
+        "an `.exr` output also holds the variance of each pixel's mean, as `--exr-layers variance` (Mitsuba's `moment` integrator)",
+    ),
     Param::new(
         "hide_emitters",
         T::Bool,
@@ -255,6 +264,7 @@ pub fn settings(desc: &SceneDescription, source: &Source) -> Result<Settings, Lo
             ),
         };
         let hide_emitters = p.boolean("hide_emitters")?.unwrap_or(false);
+        let variance = p.boolean("variance")?.unwrap_or(false);
         Ok(Settings {
             width,
             height,
@@ -270,6 +280,7 @@ pub fn settings(desc: &SceneDescription, source: &Source) -> Result<Settings, Lo
             transfer,
             filter,
             hide_emitters,
+            variance,
         })
     };
     let settings = read(&mut p).map_err(|e| source.param_error(e))?;

@@ -10,8 +10,10 @@
 //! the noise; lamplight survives with `min(1, max throughput)`, Mitsuba with
 //! `min(0.95, max throughput eta^2)`). `hide_emitters = true` is
 //! `[render] hide_emitters = true`: camera rays go through emitting surfaces
-//! and see black where they leave the scene, as Mitsuba's do. `moment` is read as the
-//! integrator it wraps: pass `--exr-layers variance` for the variance layer.
+//! and see black where they leave the scene, as Mitsuba's do. `moment` is the
+//! integrator it wraps with `[render] variance = true`: an `.exr` output holds
+//! the layer `variance.R/G/B`, the variance of each pixel's mean (Mitsuba's
+//! `m2 - m1^2` over the sample count), which `lamplight` writes unasked.
 
 use lamplight_core::params::{Loc, ParamError};
 
@@ -61,7 +63,9 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<(), ParamError> {
             (2, el.loc.clone())
         }
         "moment" => {
-            ctx.warn(&el.loc, "integrator \"moment\": read as the integrator it wraps; pass --exr-layers variance for the variance layer");
+            // lamplight's layer is the variance of each pixel's mean: Mitsuba's (m2 - m1^2) / spp.
+            ctx.render.retain(|e| e.key != "variance");
+            ctx.render.push(entry("variance", super::boolean(true, &el.loc)));
             let inner = p.objects.iter().copied().find(|o| o.tag == "integrator");
             ctx.finish(p);
             return match inner {
