@@ -465,3 +465,29 @@ fn rr_depth_reaches_the_path_tracer_with_mitsubas_counting_and_default() {
     let late = render(&write(dir.path(), "b.xml", &rr(Some("64"))), &[]);
     assert_ne!(early, late);
 }
+
+#[test]
+fn a_flipped_one_sided_surface_reads_two_sided() {
+    // lamplight keeps the normals flip_normals turns, so a one-sided BSDF there
+    // would be black on the side Mitsuba lights: the shape gets a two-sided copy.
+    let text = scene(
+        r#"    <bsdf type="diffuse" id="d"/>
+    <shape type="rectangle"><boolean name="flip_normals" value="true"/><ref id="d"/></shape>
+    <shape type="disk"><ref id="d"/></shape>"#,
+    );
+    let (t, warnings) = table(&text, &[]);
+    assert_eq!(
+        warnings,
+        vec!["s.xml:11:65: shape \"rectangle\": flip_normals is not supported: the normals are kept and the surface is read two-sided"]
+    );
+    let Value::Table(materials) = &t.entries.iter().find(|e| e.key == "materials").unwrap().item.value else { panic!() };
+    let Value::Array(objects) = &t.entries.iter().find(|e| e.key == "objects").unwrap().item.value else { panic!() };
+    let material_of = |i: usize| {
+        let Value::Table(o) = &objects[i].value else { panic!() };
+        let Value::String(name) = &o.entries.iter().find(|e| e.key == "material").unwrap().item.value else { panic!() };
+        let Value::Table(m) = &materials.entries.iter().find(|e| &e.key == name).unwrap().item.value else { panic!() };
+        m.entries.iter().any(|e| e.key == "sided")
+    };
+    assert!(!material_of(0), "the flipped rectangle is two-sided");
+    assert!(material_of(1), "the disk keeps the one-sided diffuse");
+}
