@@ -137,7 +137,7 @@ pub const RENDER_PARAMS: &[Param] = &[
         T::Bool,
         "false",
         "",
-        "camera rays that meet an emitting surface or leave to the sky or background see black; the light they give the scene stays (Mitsuba's `hide_emitters`)",
+        "camera rays go through emitting surfaces and see black where they leave the scene (no sky, no background); the light of both still reaches the scene (Mitsuba's `hide_emitters`)",
     ),
 ];
 
