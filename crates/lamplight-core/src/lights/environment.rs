@@ -109,7 +109,7 @@ impl EnvMap {
 
     /// Map `u` to the sampling distribution's `u`: the same, or for a
     /// bilinear map shifted by half a pixel to the grid of its cells.
-    fn to_cells(&self, u: f64) -> f64 {
+    fn u_to_cells(&self, u: f64) -> f64 {
         if self.bilinear {
             let x = u - 0.5 / self.width as f64;
             x - x.floor()
@@ -118,8 +118,8 @@ impl EnvMap {
         }
     }
 
-    /// The inverse of [`EnvMap::to_cells`].
-    fn from_cells(&self, x: f64) -> f64 {
+    /// The inverse of [`EnvMap::u_to_cells`].
+    fn cells_to_u(&self, x: f64) -> f64 {
         if self.bilinear {
             let u = x + 0.5 / self.width as f64;
             (u - u.floor()).min(1.0 - f64::EPSILON)
@@ -223,7 +223,7 @@ impl Environment {
                 if !(p > 0.0 && sin_theta > 0.0) {
                     return None;
                 }
-                let x = m.from_cells(x);
+                let x = m.cells_to_u(x);
                 let d = m.to_world(uv_to_direction(x, y));
                 Some((d, m.lookup(x, y), p / (2.0 * PI * PI * sin_theta)))
             }
@@ -240,7 +240,7 @@ impl Environment {
                 if sin_theta <= 0.0 {
                     return 0.0;
                 }
-                m.distribution.pdf(m.to_cells(u), v) / (2.0 * PI * PI * sin_theta)
+                m.distribution.pdf(m.u_to_cells(u), v) / (2.0 * PI * PI * sin_theta)
             }
         }
     }

@@ -109,7 +109,7 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El, out: &mut Vec<Item>) -> Result<()
     }
     let flip = p.boolean("flip_normals")?;
     if let Some((true, bloc)) = &flip {
-        ctx.warn(&bloc, format!("{}: flip_normals is not supported: the normals are kept and the surface is read two-sided", p.label));
+        ctx.warn(bloc, format!("{}: flip_normals is not supported: the normals are kept and the surface is read two-sided", p.label));
     }
     let flipped = matches!(flip, Some((true, _)));
     // lamplight shades meshes without normals flat, as face_normals = true asks;
