@@ -252,6 +252,7 @@ def write_assets(d):
     body += b"".join(struct.pack("<fff", *v) for v in verts) + b"".join(struct.pack("<III", *t) for t in faces)
     with open(os.path.join(d, "tetra.serialized"), "wb") as f:
         f.write(struct.pack("<HH", 0x041C, 4) + zlib.compress(body) + struct.pack("<QI", 0, 1))
+    _scene2.write_assets(d)
     with open(os.path.join(d, "included.xml"), "w") as f:
         f.write('<scene version="3.0.0">\n    <default name="inc_r" value="0.7"/>\n'
                 '    <bsdf type="diffuse" id="inc_red"><rgb name="reflectance" value="$inc_r, 0.2, 0.15"/></bsdf>\n</scene>\n')
@@ -259,3 +260,6 @@ def write_assets(d):
 from .cases_bsdfs2 import CASES as _BSDFS2_CASES  # noqa: E402 (it uses the helpers above)
 
 CASES += _BSDFS2_CASES
+
+from mitsuba_xml import cases_scene2 as _scene2  # noqa: E402  (scene-level cases, written alongside these)
+CASES += _scene2.CASES

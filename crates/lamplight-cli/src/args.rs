@@ -376,6 +376,11 @@ impl RenderArgs {
         if !job.layers.is_empty() && format != Format::Exr {
             return Err(usage("--exr-layers needs an .exr output file"));
         }
+        // The scene asks for the variance layer (`[render] variance`, Mitsuba's
+        // `moment`): an .exr output holds it; other formats cannot and do not.
+        if scene.defaults.variance && format == Format::Exr && !job.layers.contains(&Layer::Variance) {
+            job.layers.push(Layer::Variance);
+        }
         let variance_output = self.variance_output;
         let variance_in_output = job.layers.contains(&Layer::Variance);
         if let Some(path) = &variance_output {
@@ -416,6 +421,30 @@ mod tests {
         // The default render is anti-aliased, as POV-Ray's +A.
         assert_eq!(job.job.options.adaptive, Some(lamplight_core::Adaptive::Antialias(lamplight_core::Antialias::default())));
         assert!(!job.quiet);
+    }
+
+    #[test]
+    fn a_scene_asking_for_variance_gets_the_layer_in_exr_outputs_only() {
+        // Mitsuba's `moment` reads as `[render] variance = true`.
+        let dir = tempfile::tempdir().unwrap();
+        let scene = dir.path().join("moment.xml");
+        std::fs::write(
+            &scene,
+            r#"<scene version="3.0.0"><integrator type="moment"><integrator type="path"/></integrator>
+            <sensor type="perspective"><film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film></sensor>
+            </scene>"#,
+        )
+        .unwrap();
+        let scene = scene.to_str().unwrap();
+        let exr = dir.path().join("m.exr");
+        let job = parse(&[scene, "-o", exr.to_str().unwrap()]).unwrap();
+        assert_eq!(job.job.layers, vec![Layer::Variance]);
+        assert!(job.variance_in_output);
+        let png = dir.path().join("m.png");
+        assert!(parse(&[scene, "-o", png.to_str().unwrap()]).unwrap().job.layers.is_empty(), "a PNG cannot hold it and is still written");
+        // Asked twice (by the scene and the flag), the layer is written once.
+        let both = parse(&[scene, "-o", exr.to_str().unwrap(), "--exr-layers", "variance,samples"]).unwrap();
+        assert_eq!(both.job.layers, vec![Layer::Variance, Layer::Samples]);
     }
 
     #[test]

@@ -75,6 +75,13 @@ pub struct Scene {
     /// Secondary rays whose weight falls to or below this (every channel) are not
     /// traced (POV-Ray's `adc_bailout`; 0 traces every ray up to the depth limit).
     pub min_weight: f64,
+    /// Path segments before the path tracer's Russian roulette starts
+    /// ([`crate::integrators::PathTracer::rr_depth`], camera ray = 1; default 4).
+    pub rr_depth: u32,
+    /// Camera rays go through emitting surfaces and see black where they leave
+    /// to the sky (Mitsuba's `hide_emitters`, [`Scene::first_camera_hit`]);
+    /// the light those give the scene is kept.
+    pub hide_emitters: bool,
     bvh: Bvh,
     /// Objects in the BVH, in BVH primitive order.
     bounded: Vec<PrimRef>,
@@ -138,6 +145,10 @@ pub struct SceneBuilder {
     pub max_depth: u32,
     /// Weight cut-off, 0.
     pub min_weight: f64,
+    /// [`Scene::rr_depth`], 4.
+    pub rr_depth: u32,
+    /// [`Scene::hide_emitters`], `false`.
+    pub hide_emitters: bool,
     names: Names,
 }
 
@@ -159,6 +170,8 @@ impl SceneBuilder {
             camera,
             max_depth: 5,
             min_weight: 0.0,
+            rr_depth: 4,
+            hide_emitters: false,
             names: Names::default(),
         }
     }
@@ -239,7 +252,7 @@ impl SceneBuilder {
         let bsdfs = self
             .materials
             .iter()
-            .map(|m| m.is_constant().then(|| [bsdf_for(m, Vec3::ZERO, false), bsdf_for(m, Vec3::ZERO, true)]))
+            .map(|m| m.is_constant().then(|| [surface_bsdf(m, Vec3::ZERO, false), surface_bsdf(m, Vec3::ZERO, true)]))
             .collect();
         let uses_footprints = self.materials.iter().any(Material::uses_footprint);
         let plain = self
@@ -264,6 +277,8 @@ impl SceneBuilder {
             camera: self.camera,
             max_depth: self.max_depth,
             min_weight: self.min_weight,
+            rr_depth: self.rr_depth,
+            hide_emitters: self.hide_emitters,
             names: self.names,
         })
     }
@@ -315,6 +330,23 @@ impl Scene {
             error: h.error,
             primitive: h.primitive,
         })
+    }
+
+    /// The first hit of a camera ray `ray` (depth 1): [`Scene::first_intersect`],
+    /// or under [`Scene::hide_emitters`] the first hit past every emitting
+    /// surface, which a camera ray then goes through as Mitsuba's does (the
+    /// surface still casts shadows and is seen by later segments).
+    pub fn first_camera_hit(&self, ray: &Ray) -> Option<Hit> {
+        let mut ray = *ray;
+        // Each pass moves past one emitting surface; a bound keeps pathological stacks finite.
+        for _ in 0..64 {
+            let hit = self.first_intersect(&ray, f64::INFINITY)?;
+            if !self.hide_emitters || self.materials[hit.material].emission == Rgb::ZERO {
+                return Some(hit);
+            }
+            ray = Ray { origin: crate::ray::offset_origin(hit.point, hit.geometric_normal, ray.dir, hit.t, hit.error), dir: ray.dir };
+        }
+        None
     }
 
     /// Whether some material reads a footprint (a trilinear image texture), so
@@ -433,14 +465,14 @@ impl Scene {
     }
 
     /// The path tracer's BSDF at `hit`, whose material evaluated there
-    /// ([`Scene::material_at`]) is `material` ([`bsdf_for`]). Constant materials
+    /// ([`Scene::material_at`]) is `material` ([`surface_bsdf`]). Constant materials
     /// have it built once with the scene: making it per hit (scaling the lobes so
     /// they conserve energy) was an eighth of the path tracer's time.
     #[inline]
     pub fn bsdf(&self, hit: &Hit, material: &Material) -> Cow<'_, Bsdf> {
         match self.prebuilt_bsdf(hit.material, hit.front_face) {
             Some(bsdf) => Cow::Borrowed(bsdf),
-            None => Cow::Owned(bsdf_for(material, hit.point, hit.front_face)),
+            None => Cow::Owned(surface_bsdf(material, hit.point, hit.front_face)),
         }
     }
 
@@ -463,6 +495,18 @@ impl Scene {
     /// Total primitives (triangles count one each).
     pub fn primitive_count(&self) -> usize {
         self.objects.iter().map(|o| o.shape.primitive_count()).sum()
+    }
+}
+
+/// The path tracer's BSDF of `material` at `point` seen from the front face
+/// (`front_face`) or the back: [`bsdf_for`], or no lobe at all (black, and no
+/// light from the back arrives through it) on the back of a
+/// [`Material::one_sided`] surface.
+pub fn surface_bsdf(material: &Material, point: Vec3, front_face: bool) -> Bsdf {
+    if material.scatters_at(front_face) {
+        bsdf_for(material, point, front_face)
+    } else {
+        Bsdf::new(&[])
     }
 }
 

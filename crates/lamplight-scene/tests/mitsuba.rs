@@ -380,3 +380,114 @@ fn mutated_scenes_never_panic() {
         }
     }
 }
+
+#[test]
+fn one_sided_bsdfs_read_as_front_sided_materials() {
+    // Mitsuba's reflecting BSDFs are black from the back; twosided, dielectrics and null are not;
+    // wrappers are what they wrap.
+    let body = r#"    <bsdf type="diffuse" id="d"/>
+    <bsdf type="conductor" id="c"/>
+    <bsdf type="twosided" id="t"><bsdf type="diffuse"/></bsdf>
+    <bsdf type="dielectric" id="g"/>
+    <bsdf type="mask" id="m"><float name="opacity" value="1"/><bsdf type="roughconductor"><string name="distribution" value="ggx"/></bsdf></bsdf>
+    <bsdf type="mask" id="mt"><float name="opacity" value="1"/><bsdf type="twosided"><bsdf type="diffuse"/></bsdf></bsdf>
+    <bsdf type="null" id="n"/>
+"#;
+    let shapes: String =
+        ["d", "c", "t", "g", "m", "mt", "n"].iter().map(|id| format!("    <shape type=\"sphere\"><ref id=\"{id}\"/></shape>\n")).collect();
+    let (t, _) = table(&scene(&format!("{body}{shapes}    <shape type=\"disk\"/>\n")), &[]);
+    let materials = t.entries.iter().find(|e| e.key == "materials").expect("materials");
+    let Value::Table(materials) = &materials.item.value else { panic!("materials is a table") };
+    let sided = |name: &str| -> Option<String> {
+        let m = materials.entries.iter().find(|e| e.key == name).unwrap_or_else(|| panic!("no material {name}"));
+        let Value::Table(m) = &m.item.value else { panic!("{name} is a table") };
+        m.entries.iter().find(|e| e.key == "sided").map(|e| match &e.item.value {
+            Value::String(s) => s.clone(),
+            other => panic!("{other:?}"),
+        })
+    };
+    for (name, expected) in [
+        ("d", Some("front")),
+        ("c", Some("front")),
+        ("t", None),
+        ("g", None),
+        ("m", Some("front")),
+        ("mt", None),
+        ("n", None),
+        // The default BSDF of the bare disk: Mitsuba's diffuse 0.5, one-sided too.
+        (mitsuba::bsdfs::DEFAULT_MATERIAL, Some("front")),
+    ] {
+        assert_eq!(sided(name).as_deref(), expected, "material {name}");
+    }
+}
+
+#[test]
+fn hide_emitters_reads_as_the_render_setting() {
+    let hidden = scene(BODY).replace(
+        r#"<integer name="max_depth" value="4"/>"#,
+        r#"<integer name="max_depth" value="4"/><boolean name="hide_emitters" value="true"/>"#,
+    );
+    let (t, warnings) = table(&hidden, &[]);
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let render = t.entries.iter().find(|e| e.key == "render").expect("render");
+    let Value::Table(render) = &render.item.value else { panic!("render is a table") };
+    let hide = render.entries.iter().find(|e| e.key == "hide_emitters").expect("hide_emitters");
+    assert!(matches!(hide.item.value, Value::Bool(true)), "{:?}", hide.item.value);
+    let (t, _) = table(&scene(BODY), &[]);
+    let Value::Table(render) = &t.entries.iter().find(|e| e.key == "render").unwrap().item.value else { panic!() };
+    assert!(render.entries.iter().all(|e| e.key != "hide_emitters"));
+}
+
+#[test]
+fn rr_depth_reaches_the_path_tracer_with_mitsubas_counting_and_default() {
+    let rr = |value: Option<&str>| {
+        let extra = value.map_or(String::new(), |v| format!(r#"<integer name="rr_depth" value="{v}"/>"#));
+        scene(BODY).replace(r#"<integer name="max_depth" value="4"/>"#, &format!(r#"<integer name="max_depth" value="4"/>{extra}"#))
+    };
+    let read = |text: &str| {
+        let (t, _) = table(text, &[]);
+        let Value::Table(render) = &t.entries.iter().find(|e| e.key == "render").unwrap().item.value else { panic!() };
+        match render.entries.iter().find(|e| e.key == "rr_depth").map(|e| &e.item.value) {
+            Some(Value::Integer(i)) => *i,
+            other => panic!("{other:?}"),
+        }
+    };
+    assert_eq!(read(&rr(None)), 5, "Mitsuba's default");
+    assert_eq!(read(&rr(Some("2"))), 2);
+    assert_eq!(read(&rr(Some("1000"))), 64, "past the deepest path it never starts");
+    assert_eq!(error(&rr(Some("0"))), "s.xml:3:98: integrator \"path\": rr_depth: must be a positive integer, got 0");
+    // Roulette from the first bounce changes the noise (the bytes) of light that
+    // bounces (off a floor here), not what the image means.
+    let floor = r#"<shape type="rectangle"><transform name="to_world"><rotate x="1" angle="-90"/><scale value="3"/></transform></shape>"#;
+    let rr = |value: Option<&str>| rr(value).replace("</scene>", &format!("{floor}\n</scene>"));
+    let dir = tempfile::tempdir().unwrap();
+    let early = render(&write(dir.path(), "a.xml", &rr(Some("1"))), &[]);
+    let late = render(&write(dir.path(), "b.xml", &rr(Some("64"))), &[]);
+    assert_ne!(early, late);
+}
+
+#[test]
+fn a_flipped_one_sided_surface_reads_two_sided() {
+    // lamplight keeps the normals flip_normals turns, so a one-sided BSDF there
+    // would be black on the side Mitsuba lights: the shape gets a two-sided copy.
+    let text = scene(
+        r#"    <bsdf type="diffuse" id="d"/>
+    <shape type="rectangle"><boolean name="flip_normals" value="true"/><ref id="d"/></shape>
+    <shape type="disk"><ref id="d"/></shape>"#,
+    );
+    let (t, warnings) = table(&text, &[]);
+    assert_eq!(
+        warnings,
+        vec!["s.xml:11:65: shape \"rectangle\": flip_normals is not supported: the normals are kept and the surface is read two-sided"]
+    );
+    let Value::Table(materials) = &t.entries.iter().find(|e| e.key == "materials").unwrap().item.value else { panic!() };
+    let Value::Array(objects) = &t.entries.iter().find(|e| e.key == "objects").unwrap().item.value else { panic!() };
+    let material_of = |i: usize| {
+        let Value::Table(o) = &objects[i].value else { panic!() };
+        let Value::String(name) = &o.entries.iter().find(|e| e.key == "material").unwrap().item.value else { panic!() };
+        let Value::Table(m) = &materials.entries.iter().find(|e| &e.key == name).unwrap().item.value else { panic!() };
+        m.entries.iter().any(|e| e.key == "sided")
+    };
+    assert!(!material_of(0), "the flipped rectangle is two-sided");
+    assert!(material_of(1), "the disk keeps the one-sided diffuse");
+}

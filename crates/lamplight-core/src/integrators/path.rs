@@ -18,7 +18,7 @@
 use super::trace::{NeeMiss, NeeSample, NoTrace, PathEnd, PathTrace, Trace};
 use super::whitted::Cone;
 use super::{Integrator, IntegratorEntry, IntegratorSettings, RayCounts, Schedule, View};
-use crate::bsdfs::{bsdf_for, Bsdf, Frame};
+use crate::bsdfs::{Bsdf, Frame};
 use crate::film::Filter;
 use crate::lights::LightSet;
 use crate::materials::{Reflection, Refraction};
@@ -45,7 +45,8 @@ fn build_path(scene: &Scene, settings: &IntegratorSettings) -> Result<Box<dyn In
 pub struct PathTracer {
     /// Longest path in segments (camera ray = 1).
     pub max_depth: u32,
-    /// Segments before Russian roulette starts.
+    /// Segments before Russian roulette starts: the scene's [`Scene::rr_depth`]
+    /// (4 unless it says), the same counting as Mitsuba's `rr_depth`.
     pub rr_depth: u32,
     lights: LightSet,
     /// Every material stops shadow rays: visibility can use the BVH's any-hit query.
@@ -98,7 +99,7 @@ impl PathTracer {
     /// A path tracer for `scene` (its lights are collected here).
     pub fn new(scene: &Scene, max_depth: u32) -> PathTracer {
         let all_opaque = scene.materials.iter().all(|m| m.shadow_transmittance == Rgb::ZERO);
-        PathTracer { max_depth, rr_depth: 4, lights: LightSet::new(scene), all_opaque, filter: Filter::Box }
+        PathTracer { max_depth, rr_depth: scene.rr_depth, lights: LightSet::new(scene), all_opaque, filter: Filter::Box }
     }
 
     /// The same tracer with film positions drawn from `filter` (default: the box).
@@ -148,8 +149,11 @@ impl PathTracer {
             // the intersection's latency. Unused if the path ends here.
             let (u_light, u_bsdf) = (sampler.peek_2d(1), sampler.peek_2d(3));
             trace.segment(depth, &ray, beta);
-            let Some(mut hit) = scene.first_intersect(&ray, f64::INFINITY) else {
-                if let Some(env) = &self.lights.environment {
+            // Mitsuba's `hide_emitters`: the camera sees through emitters, and black sky.
+            let hidden = depth == 1 && scene.hide_emitters;
+            let found = if hidden { scene.first_camera_hit(&ray) } else { scene.first_intersect(&ray, f64::INFINITY) };
+            let Some(mut hit) = found else {
+                if let Some(env) = self.lights.environment.as_ref().filter(|_| !hidden) {
                     let w = if prev_delta { 1.0 } else { power_heuristic(prev_pdf, p_pick * env.pdf(ray.dir)) };
                     let le = env.radiance(ray.dir);
                     let contribution = beta * le * w;
@@ -192,7 +196,7 @@ impl PathTracer {
             let bsdf = match scene.prebuilt_bsdf(hit.material, hit.front_face) {
                 Some(bsdf) => bsdf,
                 None => {
-                    textured = bsdf_for(material, hit.point, hit.front_face);
+                    textured = crate::scene::surface_bsdf(material, hit.point, hit.front_face);
                     &textured
                 }
             };

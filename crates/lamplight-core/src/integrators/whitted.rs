@@ -193,8 +193,11 @@ impl Whitted {
             // `work[pending]` and then increments it).
             let Pending { ray, weight, depth, width } = unsafe { work[pending].assume_init_read() };
             trace.ray(&ray, weight, depth);
-            let Some(mut hit) = scene.first_intersect(&ray, f64::INFINITY) else {
-                let sky = scene.environment.as_ref().map_or(scene.background, |env| env.radiance(ray.dir));
+            // Mitsuba's `hide_emitters`: the camera sees through emitters, and black sky.
+            let hidden = depth == 1 && scene.hide_emitters;
+            let found = if hidden { scene.first_camera_hit(&ray) } else { scene.first_intersect(&ray, f64::INFINITY) };
+            let Some(mut hit) = found else {
+                let sky = if hidden { Rgb::ZERO } else { scene.environment.as_ref().map_or(scene.background, |env| env.radiance(ray.dir)) };
                 let contribution = weight * sky;
                 trace.miss(sky, contribution);
                 total += contribution;
@@ -210,6 +213,9 @@ impl Whitted {
             total += contribution;
             if depth >= max_depth {
                 trace.depth_cutoff();
+                continue;
+            }
+            if !material.scatters_at(hit.front_face) {
                 continue;
             }
             for (dir, w) in smooth_directions(&ray, &hit, material, trace) {
@@ -250,10 +256,12 @@ pub fn direct_light<T: WhittedTrace + ?Sized>(
     // constant, or the 3D checker, which needs only the point.
     let color = material.color.evaluate(&crate::materials::ShadingPoint::at(hit.point));
     let emission = if material.emits_towards(hit.front_face) { material.emission } else { Rgb::ZERO };
-    let ambient = material.ka * color * scene.ambient;
+    // The back of a one-sided surface scatters nothing, not even the ambient light.
+    let scatters = material.scatters_at(hit.front_face);
+    let ambient = if scatters { material.ka * color * scene.ambient } else { Rgb::ZERO };
     trace.surface(color, emission, ambient);
     let mut radiance = emission + ambient;
-    if !material.is_lit() {
+    if !material.is_lit() || !scatters {
         return radiance;
     }
     for (i, light) in scene.lights.iter().enumerate() {

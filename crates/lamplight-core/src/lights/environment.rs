@@ -9,6 +9,18 @@
 //! A map turned by `a` degrees about `+y` ([`EnvMap::with_rotation`]) sends from
 //! world direction `d` what the unturned map sends from `R(-a) d`; turning keeps
 //! solid angle, so densities are the same at the matching directions.
+//!
+//! A map is looked up at the nearest pixel (pixel `(x, y)` covers
+//! `[x, x + 1) / w` by `[y, y + 1) / h`), or, [`EnvMap::bilinear`], as
+//! Mitsuba's `envmap` reads it: interpolated bilinearly between pixel values
+//! placed at `u = (x + 1/2) / w` (wrapping around from the last column to the
+//! first) and `v = y / (h - 1)` (the first row at the zenith, the last at the
+//! nadir). Its sampling distribution is then piecewise constant over the
+//! `w x (h - 1)` cells between those points, each weighted by the largest
+//! luminance of its four corners times `sin(theta)` of its centre, so that
+//! every direction with light has a density; `u` is shifted by half a pixel
+//! into the cells' grid and back, which keeps the density of a direction the
+//! density it was sampled with.
 
 use std::f64::consts::PI;
 
@@ -26,6 +38,8 @@ pub struct EnvMap {
     /// `(sin a, cos a)` of the turn about `+y`; `None` for none (no arithmetic, so
     /// an unturned map gives exactly the directions of the formulas above).
     rotation: Option<(f64, f64)>,
+    /// Bilinear lookup between pixels (module documentation); `false`: nearest pixel.
+    bilinear: bool,
 }
 
 impl EnvMap {
@@ -46,7 +60,33 @@ impl EnvMap {
             })
             .collect();
         let distribution = Distribution2d::new(&weights, width, height);
-        Ok(EnvMap { width, height, pixels, distribution, rotation: None })
+        Ok(EnvMap { width, height, pixels, distribution, rotation: None, bilinear: false })
+    }
+
+    /// The map looked up bilinearly, as Mitsuba's `envmap` (module
+    /// documentation), with the sampling distribution of its cells. Needs at
+    /// least two rows (the zenith's and the nadir's).
+    pub fn bilinear(self) -> Result<EnvMap, Error> {
+        let (w, h) = (self.width, self.height);
+        if h < 2 {
+            return Err(Error::invalid("environment map", "bilinear lookup needs at least two rows"));
+        }
+        let lum = |x: usize, y: usize| luminance(self.pixels[y * w + x % w]);
+        let mut weights = Vec::with_capacity(w * (h - 1));
+        for y in 0..h - 1 {
+            let sin_theta = (PI * (y as f64 + 0.5) / (h - 1) as f64).sin();
+            for x in 0..w {
+                let corners = lum(x, y).max(lum(x + 1, y)).max(lum(x, y + 1)).max(lum(x + 1, y + 1));
+                weights.push(corners * sin_theta);
+            }
+        }
+        let distribution = Distribution2d::new(&weights, w, h - 1);
+        Ok(EnvMap { distribution, bilinear: true, ..self })
+    }
+
+    /// Whether the map is looked up bilinearly ([`EnvMap::bilinear`]).
+    pub fn is_bilinear(&self) -> bool {
+        self.bilinear
     }
 
     /// The map turned by `degrees` about `+y` (seen from above, counter-clockwise:
@@ -59,7 +99,33 @@ impl EnvMap {
     /// The map with every pixel multiplied by `factor` (its turn kept).
     pub fn scaled(&self, factor: Rgb) -> Result<EnvMap, Error> {
         let pixels = self.pixels.iter().map(|p| *p * factor).collect();
-        Ok(EnvMap { rotation: self.rotation, ..EnvMap::new(self.width, self.height, pixels)? })
+        let map = EnvMap { rotation: self.rotation, ..EnvMap::new(self.width, self.height, pixels)? };
+        if self.bilinear {
+            map.bilinear()
+        } else {
+            Ok(map)
+        }
+    }
+
+    /// Map `u` to the sampling distribution's `u`: the same, or for a
+    /// bilinear map shifted by half a pixel to the grid of its cells.
+    fn u_to_cells(&self, u: f64) -> f64 {
+        if self.bilinear {
+            let x = u - 0.5 / self.width as f64;
+            x - x.floor()
+        } else {
+            u
+        }
+    }
+
+    /// The inverse of [`EnvMap::u_to_cells`].
+    fn cells_to_u(&self, x: f64) -> f64 {
+        if self.bilinear {
+            let u = x + 0.5 / self.width as f64;
+            (u - u.floor()).min(1.0 - f64::EPSILON)
+        } else {
+            x
+        }
     }
 
     /// World direction to the map's own frame: `R(-a) d`.
@@ -78,7 +144,24 @@ impl EnvMap {
         }
     }
 
+    /// The radiance at map coordinates `(u, v)`: the nearest pixel, or the
+    /// bilinear interpolation of the four around it (module documentation).
     fn lookup(&self, u: f64, v: f64) -> Rgb {
+        if self.bilinear {
+            let (w, h) = (self.width, self.height);
+            let fx = u * w as f64 - 0.5;
+            let x0f = fx.floor();
+            let tx = fx - x0f;
+            let x0 = (x0f as i64).rem_euclid(w as i64) as usize;
+            let x1 = (x0 + 1) % w;
+            let fy = (v * (h - 1) as f64).clamp(0.0, (h - 1) as f64);
+            let y0 = (fy as usize).min(h - 2);
+            let ty = fy - y0 as f64;
+            let at = |x: usize, y: usize| self.pixels[y * w + x];
+            let top = at(x0, y0) * (1.0 - tx) + at(x1, y0) * tx;
+            let bottom = at(x0, y0 + 1) * (1.0 - tx) + at(x1, y0 + 1) * tx;
+            return top * (1.0 - ty) + bottom * ty;
+        }
         let x = ((u * self.width as f64) as usize).min(self.width - 1);
         let y = ((v * self.height as f64) as usize).min(self.height - 1);
         self.pixels[y * self.width + x]
@@ -140,6 +223,7 @@ impl Environment {
                 if !(p > 0.0 && sin_theta > 0.0) {
                     return None;
                 }
+                let x = m.cells_to_u(x);
                 let d = m.to_world(uv_to_direction(x, y));
                 Some((d, m.lookup(x, y), p / (2.0 * PI * PI * sin_theta)))
             }
@@ -156,7 +240,7 @@ impl Environment {
                 if sin_theta <= 0.0 {
                     return 0.0;
                 }
-                m.distribution.pdf(u, v) / (2.0 * PI * PI * sin_theta)
+                m.distribution.pdf(m.u_to_cells(u), v) / (2.0 * PI * PI * sin_theta)
             }
         }
     }
@@ -240,5 +324,78 @@ mod tests {
             }
         }
         assert_eq!(EnvMap::new(1, 1, vec![Rgb::ONE]).unwrap().with_rotation(0.0).rotation, None, "no turn, no arithmetic");
+    }
+
+    /// The 4 x 3 map of the probe below: pixel `(x, y)` is `(x + 1, y + 1, 10 (x + 1) + y + 1)`.
+    fn probe_map() -> EnvMap {
+        let pixels =
+            (0..3).flat_map(|y| (0..4).map(move |x| Rgb::new(x as f64 + 1.0, y as f64 + 1.0, 10.0 * (x as f64 + 1.0) + y as f64 + 1.0)));
+        EnvMap::new(4, 3, pixels.collect()).unwrap().bilinear().unwrap()
+    }
+
+    #[test]
+    fn a_bilinear_map_reads_as_mitsubas_envmap() {
+        // Mitsuba 3.9.1 scalar_rgb, `envmap` of this bitmap, `eval` towards map
+        // coordinates (u, v) (Mitsuba's u is lamplight's minus 1/2, which the
+        // reader's 180 degree turn gives; here both are the map's own u).
+        let env = Environment::Map(probe_map());
+        let at = |u: f64, v: f64| env.radiance(uv_to_direction(u, v));
+        let close = |a: Rgb, b: [f64; 3]| (a - Rgb::from_array(b)).abs().max_element() < 1e-9;
+        for (u, v, mitsuba) in [
+            (0.125, 0.5, [1.0, 2.0, 12.0]),
+            (0.25, 0.5, [1.5, 2.0, 17.0]),
+            (0.375, 0.5, [2.0, 2.0, 22.0]),
+            (0.5, 0.5, [2.5, 2.0, 27.0]),
+            (0.875, 0.5, [4.0, 2.0, 42.0]),
+            (0.95, 0.5, [3.1, 2.0, 33.0]),
+            (0.125, 0.25, [1.0, 1.5, 11.5]),
+            (0.125, 0.75, [1.0, 2.5, 12.5]),
+            (0.125, 1.0 - 1e-12, [1.0, 3.0, 13.0]),
+        ] {
+            assert!(close(at(u, v), mitsuba), "({u}, {v}): {} vs {mitsuba:?}", at(u, v));
+        }
+        // The nearest-pixel map of the same pixels stays as it was.
+        let nearest = Environment::Map(EnvMap::new(4, 3, (0..12).map(|i| Rgb::splat(i as f64)).collect()).unwrap());
+        assert_eq!(nearest.radiance(uv_to_direction(0.3, 0.5)), Rgb::splat(5.0));
+    }
+
+    #[test]
+    fn a_bilinear_maps_density_integrates_to_one_and_its_samples_to_the_radiance_integral() {
+        // A dark map with one bright pixel and a turn: the density over the sphere
+        // (midpoint quadrature in (u, v)) sums to 1, each sample's density is the
+        // one `pdf` gives, and E[L / pdf] is the integral of the interpolated radiance.
+        let (w, h) = (16, 9);
+        let mut pixels = vec![Rgb::splat(0.1); w * h];
+        pixels[3 * w + 5] = Rgb::splat(50.0);
+        pixels[w - 1] = Rgb::splat(20.0); // the first row's last pixel: the wrap and the zenith
+        let env = Environment::Map(EnvMap::new(w, h, pixels).unwrap().bilinear().unwrap().with_rotation(30.0));
+        let n = 512;
+        let (mut total_pdf, mut exact) = (0.0, 0.0);
+        for i in 0..n {
+            for j in 0..n {
+                let (u, v) = ((i as f64 + 0.5) / n as f64, (j as f64 + 0.5) / n as f64);
+                let d = EnvMap::new(1, 1, vec![Rgb::ONE]).unwrap().with_rotation(30.0).to_world(uv_to_direction(u, v));
+                let solid = 2.0 * PI * PI * (v * PI).sin() / (n * n) as f64;
+                total_pdf += env.pdf(d) * solid;
+                exact += env.radiance(d).x * solid;
+            }
+        }
+        assert!((total_pdf - 1.0).abs() < 2e-3, "density integrates to {total_pdf}");
+        let m = 256;
+        let mut est = 0.0;
+        for i in 0..m {
+            for j in 0..m {
+                let (d, l, p) = env.sample(((i as f64 + 0.5) / m as f64, (j as f64 + 0.5) / m as f64)).unwrap();
+                assert!((env.pdf(d) - p).abs() / p < 1e-6, "pdf at {d}: {} vs {p}", env.pdf(d));
+                assert!((env.radiance(d) - l).abs().max_element() < 1e-9 * (1.0 + l.max_element()), "radiance at {d}");
+                est += l.x / p;
+            }
+        }
+        est /= (m * m) as f64;
+        assert!((est - exact).abs() / exact < 1e-2, "{est} vs {exact}");
+        // Scaling keeps the lookup.
+        let Environment::Map(map) = &env else { unreachable!() };
+        assert!(map.scaled(Rgb::splat(2.0)).unwrap().is_bilinear());
+        assert!(EnvMap::new(4, 1, vec![Rgb::ONE; 4]).unwrap().bilinear().is_err());
     }
 }

@@ -20,6 +20,7 @@ pub mod normal_map;
 pub mod pbr;
 pub mod phong;
 pub mod plastic;
+pub mod sided;
 pub mod texture;
 pub mod textured;
 pub mod thin_dielectric;
@@ -142,6 +143,10 @@ pub struct Material {
     /// Whether `emission` leaves both sides of the surface (Mitsuba's
     /// `twosided` emitter, Blender's default for emission shaders).
     pub two_sided: bool,
+    /// Whether the surface scatters light only on its front side and is black
+    /// from the back ([`sided`]; Mitsuba's one-sided BSDFs). Emission is
+    /// [`Material::two_sided`]'s business, not this.
+    pub one_sided: bool,
     /// Smooth mirror reflection.
     pub reflection: Reflection,
     /// Smooth refraction.
@@ -182,6 +187,7 @@ impl Default for Material {
             shininess: 1.0,
             emission: Rgb::ZERO,
             two_sided: false,
+            one_sided: false,
             reflection: Reflection::None,
             refraction: Refraction::None,
             shadow_transmittance: Rgb::ZERO,
@@ -286,6 +292,14 @@ impl Material {
     #[inline]
     pub fn emits_towards(&self, front_face: bool) -> bool {
         self.emission != Rgb::ZERO && (front_face || self.two_sided)
+    }
+
+    /// Whether the surface scatters light (reflects or transmits) at a hit
+    /// on its front face (`front_face`) or its back: always, unless
+    /// [`Material::one_sided`] and the back.
+    #[inline]
+    pub fn scatters_at(&self, front_face: bool) -> bool {
+        front_face || !self.one_sided
     }
 
     /// True when the material needs the light loop (some diffuse or specular term).

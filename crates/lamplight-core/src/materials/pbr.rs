@@ -128,6 +128,7 @@ pub const KIND: MaterialKind = Kind {
         Param::new("emission", T::Texture, "0", "radiance", "emitted radiance"),
         Param::new("emission_strength", T::Number, "1", ">= 0", "multiplies `emission` (`KHR_materials_emissive_strength`)"),
         Param::new("two_sided", T::Bool, "false", "", "emit from both sides of the surface, not only the front"),
+        super::sided::SIDED_PARAM,
         super::normal_map::NORMAL_MAP_PARAMS[0],
         super::normal_map::NORMAL_MAP_PARAMS[1],
         super::bump::BUMP_PARAMS[0],
@@ -177,6 +178,7 @@ fn build(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Material> {
     }
     derive_lecture_terms(&mut m);
     m.two_sided = p.boolean("two_sided")?.unwrap_or(false);
+    m.one_sided = super::sided::read(p)?;
     m.normal_map = super::normal_map::read(p, textures)?;
     m.bump = super::bump::read(p, textures)?;
     m.alpha = super::alpha::read(p, textures)?;

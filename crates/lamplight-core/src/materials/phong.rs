@@ -46,6 +46,7 @@ pub const KIND: MaterialKind = Kind {
             "emitted radiance, from the front side; an emitting shape of constant emission is an area light",
         ),
         Param::new("two_sided", T::Bool, "false", "", "emit from both sides of the surface, not only the front"),
+        super::sided::SIDED_PARAM,
         Param::new("reflection", T::Table, "none", "", "mirror reflection (see below)"),
         Param::new("refraction", T::Table, "none", "", "refraction (see below)"),
         Param::new(
@@ -87,6 +88,7 @@ fn build(p: &mut Params<'_>, textures: &super::Textures<'_>) -> ParamResult<Mate
         shininess: scalar_param(p, textures, "shininess", d.shininess, Slot::Shininess, &mut maps)?,
         emission: color_param(p, textures, "emission", d.emission, Slot::Emission, &mut maps)?,
         two_sided: p.boolean("two_sided")?.unwrap_or(d.two_sided),
+        one_sided: super::sided::read(p)?,
         reflection: reflection(p)?,
         refraction: refraction(p)?,
         shadow_transmittance: color_param(

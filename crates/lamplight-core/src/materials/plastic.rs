@@ -10,6 +10,7 @@
 //! | `roughness` | number | 0 | the coating's microfacet roughness `alpha`; 0 is the smooth coating |
 //! | `distribution` | string | `"ggx"` | `"ggx"` or `"beckmann"` (a rough coating's normal distribution) |
 //! | `emission`, `two_sided` | colour or texture, boolean | 0, false | emitted radiance, from both sides |
+//! | `sided` | string | `"both"` | `"front"`: scatters only on the front side, black from the back (Mitsuba's plastic is) |
 //! | `normal_map`, `bump`, `alpha` | | | as for `phong` |
 //!
 //! The Whitted tracer sees the base as its diffuse term and the coating as a
@@ -38,6 +39,7 @@ pub const KIND: MaterialKind = Kind {
         Param::new("distribution", T::String, "ggx", "ggx, beckmann", "normal distribution of a rough coating"),
         Param::new("emission", T::Texture, "0", "radiance", "emitted radiance"),
         Param::new("two_sided", T::Bool, "false", "", "emit from both sides of the surface, not only the front"),
+        super::sided::SIDED_PARAM,
         super::normal_map::NORMAL_MAP_PARAMS[0],
         super::normal_map::NORMAL_MAP_PARAMS[1],
         super::bump::BUMP_PARAMS[0],
@@ -114,6 +116,7 @@ fn build(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Material> {
         m.reflection = Reflection::Dielectric { ior: eta, min: 0.0, max: specular.max_element() };
     }
     m.two_sided = p.boolean("two_sided")?.unwrap_or(false);
+    m.one_sided = super::sided::read(p)?;
     m.normal_map = super::normal_map::read(p, textures)?;
     m.bump = super::bump::read(p, textures)?;
     m.alpha = super::alpha::read(p, textures)?;

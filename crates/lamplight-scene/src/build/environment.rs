@@ -3,6 +3,7 @@
 //!
 //! ```toml
 //! environment = { file = "sky.hdr", strength = 2, rotate = 90 }
+//! # looked up bilinearly, as Mitsuba's envmap: filter = "bilinear"
 //! # or: environment = { color = [0.4, 0.5, 0.7] }
 //! ```
 //!
@@ -29,6 +30,13 @@ pub const ENVIRONMENT_PARAMS: &[Param] = &[
     ),
     Param::new("strength", T::Number, "1", ">= 0", "multiplies the radiance"),
     Param::new("rotate", T::Number, "0", "degrees", "turns the map about +y, counter-clockwise seen from above"),
+    Param::new(
+        "filter",
+        T::String,
+        "\"nearest\"",
+        "\"nearest\", \"bilinear\"",
+        "how the map is looked up: the nearest pixel, or bilinearly between pixels as Mitsuba's `envmap` (first row at the zenith, last at the nadir)",
+    ),
 ];
 
 /// Reads the `environment` table `p` into the scene's environment; a map file
@@ -40,6 +48,7 @@ pub fn read(mut p: Params<'_>, dir: &Path) -> ParamResult<Arc<Environment>> {
         return Err(p.key_error("strength", format!("must be a non-negative number, got {strength}")));
     }
     let rotate = p.number_or("rotate", 0.0)?;
+    let bilinear = p.choice("filter", &["nearest", "bilinear"])? == "bilinear";
     let environment = match (p.color("color")?, p.string("file")?) {
         (Some(color), None) => {
             if color.min_element() < 0.0 {
@@ -53,6 +62,7 @@ pub fn read(mut p: Params<'_>, dir: &Path) -> ParamResult<Arc<Environment>> {
             }
             let map = crate::env_map::load_map(&dir.join(file)).map_err(|m| p.key_error("file", m))?;
             let map = if strength == 1.0 { map } else { map.scaled(Rgb::splat(strength)).map_err(|e| p.key_error("strength", e))? };
+            let map = if bilinear { map.bilinear().map_err(|e| p.key_error("filter", e))? } else { map };
             Environment::Map(map.with_rotation(rotate))
         }
         _ => return Err(p.error("takes either `color` or `file`")),

@@ -42,6 +42,8 @@ pub struct Settings {
     pub min_spp: Option<u32>,
     /// Depth limit (default 5).
     pub max_depth: u32,
+    /// Segments before the path tracer's Russian roulette (default 4).
+    pub rr_depth: u32,
     /// Weight cut-off (default 0).
     pub min_weight: f64,
     /// Seed (default 0).
@@ -52,6 +54,10 @@ pub struct Settings {
     pub transfer: crate::image_io::Transfer,
     /// The path tracer's pixel filter, when given.
     pub filter: Option<lamplight_core::film::Filter>,
+    /// Camera rays see emitters and the sky as black (default `false`).
+    pub hide_emitters: bool,
+    /// An `.exr` output holds the variance layer too (default `false`).
+    pub variance: bool,
 }
 
 /// Deepest `max_depth` a file may ask for (as the command line's `--max-depth`).
@@ -95,6 +101,13 @@ pub const RENDER_PARAMS: &[Param] = &[
     ),
     Param::new("min_spp", T::Integer, "16", "1 to spp", "path tracer with `noise_threshold`: samples before any pixel stops (`--min-spp`)"),
     Param::new("max_depth", T::Integer, "5", "1 to 64, camera ray = 1", "ray depth limit (`--max-depth`)"),
+    Param::new(
+        "rr_depth",
+        T::Integer,
+        "4",
+        "1 to 64, camera ray = 1",
+        "path tracer: segments before Russian roulette starts (Mitsuba's `rr_depth`, counted the same); changes only the noise",
+    ),
     Param::new("min_weight", T::Number, "0", ">= 0", "secondary rays of weight <= this are not traced"),
     Param::new("seed", T::Integer, "0", ">= 0", "seed of the per-sample random numbers (`--seed`)"),
     Param::new(
@@ -112,6 +125,20 @@ pub const RENDER_PARAMS: &[Param] = &[
         "how PNG and PPM store the values: `\"srgb\"`-encoded, or `\"linear\"` for display-referred numbers (POV-Ray's `File_Gamma 1`) (`--transfer`)",
     ),
     Param::new("filter", T::String, "\"box\"", "", "path tracer: pixel filter, `\"box\"` or `\"gaussian\"` (sigma 0.5 pixel) (`--filter`)"),
+    Param::new(
+        "variance",
+        T::Bool,
+        "false",
+        "",
+        "an `.exr` output also holds the variance of each pixel's mean, as `--exr-layers variance` (Mitsuba's `moment` integrator)",
+    ),
+    Param::new(
+        "hide_emitters",
+        T::Bool,
+        "false",
+        "",
+        "camera rays go through emitting surfaces and see black where they leave the scene (no sky, no background); the light of both still reaches the scene (Mitsuba's `hide_emitters`)",
+    ),
 ];
 
 /// The top-level values.
@@ -213,6 +240,7 @@ pub fn settings(desc: &SceneDescription, source: &Source) -> Result<Settings, Lo
         }
         let min_spp = p.integer("min_spp", 1..=MAX_SPP as i64)?.map(|v| v as u32);
         let max_depth = p.integer("max_depth", 1..=MAX_DEPTH_LIMIT as i64)?.unwrap_or(5) as u32;
+        let rr_depth = p.integer("rr_depth", 1..=MAX_DEPTH_LIMIT as i64)?.unwrap_or(4) as u32;
         let min_weight = p.number_or("min_weight", 0.0)?;
         if min_weight < 0.0 {
             return Err(p.key_error("min_weight", format!("must be a non-negative number, got {min_weight}")));
@@ -235,7 +263,25 @@ pub fn settings(desc: &SceneDescription, source: &Source) -> Result<Settings, Lo
                     .map_err(|_| p.key_error("filter", format!("expected \"box\" or \"gaussian\", got \"{name}\"")))?,
             ),
         };
-        Ok(Settings { width, height, spp, antialias, noise_threshold, min_spp, max_depth, min_weight, seed, integrator, transfer, filter })
+        let hide_emitters = p.boolean("hide_emitters")?.unwrap_or(false);
+        let variance = p.boolean("variance")?.unwrap_or(false);
+        Ok(Settings {
+            width,
+            height,
+            spp,
+            antialias,
+            noise_threshold,
+            min_spp,
+            max_depth,
+            rr_depth,
+            min_weight,
+            seed,
+            integrator,
+            transfer,
+            filter,
+            hide_emitters,
+            variance,
+        })
     };
     let settings = read(&mut p).map_err(|e| source.param_error(e))?;
     p.finish().map_err(|e| source.param_error(e))?;
@@ -259,6 +305,8 @@ pub fn build_with_warnings(desc: &SceneDescription, source: &Source) -> Result<B
     builder.background = background;
     builder.environment = environment;
     builder.max_depth = settings.max_depth;
+    builder.hide_emitters = settings.hide_emitters;
+    builder.rr_depth = settings.rr_depth;
     builder.min_weight = settings.min_weight;
     let materials = materials::add_all(desc, source, &mut builder)?;
     for (name, &index) in &materials {

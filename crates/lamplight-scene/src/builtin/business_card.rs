@@ -153,6 +153,7 @@ pub fn build() -> Result<Scene, Error> {
             shininess: 1.0,
             emission: color * s.kl,
             two_sided: false,
+            one_sided: false,
             reflection: Reflection::Constant(Rgb::splat(s.ks)),
             refraction: Refraction::Constant { ior: s.ir, weight: Rgb::splat(s.kt) },
             shadow_transmittance: Rgb::ZERO,

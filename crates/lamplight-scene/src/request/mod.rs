@@ -112,6 +112,8 @@ pub struct Defaults {
     pub transfer: crate::image_io::Transfer,
     /// The pixel filter, when the scene says.
     pub filter: Option<Filter>,
+    /// Whether an `.exr` output holds the variance layer unasked (`[render] variance`).
+    pub variance: bool,
 }
 
 impl Defaults {
@@ -127,6 +129,7 @@ impl Defaults {
             integrator: s.integrator,
             transfer: s.transfer,
             filter: s.filter,
+            variance: s.variance,
         }
     }
 }
@@ -143,6 +146,7 @@ pub fn program_defaults() -> Defaults {
         integrator: integrators::default_integrator(),
         transfer: Default::default(),
         filter: None,
+        variance: false,
     }
 }
 

@@ -13,7 +13,7 @@
 //! | `plastic` `diffuse_reflectance` (0.5), `specular_reflectance` (1), `int_ior` (`polypropylene`), `ext_ior` (`air`), `nonlinear` | `plastic` of the same parameters |
 //! | `roughplastic` (the same and `alpha`, `distribution`) | `plastic` with `roughness = alpha`, `distribution` |
 //! | `thindielectric` `int_ior` (`bk7`), `ext_ior` (`air`) | `thin_dielectric` |
-//! | `twosided` | its nested BSDF (lamplight's surfaces are two-sided) |
+//! | `twosided` | its nested BSDF; every other one-sided BSDF gets `sided = "front"` ([`super::sided`]) |
 //! | `null` | `alpha = 0`: cut out |
 //! | `mask` `opacity` | the nested BSDF with `alpha = opacity` (cut at 0.5, not blended) |
 //! | `normalmap` `normalmap` (a bitmap) | the nested BSDF with `normal_map` |
@@ -75,6 +75,7 @@ pub fn material_name<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<String, ParamE
         }
     }
     let entries = material(ctx, el)?;
+    let entries = super::sided::mark(ctx, el, entries)?;
     let name = match el.get("id") {
         Some(id) if !ctx.materials.iter().any(|m| m.key == id) => id.to_string(),
         _ => ctx.fresh("bsdf"),
@@ -91,7 +92,10 @@ pub fn default_material(ctx: &mut Ctx<'_>, emitting: bool) -> String {
     let (name, albedo) = if emitting { (DEFAULT_EMITTER_MATERIAL, 0.0) } else { (DEFAULT_MATERIAL, 0.5) };
     if !ctx.materials.iter().any(|m| m.key == name) {
         let loc = Loc::Unknown;
-        let t = table(diffuse(vec3(Rgb::splat(albedo), &loc), &loc), loc.clone());
+        // Mitsuba's default diffuse is one-sided, as every diffuse ([`super::sided`]).
+        let mut e = diffuse(vec3(Rgb::splat(albedo), &loc), &loc);
+        e.push(entry("sided", text("front", &loc)));
+        let t = table(e, loc.clone());
         ctx.materials.push(entry(name, t));
     }
     name.to_string()

@@ -12,7 +12,7 @@
 //! | `directional` `irradiance`, `direction` or `to_world` | `directional_light` `radiance = irradiance / pi` |
 //! | `area` `radiance` (inside a shape) | the shape's material's `emission` |
 //! | `constant` `radiance` | `background` |
-//! | `envmap` `filename`, `scale`, `to_world` (a turn about `+y`) | `environment` `file`, `strength`, `rotate` (Mitsuba's `u` is lamplight's plus one half: a turn of 180 degrees) |
+//! | `envmap` `filename`, `scale`, `to_world` (a turn about `+y`) | `environment` `file`, `strength`, `rotate` (Mitsuba's `u` is lamplight's plus one half: a turn of 180 degrees), `filter = "bilinear"` (Mitsuba's lookup) |
 //!
 //! `projector` and textured spots are not supported (an error: the light would be missing).
 
@@ -100,8 +100,15 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<(), ParamError> {
                     err(mloc, "emitter \"envmap\": to_world must be a turn about +y (lamplight turns maps about +y only)")
                 })?,
             };
-            let env =
-                table_of(vec![("file", text(&file, &floc)), ("strength", num(scale, &sloc)), ("rotate", num(degrees + 180.0, &loc))], &loc);
+            let env = table_of(
+                vec![
+                    ("file", text(&file, &floc)),
+                    ("strength", num(scale, &sloc)),
+                    ("rotate", num(degrees + 180.0, &loc)),
+                    ("filter", text("bilinear", &loc)),
+                ],
+                &loc,
+            );
             ctx.globals.retain(|e| e.key != "background" && e.key != "environment");
             ctx.globals.push(entry("environment", env));
             ctx.finish(p);

@@ -5,9 +5,15 @@
 //! `max_depth` counts as in Mitsuba: 1 sees emitters only, 2 adds direct light
 //! (lamplight's path tracer counts the same way, camera ray = 1); Mitsuba's
 //! `-1` (no limit, its default) is lamplight's deepest, 64. `direct` is
-//! `max_depth = 2`. `rr_depth` changes only the noise (Russian roulette keeps
-//! the estimate unbiased) and is read but not used. `moment` is read as the
-//! integrator it wraps: pass `--exr-layers variance` for the variance layer.
+//! `max_depth = 2`. `rr_depth` (default 5) is `[render] rr_depth`, counted the
+//! same: Russian roulette from the segment of that number on (it changes only
+//! the noise; lamplight survives with `min(1, max throughput)`, Mitsuba with
+//! `min(0.95, max throughput eta^2)`). `hide_emitters = true` is
+//! `[render] hide_emitters = true`: camera rays go through emitting surfaces
+//! and see black where they leave the scene, as Mitsuba's do. `moment` is the
+//! integrator it wraps with `[render] variance = true`: an `.exr` output holds
+//! the layer `variance.R/G/B`, the variance of each pixel's mean (Mitsuba's
+//! `m2 - m1^2` over the sample count), which `lamplight` writes unasked.
 
 use lamplight_core::params::{Loc, ParamError};
 
@@ -27,7 +33,14 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<(), ParamError> {
     let depth = match p.kind.as_str() {
         "path" | "ptracer" | "volpath" | "volpathmis" => {
             let (d, loc) = p.integer("max_depth")?.unwrap_or((-1, el.loc.clone()));
-            let _ = p.integer("rr_depth")?;
+            // The same counting as lamplight's path tracer; Mitsuba's default is 5.
+            let (rr, rloc) = p.integer("rr_depth")?.unwrap_or((5, el.loc.clone()));
+            if rr < 1 {
+                return Err(err(&rloc, format!("{}: rr_depth: must be a positive integer, got {rr}", p.label)));
+            }
+            ctx.render.retain(|e| e.key != "rr_depth");
+            // Past the deepest path, roulette never starts either way.
+            ctx.render.push(entry("rr_depth", int(rr.min(DEEPEST), &rloc)));
             if p.kind != "path" {
                 let _ = p.take("samples_per_pass");
             }
@@ -50,7 +63,9 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<(), ParamError> {
             (2, el.loc.clone())
         }
         "moment" => {
-            ctx.warn(&el.loc, "integrator \"moment\": read as the integrator it wraps; pass --exr-layers variance for the variance layer");
+            // lamplight's layer is the variance of each pixel's mean: Mitsuba's (m2 - m1^2) / spp.
+            ctx.render.retain(|e| e.key != "variance");
+            ctx.render.push(entry("variance", super::boolean(true, &el.loc)));
             let inner = p.objects.iter().copied().find(|o| o.tag == "integrator");
             ctx.finish(p);
             return match inner {
@@ -65,10 +80,11 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<(), ParamError> {
             ))
         }
     };
-    if let Some((true, loc)) = p.boolean("hide_emitters")? {
-        return Err(err(&loc, format!("{}: hide_emitters = true is not supported (lamplight's camera sees emitters)", p.label)));
-    }
+    let hide = p.boolean("hide_emitters")?;
     ctx.render.push(entry("integrator", text("path", &el.loc)));
+    if let Some((true, loc)) = hide {
+        ctx.render.push(entry("hide_emitters", super::boolean(true, &loc)));
+    }
     ctx.render.push(entry("max_depth", int(depth.0, &depth.1)));
     ctx.finish(p);
     Ok(())

@@ -38,6 +38,7 @@ pub mod properties;
 pub mod sensors;
 pub mod serialized;
 pub mod shapes;
+pub mod sided;
 pub mod spectra;
 pub mod textures;
 pub mod transforms;

@@ -14,7 +14,9 @@
 //! | a nested `<bsdf>` or `<ref>` | `material` (default: Mitsuba's diffuse 0.5, black on an emitter) |
 //! | a nested `<emitter type="area">` | the material with `emission` |
 //!
-//! `flip_normals` is not supported (a warning). Meshes without normals are shaded
+//! `flip_normals` is not supported (a warning): the normals are kept and the
+//! surface is read two-sided, so that a one-sided BSDF is not black on the
+//! side Mitsuba lights (emission stays on lamplight's front). Meshes without normals are shaded
 //! flat, as Mitsuba's `face_normals = true` (Mitsuba's default smooths them).
 
 use lamplight_core::math::{Mat4, Vec3};
@@ -105,14 +107,19 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El, out: &mut Vec<Item>) -> Result<()
             node.push(("matrix", matrix(&m, &mloc)));
         }
     }
-    if let Some((true, bloc)) = p.boolean("flip_normals")? {
-        ctx.warn(&bloc, format!("{}: flip_normals is not supported, ignored", p.label));
+    let flip = p.boolean("flip_normals")?;
+    if let Some((true, bloc)) = &flip {
+        ctx.warn(bloc, format!("{}: flip_normals is not supported: the normals are kept and the surface is read two-sided", p.label));
     }
+    let flipped = matches!(flip, Some((true, _)));
     // lamplight shades meshes without normals flat, as face_normals = true asks;
     // Mitsuba's default smooths them (a known difference, docs/mitsuba.md).
     let _ = p.boolean("face_normals")?;
     if p.kind != "instance" {
-        let material = material(ctx, &p)?;
+        let mut material = material(ctx, &p)?;
+        if flipped {
+            material = two_sided(ctx, &material);
+        }
         node.push(("material", text(&material, &loc)));
     }
     for o in p.objects.clone() {
@@ -152,6 +159,21 @@ fn material<'a>(ctx: &mut Ctx<'a>, p: &Plugin<'a>) -> Result<String, ParamError>
     let _ = rloc;
     ctx.materials.push(entry(&emitting, material));
     Ok(emitting)
+}
+
+/// The material `name` without `sided` (a copy, made when it has it): on a
+/// shape whose normals Mitsuba flips and lamplight keeps, a one-sided surface
+/// would be black on the side Mitsuba lights.
+fn two_sided(ctx: &mut Ctx<'_>, name: &str) -> String {
+    let Some(mut material) = ctx.materials.iter().find(|m| m.key == name).map(|m| m.item.clone()) else { return name.to_string() };
+    let Value::Table(t) = &mut material.value else { return name.to_string() };
+    if !t.entries.iter().any(|e| e.key == "sided") {
+        return name.to_string();
+    }
+    t.entries.retain(|e| e.key != "sided");
+    let copy = ctx.fresh(&format!("{name}_two_sided"));
+    ctx.materials.push(entry(&copy, material));
+    copy
 }
 
 fn mesh_name(ctx: &mut Ctx<'_>, el: &El) -> String {
