@@ -31,7 +31,6 @@ use base64::engine::{general_purpose::GeneralPurpose, DecodePaddingMode, General
 use base64::Engine;
 use gltf::accessor::{DataType, Dimensions};
 use gltf::khr_lights_punctual::Kind;
-use lamplight_core::lights::{DirectionalLight, PointLight, SpotLight, SpotProfile};
 use lamplight_core::materials::Material;
 use lamplight_core::math::{Mat4, Rgb, Vec3};
 use lamplight_core::shapes::VertexAttributes;
@@ -112,6 +111,7 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
         ));
     }
     out.warnings = reader.warnings.into_vec();
+    out.images = reader.images.into_sources();
     Ok(out)
 }
 
@@ -201,14 +201,19 @@ impl Reader<'_> {
                 self.warnings.once("glTF light range ignored: point and spot lights fall off with the squared distance".to_string());
             }
             let made = match light.kind() {
-                Kind::Directional => DirectionalLight::new(forward, power).map(ImportedLight::Directional),
-                Kind::Point => PointLight::new(origin, power).map(ImportedLight::Point),
-                Kind::Spot { inner_cone_angle, outer_cone_angle } => {
-                    let (inner, outer) = (f64::from(inner_cone_angle).to_degrees(), f64::from(outer_cone_angle).to_degrees());
-                    SpotLight::new(origin, forward, power, inner, outer, SpotProfile::Gltf).map(ImportedLight::Spot)
-                }
+                Kind::Directional => ImportedLight::Directional { direction: forward, radiance: power },
+                Kind::Point => ImportedLight::Point { position: origin, intensity: power },
+                Kind::Spot { inner_cone_angle, outer_cone_angle } => ImportedLight::Spot {
+                    position: origin,
+                    direction: forward,
+                    intensity: power,
+                    inner_deg: f64::from(inner_cone_angle).to_degrees(),
+                    outer_deg: f64::from(outer_cone_angle).to_degrees(),
+                },
             };
-            out.lights.push(made.map_err(|e| LoadError::json(self.path, at, e.to_string()))?);
+            // Built once here, so that a bad light is an error at its place in the file.
+            made.build().map_err(|e| LoadError::json(self.path, at.clone(), e.to_string()))?;
+            out.lights.push(made);
         }
         Ok(())
     }

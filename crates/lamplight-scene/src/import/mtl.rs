@@ -108,7 +108,13 @@ fn map_statement(words: &[(usize, &str)]) -> Option<(String, f64, bool)> {
 }
 
 /// Reads a material library into lamplight materials by name.
-pub(super) fn parse(path: &Path, text: &str, warnings: &mut Warnings) -> Result<HashMap<String, Material>, LoadError> {
+/// Every image it reads is added to `sources` (once per file and colour space).
+pub(super) fn parse(
+    path: &Path,
+    text: &str,
+    warnings: &mut Warnings,
+    sources: &mut Vec<super::ImageSource>,
+) -> Result<HashMap<String, Material>, LoadError> {
     let mut done = HashMap::new();
     let mut images: HashMap<(String, bool), Arc<ImageData>> = HashMap::new();
     let mut current: Option<(String, MtlValues)> = None;
@@ -159,6 +165,8 @@ pub(super) fn parse(path: &Path, text: &str, warnings: &mut Warnings) -> Result<
                     Ok(i) => {
                         let i = Arc::new(i);
                         images.insert(key, i.clone());
+                        let origin = super::ImageOrigin::File(path.parent().unwrap_or(Path::new("")).join(&file));
+                        sources.push(super::ImageSource { data: i.clone(), srgb, origin });
                         Some(i)
                     }
                     Err(e) => {
@@ -346,7 +354,7 @@ mod tests {
 
     fn one(text: &str) -> Material {
         let mut w = Warnings::default();
-        parse(Path::new("t.mtl"), text, &mut w).unwrap().remove("m").unwrap()
+        parse(Path::new("t.mtl"), text, &mut w, &mut Vec::new()).unwrap().remove("m").unwrap()
     }
 
     #[test]
@@ -381,7 +389,7 @@ mod tests {
         let mut w = Warnings::default();
         let text =
             "newmtl m\nKd 0.5\nmap_Kd -s 1 1 red.png\nnorm -bm 2 red.png\nmap_Ks missing.png\ndisp b.png\nmap_bump -bm 0.25 red.png\n";
-        let m = parse(&dir.path().join("t.mtl"), text, &mut w).unwrap().remove("m").unwrap();
+        let m = parse(&dir.path().join("t.mtl"), text, &mut w, &mut Vec::new()).unwrap().remove("m").unwrap();
         assert!(matches!(m.color, Texture::Image(_)));
         assert_eq!(m.normal_map.as_ref().map(|n| n.scale), Some(2.0));
         assert_eq!(m.bump.as_ref().map(|b| b.scale), Some(0.25));
@@ -416,7 +424,7 @@ mod tests {
         assert_eq!((plain.pbr.as_ref().map(|p| p.metallic), plain.roughness), (Some(0.0), 0.7));
         assert!(one("newmtl m\nKd 0.5\n").pbr.is_none());
         let mut w = Warnings::default();
-        let e = parse(Path::new("t.mtl"), "newmtl m\nPm 2\n", &mut w).unwrap_err().to_string();
+        let e = parse(Path::new("t.mtl"), "newmtl m\nPm 2\n", &mut w, &mut Vec::new()).unwrap_err().to_string();
         assert_eq!(e, "t.mtl:2:4: expected a value in [0, 1], found 2");
     }
 }
