@@ -83,6 +83,8 @@ f 4 1 5
 const MTL: &str = "newmtl floor
 Kd 0.8 0.7 0.6
 map_Kd -clamp on tex/checker.png
+map_Ka tex/checker.png
+decal rough.png
 newmtl shiny
 Ka 0.05 0.05 0.05
 Kd 0.2 0.3 0.9
@@ -111,8 +113,9 @@ fn an_obj_with_an_mtl_and_textures_converts_to_the_same_renders() {
     // The mesh stays in its file; each part names its material, written out in full.
     assert!(toml.contains("[meshes.model]\nfile = \"model.obj\"\n"), "{toml}");
     assert!(toml.contains("part = 3\nmaterial = \"material_3\"\n"), "{toml}");
-    assert!(toml.contains("color = { type = \"image\", file = \"tex/checker.png\", color_space = \"srgb\", wrap = \"clamp\""), "{toml}");
+    assert!(toml.contains("b = { type = \"image\", file = \"tex/checker.png\", color_space = \"srgb\", wrap = \"clamp\""), "{toml}");
     assert!(toml.contains("reflection = { type = \"constant\", weight = 0.6 }"), "{toml}");
+    assert!(toml.contains("color = { type = \"mix\", a = [0.8, 0.7, 0.6], b = { type = \"image\""), "decal: {toml}");
     assert!(toml.contains("type = \"pbr\""), "{toml}");
     // No lights in the file: the viewer's three, its surround and its camera.
     assert_eq!(toml.matches("type = \"directional_light\"").count(), 3, "{toml}");
