@@ -134,13 +134,13 @@ def scenes(d):
     # with Schlick's Fresnel from the base colour; as a dielectric glTF has a
     # Lambert base under (1 - F) with f0 = 0.04 (principled: specular = 0.5),
     # principled has Disney's retro-reflective diffuse.
-    for metallic, light, sky in ((1.0, True, 0.0), (0.0, False, SKY)):
+    for metallic, rough, light, sky in ((1.0, 0.5, True, 0.0), (0.0, 0.2, False, SKY), (0.0, 0.5, False, SKY), (0.0, 0.8, False, SKY)):
         ll = (f'type = "pbr"\nbase_color = {{ type = "image", file = "colours.png" }}\n'
-              f'metallic = {metallic}\nroughness = 0.5')
+              f'metallic = {metallic}\nroughness = {rough}')
         principled = {"type": "principled", "base_color": bitmap("colours.png", "repeat", "bilinear"),
-                      "metallic": metallic, "roughness": 0.5, "specular": 0.5}
+                      "metallic": metallic, "roughness": rough, "specular": 0.5}
         kind = "metal" if metallic == 1.0 else "dielectric"
-        out[f"textured pbr {kind} vs principled"] = (ll, principled, light, sky)
+        out[f"textured pbr {kind}, roughness {rough}, vs principled"] = (ll, principled, light, sky)
     return out
 
 
