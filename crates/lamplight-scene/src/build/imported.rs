@@ -119,7 +119,7 @@ mod tests {
         };
         let imported = Imported {
             meshes: vec![mesh],
-            instances: vec![ImportedMesh { mesh: 0, transform: Mat4::from_translation(Vec3::Z), material: None }],
+            instances: vec![ImportedMesh { mesh: 0, transform: Mat4::from_translation(Vec3::Z), material: None, material_name: None }],
             ..Imported::default()
         };
         let scene = build(Path::new("t.obj"), &imported).unwrap();

@@ -5,7 +5,8 @@
 //!   path relative to the TOML), and one `mesh` node per part (`part = i`,
 //!   the file's placed meshes in order) gives each its material by name;
 //! - every material the importer mapped is written out in full as
-//!   `[materials.NAME]` (`pbr` or `phong`, [`super::material`]), with its
+//!   `[materials.NAME]` (the file's name for it; `pbr` or `phong`,
+//!   [`super::material`]), with its
 //!   textures naming their image files (embedded glTF images are extracted
 //!   beside the TOML, [`super::images`]);
 //! - the camera is the file's first camera, or the viewer's framing camera
@@ -99,7 +100,7 @@ pub(super) fn convert(input: &Path, output: &Path) -> Result<super::Converted, L
         let name = match materials.iter().find(|(_, written, _)| *written == text) {
             Some((name, _, _)) => name.clone(),
             None => {
-                let name = if placed.material.is_none() { "default".to_string() } else { format!("material_{}", materials.len()) };
+                let name = material_name(placed, &materials);
                 materials.push((name.clone(), text, t));
                 name
             }
@@ -131,6 +132,22 @@ pub(super) fn convert(input: &Path, output: &Path) -> Result<super::Converted, L
     );
     let toml = crate::formats::native_writer::write(&table(root), &header);
     Ok(super::Converted { toml, warnings: imported.warnings_of(input), files: images.extracted })
+}
+
+/// The file's name of the part's material (or `default`, or `material_N`),
+/// made unique among `taken` (a glTF material with and without vertex colours
+/// is two materials of one name).
+fn material_name(placed: &import::ImportedMesh, taken: &[(String, String, Table)]) -> String {
+    let base = match (&placed.material, &placed.material_name) {
+        (None, _) => "default".to_string(),
+        (Some(_), Some(name)) if !name.trim().is_empty() => name.clone(),
+        (Some(_), _) => format!("material_{}", taken.len()),
+    };
+    let free = |n: &str| !taken.iter().any(|(t, _, _)| t == n);
+    if free(&base) {
+        return base;
+    }
+    (2..).map(|i| format!("{base}_{i}")).find(|n| free(n)).expect("some suffix is free")
 }
 
 fn string(s: &str) -> Value {

@@ -142,7 +142,7 @@ struct Reader<'p> {
     buffers: Vec<Vec<u8>>,
     warnings: Warnings,
     /// glTF mesh index -> (index into `Imported::meshes`, material) per triangle primitive.
-    primitives: HashMap<usize, Vec<(usize, Option<Material>)>>,
+    primitives: HashMap<usize, Vec<(usize, Option<Material>, Option<String>)>>,
     /// (glTF material index, whether the primitive has vertex colours) -> material.
     materials: HashMap<(usize, bool), Material>,
     images: GltfImages<'p>,
@@ -158,8 +158,8 @@ impl Reader<'_> {
                 let list = self.mesh(&mesh, out)?;
                 self.primitives.insert(mesh.index(), list);
             }
-            for (m, material) in &self.primitives[&mesh.index()] {
-                out.instances.push(ImportedMesh { mesh: *m, transform: world, material: material.clone() });
+            for (m, material, name) in &self.primitives[&mesh.index()] {
+                out.instances.push(ImportedMesh { mesh: *m, transform: world, material: material.clone(), material_name: name.clone() });
             }
         }
         let origin = world.transform_point3(Vec3::ZERO);
@@ -219,7 +219,7 @@ impl Reader<'_> {
     }
 
     /// Reads a mesh's triangle primitives into `out.meshes`.
-    fn mesh(&mut self, mesh: &gltf::Mesh, out: &mut Imported) -> Result<Vec<(usize, Option<Material>)>, LoadError> {
+    fn mesh(&mut self, mesh: &gltf::Mesh, out: &mut Imported) -> Result<Vec<(usize, Option<Material>, Option<String>)>, LoadError> {
         let mut list = Vec::new();
         for p in mesh.primitives() {
             let at = format!("meshes[{}].primitives[{}]", mesh.index(), p.index());
@@ -297,7 +297,8 @@ impl Reader<'_> {
                 self.warnings.once("glTF normalTexture on a primitive without TEXCOORD_0: its tangents follow the faces".to_string());
             }
             out.meshes.push(data);
-            list.push((out.meshes.len() - 1, material));
+            let material_name = material.as_ref().and(p.material().name()).map(str::to_string);
+            list.push((out.meshes.len() - 1, material, material_name));
         }
         Ok(list)
     }

@@ -50,6 +50,8 @@ pub struct ImportedMesh {
     pub transform: Mat4,
     /// Mapped material (`None`: the importer found none; the caller picks a default).
     pub material: Option<Material>,
+    /// The material's name in the file (MTL `newmtl`, glTF `materials[i].name`), if any.
+    pub material_name: Option<String>,
 }
 
 /// A camera from the file (glTF cameras).

@@ -142,8 +142,9 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
         if g.all_corners_have_uvs {
             mesh.attributes.uvs = Some(g.uvs);
         }
-        let material = g.material.and_then(|m| materials.get(&m).cloned());
-        imported.instances.push(ImportedMesh { mesh: imported.meshes.len(), transform: Mat4::IDENTITY, material });
+        let material = g.material.as_ref().and_then(|m| materials.get(m).cloned());
+        let material_name = if material.is_some() { g.material } else { None };
+        imported.instances.push(ImportedMesh { mesh: imported.meshes.len(), transform: Mat4::IDENTITY, material, material_name });
         imported.meshes.push(mesh);
     }
     if imported.meshes.is_empty() {
