@@ -28,11 +28,11 @@ pub const LOOK_AT_PARAMS: [Param; 7] = [
     Param::new("look_at", T::Point, "", "", "point at the image centre"),
     Param::new("up", T::Vector, "[0, 1, 0]", "", "sky direction"),
     Param::new("vfov", T::Number, "one of vfov, hfov, fov", "degrees, 0 to 180", "full vertical field of view"),
-    Param::new("hfov", T::Number, "", "degrees, 0 to 180", "full horizontal field of view"),
+    Param::new("hfov", T::Number, "one of vfov, hfov, fov", "degrees, 0 to 180", "full horizontal field of view"),
     Param::new(
         "fov",
         T::Number,
-        "",
+        "one of vfov, hfov, fov",
         "degrees, 0 to 180",
         "full field of view across the image's shorter side, whatever its aspect (pbrt's `fov`)",
     ),
