@@ -136,13 +136,16 @@ fn check_position_accessors(path: &Path, root: &gltf::json::Root) -> Result<(), 
     Ok(())
 }
 
+/// A triangle primitive read: its index into `Imported::meshes`, its material and the material's name.
+type Primitive = (usize, Option<Material>, Option<String>);
+
 /// State while walking the nodes: buffers, caches, warnings.
 struct Reader<'p> {
     path: &'p Path,
     buffers: Vec<Vec<u8>>,
     warnings: Warnings,
     /// glTF mesh index -> (index into `Imported::meshes`, material) per triangle primitive.
-    primitives: HashMap<usize, Vec<(usize, Option<Material>, Option<String>)>>,
+    primitives: HashMap<usize, Vec<Primitive>>,
     /// (glTF material index, whether the primitive has vertex colours) -> material.
     materials: HashMap<(usize, bool), Material>,
     images: GltfImages<'p>,
@@ -219,7 +222,7 @@ impl Reader<'_> {
     }
 
     /// Reads a mesh's triangle primitives into `out.meshes`.
-    fn mesh(&mut self, mesh: &gltf::Mesh, out: &mut Imported) -> Result<Vec<(usize, Option<Material>, Option<String>)>, LoadError> {
+    fn mesh(&mut self, mesh: &gltf::Mesh, out: &mut Imported) -> Result<Vec<Primitive>, LoadError> {
         let mut list = Vec::new();
         for p in mesh.primitives() {
             let at = format!("meshes[{}].primitives[{}]", mesh.index(), p.index());
