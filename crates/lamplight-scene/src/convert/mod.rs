@@ -6,7 +6,7 @@
 //!   [`crate::formats::native_writer`]. Relative `file` paths are relative to the
 //!   scene's folder; when the TOML goes to another folder they are made absolute.
 //! - A mesh file (OBJ, PLY, glTF, GLB) keeps its geometry and has its
-//!   materials, camera and lights written out ([`mesh_file`]).
+//!   materials, camera and lights written out (`convert/mesh_file.rs`).
 
 use std::path::Path;
 
