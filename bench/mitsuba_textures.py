@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """Textured scenes against Mitsuba 3: image textures with each wrap mode and
-filter on a diffuse quad, a normal-mapped rough conductor, an alpha cut-out and
-stochastic transparency (alpha_mode = "blend", against Mitsuba's `mask`), per-pixel z-tested.
+filter on a diffuse quad, a normal-mapped rough conductor, an alpha cut-out,
+stochastic transparency (alpha_mode = "blend", against Mitsuba's `mask`), and
+lamplight's textured `pbr` (glTF metallic-roughness) material against Mitsuba's
+`principled` BSDF, as a metal and as a dielectric, per-pixel z-tested.
 
 Every scene is a 2 x 2 quad read from the same OBJ file by both renderers, its
 texture coordinates running from -0.5 to 1.5 so that the wrap mode shows,
@@ -24,7 +26,7 @@ the pixel, whatever the path). A pixel passes when all three channels' |z|
 stay below the two-sided Sidak-corrected 1 % threshold over all pixels; a
 scene passes when at least 99.75 % of pixels do.
 
-Usage: python bench/mitsuba_textures.py [--size 64] [--spp 16] [--renders 32] [--keep DIR]
+Usage: python bench/mitsuba_textures.py [--size 64] [--spp 16] [--renders 32] [--keep DIR] [--only TEXT]
 Needs Mitsuba 3 and numpy (scalar_rgb variant); LAMPLIGHT names the binary
 (default target/release/lamplight).
 """
@@ -127,6 +129,18 @@ def scenes(d):
     ll += 'normal_map = { type = "image", file = "normals.png", color_space = "linear" }'
     out["normal-mapped rough conductor"] = (
         ll, {"type": "normalmap", "normalmap": bitmap("normals.png", "repeat", "bilinear", raw=True), "bsdf": conductor}, True, 0.0)
+    # glTF's metallic-roughness model against Mitsuba's principled BSDF (Disney's),
+    # the base colour from the bitmap. As a metal both are GGX of alpha = r^2
+    # with Schlick's Fresnel from the base colour; as a dielectric glTF has a
+    # Lambert base under (1 - F) with f0 = 0.04 (principled: specular = 0.5),
+    # principled has Disney's retro-reflective diffuse.
+    for metallic, rough, light, sky in ((1.0, 0.5, True, 0.0), (0.0, 0.2, False, SKY), (0.0, 0.5, False, SKY), (0.0, 0.8, False, SKY)):
+        ll = (f'type = "pbr"\nbase_color = {{ type = "image", file = "colours.png" }}\n'
+              f'metallic = {metallic}\nroughness = {rough}')
+        principled = {"type": "principled", "base_color": bitmap("colours.png", "repeat", "bilinear"),
+                      "metallic": metallic, "roughness": rough, "specular": 0.5}
+        kind = "metal" if metallic == 1.0 else "dielectric"
+        out[f"textured pbr {kind}, roughness {rough}, vs principled"] = (ll, principled, light, sky)
     return out
 
 
@@ -198,6 +212,7 @@ def main():
     ap.add_argument("--spp", type=int, default=16)
     ap.add_argument("--renders", type=int, default=32)
     ap.add_argument("--keep", metavar="DIR", help="write the inputs and the mean images here")
+    ap.add_argument("--only", metavar="TEXT", help="only the scenes whose name contains TEXT")
     args = ap.parse_args()
     mi.set_variant("scalar_rgb")
     print(f"Mitsuba {mi.__version__} scalar_rgb; {args.size}x{args.size}, {args.renders} renders x {args.spp} spp per renderer")
@@ -208,6 +223,8 @@ def main():
     write_inputs(d)
     ok = True
     for name, (material, bsdf, light, sky) in scenes(d).items():
+        if args.only and args.only not in name:
+            continue
         t0 = time.perf_counter()
         lams = [render_lamplight(d, material, light, args.size, args.spp, s, sky) for s in range(args.renders)]
         mits = [render_mitsuba(d, bsdf, light, args.size, args.spp, s, sky) for s in range(args.renders)]
@@ -220,7 +237,8 @@ def main():
             tag = name.replace(",", "").replace(" ", "_")
             np.save(os.path.join(d, f"{tag}_lamplight.npy"), np.mean(lams, 0))
             np.save(os.path.join(d, f"{tag}_mitsuba.npy"), np.mean(mits, 0))
-    sky_check(d, args.size)
+    if not args.only:
+        sky_check(d, args.size)
     raise SystemExit(0 if ok else 1)
 
 

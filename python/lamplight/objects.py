@@ -64,11 +64,15 @@ def camera(
     hfov: Optional[float] = None,
     up: Optional[Vec] = None,
     pixel_offset: Optional[float] = None,
+    fov: Optional[float] = None,
 ) -> Dict[str, Any]:
-    """A look-at camera; ``vfov`` (default 40 when neither is given) or ``hfov`` in degrees."""
-    if vfov is None and hfov is None:
+    """A look-at camera; ``vfov`` (default 40 when none is given), ``hfov`` or
+    ``fov`` (across the image's shorter side, pbrt's) in degrees."""
+    if vfov is None and hfov is None and fov is None:
         vfov = 40.0
-    return _clean({"eye": eye, "look_at": look_at, "vfov": vfov, "hfov": hfov, "up": up, "pixel_offset": pixel_offset})
+    return _clean(
+        {"eye": eye, "look_at": look_at, "vfov": vfov, "hfov": hfov, "fov": fov, "up": up, "pixel_offset": pixel_offset}
+    )
 
 
 def material(

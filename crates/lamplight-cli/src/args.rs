@@ -41,7 +41,7 @@ pub enum Command {
     Raycast(crate::raycast::RaycastArgs),
     /// Show why a pixel has its colour: the ray tree of each sample (Whitted) or its paths (path tracer).
     Explain(ExplainArgs),
-    /// Write a Mitsuba scene (.xml) as a lamplight scene file (.toml) that renders the same.
+    /// Write a Mitsuba scene (.xml) or a mesh file (.obj, .ply, .gltf, .glb) as a lamplight scene file (.toml) that renders the same.
     Convert(ConvertArgs),
     /// Look at a scene live in the browser: progressive rendering, mouse camera, live reload, pixel inspector.
     View(ViewArgs),
@@ -50,7 +50,7 @@ pub enum Command {
 /// `lamplight convert` flags.
 #[derive(Debug, Args)]
 pub struct ConvertArgs {
-    /// The scene to convert (Mitsuba 3 XML).
+    /// The scene to convert: Mitsuba 3 XML, or a mesh file (its meshes stay in it; materials, camera and lights are written out).
     #[arg(value_name = "SCENE")]
     pub input: PathBuf,
     /// The TOML file to write.

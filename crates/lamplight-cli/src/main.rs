@@ -65,6 +65,12 @@ fn run() -> anyhow::Result<()> {
 fn convert_command(args: &args::ConvertArgs) -> anyhow::Result<()> {
     let converted = lamplight_scene::convert::convert(&args.input, &args.output, &args.define).map_err(|e| UsageError(e.to_string()))?;
     print_warnings(&converted.warnings);
+    for (path, bytes) in &converted.files {
+        if let Some(dir) = path.parent() {
+            std::fs::create_dir_all(dir).map_err(|e| UsageError(format!("{}: cannot create the folder: {e}", dir.display())))?;
+        }
+        lamplight_scene::atomic::write(path, bytes).map_err(|e| UsageError(format!("{}: cannot write: {e}", path.display())))?;
+    }
     lamplight_scene::atomic::write(&args.output, converted.toml.as_bytes())
         .map_err(|e| UsageError(format!("{}: cannot write: {e}", args.output.display())))?;
     Ok(())

@@ -316,3 +316,28 @@ fn importer_warnings_are_printed_once_each_to_stderr() {
     fs::write(dir.join("twice.toml"), scene).unwrap();
     assert_eq!(ok(dir, &["render", "twice.toml", "--width", "16", "--height", "9", "-q"]), expected);
 }
+
+#[test]
+fn convert_writes_a_mesh_file_as_toml_and_refuses_in_one_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let dir = dir.path();
+    let ply = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n\
+               element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    fs::write(dir.join("t.ply"), ply).unwrap();
+    ok(dir, &["convert", "t.ply", "-o", "t.toml"]);
+    let toml = fs::read_to_string(dir.join("t.toml")).unwrap();
+    assert!(toml.contains("[meshes.t]\nfile = \"t.ply\"\n"), "{toml}");
+    let small = ["--width", "16", "--height", "12"];
+    ok(dir, &[&["render", "t.ply", "-o", "a.png"][..], &small].concat());
+    ok(dir, &[&["render", "t.toml", "-o", "b.png"][..], &small].concat());
+    assert_eq!(read_png_srgb8(&dir.join("a.png")).unwrap(), read_png_srgb8(&dir.join("b.png")).unwrap());
+    fs::write(dir.join("m.stl"), "solid m\nendsolid m\n").unwrap();
+    fails(
+        dir,
+        &["convert", "m.stl", "-o", "m.toml"],
+        2,
+        "m.stl: convert reads Mitsuba scenes (.xml) and mesh files (obj, ply, gltf, glb), not .stl files",
+    );
+    fails(dir, &["convert", "t.ply", "-o", "t.obj"], 2, "t.obj: convert writes a lamplight scene file, expected a name ending in .toml");
+    assert_eq!(fs::read_to_string(dir.join("t.ply")).unwrap(), ply, "the mesh file is left alone");
+}

@@ -138,9 +138,11 @@ fn describe_imported(path: &Path, imported: &Imported) -> String {
         .lights
         .iter()
         .map(|l| match l {
-            ImportedLight::Point(p) => format!("point at {}", vec3(p.position)),
-            ImportedLight::Directional(d) => format!("directional towards {}", vec3(d.direction)),
-            ImportedLight::Spot(s) => format!("spot at {} towards {}", vec3(s.position), vec3(s.axis)),
+            ImportedLight::Point { position, .. } => format!("point at {}", vec3(*position)),
+            ImportedLight::Directional { direction, .. } => format!("directional towards {}", vec3(direction.normalize_or_zero())),
+            ImportedLight::Spot { position, direction, .. } => {
+                format!("spot at {} towards {}", vec3(*position), vec3(direction.normalize_or_zero()))
+            }
         })
         .collect();
     if emitting > 0 {

@@ -102,6 +102,13 @@ pub static STRUCTURAL: &[Structural] = &[
         params: &[
             Param::new("mesh", T::String, "", "", "name of a `[meshes]` entry"),
             Param::new("material", T::String, "inherited, else the file's", "", "material name"),
+            Param::new(
+                "part",
+                T::Integer,
+                "every part",
+                "0 to parts - 1",
+                "only this part of a mesh file: its placed meshes in file order (OBJ: one per group and material; glTF: one per primitive of each node, in node order)",
+            ),
         ],
     },
 ];

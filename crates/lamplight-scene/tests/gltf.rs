@@ -118,17 +118,19 @@ fn check_scene(imported: &import::Imported) {
     // candela and lux over pi: see the importer's module doc.
     use std::f64::consts::PI;
     match &imported.lights[0] {
-        ImportedLight::Point(p) => assert_eq!((p.position, p.intensity), (Vec3::new(0.0, 4.0, 0.0), Rgb::splat(20.0 / PI))),
+        ImportedLight::Point { position, intensity } => {
+            assert_eq!((*position, *intensity), (Vec3::new(0.0, 4.0, 0.0), Rgb::splat(20.0 / PI)))
+        }
         other => panic!("expected a point light, got {other:?}"),
     }
     match &imported.lights[1] {
-        ImportedLight::Directional(d) => assert_eq!((d.direction, d.radiance), (-Vec3::Z, Rgb::splat(2.0 / PI))),
+        ImportedLight::Directional { direction, radiance } => assert_eq!((*direction, *radiance), (-Vec3::Z, Rgb::splat(2.0 / PI))),
         other => panic!("expected a directional light, got {other:?}"),
     }
     match &imported.lights[2] {
-        ImportedLight::Spot(s) => {
-            assert_eq!((s.intensity, s.axis, s.profile), (Rgb::splat(3.0 / PI), -Vec3::Z, lamplight_core::lights::SpotProfile::Gltf));
-            assert!((s.cos_inner - 0.25f64.cos()).abs() < 1e-7 && (s.cos_outer - 0.5f64.cos()).abs() < 1e-7);
+        ImportedLight::Spot { intensity, direction, inner_deg, outer_deg, .. } => {
+            assert_eq!((*intensity, *direction), (Rgb::splat(3.0 / PI), -Vec3::Z));
+            assert!((inner_deg - 0.25f64.to_degrees()).abs() < 1e-5 && (outer_deg - 0.5f64.to_degrees()).abs() < 1e-5);
         }
         other => panic!("expected a spot light, got {other:?}"),
     }

@@ -23,12 +23,19 @@ use crate::ray::Ray;
 use crate::Error;
 
 /// The look-at parameters, shared by the kinds built on the look-at form.
-pub const LOOK_AT_PARAMS: [Param; 6] = [
+pub const LOOK_AT_PARAMS: [Param; 7] = [
     Param::new("eye", T::Point, "", "", "eye position"),
     Param::new("look_at", T::Point, "", "", "point at the image centre"),
     Param::new("up", T::Vector, "[0, 1, 0]", "", "sky direction"),
-    Param::new("vfov", T::Number, "one of vfov, hfov", "degrees, 0 to 180", "full vertical field of view"),
-    Param::new("hfov", T::Number, "", "degrees, 0 to 180", "full horizontal field of view"),
+    Param::new("vfov", T::Number, "one of vfov, hfov, fov", "degrees, 0 to 180", "full vertical field of view"),
+    Param::new("hfov", T::Number, "one of vfov, hfov, fov", "degrees, 0 to 180", "full horizontal field of view"),
+    Param::new(
+        "fov",
+        T::Number,
+        "one of vfov, hfov, fov",
+        "degrees, 0 to 180",
+        "full field of view across the image's shorter side, whatever its aspect (pbrt's `fov`)",
+    ),
     Param::new("pixel_offset", T::Number, "0.5", "0 to 1", "where in a pixel its sample is (0 = corner, 0.5 = centre)"),
 ];
 
@@ -77,11 +84,12 @@ pub fn read_look_at(p: &mut Params<'_>) -> ParamResult<Perspective> {
     let eye = p.required_vec3("eye")?;
     let target = p.required_vec3("look_at")?;
     let sky = p.vec3("up")?.unwrap_or(Vec3::Y);
-    let fov = match (p.number("vfov")?, p.number("hfov")?) {
-        (Some(v), None) => Fov::VerticalDeg(v),
-        (None, Some(h)) => Fov::HorizontalDeg(h),
-        (None, None) => return Err(p.error("needs vfov or hfov (degrees)")),
-        (Some(_), Some(_)) => return Err(p.error("takes vfov or hfov, not both")),
+    let fov = match (p.number("vfov")?, p.number("hfov")?, p.number("fov")?) {
+        (Some(v), None, None) => Fov::VerticalDeg(v),
+        (None, Some(h), None) => Fov::HorizontalDeg(h),
+        (None, None, Some(s)) => Fov::SmallerSideDeg(s),
+        (None, None, None) => return Err(p.error("needs vfov, hfov or fov (degrees)")),
+        _ => return Err(p.error("takes one of vfov, hfov and fov")),
     };
     let camera = Perspective::look_at(eye, target, sky, fov).map_err(|e| p.core_error(e))?;
     with_offset(p, camera)

@@ -37,6 +37,7 @@ pub const KIND: CameraKind = Kind {
         LOOK_AT_PARAMS[3],
         LOOK_AT_PARAMS[4],
         LOOK_AT_PARAMS[5],
+        LOOK_AT_PARAMS[6],
         Param::new("lens_radius", T::Number, "", "scene units, >= 0", "radius of the aperture (pbrt's lensradius); 0 is a pinhole"),
         Param::new(
             "focal_distance",

@@ -15,10 +15,10 @@ use lamplight_core::{Scene, SceneBuilder};
 
 use super::{viewer, Built};
 use crate::error::LoadError;
-use crate::import::{self, Imported, ImportedLight, ImportedProjection};
+use crate::import::{self, Imported, ImportedProjection};
 
 /// Ambient radiance of an imported scene with lights of its own (its files carry none).
-const AMBIENT: f64 = 0.1;
+pub const AMBIENT: f64 = 0.1;
 
 /// Reads the mesh file at `path` and builds a scene (for any image size).
 pub fn load(path: &Path) -> Result<Scene, LoadError> {
@@ -45,11 +45,7 @@ pub fn build(path: &Path, imported: &Imported) -> Result<Scene, LoadError> {
             return Err(LoadError::file(path, format!("instance of missing mesh {}", placed.mesh)));
         }
     }
-    let world_points = imported
-        .instances
-        .iter()
-        .flat_map(|placed| imported.meshes[placed.mesh].positions.iter().map(move |p| placed.transform.transform_point3(*p)));
-    let sphere = viewer::bounding_sphere(world_points).ok_or_else(|| LoadError::file(path, "has no geometry to render"))?;
+    let sphere = world_sphere(imported).ok_or_else(|| LoadError::file(path, "has no geometry to render"))?;
     let (eye, target, camera): (Vec3, Vec3, Arc<dyn Camera>) = match imported.cameras.first() {
         Some(c) => match c.projection {
             ImportedProjection::Perspective { vfov_deg } => {
@@ -75,8 +71,7 @@ pub fn build(path: &Path, imported: &Imported) -> Result<Scene, LoadError> {
         let shape = lamplight_core::shapes::placed(meshes[placed.mesh].clone(), &placed.transform).map_err(fail)?;
         builder.shared_object(shape, material).map_err(fail)?;
     }
-    let emits = imported.instances.iter().any(|p| p.material.as_ref().is_some_and(|m| m.emission.max_element() > 0.0));
-    if imported.lights.is_empty() && !emits {
+    if !has_own_lights(imported) {
         builder.ambient = Rgb::splat(viewer::AMBIENT);
         builder.background = Rgb::splat(viewer::SURROUND);
         for light in viewer::lights(eye, target).map_err(fail)? {
@@ -84,13 +79,27 @@ pub fn build(path: &Path, imported: &Imported) -> Result<Scene, LoadError> {
         }
     }
     for light in &imported.lights {
-        match light {
-            ImportedLight::Point(l) => builder.light(l.clone()),
-            ImportedLight::Directional(l) => builder.light(l.clone()),
-            ImportedLight::Spot(l) => builder.light(l.clone()),
-        }
+        builder.shared_light(light.build().map_err(fail)?);
     }
     builder.build().map_err(fail)
+}
+
+/// The bounding sphere of every placed vertex, in world space (what the
+/// viewer's camera frames).
+pub fn world_sphere(imported: &Imported) -> Option<viewer::Sphere> {
+    let world_points = imported
+        .instances
+        .iter()
+        .filter_map(|placed| Some((placed, imported.meshes.get(placed.mesh)?)))
+        .flat_map(|(placed, mesh)| mesh.positions.iter().map(move |p| placed.transform.transform_point3(*p)));
+    viewer::bounding_sphere(world_points)
+}
+
+/// Whether the file lights itself: lights of its own, or an emitting mesh
+/// (else the viewer's lights and surround are added).
+pub fn has_own_lights(imported: &Imported) -> bool {
+    let emits = imported.instances.iter().any(|p| p.material.as_ref().is_some_and(|m| m.emission.max_element() > 0.0));
+    !imported.lights.is_empty() || emits
 }
 
 #[cfg(test)]
@@ -110,7 +119,7 @@ mod tests {
         };
         let imported = Imported {
             meshes: vec![mesh],
-            instances: vec![ImportedMesh { mesh: 0, transform: Mat4::from_translation(Vec3::Z), material: None }],
+            instances: vec![ImportedMesh { mesh: 0, transform: Mat4::from_translation(Vec3::Z), material: None, material_name: None }],
             ..Imported::default()
         };
         let scene = build(Path::new("t.obj"), &imported).unwrap();

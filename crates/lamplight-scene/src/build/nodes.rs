@@ -160,7 +160,14 @@ impl<'a> Ctx<'a> {
                     Ok(message) => self.fail(p.key_error("mesh", message)),
                     Err(load) => load,
                 })?;
-                for (mesh, placement, imported) in asset.iter() {
+                let parts = asset.len();
+                let part = p.integer("part", 0..=i64::MAX).map_err(|e| self.fail(e))?;
+                if let Some(k) = part.filter(|&k| k as usize >= parts) {
+                    let message = format!("part {k} does not exist: mesh \"{name}\" has {parts} part{}", if parts == 1 { "" } else { "s" });
+                    return Err(self.fail(p.key_error("part", message)));
+                }
+                let chosen = asset.iter().enumerate().filter(|(i, _)| part.is_none_or(|k| k as usize == *i));
+                for (_, (mesh, placement, imported)) in chosen {
                     let shape = placed(mesh.clone(), &(m * *placement)).map_err(|e| self.fail(p.core_error(e)))?;
                     let material = match (material, *imported) {
                         (Some(m), _) | (None, Some(m)) => m,

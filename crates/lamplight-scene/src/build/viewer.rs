@@ -81,16 +81,23 @@ pub fn camera(sphere: Sphere) -> Result<(Vec3, Perspective), Error> {
 
 /// The key, fill and rim lights for a camera at `eye` looking at `target`.
 pub fn lights(eye: Vec3, target: Vec3) -> Result<[DirectionalLight; 3], Error> {
+    let [key, fill, rim] = light_directions(eye, target);
+    Ok([
+        DirectionalLight::new(key.0, Rgb::splat(key.1))?,
+        DirectionalLight::new(fill.0, Rgb::splat(fill.1))?,
+        DirectionalLight::new(rim.0, Rgb::splat(rim.1))?,
+    ])
+}
+
+/// The directions the key, fill and rim lights travel and their irradiances
+/// (what [`lights`] builds them from; a converted scene file writes them).
+pub fn light_directions(eye: Vec3, target: Vec3) -> [(Vec3, f64); 3] {
     let forward = (target - eye).normalize();
     let right = forward.cross(Vec3::Y).normalize();
     let up = right.cross(forward);
     // Each light is given by where it comes from, in the camera's frame; it travels the other way.
     let from = |r: f64, u: f64, f: f64| -(right * r + up * u + forward * f).normalize();
-    Ok([
-        DirectionalLight::new(from(-0.7, 0.8, -0.6), Rgb::splat(KEY))?,
-        DirectionalLight::new(from(1.0, -0.1, -0.5), Rgb::splat(FILL_LIGHT))?,
-        DirectionalLight::new(from(0.3, 0.6, 1.0), Rgb::splat(RIM))?,
-    ])
+    [(from(-0.7, 0.8, -0.6), KEY), (from(1.0, -0.1, -0.5), FILL_LIGHT), (from(0.3, 0.6, 1.0), RIM)]
 }
 
 #[cfg(test)]

@@ -31,7 +31,6 @@ use base64::engine::{general_purpose::GeneralPurpose, DecodePaddingMode, General
 use base64::Engine;
 use gltf::accessor::{DataType, Dimensions};
 use gltf::khr_lights_punctual::Kind;
-use lamplight_core::lights::{DirectionalLight, PointLight, SpotLight, SpotProfile};
 use lamplight_core::materials::Material;
 use lamplight_core::math::{Mat4, Rgb, Vec3};
 use lamplight_core::shapes::VertexAttributes;
@@ -112,6 +111,7 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
         ));
     }
     out.warnings = reader.warnings.into_vec();
+    out.images = reader.images.into_sources();
     Ok(out)
 }
 
@@ -136,13 +136,16 @@ fn check_position_accessors(path: &Path, root: &gltf::json::Root) -> Result<(), 
     Ok(())
 }
 
+/// A triangle primitive read: its index into `Imported::meshes`, its material and the material's name.
+type Primitive = (usize, Option<Material>, Option<String>);
+
 /// State while walking the nodes: buffers, caches, warnings.
 struct Reader<'p> {
     path: &'p Path,
     buffers: Vec<Vec<u8>>,
     warnings: Warnings,
     /// glTF mesh index -> (index into `Imported::meshes`, material) per triangle primitive.
-    primitives: HashMap<usize, Vec<(usize, Option<Material>)>>,
+    primitives: HashMap<usize, Vec<Primitive>>,
     /// (glTF material index, whether the primitive has vertex colours) -> material.
     materials: HashMap<(usize, bool), Material>,
     images: GltfImages<'p>,
@@ -158,8 +161,8 @@ impl Reader<'_> {
                 let list = self.mesh(&mesh, out)?;
                 self.primitives.insert(mesh.index(), list);
             }
-            for (m, material) in &self.primitives[&mesh.index()] {
-                out.instances.push(ImportedMesh { mesh: *m, transform: world, material: material.clone() });
+            for (m, material, name) in &self.primitives[&mesh.index()] {
+                out.instances.push(ImportedMesh { mesh: *m, transform: world, material: material.clone(), material_name: name.clone() });
             }
         }
         let origin = world.transform_point3(Vec3::ZERO);
@@ -201,20 +204,25 @@ impl Reader<'_> {
                 self.warnings.once("glTF light range ignored: point and spot lights fall off with the squared distance".to_string());
             }
             let made = match light.kind() {
-                Kind::Directional => DirectionalLight::new(forward, power).map(ImportedLight::Directional),
-                Kind::Point => PointLight::new(origin, power).map(ImportedLight::Point),
-                Kind::Spot { inner_cone_angle, outer_cone_angle } => {
-                    let (inner, outer) = (f64::from(inner_cone_angle).to_degrees(), f64::from(outer_cone_angle).to_degrees());
-                    SpotLight::new(origin, forward, power, inner, outer, SpotProfile::Gltf).map(ImportedLight::Spot)
-                }
+                Kind::Directional => ImportedLight::Directional { direction: forward, radiance: power },
+                Kind::Point => ImportedLight::Point { position: origin, intensity: power },
+                Kind::Spot { inner_cone_angle, outer_cone_angle } => ImportedLight::Spot {
+                    position: origin,
+                    direction: forward,
+                    intensity: power,
+                    inner_deg: f64::from(inner_cone_angle).to_degrees(),
+                    outer_deg: f64::from(outer_cone_angle).to_degrees(),
+                },
             };
-            out.lights.push(made.map_err(|e| LoadError::json(self.path, at, e.to_string()))?);
+            // Built once here, so that a bad light is an error at its place in the file.
+            made.build().map_err(|e| LoadError::json(self.path, at.clone(), e.to_string()))?;
+            out.lights.push(made);
         }
         Ok(())
     }
 
     /// Reads a mesh's triangle primitives into `out.meshes`.
-    fn mesh(&mut self, mesh: &gltf::Mesh, out: &mut Imported) -> Result<Vec<(usize, Option<Material>)>, LoadError> {
+    fn mesh(&mut self, mesh: &gltf::Mesh, out: &mut Imported) -> Result<Vec<Primitive>, LoadError> {
         let mut list = Vec::new();
         for p in mesh.primitives() {
             let at = format!("meshes[{}].primitives[{}]", mesh.index(), p.index());
@@ -292,7 +300,8 @@ impl Reader<'_> {
                 self.warnings.once("glTF normalTexture on a primitive without TEXCOORD_0: its tangents follow the faces".to_string());
             }
             out.meshes.push(data);
-            list.push((out.meshes.len() - 1, material));
+            let material_name = material.as_ref().and(p.material().name()).map(str::to_string);
+            list.push((out.meshes.len() - 1, material, material_name));
         }
         Ok(list)
     }

@@ -9,7 +9,22 @@ use std::sync::Arc;
 use base64::Engine;
 use lamplight_core::materials::ImageData;
 
+use super::{ImageOrigin, ImageSource};
 use crate::error::LoadError;
+
+/// The extension of an encoded image's format, from its first bytes
+/// (glTF embeds PNG and JPEG; anything else keeps `.bin` and is decoded by content).
+fn image_extension(bytes: &[u8]) -> &'static str {
+    if bytes.starts_with(b"\x89PNG") {
+        "png"
+    } else if bytes.starts_with(&[0xff, 0xd8]) {
+        "jpg"
+    } else if bytes.starts_with(b"RIFF") && bytes.get(8..12) == Some(b"WEBP") {
+        "webp"
+    } else {
+        "bin"
+    }
+}
 
 /// Checks what gltf 1.4.1's `Image::source` unwraps without validating (found
 /// by the `gltf` fuzz target: an image with a `bufferView` but no `mimeType`
@@ -29,15 +44,21 @@ pub(super) fn check_sources(path: &Path, root: &gltf::json::Root) -> Result<(), 
     Ok(())
 }
 
-/// Decoded images by (image index, sRGB).
+/// Decoded images by (image index, sRGB), and where each came from.
 pub(super) struct GltfImages<'p> {
     path: &'p Path,
     cache: HashMap<(usize, bool), Arc<ImageData>>,
+    sources: Vec<ImageSource>,
 }
 
 impl<'p> GltfImages<'p> {
     pub(super) fn new(path: &'p Path) -> GltfImages<'p> {
-        GltfImages { path, cache: HashMap::new() }
+        GltfImages { path, cache: HashMap::new(), sources: Vec::new() }
+    }
+
+    /// Every image decoded, in the order it was first used.
+    pub(super) fn into_sources(self) -> Vec<ImageSource> {
+        self.sources
     }
 
     /// Image `image` decoded, from sRGB when `srgb`; errors name `images[i]`.
@@ -48,7 +69,7 @@ impl<'p> GltfImages<'p> {
         }
         let at = format!("images[{}]", image.index());
         let fail = |where_: &str, message: String| LoadError::json(self.path, format!("{at}{where_}"), message);
-        let (name, bytes): (std::path::PathBuf, std::borrow::Cow<'_, [u8]>) = match image.source() {
+        let (name, bytes, embedded): (std::path::PathBuf, std::borrow::Cow<'_, [u8]>, bool) = match image.source() {
             gltf::image::Source::View { view, .. } => {
                 let (start, len) = (view.offset(), view.length());
                 let buffer = buffers.get(view.buffer().index());
@@ -61,6 +82,7 @@ impl<'p> GltfImages<'p> {
                 (
                     self.path.with_file_name(format!("{}#{at}", self.path.file_name().map_or("glb".into(), |n| n.to_string_lossy()))),
                     bytes.into(),
+                    true,
                 )
             }
             gltf::image::Source::Uri { uri, .. } => {
@@ -72,6 +94,7 @@ impl<'p> GltfImages<'p> {
                     (
                         self.path.with_file_name(format!("{}#{at}", self.path.file_name().map_or("gltf".into(), |n| n.to_string_lossy()))),
                         bytes.into(),
+                        true,
                     )
                 } else if uri.contains("://") {
                     return Err(fail(".uri", format!("cannot fetch `{uri}`: only files beside the glTF are read")));
@@ -79,13 +102,24 @@ impl<'p> GltfImages<'p> {
                     let file = self.path.parent().unwrap_or(Path::new("")).join(percent_decoded(uri));
                     let bytes = crate::input::read_regular(&file, crate::image_io::MAX_IMAGE_FILE_BYTES)
                         .map_err(|r| fail(".uri", format!("cannot read image `{}`: {}", file.display(), crate::image_io::refusal(&r))))?;
-                    (file, bytes.into())
+                    (file, bytes.into(), false)
                 }
             }
         };
         let data = crate::texture_files::decode_texture(&name, &bytes, srgb).map_err(|m| fail("", m))?;
         let data = Arc::new(data);
         self.cache.insert(key, data.clone());
+        let origin = if embedded {
+            ImageOrigin::Embedded {
+                label: name.file_name().map_or_else(|| at.clone(), |n| n.to_string_lossy().into_owned()),
+                index: image.index(),
+                extension: image_extension(&bytes),
+                bytes: Arc::from(&*bytes),
+            }
+        } else {
+            ImageOrigin::File(name)
+        };
+        self.sources.push(ImageSource { data: data.clone(), srgb, origin });
         Ok(data)
     }
 }

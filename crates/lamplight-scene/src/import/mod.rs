@@ -10,9 +10,9 @@
 
 use std::path::Path;
 
-use lamplight_core::lights::{DirectionalLight, PointLight, SpotLight};
+use lamplight_core::lights::{DirectionalLight, PointLight, SpotLight, SpotProfile};
 use lamplight_core::materials::Material;
-use lamplight_core::math::{Mat4, Vec3};
+use lamplight_core::math::{Mat4, Rgb, Vec3};
 use lamplight_core::shapes::VertexAttributes;
 
 use crate::error::LoadError;
@@ -50,6 +50,8 @@ pub struct ImportedMesh {
     pub transform: Mat4,
     /// Mapped material (`None`: the importer found none; the caller picks a default).
     pub material: Option<Material>,
+    /// The material's name in the file (MTL `newmtl`, glTF `materials[i].name`), if any.
+    pub material_name: Option<String>,
 }
 
 /// A camera from the file (glTF cameras).
@@ -83,15 +85,81 @@ pub enum ImportedProjection {
     },
 }
 
-/// A light from the file (glTF KHR_lights_punctual).
-#[derive(Clone, Debug)]
+/// A light from the file (glTF KHR_lights_punctual), as the arguments of its
+/// constructor, so that a converted scene file builds the very same light.
+#[derive(Clone, Debug, PartialEq)]
 pub enum ImportedLight {
-    /// Point light.
-    Point(PointLight),
-    /// Directional light.
-    Directional(DirectionalLight),
-    /// Spot light (the glTF cone profile).
-    Spot(SpotLight),
+    /// Point light ([`PointLight::new`]).
+    Point {
+        /// Position.
+        position: Vec3,
+        /// Intensity.
+        intensity: Rgb,
+    },
+    /// Directional light ([`DirectionalLight::new`]).
+    Directional {
+        /// The way the light travels (not normalized).
+        direction: Vec3,
+        /// Radiance.
+        radiance: Rgb,
+    },
+    /// Spot light with the glTF cone profile ([`SpotLight::new`]).
+    Spot {
+        /// Position.
+        position: Vec3,
+        /// Axis (not normalized).
+        direction: Vec3,
+        /// Intensity on the axis.
+        intensity: Rgb,
+        /// Inner cone angle, degrees.
+        inner_deg: f64,
+        /// Outer cone angle, degrees.
+        outer_deg: f64,
+    },
+}
+
+impl ImportedLight {
+    /// The core light.
+    pub fn build(&self) -> Result<std::sync::Arc<dyn lamplight_core::lights::Light>, lamplight_core::Error> {
+        use std::sync::Arc;
+        Ok(match *self {
+            ImportedLight::Point { position, intensity } => Arc::new(PointLight::new(position, intensity)?),
+            ImportedLight::Directional { direction, radiance } => Arc::new(DirectionalLight::new(direction, radiance)?),
+            ImportedLight::Spot { position, direction, intensity, inner_deg, outer_deg } => {
+                Arc::new(SpotLight::new(position, direction, intensity, inner_deg, outer_deg, SpotProfile::Gltf)?)
+            }
+        })
+    }
+}
+
+/// Where a texture image of an imported material came from, so that a
+/// converted scene file can name it ([`crate::convert`]).
+#[derive(Clone, Debug)]
+pub struct ImageSource {
+    /// The decoded image the materials hold.
+    pub data: std::sync::Arc<lamplight_core::materials::ImageData>,
+    /// Decoded from sRGB.
+    pub srgb: bool,
+    /// The file, or the bytes of an image embedded in the file.
+    pub origin: ImageOrigin,
+}
+
+/// The origin of an [`ImageSource`].
+#[derive(Clone, Debug)]
+pub enum ImageOrigin {
+    /// An image file.
+    File(std::path::PathBuf),
+    /// An image inside the mesh file (a GLB buffer view, a `data:` URI).
+    Embedded {
+        /// What it is called in messages (`model.glb#images[0]`).
+        label: String,
+        /// Its index in the file's images.
+        index: usize,
+        /// The encoded bytes.
+        bytes: std::sync::Arc<[u8]>,
+        /// The extension its format is written with (`png`, `jpg`).
+        extension: &'static str,
+    },
 }
 
 /// Everything an importer read from one file.
@@ -107,6 +175,8 @@ pub struct Imported {
     pub lights: Vec<ImportedLight>,
     /// Parts of the file that were not used, one line each (reported once).
     pub warnings: Vec<String>,
+    /// The texture images the materials use, where each came from.
+    pub images: Vec<ImageSource>,
 }
 
 /// Extensions [`load`] understands, lower case.

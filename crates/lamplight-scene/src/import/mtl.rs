@@ -19,6 +19,8 @@
 //! | `d < 1` otherwise | see-through: `Refraction::Constant { ior: Ni or 1, weight: 1 - d }`, `kd`, `ka` scaled by `d`, shadows pass `1 - d` |
 //!
 //! | `map_Kd FILE` | `color` = the image (sRGB), so `kd * C = Kd x map_Kd` |
+//! | `map_Ka FILE` | `ka` = `Ka x` the image (sRGB): the Whitted ambient term `ka C La` |
+//! | `decal FILE` (with `map_Kd`) | the colour is `(1 - d) Kd + d map_Kd`, `d` the image's first channel (linear): `color` = a `mix` texture, `kd = 1`, `ka` default 0.1 |
 //! | `map_Ks FILE` | `ks` = `Ks x` the image (sRGB) |
 //! | `map_Ns FILE` | `shininess` = `Ns x` the image's first channel (linear) |
 //! | `norm FILE` (with `-bm s`) | a tangent-space normal map of scale `s` |
@@ -43,8 +45,11 @@
 //! its file is found beside the `.mtl`; a file that cannot be read is reported
 //! as a warning naming it and its line, and the material is kept without it.
 //! Map keywords are matched without regard to case (`map_bump`, `Bump` are
-//! `map_Bump`). `map_Ka`, `disp`, `decal`, `refl` and other statements are
-//! not supported: each kind is reported once as a warning.
+//! `map_Bump`). What has no meaning in lamplight is reported once per keyword
+//! as a warning at its first `FILE:LINE:COL`, and skipped: `disp` (lamplight
+//! does not displace geometry; `bump` turns the shading normal), `refl`
+//! (reflections are traced, not read from a map), a `decal` in a material
+//! without `map_Kd` (nothing to blend in), and every other statement.
 
 use std::collections::HashMap;
 use std::path::Path;
@@ -73,6 +78,9 @@ struct MtlValues {
     dissolve: Option<f64>,
     illum: Option<i64>,
     map_kd: Option<Texture>,
+    map_ka: Option<Texture>,
+    /// The decal mask and where its statement is (for the warning when there is no `map_Kd` to blend in).
+    decal: Option<(Texture, usize, usize)>,
     map_ks: Option<Texture>,
     map_ns: Option<Texture>,
     norm: Option<NormalMap>,
@@ -108,10 +116,17 @@ fn map_statement(words: &[(usize, &str)]) -> Option<(String, f64, bool)> {
 }
 
 /// Reads a material library into lamplight materials by name.
-pub(super) fn parse(path: &Path, text: &str, warnings: &mut Warnings) -> Result<HashMap<String, Material>, LoadError> {
+/// Every image it reads is added to `sources` (once per file and colour space).
+pub(super) fn parse(
+    path: &Path,
+    text: &str,
+    warnings: &mut Warnings,
+    sources: &mut Vec<super::ImageSource>,
+) -> Result<HashMap<String, Material>, LoadError> {
     let mut done = HashMap::new();
     let mut images: HashMap<(String, bool), Arc<ImageData>> = HashMap::new();
     let mut current: Option<(String, MtlValues)> = None;
+    let mut ignored = std::collections::HashSet::new();
     for (line_index, raw) in text.lines().enumerate() {
         let line_no = line_index + 1;
         let line = raw.split('#').next().unwrap_or("");
@@ -121,6 +136,7 @@ pub(super) fn parse(path: &Path, text: &str, warnings: &mut Warnings) -> Result<
         let written = keyword;
         let keyword = match keyword.to_ascii_lowercase().as_str() {
             "map_kd" => "map_Kd",
+            "map_ka" => "map_Ka",
             "map_ks" => "map_Ks",
             "map_ns" => "map_Ns",
             "map_d" => "map_d",
@@ -132,7 +148,7 @@ pub(super) fn parse(path: &Path, text: &str, warnings: &mut Warnings) -> Result<
         };
         if keyword == "newmtl" {
             if let Some((name, values)) = current.take() {
-                done.insert(name, to_material(&values));
+                done.insert(name, to_material(&values, path, warnings));
             }
             let name = line.trim_start()["newmtl".len()..].trim();
             if name.is_empty() {
@@ -142,7 +158,8 @@ pub(super) fn parse(path: &Path, text: &str, warnings: &mut Warnings) -> Result<
             continue;
         }
         let is_map = keyword.starts_with("map_") || matches!(keyword, "bump" | "disp" | "decal" | "refl" | "norm");
-        let read_map = matches!(keyword, "map_Kd" | "map_Ks" | "map_Ns" | "norm" | "map_d" | "map_Bump" | "map_Pr" | "map_Pm");
+        let read_map =
+            matches!(keyword, "map_Kd" | "map_Ka" | "map_Ks" | "map_Ns" | "norm" | "map_d" | "map_Bump" | "map_Pr" | "map_Pm" | "decal");
         if read_map {
             let Some((_, values)) = current.as_mut() else {
                 return Err(LoadError::at(path, line_no, w[0].0, format!("`{written}` before any `newmtl`")));
@@ -151,7 +168,7 @@ pub(super) fn parse(path: &Path, text: &str, warnings: &mut Warnings) -> Result<
                 let end = line.trim_end().chars().count() + 1;
                 return Err(LoadError::at(path, line_no, end, format!("expected a file name after `{written}`")));
             };
-            let srgb = matches!(keyword, "map_Kd" | "map_Ks");
+            let srgb = matches!(keyword, "map_Kd" | "map_Ka" | "map_Ks");
             let key = (file.clone(), srgb);
             let image = match images.get(&key) {
                 Some(i) => Some(i.clone()),
@@ -159,17 +176,22 @@ pub(super) fn parse(path: &Path, text: &str, warnings: &mut Warnings) -> Result<
                     Ok(i) => {
                         let i = Arc::new(i);
                         images.insert(key, i.clone());
+                        let origin = super::ImageOrigin::File(path.parent().unwrap_or(Path::new("")).join(&file));
+                        sources.push(super::ImageSource { data: i.clone(), srgb, origin });
                         Some(i)
                     }
                     Err(e) => {
-                        warnings.once(format!("MTL {written} at line {line_no} ignored: {e}"));
+                        warnings.once(format!("{}:{line_no}:{}: MTL {written} ignored: {e}", path.display(), w[0].0));
                         None
                     }
                 },
             };
             if let Some(image) = image {
-                let channel =
-                    if matches!(keyword, "map_Ns" | "map_d" | "map_Bump" | "map_Pr" | "map_Pm") { Channel::One(0) } else { Channel::Rgb };
+                let channel = if matches!(keyword, "map_Ns" | "map_d" | "map_Bump" | "map_Pr" | "map_Pm" | "decal") {
+                    Channel::One(0)
+                } else {
+                    Channel::Rgb
+                };
                 let wrap = if clamp { Wrap::Clamp } else { Wrap::Repeat };
                 let texture = Texture::Image(Arc::new(ImageTexture {
                     image,
@@ -180,6 +202,8 @@ pub(super) fn parse(path: &Path, text: &str, warnings: &mut Warnings) -> Result<
                 }));
                 match keyword {
                     "map_Kd" => values.map_kd = Some(texture),
+                    "map_Ka" => values.map_ka = Some(texture),
+                    "decal" => values.decal = Some((texture, line_no, w[0].0)),
                     "map_Ks" => values.map_ks = Some(texture),
                     "map_Ns" => values.map_ns = Some(texture),
                     "map_d" => values.map_d = Some(texture),
@@ -193,12 +217,16 @@ pub(super) fn parse(path: &Path, text: &str, warnings: &mut Warnings) -> Result<
         }
         let known = matches!(keyword, "Ka" | "Kd" | "Ks" | "Ke" | "Ns" | "Ni" | "d" | "Tr" | "illum" | "Pr" | "Pm");
         if !known {
-            let what = if is_map {
-                format!("MTL {keyword} ignored: only map_Kd, map_Ks, map_Ns, map_d, bump/map_Bump, norm, map_Pr and map_Pm maps are read")
-            } else {
-                format!("MTL statement `{keyword}` ignored")
+            let why = match keyword {
+                "disp" => "lamplight does not displace geometry; a bump map (`bump`) turns the shading normal instead",
+                "refl" => "reflections are traced, not looked up in a map (`illum 3` mirrors with `Ks`)",
+                _ if is_map => "only map_Kd, map_Ka, map_Ks, map_Ns, map_d, bump/map_Bump, norm, decal, map_Pr and map_Pm maps are read",
+                _ => "not an MTL statement lamplight reads",
             };
-            warnings.once(what);
+            // Once per keyword, at its first place.
+            if ignored.insert(keyword.to_string()) {
+                warnings.once(format!("{}:{line_no}:{}: MTL `{keyword}` ignored: {why}", path.display(), w[0].0));
+            }
             continue;
         }
         let Some((_, values)) = current.as_mut() else {
@@ -256,7 +284,7 @@ pub(super) fn parse(path: &Path, text: &str, warnings: &mut Warnings) -> Result<
         }
     }
     if let Some((name, values)) = current.take() {
-        done.insert(name, to_material(&values));
+        done.insert(name, to_material(&values, path, warnings));
     }
     Ok(done)
 }
@@ -286,8 +314,11 @@ fn to_pbr(v: &MtlValues) -> Option<Material> {
     Some(m)
 }
 
-/// The mapping of the module doc.
-fn to_material(v: &MtlValues) -> Material {
+/// The mapping of the module doc; a decal without a `map_Kd` to blend in is a warning.
+fn to_material(v: &MtlValues, path: &Path, warnings: &mut Warnings) -> Material {
+    if let (Some((_, line, column)), None) = (&v.decal, &v.map_kd) {
+        warnings.once(format!("{}:{line}:{column}: MTL `decal` ignored: it blends in map_Kd, which the material lacks", path.display()));
+    }
     if let Some(m) = to_pbr(v) {
         return m;
     }
@@ -313,6 +344,17 @@ fn to_material(v: &MtlValues) -> Material {
     }
     let scaled = |t: &Texture, by: Rgb| Texture::Scale(Arc::new([t.clone(), Texture::Constant(by)]));
     let mut maps = Vec::new();
+    // decal d: the colour becomes (1 - d) Kd + d map_Kd, with kd = 1 (and ka's default 0.1) carrying no Kd twice.
+    if let (Some((decal, _, _)), Some(t)) = (&v.decal, &v.map_kd) {
+        m.color = Texture::Mix(Arc::new([Texture::Constant(kd), t.clone(), decal.clone()]));
+        m.kd = Rgb::ONE;
+        m.ka = v.ka.unwrap_or(Rgb::splat(0.1));
+    }
+    // map_Ka x Ka, and the dissolve's factor on ka, which the map replaces.
+    if let Some(t) = &v.map_ka {
+        let d = v.dissolve.filter(|&d| d < 1.0 && !matches!(illum, 4 | 6 | 7 | 9)).unwrap_or(1.0);
+        maps.push((Slot::Ka, scaled(t, m.ka * d)));
+    }
     if let (Some(t), true) = (&v.map_ks, illum > 1) {
         maps.push((Slot::Ks, scaled(t, ks)));
     }
@@ -346,7 +388,7 @@ mod tests {
 
     fn one(text: &str) -> Material {
         let mut w = Warnings::default();
-        parse(Path::new("t.mtl"), text, &mut w).unwrap().remove("m").unwrap()
+        parse(Path::new("t.mtl"), text, &mut w, &mut Vec::new()).unwrap().remove("m").unwrap()
     }
 
     #[test]
@@ -380,20 +422,34 @@ mod tests {
         image::RgbImage::from_pixel(1, 1, image::Rgb([255, 0, 0])).save(dir.path().join("red.png")).unwrap();
         let mut w = Warnings::default();
         let text =
-            "newmtl m\nKd 0.5\nmap_Kd -s 1 1 red.png\nnorm -bm 2 red.png\nmap_Ks missing.png\ndisp b.png\nmap_bump -bm 0.25 red.png\n";
-        let m = parse(&dir.path().join("t.mtl"), text, &mut w).unwrap().remove("m").unwrap();
-        assert!(matches!(m.color, Texture::Image(_)));
+            "newmtl m\nKd 0.5\nmap_Kd -s 1 1 red.png\nnorm -bm 2 red.png\nmap_Ks missing.png\n  disp b.png\nmap_bump -bm 0.25 red.png\n\
+                    disp c.png\nrefl -type sphere r.png\nmap_Ka red.png\ndecal red.png\nnewmtl n\ndecal red.png\n";
+        let m = parse(&dir.path().join("t.mtl"), text, &mut w, &mut Vec::new()).unwrap().remove("m").unwrap();
+        assert!(matches!(m.color, Texture::Mix(_)));
         assert_eq!(m.normal_map.as_ref().map(|n| n.scale), Some(2.0));
         assert_eq!(m.bump.as_ref().map(|b| b.scale), Some(0.25));
-        let warnings = w.into_vec();
+        let warnings: Vec<String> = w.into_vec().iter().map(|w| w.replace(&format!("{}/", dir.path().display()), "")).collect();
         assert!(
-            warnings[0].starts_with("MTL map_Ks at line 5 ignored: cannot read texture") && warnings[0].contains("missing.png"),
+            warnings[0].starts_with("t.mtl:5:1: MTL map_Ks ignored: cannot read texture") && warnings[0].contains("missing.png"),
             "{warnings:?}"
         );
+        // disp and refl once each, at their first place; a decal with nothing to blend in.
         assert_eq!(
-            warnings[1],
-            "MTL disp ignored: only map_Kd, map_Ks, map_Ns, map_d, bump/map_Bump, norm, map_Pr and map_Pm maps are read"
+            warnings[1..],
+            [
+                "t.mtl:6:3: MTL `disp` ignored: lamplight does not displace geometry; a bump map (`bump`) turns the shading normal instead",
+                "t.mtl:9:1: MTL `refl` ignored: reflections are traced, not looked up in a map (`illum 3` mirrors with `Ks`)",
+                "t.mtl:13:1: MTL `decal` ignored: it blends in map_Kd, which the material lacks",
+            ]
         );
+        // map_Ka drives ka (times Ka, default 0.1 once the decal takes Kd into the colour); the decal blends Kd and map_Kd.
+        let slots: Vec<_> = m.textures.as_ref().unwrap().iter().map(|(s, _)| *s).collect();
+        assert_eq!(slots, [Slot::Ka]);
+        assert_eq!((m.kd, m.ka), (Rgb::ONE, Rgb::splat(0.1)));
+        let red_at = |m: &Material| m.at(&lamplight_core::materials::ShadingPoint::at(lamplight_core::math::Vec3::ZERO)).into_owned();
+        // The 1x1 red decal is 1 in its first channel: the colour is map_Kd's red, ka 0.1 x red.
+        let shaded = red_at(&m);
+        assert_eq!((shaded.color.constant(), shaded.ka), (Some(Rgb::new(1.0, 0.0, 0.0)), Rgb::new(0.1, 0.0, 0.0)));
     }
 
     #[test]
@@ -416,7 +472,7 @@ mod tests {
         assert_eq!((plain.pbr.as_ref().map(|p| p.metallic), plain.roughness), (Some(0.0), 0.7));
         assert!(one("newmtl m\nKd 0.5\n").pbr.is_none());
         let mut w = Warnings::default();
-        let e = parse(Path::new("t.mtl"), "newmtl m\nPm 2\n", &mut w).unwrap_err().to_string();
+        let e = parse(Path::new("t.mtl"), "newmtl m\nPm 2\n", &mut w, &mut Vec::new()).unwrap_err().to_string();
         assert_eq!(e, "t.mtl:2:4: expected a value in [0, 1], found 2");
     }
 }

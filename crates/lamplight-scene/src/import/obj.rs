@@ -67,6 +67,7 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
     let mut normals: Vec<Vec3> = Vec::new();
     let mut uvs: Vec<[f64; 2]> = Vec::new();
     let mut materials: HashMap<String, Material> = HashMap::new();
+    let mut image_sources = Vec::new();
     let mut done: Vec<Group> = Vec::new();
     let mut group = Group::new(None, None);
     let mut corners: Vec<Corner> = Vec::new();
@@ -118,7 +119,7 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
                             format!("cannot read material library `{}`: {}", mtl_path.display(), e.message),
                         )
                     })?;
-                    materials.extend(mtl::parse(&mtl_path, &String::from_utf8_lossy(&bytes), &mut warnings)?);
+                    materials.extend(mtl::parse(&mtl_path, &String::from_utf8_lossy(&bytes), &mut warnings, &mut image_sources)?);
                 }
             }
             "s" => {}
@@ -131,7 +132,7 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
     if let [single] = done.as_mut_slice() {
         keep_file_numbering(single, &positions, &uvs, &normals);
     }
-    let mut imported = Imported { warnings: warnings.into_vec(), ..Imported::default() };
+    let mut imported = Imported { warnings: warnings.into_vec(), images: image_sources, ..Imported::default() };
     for g in done {
         let mut mesh = g.mesh;
         mesh.name = g.name;
@@ -141,8 +142,9 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
         if g.all_corners_have_uvs {
             mesh.attributes.uvs = Some(g.uvs);
         }
-        let material = g.material.and_then(|m| materials.get(&m).cloned());
-        imported.instances.push(ImportedMesh { mesh: imported.meshes.len(), transform: Mat4::IDENTITY, material });
+        let material = g.material.as_ref().and_then(|m| materials.get(m).cloned());
+        let material_name = if material.is_some() { g.material } else { None };
+        imported.instances.push(ImportedMesh { mesh: imported.meshes.len(), transform: Mat4::IDENTITY, material, material_name });
         imported.meshes.push(mesh);
     }
     if imported.meshes.is_empty() {

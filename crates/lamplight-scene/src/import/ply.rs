@@ -126,7 +126,7 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
     mesh.name = path.file_stem().map(|s| s.to_string_lossy().into_owned());
     Ok(Imported {
         meshes: vec![mesh],
-        instances: vec![ImportedMesh { mesh: 0, transform: Mat4::IDENTITY, material: None }],
+        instances: vec![ImportedMesh { mesh: 0, transform: Mat4::IDENTITY, material: None, material_name: None }],
         warnings,
         ..Imported::default()
     })
