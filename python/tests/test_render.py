@@ -162,6 +162,25 @@ def test_environment_and_exr_layers_equal_the_command_line(cli, tmp_path):
         lamplight.render("cornell-box", width=8, height=8, integrator="path", exr_layers=["depth"], progress=False)
 
 
+def test_a_scene_that_asks_for_variance_gets_it_from_both_front_ends(cli, tmp_path):
+    # `[render] variance = true` (what Mitsuba's `moment` becomes): the command
+    # line's .exr holds the layer unasked, and Python's image carries it too.
+    scene = tmp_path / "variance.toml"
+    scene.write_text(
+        (EXAMPLES / "cornell-box.toml").read_text().replace("[render]", "[render]\nvariance = true", 1)
+    )
+    args = dict(width=12, height=12, spp=4, integrator="path")
+    out = tmp_path / "cli.exr"
+    subprocess.run([cli, "render", str(scene), "-o", str(out), "--quiet", *[f"--{k}={v}" for k, v in args.items()]], check=True)
+    image = lamplight.render(str(scene), progress=False, **args)
+    assert set(image.layers) == {"variance"}
+    assert image.layers["variance"].shape == (12, 12, 3) and image.layers["variance"].max() > 0
+    image.save(tmp_path / "py.exr")
+    assert (tmp_path / "py.exr").read_bytes() == out.read_bytes()
+    asked = lamplight.render(str(scene), progress=False, exr_layers=["samples"], **args)
+    assert list(asked.layers) == ["samples", "variance"], "the scene's layer comes after those asked for"
+
+
 def test_a_scene_says_how_its_pngs_store_values():
     # Heckbert's card prints display values: its PNGs keep them as they are.
     assert lamplight.Scene("business-card").defaults()["transfer"] == "linear"

@@ -376,11 +376,7 @@ impl RenderArgs {
         if !job.layers.is_empty() && format != Format::Exr {
             return Err(usage("--exr-layers needs an .exr output file"));
         }
-        // The scene asks for the variance layer (`[render] variance`, Mitsuba's
-        // `moment`): an .exr output holds it; other formats cannot and do not.
-        if scene.defaults.variance && format == Format::Exr && !job.layers.contains(&Layer::Variance) {
-            job.layers.push(Layer::Variance);
-        }
+        job.add_scene_layers(&scene.defaults, format == Format::Exr);
         let variance_output = self.variance_output;
         let variance_in_output = job.layers.contains(&Layer::Variance);
         if let Some(path) = &variance_output {

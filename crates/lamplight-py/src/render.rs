@@ -96,7 +96,8 @@ pub fn render_array<'py>(
         environment,
         layers,
     };
-    let job = request.resolve(scene.settings(), Naming::Keywords).map_err(|e| PyValueError::new_err(e.0))?;
+    let mut job = request.resolve(scene.settings(), Naming::Keywords).map_err(|e| PyValueError::new_err(e.0))?;
+    job.add_scene_layers(scene.settings(), true);
     let core = scene.core_for(py, &job)?;
 
     let warnings: Vec<String> = job.light_warning(&core).into_iter().collect();

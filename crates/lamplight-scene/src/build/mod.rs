@@ -130,7 +130,7 @@ pub const RENDER_PARAMS: &[Param] = &[
         T::Bool,
         "false",
         "",
-        "an `.exr` output also holds the variance of each pixel's mean, as `--exr-layers variance` (Mitsuba's `moment` integrator)",
+        "an `.exr` output (and Python's `image.layers`) also holds the variance of each pixel's mean, as `--exr-layers variance` (Mitsuba's `moment` integrator)",
     ),
     Param::new(
         "hide_emitters",

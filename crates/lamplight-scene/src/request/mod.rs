@@ -112,7 +112,8 @@ pub struct Defaults {
     pub transfer: crate::image_io::Transfer,
     /// The pixel filter, when the scene says.
     pub filter: Option<Filter>,
-    /// Whether an `.exr` output holds the variance layer unasked (`[render] variance`).
+    /// Whether the variance layer is made unasked (`[render] variance`, Mitsuba's
+    /// `moment`), where the output can hold it ([`Job::add_scene_layers`]).
     pub variance: bool,
 }
 
@@ -386,6 +387,17 @@ impl Request {
             adaptive,
         };
         Ok(Job { options, environment: self.environment.clone(), layers })
+    }
+}
+
+impl Job {
+    /// Adds the layers the scene itself asks for (`[render] variance`) when the
+    /// output can hold them (`holds_layers`: an `.exr` file, or Python's dict of
+    /// layers; PNG and PPM cannot), after those asked for.
+    pub fn add_scene_layers(&mut self, defaults: &Defaults, holds_layers: bool) {
+        if defaults.variance && holds_layers && !self.layers.contains(&Layer::Variance) {
+            self.layers.push(Layer::Variance);
+        }
     }
 }
 
