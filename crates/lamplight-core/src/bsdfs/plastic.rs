@@ -62,6 +62,20 @@ pub fn fresnel_diffuse_reflectance(eta: f64) -> f64 {
     c.iter().rev().fold(0.0, |acc, k| acc * x + k)
 }
 
+/// Mitsuba's probability of sampling a coating's specular lobe: with `r` and
+/// `t` the coating's reflectance and transmittance for the outgoing direction
+/// (`F` and `1 - F` when smooth, `1 - T` and `T` when rough) and `w` the
+/// specular sampling weight, `r w / (r w + t (1 - w))` (0 where both vanish).
+#[inline]
+pub fn specular_probability(r: f64, t: f64, w: f64) -> f64 {
+    let (s, d) = (r * w, t * (1.0 - w));
+    if s + d > 0.0 {
+        s / (s + d)
+    } else {
+        0.0
+    }
+}
+
 /// The diffuse albedo after the internal bounces: `d / (1 - F_dr)`, or `d / (1 - d F_dr)`
 /// when `nonlinear`.
 pub fn internal_scattering(d: Rgb, internal_reflectance: f64, nonlinear: bool) -> Rgb {
@@ -100,13 +114,7 @@ impl Plastic {
     #[inline]
     fn specular_probability(&self, cos_o: f64) -> f64 {
         let f = fresnel_dielectric(cos_o, self.eta);
-        let s = f * self.specular_weight;
-        let d = (1.0 - f) * (1.0 - self.specular_weight);
-        if s + d > 0.0 {
-            s / (s + d)
-        } else {
-            0.0
-        }
+        specular_probability(f, 1.0 - f, self.specular_weight)
     }
 
     /// The diffuse lobe's value (the mirror has none).

@@ -28,7 +28,7 @@ use std::sync::Mutex;
 
 use super::distribution::{Distribution, Microfacet};
 use super::lambertian;
-use super::plastic::{internal_scattering, Coating};
+use super::plastic::{internal_scattering, specular_probability, Coating};
 use super::rough_dielectric::refract;
 use crate::materials::fresnel_dielectric;
 use crate::math::{Rgb, Vec3};
@@ -139,13 +139,7 @@ impl RoughPlastic {
     #[inline]
     fn specular_probability(&self, cos_o: f64) -> f64 {
         let t = self.table.transmittance(cos_o);
-        let s = (1.0 - t) * self.specular_weight;
-        let d = t * (1.0 - self.specular_weight);
-        if s + d > 0.0 {
-            s / (s + d)
-        } else {
-            0.0
-        }
+        specular_probability(1.0 - t, t, self.specular_weight)
     }
 
     /// `f_s + f_d` for `wo`, `wi` above the surface.
