@@ -41,7 +41,7 @@ pub static SHAPES: &[&ShapeKind] = &[
 ];
 
 /// Light kinds.
-pub static LIGHTS: &[&LightKind] = &[&lights::point::KIND, &lights::directional::KIND, &lights::spot::KIND];
+pub static LIGHTS: &[&LightKind] = &[&lights::point::KIND, &lights::directional::KIND, &lights::spot::KIND, &lights::projector::KIND];
 
 /// Material kinds; the first is the default `type`.
 pub static MATERIALS: &[&MaterialKind] =

@@ -158,6 +158,23 @@ fn mistyped(name: &str) -> String {
 }
 
 #[test]
+fn no_node_kind_names_a_parameter_like_a_key_every_node_has() {
+    // A node's transform keys and structure are taken before its kind reads its
+    // parameters, so a parameter of the same name would never be read.
+    use lamplight_scene::registry;
+    let node_keys: Vec<&str> = lamplight_scene::description::TRANSFORM_KEYS.iter().copied().chain(["type", "name"]).collect();
+    let kinds = registry::SHAPES
+        .iter()
+        .map(|k| (k.name, k.params))
+        .chain(registry::LIGHTS.iter().map(|k| (k.name, k.params)))
+        .chain(registry::STRUCTURAL.iter().map(|s| (s.name, s.params)));
+    let clashes: Vec<String> = kinds
+        .flat_map(|(name, params)| params.iter().filter(|p| node_keys.contains(&p.name)).map(move |p| format!("{name}: {}", p.name)))
+        .collect();
+    assert!(clashes.is_empty(), "parameters named like node keys: {clashes:?}");
+}
+
+#[test]
 fn every_registered_kind_reports_a_mistyped_parameter_at_its_key() {
     use lamplight_scene::registry;
     // (label in the message, scene text, the line and column of the mistyped key, the key)

@@ -255,7 +255,16 @@ fn malformed_and_unsupported_scenes_give_their_exact_errors() {
         (r#"<shape type="sphere"><integer name="radius" value="1"/><integer name="radius" value="2"/></shape>"#, "s.xml:10:71: shape \"sphere\": property \"radius\" is given twice"),
         (r#"<shape type="cube"><transform name="to_world"><scale x="0"/></transform></shape>"#, "s.xml:10:47: shape \"cube\": to_world: scale: must not be 0 (it would flatten the geometry)"),
         (r#"<shape type="sphere"><bsdf type="conductor"><string name="material" value="Xx"/></bsdf></shape>"#, "s.xml:10:76: bsdf \"conductor\": material: unknown conductor \"Xx\" (expected one of none, a-C, Ag, Al, AlAs, AlAs_palik, AlSb, AlSb_palik, Au, Be, Be_palik, Cr, CsI, CsI_palik, Cu, Cu_palik, Cu2O, Cu2O_palik, CuO, CuO_palik, d-C, d-C_palik, Hg, Hg_palik, HgTe, HgTe_palik, Ir, Ir_palik, K, K_palik, Li, Li_palik, MgO, MgO_palik, Mo, Mo_palik, Na_palik, Nb, Nb_palik, Ni_palik, Rh, Rh_palik, Se, Se_palik, SiC, SiC_palik, SnTe, SnTe_palik, Ta, Ta_palik, Te, Te_palik, ThF4, ThF4_palik, TiC, TiC_palik, TiN, TiN_palik, TiO2, TiO2_palik, VC, VC_palik, V_palik, VN, VN_palik, W)"),
-        (r#"<emitter type="projector"/>"#, "s.xml:10:16: emitter \"projector\": not supported (the scene would lose a light)"),
+        (r#"<emitter type="sunsky"/>"#, "s.xml:10:16: emitter \"sunsky\": not supported (the scene would lose a light)"),
+        (r#"<emitter type="projector"/>"#, "s.xml:10:1: emitter \"projector\": needs irradiance (a texture)"),
+        (
+            r#"<emitter type="projector"><rgb name="irradiance" value="1"/><transform name="to_world"><scale x="-1"/></transform></emitter>"#,
+            "s.xml:10:61: emitter \"projector\": a mirroring to_world is not supported",
+        ),
+        (
+            r#"<emitter type="projector"><rgb name="irradiance" value="1"/><float name="fov" value="180"/></emitter>"#,
+            "s.xml:10:86: emitter \"projector\": fov: must be between 0 and 180 degrees, got 180",
+        ),
     ];
     let wrong: Vec<String> =
         body_cases.iter().filter(|(body, expected)| error(&scene(body)) != *expected).map(|(body, _)| error(&scene(body))).collect();

@@ -16,8 +16,10 @@ pub mod directional;
 pub mod environment;
 pub mod mesh;
 pub mod point;
+pub mod projector;
 pub mod reach;
 mod set;
+pub mod slide;
 pub mod spot;
 
 pub use area::AreaLight;
@@ -25,7 +27,9 @@ pub use directional::DirectionalLight;
 pub use environment::{EnvMap, Environment};
 pub use mesh::TriangleSampler;
 pub use point::{Falloff, PointLight};
+pub use projector::Projector;
 pub use set::LightSet;
+pub use slide::Slide;
 pub use spot::{SpotLight, SpotProfile};
 
 /// The physical reading of a delta light's lecture intensity: `pi`.
@@ -115,6 +119,8 @@ pub struct LightContext<'a> {
     pub world: Mat4,
     /// The index of the one scene object called `name`, or a message saying why not.
     pub object: &'a dyn Fn(&str) -> Result<usize, String>,
+    /// Reads texturable parameters (a projected image).
+    pub textures: crate::materials::Textures<'a>,
 }
 
 /// Builds a light kind's light from its parameters.

@@ -10,6 +10,11 @@
 //! - `"gltf"` (the glTF spec's reference): `s = x^2`;
 //! - `"angle"` (Mitsuba 3's `spot`): linear in the angle, `s = (outer - theta) / (outer - inner)`.
 //!
+//! With a `texture`, the light is also multiplied by an image projected across
+//! the outer cone ([`super::slide`]): the image spans `tan(outer_angle)` either
+//! side of the axis one unit ahead, upright as seen from the light when `up` is
+//! the scene's up (Mitsuba's textured `spot`).
+//!
 //! pbrt's `coneangle` is `outer_angle` and its `conedelta` is
 //! `outer_angle - inner_angle`; glTF's `outerConeAngle` and `innerConeAngle` are
 //! the two angles in radians. Both angles are measured from the axis.
@@ -23,9 +28,12 @@
 //! | `outer_angle` | number | 30 | degrees from the axis where the light ends |
 //! | `inner_angle` | number | min(25, outer_angle) | degrees from the axis where the falloff starts |
 //! | `profile` | string | `"smoothstep"` | `"smoothstep"`, `"gltf"` or `"angle"` |
+//! | `texture` | texture | none | an image (or any texture of `(s, t)`) the light projects |
+//! | `up` | vector | `[0, 1, 0]` (`[0, 0, 1]` for a vertical axis) | the projected image's up |
 
 use std::sync::Arc;
 
+use super::slide::Slide;
 use super::{Light, LightKind, LightSample};
 use crate::math::{Rgb, Vec3};
 use crate::params::{Kind, Param, ParamType as T};
@@ -57,6 +65,8 @@ pub struct SpotLight {
     pub cos_outer: f64,
     /// The falloff between the cones.
     pub profile: SpotProfile,
+    /// A projected image, if any.
+    pub slide: Option<Box<Slide>>,
 }
 
 /// `spot_light`.
@@ -89,6 +99,8 @@ pub const KIND: LightKind = Kind {
             "",
             "`\"smoothstep\"` (pbrt: 3x^2 - 2x^3), `\"gltf\"` (x^2) or `\"angle\"` (linear in the angle, Mitsuba's) between the cones",
         ),
+        Param::new("texture", T::Texture, "none", "", "an image projected across the outer cone, multiplying the light"),
+        Param::new("up", T::Vector, "[0, 1, 0] ([0, 0, 1] for a vertical axis)", "", "the projected image's up, as seen from the light"),
     ],
     build: |p, ctx| {
         let position = p.required_vec3("position")?;
@@ -106,9 +118,18 @@ pub const KIND: LightKind = Kind {
             "angle" => SpotProfile::Angle,
             _ => SpotProfile::Gltf,
         };
-        let light =
-            SpotLight::new(ctx.world.transform_point3(position), ctx.world.transform_vector3(axis), intensity, inner, outer, profile);
-        Ok(Arc::new(light.map_err(|e| p.core_error(e))?))
+        let mut light =
+            SpotLight::new(ctx.world.transform_point3(position), ctx.world.transform_vector3(axis), intensity, inner, outer, profile)
+                .map_err(|e| p.core_error(e))?;
+        let up = p.vec3("up")?;
+        if let Some(texture) = ctx.textures.read(p, "texture")? {
+            let up = ctx.world.transform_vector3(up.unwrap_or_else(|| default_up(axis)));
+            let tan = outer.to_radians().tan();
+            light.slide = Some(Box::new(Slide::new(light.axis, up, tan, tan, texture).map_err(|e| p.core_error(e))?));
+        } else if up.is_some() {
+            return Err(p.key_error("up", "orients a projected image: give `texture` too, or remove `up`"));
+        }
+        Ok(Arc::new(light))
     },
 };
 
@@ -137,7 +158,7 @@ impl SpotLight {
             return Err(Error::invalid("inner_angle", format!("must be between 0 and outer_angle ({outer_deg}) degrees, got {inner_deg}")));
         }
         let (cos_inner, cos_outer) = (inner_deg.to_radians().cos(), outer_deg.to_radians().cos());
-        Ok(SpotLight { position, axis, intensity, cos_inner, cos_outer, profile })
+        Ok(SpotLight { position, axis, intensity, cos_inner, cos_outer, profile, slide: None })
     }
 
     /// The profile `s(cos theta)` of the module documentation.
@@ -167,7 +188,20 @@ impl Light for SpotLight {
         if s == 0.0 {
             return None;
         }
-        Some(LightSample { wi, distance, radiance: self.intensity * (s / d2) })
+        let mut radiance = self.intensity * (s / d2);
+        if let Some(slide) = &self.slide {
+            radiance *= slide.coords(-wi).map_or(Rgb::ZERO, |st| slide.evaluate(st, point));
+        }
+        Some(LightSample { wi, distance, radiance })
+    }
+}
+
+/// The scene's up, `+y`, or `+z` for an axis along `y` (light's own frame).
+pub(super) fn default_up(axis: Vec3) -> Vec3 {
+    if axis.normalize_or_zero().y.abs() > 0.999 {
+        Vec3::Z
+    } else {
+        Vec3::Y
     }
 }
 

@@ -12,11 +12,12 @@ use crate::formats::native::Source;
 use crate::registry;
 
 /// Adds every material of `desc` to `builder`; returns their indices by name.
-pub(super) fn add_all(desc: &SceneDescription, source: &Source, builder: &mut SceneBuilder) -> Result<BTreeMap<String, usize>, LoadError> {
-    // Texture files are found beside the scene file, and decoded once each.
-    let dir = source.path.parent().unwrap_or(std::path::Path::new(""));
-    let images = crate::texture_files::ImageFiles::new(dir);
-    let textures = Textures { kinds: registry::TEXTURES, images: Some(&images) };
+pub(super) fn add_all(
+    desc: &SceneDescription,
+    source: &Source,
+    builder: &mut SceneBuilder,
+    textures: &Textures<'_>,
+) -> Result<BTreeMap<String, usize>, LoadError> {
     let mut out = BTreeMap::new();
     for named in &desc.materials {
         let node = &named.value;
@@ -25,7 +26,7 @@ pub(super) fn add_all(desc: &SceneDescription, source: &Source, builder: &mut Sc
             return Err(source.error(&node.kind_loc, message));
         };
         let p = Params::new(node.label.clone(), &node.params);
-        let material = p.read(kind.params, &[], |p| (kind.build)(p, &textures)).map_err(|e| source.param_error(e))?;
+        let material = p.read(kind.params, &[], |p| (kind.build)(p, textures)).map_err(|e| source.param_error(e))?;
         let index = builder.material(material).map_err(|e| source.error(&node.params.loc, format!("{}: {e}", node.label)))?;
         out.insert(named.name.clone(), index);
     }

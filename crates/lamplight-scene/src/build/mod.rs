@@ -308,12 +308,16 @@ pub fn build_with_warnings(desc: &SceneDescription, source: &Source) -> Result<B
     builder.hide_emitters = settings.hide_emitters;
     builder.rr_depth = settings.rr_depth;
     builder.min_weight = settings.min_weight;
-    let materials = materials::add_all(desc, source, &mut builder)?;
+    // Texture files are found beside the scene file, and decoded once each,
+    // whether a material or a light reads them.
+    let images = crate::texture_files::ImageFiles::new(&dir);
+    let textures = lamplight_core::materials::Textures { kinds: crate::registry::TEXTURES, images: Some(&images) };
+    let materials = materials::add_all(desc, source, &mut builder, &textures)?;
     for (name, &index) in &materials {
         builder.name_material(index, name);
     }
     let mut warnings = source.warnings.clone();
-    warnings.extend(nodes::add_all(desc, source, &mut builder, materials)?);
+    warnings.extend(nodes::add_all(desc, source, &mut builder, materials, &textures)?);
     let scene = builder.build().map_err(|e| LoadError::file(&source.path, e.to_string()))?;
     Ok(Built { scene, warnings })
 }

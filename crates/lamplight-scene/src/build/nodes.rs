@@ -14,7 +14,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use lamplight_core::lights::LightContext;
-use lamplight_core::materials::Material;
+use lamplight_core::materials::{Material, Textures};
 use lamplight_core::math::Mat4;
 use lamplight_core::params::{Kind, ParamError, ParamResult, Params};
 use lamplight_core::shapes::{placed, Shape, TriangleMesh};
@@ -56,6 +56,7 @@ pub(super) fn add_all(
     source: &Source,
     builder: &mut SceneBuilder,
     materials: BTreeMap<String, usize>,
+    textures: &Textures<'_>,
 ) -> Result<Vec<String>, LoadError> {
     let mut ctx = Ctx {
         desc,
@@ -94,7 +95,7 @@ pub(super) fn add_all(
             }
         };
         let p = Params::new(node.label.clone(), &node.params);
-        let light = p.read(kind.params, &[], |p| (kind.build)(p, &LightContext { world, object: &object }));
+        let light = p.read(kind.params, &[], |p| (kind.build)(p, &LightContext { world, object: &object, textures: *textures }));
         let light = light.map_err(|e| source.param_error(e))?;
         ctx.builder.shared_light(light);
     }

@@ -14,7 +14,8 @@
 //! | `constant` `radiance` | `background` |
 //! | `envmap` `filename`, `scale`, `to_world` (a turn about `+y`) | `environment` `file`, `strength`, `rotate` (Mitsuba's `u` is lamplight's plus one half: a turn of 180 degrees), `filter = "bilinear"` (Mitsuba's lookup) |
 //!
-//! `projector` and textured spots are not supported (an error: the light would be missing).
+//! | `spot` `texture` | `spot_light` `texture`, `up = [0, -1, 0]` (so that the image's axes are Mitsuba's local x and y) |
+//! | `projector` `irradiance`, `scale`, `fov`, `fov_axis`, `focal_length`, `to_world` (looks along `+z`) | `projector` `texture`, `strength = scale` (Mitsuba already lights a facing plane with `pi T`), `fov`, `fov_axis` (a focal length as a diagonal field of view), `up = [0, 1, 0]` |
 
 use std::f64::consts::PI;
 
@@ -23,7 +24,7 @@ use lamplight_core::params::{Item, Loc, ParamError};
 
 use super::properties::Plugin;
 use super::xml::El;
-use super::{entry, matrix, num, table_of, text, vec3, Ctx};
+use super::{entry, matrix, num, table_of, text, textures, vec3, Ctx};
 
 fn err(loc: &Loc, message: impl Into<String>) -> ParamError {
     ParamError { loc: loc.clone(), message: message.into() }
@@ -57,9 +58,15 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<(), ParamError> {
         }
         "spot" => {
             let (i, iloc) = radiant(&mut p, "intensity", 1.0)?;
-            if let Some(o) = p.object("texture") {
-                return Err(err(&o.loc, "emitter \"spot\": a projected texture is not supported"));
-            }
+            let texture = match p.object("texture") {
+                None => None,
+                Some(o) => {
+                    if to_world.as_ref().is_some_and(|(m, _)| mirrors(m)) {
+                        return Err(err(&o.loc, "emitter \"spot\": a projected texture under a mirroring to_world is not supported"));
+                    }
+                    Some(textures::colour_or_texture(ctx, &mut p, "texture", Rgb::ONE)?)
+                }
+            };
             let (cutoff, cloc) = p.number_or("cutoff_angle", 20.0)?;
             let (beam, bloc) = p.number_or("beam_width", cutoff * 0.75)?;
             if !(cutoff > 0.0 && cutoff <= 90.0 && beam >= 0.0 && beam <= cutoff) {
@@ -75,6 +82,32 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<(), ParamError> {
             node.push(("outer_angle", num(cutoff, &cloc)));
             node.push(("inner_angle", num(beam, &bloc)));
             node.push(("profile", text("angle", &loc)));
+            if let Some(texture) = texture {
+                // Mitsuba's image runs along its local x and y; lamplight's
+                // `right = axis x up` is local x when `up` is local -y.
+                node.push(("texture", texture));
+                node.push(("up", vec3(-Vec3::Y, &loc)));
+            }
+        }
+        "projector" => {
+            if !p.has("irradiance") {
+                return Err(err(&loc, "emitter \"projector\": needs irradiance (a texture)"));
+            }
+            if let Some((_, mloc)) = to_world.as_ref().filter(|(m, _)| mirrors(m)) {
+                return Err(err(mloc, "emitter \"projector\": a mirroring to_world is not supported"));
+            }
+            let texture = textures::colour_or_texture(ctx, &mut p, "irradiance", Rgb::ONE)?;
+            let (scale, sloc) = p.number_or("scale", 1.0)?;
+            node.push(("type", text("projector", &loc)));
+            node.push(("direction", vec3(Vec3::Z, &loc)));
+            node.push(("up", vec3(Vec3::Y, &loc)));
+            node.push(("texture", texture));
+            // Mitsuba lights a facing plane one unit ahead with pi T: lamplight's
+            // reading of a delta light's T, so no division by pi here.
+            node.push(("strength", num(scale, &sloc)));
+            let (fov, axis, floc) = projector_fov(&mut p)?;
+            node.push(("fov", num(fov, &floc)));
+            node.push(("fov_axis", text(axis, &floc)));
         }
         "directional" => {
             let (e, eloc) = radiant(&mut p, "irradiance", 1.0)?;
@@ -126,6 +159,41 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<(), ParamError> {
     ctx.finish(p);
     ctx.objects.push(table_of(node, &loc));
     Ok(())
+}
+
+/// Whether the linear part of `m` mirrors (a negative determinant).
+fn mirrors(m: &Mat4) -> bool {
+    m.x_axis.truncate().cross(m.y_axis.truncate()).dot(m.z_axis.truncate()) < 0.0
+}
+
+/// A projector's field of view in degrees and its axis (Mitsuba's rule: `fov`
+/// along `fov_axis`, default x; else a 35 mm `focal_length`, default 50 mm,
+/// across the diagonal), and where it is written.
+fn projector_fov(p: &mut Plugin<'_>) -> Result<(f64, &'static str, Loc), ParamError> {
+    let (fov, axis, loc) = match p.number("fov")? {
+        Some((fov, loc)) => {
+            let axis = match p.string("fov_axis")? {
+                None => "x",
+                Some((a, aloc)) => match a.as_str() {
+                    "x" => "x",
+                    "y" => "y",
+                    "diagonal" => "diagonal",
+                    "smaller" => "smaller",
+                    "larger" => "larger",
+                    _ => return Err(err(&aloc, format!("{}: fov_axis: expected x, y, diagonal, smaller or larger, got \"{a}\"", p.label))),
+                },
+            };
+            (fov, axis, loc)
+        }
+        None => {
+            let (mm, loc) = p.string("focal_length")?.unwrap_or_else(|| ("50mm".to_string(), p.el.loc.clone()));
+            (super::sensors::focal_length_fov(&mm, &loc, &p.label)?, "diagonal", loc)
+        }
+    };
+    if !(fov > 0.0 && fov < 180.0) {
+        return Err(err(&loc, format!("{}: fov: must be between 0 and 180 degrees, got {fov}", p.label)));
+    }
+    Ok((fov, axis, loc))
 }
 
 /// The emitted radiance of an `area` emitter nested in a shape.

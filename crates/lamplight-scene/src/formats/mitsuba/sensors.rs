@@ -135,15 +135,7 @@ type FieldOfView = (f64, f64, (&'static str, f64), Loc);
 fn field_of_view(p: &mut Plugin<'_>, aspect: f64) -> Result<FieldOfView, ParamError> {
     let (fov, floc) = match (p.number("fov")?, p.string("focal_length")?) {
         (Some(f), _) => f,
-        (None, Some((mm, loc))) => {
-            let v: f64 = mm
-                .trim_end_matches("mm")
-                .trim()
-                .parse()
-                .map_err(|_| err(&loc, format!("{}: focal_length: expected such as \"50mm\", got \"{mm}\"", p.label)))?;
-            // A 35 mm film's diagonal is 43.27 mm (Mitsuba's focal-length conversion).
-            (2.0 * (43.266615 / (2.0 * v)).atan().to_degrees(), loc)
-        }
+        (None, Some((mm, loc))) => (focal_length_fov(&mm, &loc, &p.label)?, loc),
         (None, None) => (2.0 * (43.266615f64 / 100.0).atan().to_degrees(), p.el.loc.clone()),
     };
     let diagonal_default = !p.has("fov");
@@ -175,6 +167,17 @@ fn field_of_view(p: &mut Plugin<'_>, aspect: f64) -> Result<FieldOfView, ParamEr
         _ => ("vfov", 2.0 * ty.atan().to_degrees()),
     };
     Ok((tx, ty, kept, floc))
+}
+
+/// The diagonal field of view in degrees of a 35 mm `focal_length` such as
+/// `"50mm"`: a 35 mm film's diagonal is 43.27 mm (Mitsuba's conversion).
+pub(super) fn focal_length_fov(mm: &str, loc: &Loc, label: &str) -> Result<f64, ParamError> {
+    let v: f64 = mm
+        .trim_end_matches("mm")
+        .trim()
+        .parse()
+        .map_err(|_| err(loc, format!("{label}: focal_length: expected such as \"50mm\", got \"{mm}\"")))?;
+    Ok(2.0 * (43.266615 / (2.0 * v)).atan().to_degrees())
 }
 
 /// The film's size and filter into `[render]`.
