@@ -208,3 +208,29 @@ fn frosted_example_has_rough_lobes_and_a_mesh_light() {
     assert_eq!(stats.nonfinite_samples, 0);
     assert!(image.pixels.iter().any(|p| p[0] > 0.05), "the lamp lights the scene");
 }
+
+/// An octahedron as an inline mesh, `normals` (a TOML array, or empty) and
+/// `shading` given, lit by a point light (the camera looks at a corner).
+fn octahedron(normals: &str, shading: &str) -> Vec<u8> {
+    let text = format!(
+        "[materials.m]\ncolor = [0.8, 0.6, 0.4]\nkd = 0.8\nks = 0.3\nshininess = 20\n\
+         [meshes.octahedron]\npositions = [[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]]\n\
+         indices = [[0, 2, 4], [2, 1, 4], [1, 3, 4], [3, 0, 4], [2, 0, 5], [1, 2, 5], [3, 1, 5], [0, 3, 5]]\n{normals}{shading}\n\
+         [[objects]]\ntype = \"mesh\"\nmesh = \"octahedron\"\nmaterial = \"m\"\n\
+         [[objects]]\ntype = \"point_light\"\nposition = [3, 4, 2]\nintensity = 10\n"
+    );
+    image(&scene(&text), 48, 48).to_srgb8()
+}
+
+#[test]
+fn smooth_shading_gives_a_mesh_without_normals_its_angle_weighted_vertex_normals() {
+    // By symmetry the angle-weighted normal of each vertex of the octahedron is its own direction.
+    let axes = "normals = [[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]]\n";
+    let smooth = octahedron("", "shading = \"smooth\"\n");
+    assert!(smooth == octahedron(axes, ""), "smooth shading is the octahedron with its axes as normals");
+    assert!(smooth == octahedron(axes, "shading = \"smooth\"\n"), "a mesh's own normals win");
+    let flat = octahedron("", "");
+    assert!(flat != smooth, "the default keeps a mesh without normals flat");
+    assert!(flat == octahedron(axes, "shading = \"flat\"\n"), "flat ignores the mesh's normals");
+    assert!(flat == octahedron("", "shading = \"file\"\n"));
+}

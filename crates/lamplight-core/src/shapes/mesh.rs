@@ -298,5 +298,7 @@ impl Shape for TriangleMesh {
     }
 }
 
+mod vertex_normals;
+
 #[cfg(test)]
 mod tests;

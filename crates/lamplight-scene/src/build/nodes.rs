@@ -41,7 +41,7 @@ struct Ctx<'a> {
     materials: BTreeMap<String, usize>,
     default_material: Option<usize>,
     assets: HashMap<String, Asset>,
-    files: HashMap<PathBuf, Asset>,
+    files: HashMap<(PathBuf, Shading), Asset>,
     names: HashMap<String, Vec<usize>>,
     lights: Vec<(&'a Node, Mat4)>,
     stack: Vec<String>,
@@ -236,12 +236,13 @@ impl<'a> Ctx<'a> {
         let at = |m: String| self.source.error(&desc.value.loc, format!("mesh \"{name}\": {m}"));
         let asset = match (p.has("file"), p.has("positions")) {
             (true, false) if !p.has("indices") && !p.has("normals") => {
+                let shading = Shading::read(&mut p).map_err(|e| Err(self.fail(e)))?;
                 let file = p.required_string("file").map_err(|e| Err(self.fail(e)))?;
                 // Problems with the file as a whole are reported at the `file` key;
                 // those at a place inside the mesh file, at that place.
                 let file_loc = desc.value.get("file").map(|e| e.item.loc.clone()).unwrap_or_default();
                 let at_file = |m: String| self.source.error(&file_loc, format!("mesh \"{name}\": {m}"));
-                self.file_asset(file).map_err(|e| match e {
+                self.file_asset(file, shading).map_err(|e| match e {
                     Ok(m) => Err(at_file(m)),
                     Err(load) if load.location == Location::File => Err(at_file(load.to_string())),
                     Err(load) => Err(load),
@@ -255,7 +256,7 @@ impl<'a> Ctx<'a> {
         Ok(asset)
     }
 
-    fn file_asset(&mut self, file: &str) -> Result<Asset, Result<String, LoadError>> {
+    fn file_asset(&mut self, file: &str, shading: Shading) -> Result<Asset, Result<String, LoadError>> {
         if file.is_empty() {
             return Err(Ok("file: the path is empty, expected a mesh file".to_string()));
         }
@@ -269,7 +270,7 @@ impl<'a> Ctx<'a> {
             // A device or a pipe (/dev/zero) could be read forever.
             return Err(Ok(format!("file \"{file}\" is not a regular file")));
         }
-        let key = path.canonicalize().unwrap_or(path.clone());
+        let key = (path.canonicalize().unwrap_or(path.clone()), shading);
         if let Some(asset) = self.files.get(&key) {
             return Ok(asset.clone());
         }
@@ -288,8 +289,9 @@ impl<'a> Ctx<'a> {
             let mesh = match meshes.get(&placed.mesh) {
                 Some(mesh) => mesh.clone(),
                 None => {
-                    let mesh = data
-                        .to_mesh()
+                    let normals = shading.normals(&data.positions, &data.indices, data.normals.clone());
+                    let mesh = TriangleMesh::new(data.positions.clone(), data.indices.clone(), normals)
+                        .and_then(|m| m.with_attributes(data.attributes.clone()))
                         .map_err(|e| Err(LoadError { path: path.clone(), location: Location::File, message: e.to_string() }))?;
                     meshes.entry(placed.mesh).or_insert(Arc::new(mesh)).clone()
                 }
@@ -320,8 +322,55 @@ pub const MESH_PARAMS: &[lamplight_core::params::Param] = {
         Param::new("positions", T::Array, "", "", "inline vertex positions, `[x, y, z]` each"),
         Param::new("indices", T::Array, "", "", "inline triangles, `[i, j, k]` vertex indices from 0"),
         Param::new("normals", T::Array, "none", "", "inline per-vertex normals"),
+        Param::new(
+            "shading",
+            T::String,
+            "\"file\"",
+            "",
+            "`\"file\"`: the file's normals, flat where it has none; `\"smooth\"`: the file's, else angle-weighted vertex normals (Mitsuba's default, Blender's Shade Smooth); `\"flat\"`: face normals, the file's ignored (Mitsuba's face_normals)",
+        ),
     ]
 };
+
+/// How a mesh file's shading normals are made (`[meshes.NAME] shading`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+enum Shading {
+    /// The file's normals; flat where it has none.
+    File,
+    /// The file's normals; angle-weighted vertex normals where it has none.
+    Smooth,
+    /// Face normals, whatever the file has.
+    Flat,
+}
+
+impl Shading {
+    fn read(p: &mut Params<'_>) -> ParamResult<Shading> {
+        Ok(match p.choice("shading", &["file", "smooth", "flat"])? {
+            "smooth" => Shading::Smooth,
+            "flat" => Shading::Flat,
+            _ => Shading::File,
+        })
+    }
+
+    /// The normals a mesh of `positions` and `indices` is shaded with, given the file's.
+    fn normals(
+        self,
+        positions: &[lamplight_core::math::Vec3],
+        indices: &[[u32; 3]],
+        file: Option<Vec<lamplight_core::math::Vec3>>,
+    ) -> Option<Vec<lamplight_core::math::Vec3>> {
+        match (self, file) {
+            (Shading::Flat, _) => None,
+            (_, Some(n)) => Some(n),
+            (Shading::File, None) => None,
+            // An index out of range is the mesh's error to report, not a panic here.
+            (Shading::Smooth, None) if indices.iter().flatten().all(|&i| (i as usize) < positions.len()) => {
+                Some(TriangleMesh::angle_weighted_normals(positions, indices))
+            }
+            (Shading::Smooth, None) => None,
+        }
+    }
+}
 
 /// An upper bound of the objects `node` adds (saturating; definitions memoized;
 /// cycles and over-deep nesting count 0 here and are reported by the traversal).
@@ -359,6 +408,7 @@ fn inline(p: &mut Params<'_>) -> ParamResult<Asset> {
     let positions = p.vec3_list("positions")?.unwrap_or_default();
     let indices = indices(p)?.ok_or_else(|| p.error("inline mesh needs `indices`"))?;
     let normals = p.vec3_list("normals")?;
+    let normals = Shading::read(p)?.normals(&positions, &indices, normals);
     let mesh = TriangleMesh::new(positions, indices, normals).map_err(|e| p.error(e))?;
     Ok(Arc::new(vec![(Arc::new(mesh), Mat4::IDENTITY, None)]))
 }

@@ -33,7 +33,7 @@ pub struct Mesh {
 
 impl Mesh {
     /// The mesh as an inline `[meshes]` table.
-    pub fn table(&self, loc: &Loc) -> Item {
+    pub fn table(&self, loc: &Loc, shading: Item) -> Item {
         let list = |rows: Vec<Item>| Item { value: Value::Array(rows), loc: loc.clone() };
         let row = |v: &[f64]| Item { value: Value::Array(v.iter().map(|&x| num(x, loc)).collect()), loc: loc.clone() };
         let mut pairs = vec![
@@ -54,6 +54,7 @@ impl Mesh {
         if let Some(n) = &self.normals {
             pairs.push(("normals", list(n.iter().map(|p| row(p)).collect())));
         }
+        pairs.push(("shading", shading));
         table_of(pairs, loc)
     }
 }

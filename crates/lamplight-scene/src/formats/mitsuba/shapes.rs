@@ -16,8 +16,9 @@
 //!
 //! `flip_normals` is not supported (a warning): the normals are kept and the
 //! surface is read two-sided, so that a one-sided BSDF is not black on the
-//! side Mitsuba lights (emission stays on lamplight's front). Meshes without normals are shaded
-//! flat, as Mitsuba's `face_normals = true` (Mitsuba's default smooths them).
+//! side Mitsuba lights (emission stays on lamplight's front). A mesh's
+//! `face_normals = true` is `shading = "flat"`; without it a mesh that has no
+//! normals is `shading = "smooth"` (angle-weighted vertex normals, as Mitsuba computes them).
 
 use lamplight_core::math::{Mat4, Vec3};
 use lamplight_core::params::{Item, Loc, ParamError, Value};
@@ -83,7 +84,8 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El, out: &mut Vec<Item>) -> Result<()
             let (f, floc) = p.string("filename")?.ok_or_else(|| err(&loc, format!("{}: needs filename", p.label)))?;
             let file = ctx.file(&f, &floc)?;
             let name = mesh_name(ctx, el);
-            ctx.meshes.push(entry(&name, table_of(vec![("file", text(&file, &floc))], &floc)));
+            let shading = shading(&mut p)?;
+            ctx.meshes.push(entry(&name, table_of(vec![("file", text(&file, &floc)), ("shading", shading)], &floc)));
             node.push(("type", text("mesh", &loc)));
             node.push(("mesh", text(&name, &floc)));
         }
@@ -93,7 +95,8 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El, out: &mut Vec<Item>) -> Result<()
             let (index, iloc) = p.integer("shape_index")?.unwrap_or((0, loc.clone()));
             let mesh = super::serialized::read(&ctx.full_path(&file), index).map_err(|m| err(&iloc, format!("{}: {m}", p.label)))?;
             let name = mesh_name(ctx, el);
-            ctx.meshes.push(entry(&name, mesh.table(&floc)));
+            let shading = shading(&mut p)?;
+            ctx.meshes.push(entry(&name, mesh.table(&floc, shading)));
             node.push(("type", text("mesh", &loc)));
             node.push(("mesh", text(&name, &floc)));
         }
@@ -112,8 +115,7 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El, out: &mut Vec<Item>) -> Result<()
         ctx.warn(bloc, format!("{}: flip_normals is not supported: the normals are kept and the surface is read two-sided", p.label));
     }
     let flipped = matches!(flip, Some((true, _)));
-    // lamplight shades meshes without normals flat, as face_normals = true asks;
-    // Mitsuba's default smooths them (a known difference, docs/mitsuba.md).
+    // Read by the meshes above; the other shapes have their own normals.
     let _ = p.boolean("face_normals")?;
     if p.kind != "instance" {
         let mut material = material(ctx, &p)?;
@@ -174,6 +176,17 @@ fn two_sided(ctx: &mut Ctx<'_>, name: &str) -> String {
     let copy = ctx.fresh(&format!("{name}_two_sided"));
     ctx.materials.push(entry(&copy, material));
     copy
+}
+
+/// A mesh's `shading` from `face_normals`: `"flat"` when true; else Mitsuba
+/// smooths a mesh without normals by the angle-weighted vertex normals, as
+/// lamplight's `"smooth"` does.
+fn shading(p: &mut Plugin<'_>) -> Result<Item, ParamError> {
+    Ok(match p.boolean("face_normals")? {
+        Some((true, l)) => text("flat", &l),
+        Some((false, l)) => text("smooth", &l),
+        None => text("smooth", &p.el.loc),
+    })
 }
 
 fn mesh_name(ctx: &mut Ctx<'_>, el: &El) -> String {

@@ -1,0 +1,45 @@
+"""More scenes of bench/mitsuba_xml_compare.py: a coarse sphere mesh without
+normals, smoothed by Mitsuba's default and shaded flat with face_normals
+(issue 15). write_assets writes the mesh."""
+import math
+import os
+
+from mitsuba_xml.cases import Case, lit, scene
+
+BALL = """    <shape type="ply"><string name="filename" value="ball.ply"/>{extra}
+        <transform name="to_world"><scale value="0.6"/><translate y="0.6"/></transform>
+        <bsdf type="roughconductor"><string name="material" value="Cu"/><float name="alpha" value="0.15"/></bsdf>
+    </shape>
+"""
+
+CASES = [
+    Case("mesh_smooth_default", "ply without normals (Mitsuba's vertex normals)", scene(lit(BALL.format(extra="")))),
+    Case("mesh_face_normals", "ply (face_normals)", scene(lit(BALL.format(extra='<boolean name="face_normals" value="true"/>')))),
+]
+
+
+def write_assets(d):
+    """ball.ply: a UV sphere of 8 rings and 12 segments, positions only."""
+    rings, segments = 8, 12
+    verts = [(0.0, 1.0, 0.0)]
+    for i in range(1, rings):
+        theta = math.pi * i / rings
+        for j in range(segments):
+            phi = 2 * math.pi * j / segments
+            verts.append((math.sin(theta) * math.cos(phi), math.cos(theta), math.sin(theta) * math.sin(phi)))
+    verts.append((0.0, -1.0, 0.0))
+    ring = lambda i, j: 1 + (i - 1) * segments + j % segments  # noqa: E731
+    faces = [(0, ring(1, j + 1), ring(1, j)) for j in range(segments)]
+    for i in range(1, rings - 1):
+        for j in range(segments):
+            a, b, c, e = ring(i, j), ring(i, j + 1), ring(i + 1, j + 1), ring(i + 1, j)
+            faces += [(a, b, c), (a, c, e)]
+    last = len(verts) - 1
+    faces += [(last, ring(rings - 1, j), ring(rings - 1, j + 1)) for j in range(segments)]
+    with open(os.path.join(d, "ball.ply"), "w") as f:
+        f.write("ply\nformat ascii 1.0\nelement vertex %d\nproperty float x\nproperty float y\nproperty float z\n"
+                "element face %d\nproperty list uchar int vertex_indices\nend_header\n" % (len(verts), len(faces)))
+        for v in verts:
+            f.write("%.9g %.9g %.9g\n" % v)
+        for t in faces:
+            f.write("3 %d %d %d\n" % t)
