@@ -43,3 +43,27 @@ def write_assets(d):
             f.write("%.9g %.9g %.9g\n" % v)
         for t in faces:
             f.write("3 %d %d %d\n" % t)
+
+# flip_normals: a light whose normal points up, flipped so that it shines down,
+# and a one-sided wall turned away from the camera, flipped so that it faces it.
+FLIPPED = """    <shape type="rectangle">
+        <transform name="to_world"><scale value="0.6"/><rotate x="1" angle="-90"/><translate y="2.5"/></transform>
+        <boolean name="flip_normals" value="true"/>
+        <emitter type="area"><rgb name="radiance" value="12, 11, 10"/></emitter>
+    </shape>
+    <shape type="rectangle">
+        <transform name="to_world"><scale value="1.5"/><rotate y="1" angle="180"/><translate z="-1"/></transform>
+        <boolean name="flip_normals" value="true"/>
+        <bsdf type="diffuse"><rgb name="reflectance" value="0.3, 0.6, 0.4"/></bsdf>
+    </shape>
+    <shape type="ply"><string name="filename" value="ball.ply"/><boolean name="flip_normals" value="true"/>
+        <transform name="to_world"><scale value="0.4"/><translate x="0.7" y="0.4"/></transform>
+        <bsdf type="diffuse"><rgb name="reflectance" value="0.7, 0.2, 0.15"/></bsdf>
+    </shape>
+"""
+FLOOR_ONLY = """    <shape type="rectangle">
+        <transform name="to_world"><rotate x="1" angle="-90"/><scale value="3"/></transform>
+        <bsdf type="diffuse"><rgb name="reflectance" value="0.6, 0.6, 0.55"/></bsdf>
+    </shape>
+"""
+CASES.append(Case("flip_normals", "flip_normals (area emitter, one-sided rectangle, ply)", scene(FLOOR_ONLY + FLIPPED)))

@@ -25,6 +25,10 @@ pub struct Object {
     pub shape: Arc<dyn Shape>,
     /// Index into [`Scene::materials`].
     pub material: usize,
+    /// The shape's outward side is turned inward (Mitsuba's `flip_normals`,
+    /// pbrt's `ReverseOrientation`): its front face, the side a one-sided
+    /// material scatters on and an area light emits from, is the other one.
+    pub reversed: bool,
 }
 
 /// A ray's nearest hit in the scene.
@@ -203,8 +207,15 @@ impl SceneBuilder {
         if material >= self.materials.len() {
             return Err(Error::invalid("material", format!("index {material} does not exist")));
         }
-        self.objects.push(Object { shape, material });
+        self.objects.push(Object { shape, material, reversed: false });
         Ok(self.objects.len() - 1)
+    }
+
+    /// Turns object `object`'s outward side inward ([`Object::reversed`]).
+    pub fn reverse_orientation(&mut self, object: usize) {
+        if let Some(o) = self.objects.get_mut(object) {
+            o.reversed = !o.reversed;
+        }
     }
 
     /// Adds a light.
@@ -313,8 +324,9 @@ impl Scene {
             Some(h.t)
         });
         let (object, h) = best?;
-        let front_face = ray.dir.dot(h.normal) < 0.0;
-        let (geometric_normal, mut normal) = if front_face { (h.normal, h.shading_normal) } else { (-h.normal, -h.shading_normal) };
+        let faces_ray = ray.dir.dot(h.normal) < 0.0;
+        let (geometric_normal, mut normal) = if faces_ray { (h.normal, h.shading_normal) } else { (-h.normal, -h.shading_normal) };
+        let front_face = faces_ray != self.objects[object].reversed;
         // A shading normal must face the ray too, or the lighting would see the back side.
         if normal.dot(ray.dir) >= 0.0 {
             normal = geometric_normal;
@@ -371,8 +383,17 @@ impl Scene {
     /// The surface coordinates of `hit` ([`Shape::surface_coords`]), computed
     /// now: only materials that read them ask.
     pub fn surface_coords(&self, hit: &Hit) -> crate::shapes::SurfaceCoords {
-        let outward = if hit.front_face { hit.geometric_normal } else { -hit.geometric_normal };
-        self.objects[hit.object].shape.surface_coords(hit.point, outward, hit.primitive)
+        self.objects[hit.object].shape.surface_coords(hit.point, self.shape_outward(hit), hit.primitive)
+    }
+
+    /// The shape's own outward geometric normal at `hit` (before any
+    /// [`Object::reversed`]), which the shape's other questions are asked with.
+    pub fn shape_outward(&self, hit: &Hit) -> Vec3 {
+        if hit.front_face != self.objects[hit.object].reversed {
+            hit.geometric_normal
+        } else {
+            -hit.geometric_normal
+        }
     }
 
     /// What the shapes noticed while rendering ([`crate::shapes::Shape::warnings`]:

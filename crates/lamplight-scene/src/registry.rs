@@ -102,6 +102,7 @@ pub static STRUCTURAL: &[Structural] = &[
         params: &[
             Param::new("mesh", T::String, "", "", "name of a `[meshes]` entry"),
             Param::new("material", T::String, "inherited, else the file's", "", "material name"),
+            FLIP_NORMALS,
             Param::new(
                 "part",
                 T::Integer,
@@ -114,13 +115,25 @@ pub static STRUCTURAL: &[Structural] = &[
 ];
 
 /// The keys every shape node takes besides its kind's.
-pub const SHAPE_COMMON: &[Param] = &[Param::new(
-    "material",
-    T::String,
-    "inherited, else grey",
+pub const SHAPE_COMMON: &[Param] = &[
+    Param::new(
+        "material",
+        T::String,
+        "inherited, else grey",
+        "",
+        "material name; default: the nearest enclosing group's or instance's, else a mid-grey diffuse material",
+    ),
+    FLIP_NORMALS,
+];
+
+/// `flip_normals`, taken by shapes and mesh nodes.
+const FLIP_NORMALS: Param = Param::new(
+    "flip_normals",
+    T::Bool,
+    "false",
     "",
-    "material name; default: the nearest enclosing group's or instance's, else a mid-grey diffuse material",
-)];
+    "turn the outward side inward (Mitsuba's flip_normals, pbrt's ReverseOrientation): one-sided materials scatter, and area lights emit, on the other side",
+);
 
 /// The keys every node of the tree takes.
 pub const NODE_COMMON: &[Param] = &[

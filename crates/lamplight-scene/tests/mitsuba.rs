@@ -476,27 +476,20 @@ fn rr_depth_reaches_the_path_tracer_with_mitsubas_counting_and_default() {
 }
 
 #[test]
-fn a_flipped_one_sided_surface_reads_two_sided() {
-    // lamplight keeps the normals flip_normals turns, so a one-sided BSDF there
-    // would be black on the side Mitsuba lights: the shape gets a two-sided copy.
+fn flip_normals_becomes_the_nodes_flip_normals_and_keeps_the_one_sided_bsdf() {
     let text = scene(
         r#"    <bsdf type="diffuse" id="d"/>
     <shape type="rectangle"><boolean name="flip_normals" value="true"/><ref id="d"/></shape>
     <shape type="disk"><ref id="d"/></shape>"#,
     );
     let (t, warnings) = table(&text, &[]);
-    assert_eq!(
-        warnings,
-        vec!["s.xml:11:65: shape \"rectangle\": flip_normals is not supported: the normals are kept and the surface is read two-sided"]
-    );
-    let Value::Table(materials) = &t.entries.iter().find(|e| e.key == "materials").unwrap().item.value else { panic!() };
+    assert!(warnings.is_empty(), "{warnings:?}");
     let Value::Array(objects) = &t.entries.iter().find(|e| e.key == "objects").unwrap().item.value else { panic!() };
-    let material_of = |i: usize| {
+    let key = |i: usize, key: &str| {
         let Value::Table(o) = &objects[i].value else { panic!() };
-        let Value::String(name) = &o.entries.iter().find(|e| e.key == "material").unwrap().item.value else { panic!() };
-        let Value::Table(m) = &materials.entries.iter().find(|e| &e.key == name).unwrap().item.value else { panic!() };
-        m.entries.iter().any(|e| e.key == "sided")
+        o.entries.iter().find(|e| e.key == key).map(|e| e.item.value.clone())
     };
-    assert!(!material_of(0), "the flipped rectangle is two-sided");
-    assert!(material_of(1), "the disk keeps the one-sided diffuse");
+    assert_eq!(key(0, "flip_normals"), Some(Value::Bool(true)));
+    assert_eq!(key(1, "flip_normals"), None);
+    assert_eq!(key(0, "material"), key(1, "material"), "both keep the one-sided diffuse");
 }

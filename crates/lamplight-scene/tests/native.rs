@@ -234,3 +234,33 @@ fn smooth_shading_gives_a_mesh_without_normals_its_angle_weighted_vertex_normals
     assert!(flat == octahedron(axes, "shading = \"flat\"\n"), "flat ignores the mesh's normals");
     assert!(flat == octahedron("", "shading = \"file\"\n"));
 }
+
+/// A square in z = 0 whose normal is `normal` (+z faces the camera at z = 5).
+fn square(normal_towards_camera: bool, flip: bool, material: &str) -> String {
+    let (u, v) = if normal_towards_camera { ("[2, 0, 0]", "[0, 2, 0]") } else { ("[0, 2, 0]", "[2, 0, 0]") };
+    format!("[[objects]]\ntype = \"rectangle\"\ncorner = [-1, -1, 0]\nedge_u = {u}\nedge_v = {v}\nmaterial = \"{material}\"\nflip_normals = {flip}\n")
+}
+
+#[test]
+fn flip_normals_turns_the_side_one_sided_materials_and_emitters_act_on() {
+    let lit = |normal_towards_camera, flip| {
+        let text = format!(
+            "[materials.m]\ncolor = [0.8, 0.6, 0.4]\nkd = 0.9\nsided = \"front\"\n{}\
+             [[objects]]\ntype = \"point_light\"\nposition = [1, 2, 4]\nintensity = 20\n",
+            square(normal_towards_camera, flip, "m")
+        );
+        image(&scene(&text), 24, 24).to_srgb8()
+    };
+    let facing = lit(true, false);
+    assert!(facing.iter().any(|&b| b > 50), "a one-sided square facing the camera and the light is lit");
+    assert!(lit(false, false).iter().all(|&b| b == 0), "seen from its back it is black");
+    assert!(lit(false, true) == facing, "turned away but flipped, it is the square that faces the camera");
+    assert!(lit(true, true).iter().all(|&b| b == 0), "facing but flipped, it shows its back");
+    // An emitter emits from its front (one-sided): flipping turns it towards the camera.
+    let glow = |flip| {
+        let text = format!("[materials.e]\ncolor = 0\nkd = 0\nka = 0\nemission = [2, 1, 0.5]\n{}", square(false, flip, "e"));
+        image(&scene(&text), 8, 8)
+    };
+    assert_eq!(glow(false).get(4, 4), [0.0, 0.0, 0.0], "the back of an emitter is dark");
+    assert_eq!(glow(true).get(4, 4), [2.0, 1.0, 0.5], "flipped, its emission faces the camera");
+}

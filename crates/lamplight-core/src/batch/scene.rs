@@ -36,7 +36,7 @@ impl BatchTarget for Scene {
 
     fn nearest<T: Float>(&self, ray: &BatchRay<T>) -> Option<RayHit> {
         let hit = self.first_intersect(&unit_ray(ray), f64::INFINITY)?;
-        let outward = if hit.front_face { hit.geometric_normal } else { -hit.geometric_normal };
+        let outward = self.shape_outward(&hit);
         if !outward.is_finite() {
             // The shape could not resolve where the ray meets it (see the module doc).
             return None;

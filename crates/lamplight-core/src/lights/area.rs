@@ -26,6 +26,9 @@ pub struct AreaLight {
     pub radiance: Rgb,
     /// The inward side emits `radiance` too.
     pub two_sided: bool,
+    /// The shape's orientation is reversed ([`crate::scene::Object::reversed`]):
+    /// it emits from the side its normals point away from.
+    pub reversed: bool,
     area: f64,
     /// The shape is convex ([`Shape::is_convex`]): a sampled point is where a
     /// shadow ray towards it first meets the light.
@@ -59,12 +62,26 @@ impl AreaLight {
             }
         };
         let convex = triangles.is_none() && shape.is_convex();
-        (area > 0.0 && area.is_finite()).then_some(AreaLight { object, shape, radiance, two_sided: false, area, convex, triangles })
+        (area > 0.0 && area.is_finite()).then_some(AreaLight {
+            object,
+            shape,
+            radiance,
+            two_sided: false,
+            reversed: false,
+            area,
+            convex,
+            triangles,
+        })
     }
 
     /// The same light emitting from both sides when `two_sided`.
     pub fn with_two_sided(self, two_sided: bool) -> AreaLight {
         AreaLight { two_sided, ..self }
+    }
+
+    /// The same light with its shape's orientation reversed when `reversed`.
+    pub fn with_reversed(self, reversed: bool) -> AreaLight {
+        AreaLight { reversed, ..self }
     }
 
     /// Surface area.
@@ -86,7 +103,7 @@ impl AreaLight {
         let distance = d2.sqrt();
         // One division for the three components (divisions are the slow part here).
         let wi = to * (1.0 / distance);
-        let facing = -wi.dot(n);
+        let facing = if self.reversed { wi.dot(n) } else { -wi.dot(n) };
         let cos_y = if self.two_sided { facing.abs() } else { facing };
         if cos_y <= 0.0 {
             return None; // the back side does not emit
@@ -180,6 +197,22 @@ mod tests {
                 checked += 1;
             }
             assert!(checked > 500, "{shape:?}: only {checked} samples checked");
+        }
+    }
+
+    #[test]
+    fn a_reversed_emitter_lights_the_other_side_with_the_same_density() {
+        // A square at y = 1 facing +y: it lights points above it, reversed those below.
+        let square = Arc::new(Rectangle::new(Vec3::new(-0.5, 1.0, -0.5), Vec3::new(0.0, 0.0, 1.0), Vec3::new(1.0, 0.0, 0.0)).unwrap());
+        let light = AreaLight::new(0, square, Rgb::ONE).unwrap();
+        let reversed = light.clone().with_reversed(true);
+        let (above, below) = (Vec3::new(0.1, 3.0, 0.2), Vec3::new(0.1, -1.0, 0.2));
+        for u in [(0.2, 0.7), (0.9, 0.1), (0.5, 0.5)] {
+            assert!(light.sample(above, u).is_some() && light.sample(below, u).is_none(), "{u:?}");
+            assert!(reversed.sample(above, u).is_none(), "{u:?}");
+            let (s, r) = (light.sample(above, u).unwrap(), reversed.sample(below, u).unwrap());
+            // Both points are 2 from the square: the same distance and density.
+            assert!((s.distance - r.distance).abs() < 1e-12 && (s.pdf - r.pdf).abs() < 1e-9 * s.pdf, "{u:?}");
         }
     }
 

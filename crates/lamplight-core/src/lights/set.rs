@@ -46,7 +46,7 @@ impl LightSet {
             let material = &scene.materials[object.material];
             if material.emission.max_element() > 0.0 && !bulb[i] {
                 if let Some(light) = AreaLight::new(i, object.shape.clone(), material.emission) {
-                    let light = light.with_two_sided(material.two_sided);
+                    let light = light.with_two_sided(material.two_sided).with_reversed(object.reversed);
                     by_object[i] = Some(area.len() as u32);
                     area.push(light);
                 }

@@ -49,8 +49,7 @@ impl Scene {
             }
         }
         if let (Some(bump), Some(c)) = (&material.bump, &coords) {
-            let outward = if hit.front_face { hit.geometric_normal } else { -hit.geometric_normal };
-            hit.normal = bump.apply(&at, c, outward, hit.normal, hit.geometric_normal, wo);
+            hit.normal = bump.apply(&at, c, self.shape_outward(hit), hit.normal, hit.geometric_normal, wo);
         }
         if let (Some(map), Some(c)) = (&material.normal_map, &coords) {
             hit.normal = map.apply(&at, c, hit.normal, hit.geometric_normal, wo);

@@ -127,13 +127,20 @@ impl<'a> Ctx<'a> {
                 p.check_keys(own, &[]).map_err(|e| self.fail(e))?;
             }
             kind => match Kind::find(registry::SHAPES, kind) {
-                Some(k) => p.check_keys(k.params, &["material"]).map_err(|e| self.fail(e))?,
+                Some(k) => {
+                    let common: Vec<&str> = registry::SHAPE_COMMON.iter().map(|c| c.name).collect();
+                    p.check_keys(k.params, &common).map_err(|e| self.fail(e))?
+                }
                 None => return Err(self.fail(unknown_type(n))),
             },
         }
         let material = match p.string("material").map_err(|e| self.fail(e))? {
             Some(name) => Some(self.material(name).map_err(|m| self.fail(p.key_error("material", m)))?),
             None => material,
+        };
+        let reversed = match n.kind.as_str() {
+            "group" | "instance" => false,
+            _ => p.boolean("flip_normals").map_err(|e| self.fail(e))?.unwrap_or(false),
         };
         match n.kind.as_str() {
             "group" => {
@@ -174,7 +181,7 @@ impl<'a> Ctx<'a> {
                         (Some(m), _) | (None, Some(m)) => m,
                         (None, None) => self.default_material().map_err(|e| self.fail(p.error(e)))?,
                     };
-                    self.place(shape, material, n).map_err(|e| self.fail(p.error(e)))?;
+                    self.place(shape, material, reversed, n).map_err(|e| self.fail(p.error(e)))?;
                 }
             }
             kind => {
@@ -185,18 +192,21 @@ impl<'a> Ctx<'a> {
                     None => self.default_material().map_err(|e| self.fail(p.error(e)))?,
                 };
                 for shape in made {
-                    self.place(shape, material, n).map_err(|e| self.fail(p.error(e)))?;
+                    self.place(shape, material, reversed, n).map_err(|e| self.fail(p.error(e)))?;
                 }
             }
         }
         p.finish().map_err(|e| self.fail(e))
     }
 
-    fn place(&mut self, shape: Arc<dyn Shape>, material: usize, n: &Node) -> Result<(), String> {
+    fn place(&mut self, shape: Arc<dyn Shape>, material: usize, reversed: bool, n: &Node) -> Result<(), String> {
         if self.builder.object_count() >= MAX_OBJECTS {
             return Err(format!("the scene has more than {MAX_OBJECTS} objects (is a definition instanced exponentially?)"));
         }
         let index = self.builder.shared_object(shape, material).map_err(|e| e.to_string())?;
+        if reversed {
+            self.builder.reverse_orientation(index);
+        }
         if let Some(name) = &n.name {
             self.names.entry(name.clone()).or_default().push(index);
             self.builder.name_object(index, name);

@@ -14,9 +14,8 @@
 //! | a nested `<bsdf>` or `<ref>` | `material` (default: Mitsuba's diffuse 0.5, black on an emitter) |
 //! | a nested `<emitter type="area">` | the material with `emission` |
 //!
-//! `flip_normals` is not supported (a warning): the normals are kept and the
-//! surface is read two-sided, so that a one-sided BSDF is not black on the
-//! side Mitsuba lights (emission stays on lamplight's front). A mesh's
+//! `flip_normals` is lamplight's `flip_normals` (one-sided BSDFs and area
+//! emitters act on the other side; ignored with a warning on an instance). A mesh's
 //! `face_normals = true` is `shading = "flat"`; without it a mesh that has no
 //! normals is `shading = "smooth"` (angle-weighted vertex normals, as Mitsuba computes them).
 
@@ -110,18 +109,17 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El, out: &mut Vec<Item>) -> Result<()
             node.push(("matrix", matrix(&m, &mloc)));
         }
     }
-    let flip = p.boolean("flip_normals")?;
-    if let Some((true, bloc)) = &flip {
-        ctx.warn(bloc, format!("{}: flip_normals is not supported: the normals are kept and the surface is read two-sided", p.label));
+    if let Some((flip, bloc)) = p.boolean("flip_normals")? {
+        if p.kind == "instance" {
+            ctx.warn(&bloc, format!("{}: flip_normals on an instance is not supported, ignored", p.label));
+        } else if flip {
+            node.push(("flip_normals", Item { value: Value::Bool(true), loc: bloc }));
+        }
     }
-    let flipped = matches!(flip, Some((true, _)));
     // Read by the meshes above; the other shapes have their own normals.
     let _ = p.boolean("face_normals")?;
     if p.kind != "instance" {
-        let mut material = material(ctx, &p)?;
-        if flipped {
-            material = two_sided(ctx, &material);
-        }
+        let material = material(ctx, &p)?;
         node.push(("material", text(&material, &loc)));
     }
     for o in p.objects.clone() {
@@ -161,21 +159,6 @@ fn material<'a>(ctx: &mut Ctx<'a>, p: &Plugin<'a>) -> Result<String, ParamError>
     let _ = rloc;
     ctx.materials.push(entry(&emitting, material));
     Ok(emitting)
-}
-
-/// The material `name` without `sided` (a copy, made when it has it): on a
-/// shape whose normals Mitsuba flips and lamplight keeps, a one-sided surface
-/// would be black on the side Mitsuba lights.
-fn two_sided(ctx: &mut Ctx<'_>, name: &str) -> String {
-    let Some(mut material) = ctx.materials.iter().find(|m| m.key == name).map(|m| m.item.clone()) else { return name.to_string() };
-    let Value::Table(t) = &mut material.value else { return name.to_string() };
-    if !t.entries.iter().any(|e| e.key == "sided") {
-        return name.to_string();
-    }
-    t.entries.retain(|e| e.key != "sided");
-    let copy = ctx.fresh(&format!("{name}_two_sided"));
-    ctx.materials.push(entry(&copy, material));
-    copy
 }
 
 /// A mesh's `shading` from `face_normals`: `"flat"` when true; else Mitsuba
