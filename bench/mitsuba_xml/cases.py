@@ -254,7 +254,7 @@ def write_assets(d):
         f.write(struct.pack("<HH", 0x041C, 4) + zlib.compress(body) + struct.pack("<QI", 0, 1))
     _scene2.write_assets(d)
     _lights2.write_assets(d)
-    _shading.write_assets(d)
+    _surfaces.write_assets(d)
     with open(os.path.join(d, "included.xml"), "w") as f:
         f.write('<scene version="3.0.0">\n    <default name="inc_r" value="0.7"/>\n'
                 '    <bsdf type="diffuse" id="inc_red"><rgb name="reflectance" value="$inc_r, 0.2, 0.15"/></bsdf>\n</scene>\n')
@@ -269,5 +269,5 @@ CASES += _scene2.CASES
 from mitsuba_xml import cases_lights2 as _lights2  # noqa: E402  (textured spot and projector)
 CASES += _lights2.CASES
 
-from mitsuba_xml import cases_shading as _shading  # noqa: E402  (mesh normals: smooth and flat)
-CASES += _shading.CASES
+from mitsuba_xml import cases_surfaces as _surfaces  # noqa: E402  (mesh normals, flip_normals, blended masks)
+CASES += _surfaces.CASES

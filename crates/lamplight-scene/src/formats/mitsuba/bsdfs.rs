@@ -15,7 +15,7 @@
 //! | `thindielectric` `int_ior` (`bk7`), `ext_ior` (`air`) | `thin_dielectric` |
 //! | `twosided` | its nested BSDF; every other one-sided BSDF gets `sided = "front"` ([`super::sided`]) |
 //! | `null` | `alpha = 0`: cut out |
-//! | `mask` `opacity` | the nested BSDF with `alpha = opacity` (cut at 0.5, not blended) |
+//! | `mask` `opacity` | the nested BSDF with `alpha = opacity`, `alpha_mode = "blend"` (there with probability `opacity`, as Mitsuba) |
 //! | `normalmap` `normalmap` (a bitmap) | the nested BSDF with `normal_map` |
 //! | `bumpmap` (`scale`, one nested height `<texture>`) | the nested BSDF with `bump`, `bump_scale` |
 //! | `principled` `base_color`, `metallic`, `roughness` | `pbr` (the glTF metallic-roughness BRDF, not Mitsuba's Disney BRDF: a warning) |
@@ -311,18 +311,14 @@ pub fn material<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<Vec<Entry>, ParamEr
                 }
                 None => {
                     let (a, aloc) = p.number_or("opacity", 0.5)?;
-                    if a > 0.0 && a < 1.0 {
-                        ctx.warn(
-                            &aloc,
-                            format!("{}: opacity {a} cuts the surface out below 0.5 (lamplight's alpha), Mitsuba blends", p.label),
-                        );
-                    }
                     num(a, &aloc)
                 }
             };
             let mut e = nested(ctx, &p)?;
-            e.retain(|x| x.key != "alpha");
+            e.retain(|x| x.key != "alpha" && x.key != "alpha_mode" && x.key != "alpha_cutoff");
             e.push(entry("alpha", opacity));
+            // Mitsuba keeps the surface with probability `opacity`: lamplight's blend.
+            e.push(entry("alpha_mode", text("blend", &loc)));
             e
         }
         "normalmap" => {

@@ -1,10 +1,11 @@
-"""More scenes of bench/mitsuba_xml_compare.py: a coarse sphere mesh without
-normals, smoothed by Mitsuba's default and shaded flat with face_normals
-(issue 15). write_assets writes the mesh."""
+"""More scenes of bench/mitsuba_xml_compare.py (issue 15): a coarse sphere mesh
+without normals, smoothed by Mitsuba's default and shaded flat with
+face_normals; flip_normals; masks of fractional opacity. write_assets writes
+the mesh."""
 import math
 import os
 
-from mitsuba_xml.cases import Case, lit, scene
+from mitsuba_xml.cases import DIFFUSE_RED, Case, lit, scene, sphere
 
 BALL = """    <shape type="ply"><string name="filename" value="ball.ply"/>{extra}
         <transform name="to_world"><scale value="0.6"/><translate y="0.6"/></transform>
@@ -67,3 +68,11 @@ FLOOR_ONLY = """    <shape type="rectangle">
     </shape>
 """
 CASES.append(Case("flip_normals", "flip_normals (area emitter, one-sided rectangle, ply)", scene(FLOOR_ONLY + FLIPPED)))
+
+# mask with a fractional opacity: Mitsuba keeps the surface with that probability.
+MASKED = """    <shape type="sphere"><point name="center" value="-0.2, 0.5, 0.9"/><float name="radius" value="0.45"/>
+        <bsdf type="mask"><float name="opacity" value="0.35"/>
+            <bsdf type="diffuse"><rgb name="reflectance" value="0.2, 0.5, 0.8"/></bsdf></bsdf>
+    </shape>
+"""
+CASES.append(Case("mask_fractional", "mask (opacity 0.35)", scene(lit(sphere(DIFFUSE_RED, center="0.3, 0.6, -0.5") + MASKED))))
