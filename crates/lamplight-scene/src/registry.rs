@@ -45,7 +45,7 @@ pub static LIGHTS: &[&LightKind] = &[&lights::point::KIND, &lights::directional:
 
 /// Material kinds; the first is the default `type`.
 pub static MATERIALS: &[&MaterialKind] =
-    &[&materials::phong::KIND, &materials::pbr::KIND, &materials::plastic::KIND, &materials::thin_dielectric::KIND];
+    &[&materials::phong::KIND, &materials::pbr::KIND, &materials::plastic::KIND, &materials::principled::KIND, &materials::thin_dielectric::KIND];
 
 /// Camera kinds; the first is the default `type`.
 pub static CAMERAS: &[&CameraKind] = &[

@@ -20,6 +20,7 @@ pub mod normal_map;
 pub mod pbr;
 pub mod phong;
 pub mod plastic;
+pub mod principled;
 pub mod sided;
 pub mod texture;
 pub mod textured;
@@ -122,6 +123,8 @@ pub enum Model {
         /// Relative index of the sheet.
         eta: f64,
     },
+    /// Mitsuba's principled BSDF of base colour `color` ([`crate::bsdfs::principled`]).
+    Principled(crate::bsdfs::principled::PrincipledParams),
 }
 
 /// Every property of a surface, the lecture's `Material`.
