@@ -107,3 +107,20 @@ for name, params in PRINCIPLED.items():
         ctx = mi.BSDFContext()
         for wo in (direction(10, 2.0), direction(50, 3.0), direction(70, 0.4 + math.pi), direction(150, 0.4 + math.pi), direction(120, 1.0)):
             print(f"principled {name} from {theta_i}", rgb(bsdf.eval(ctx, si, wo)), f"pdf {bsdf.pdf(ctx, si, wo):.7g}")
+
+# The thin principled sheet (crates/lamplight-core/src/bsdfs/principled_thin.rs) and
+# the principled one with flatness: the same numbers, `wi` from outside.
+THIN = {
+    "thin_leaf": {"base_color": {"type": "rgb", "value": [0.3, 0.6, 0.2]}, "spec_trans": 0.4, "diff_trans": 0.8,
+                  "roughness": 0.4, "eta": 1.4, "sheen": 0.5, "sheen_tint": 0.3, "spec_tint": 0.2},
+    "thin_flat": {"base_color": {"type": "rgb", "value": [0.8, 0.5, 0.4]}, "diff_trans": 1.5, "flatness": 0.6, "roughness": 0.6},
+}
+for name, params in list(THIN.items()) + [("flat", {"base_color": {"type": "rgb", "value": [0.8, 0.5, 0.4]}, "flatness": 0.7, "roughness": 0.6})]:
+    bsdf = mi.load_dict({"type": "principled" if name == "flat" else "principledthin", **params})
+    for t in (0, 30, 60, 80):
+        print(f"principled {name} albedo theta {t}", rgb(albedo_rgb(bsdf, direction(t, 0.4))))
+    si = mi.SurfaceInteraction3f()
+    si.wi = direction(30, 0.4)
+    ctx = mi.BSDFContext()
+    for wo in (direction(10, 2.0), direction(50, 3.0), direction(70, 0.4 + math.pi), direction(150, 0.4 + math.pi), direction(120, 1.0)):
+        print(f"principled {name} from 30", rgb(bsdf.eval(ctx, si, wo)), f"pdf {bsdf.pdf(ctx, si, wo):.7g}")

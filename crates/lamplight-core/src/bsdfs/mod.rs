@@ -20,6 +20,7 @@ pub mod metallic_roughness;
 pub mod microfacet;
 pub mod plastic;
 pub mod principled;
+pub mod principled_thin;
 pub mod rough_conductor;
 pub mod rough_dielectric;
 pub mod rough_plastic;
@@ -131,6 +132,8 @@ pub enum Lobe {
     },
     /// Mitsuba's principled BSDF ([`principled`]).
     Principled(principled::Principled),
+    /// Mitsuba's thin principled BSDF ([`principled_thin`]).
+    PrincipledThin(principled_thin::PrincipledThin),
     /// Smooth refraction only, with weight `Constant` or `1 - F` (delta).
     Refract {
         /// Relative index across the boundary.
@@ -153,6 +156,7 @@ impl Lobe {
                 | Lobe::Plastic(_)
                 | Lobe::RoughPlastic(_)
                 | Lobe::Principled(_)
+                | Lobe::PrincipledThin(_)
         )
     }
 
@@ -162,7 +166,7 @@ impl Lobe {
             Lobe::Diffuse(a) => a,
             Lobe::Glossy { ks, .. } => ks,
             Lobe::Mirror(m) => m.bound(),
-            Lobe::RoughConductor { .. } | Lobe::Plastic(_) | Lobe::RoughPlastic(_) | Lobe::Principled(_) => Rgb::ONE,
+            Lobe::RoughConductor { .. } | Lobe::Plastic(_) | Lobe::RoughPlastic(_) | Lobe::Principled(_) | Lobe::PrincipledThin(_) => Rgb::ONE,
             Lobe::Glass { tint, .. } | Lobe::RoughGlass { tint, .. } | Lobe::ThinGlass { tint, .. } => tint,
             Lobe::Refract { weight, .. } => weight.unwrap_or(Rgb::ONE),
             Lobe::MetallicRoughness { base, metallic, spec, .. } => metallic_roughness::bound(base, metallic, spec),
@@ -191,7 +195,7 @@ impl Lobe {
             Lobe::RoughConductor { .. } => self,
             Lobe::Refract { eta, weight } => Lobe::Refract { eta, weight: Some(weight.unwrap_or(Rgb::ONE) * s) },
             // Their bounds are at most 1 and the mapping uses them alone: never scaled.
-            Lobe::MetallicRoughness { .. } | Lobe::Plastic(_) | Lobe::RoughPlastic(_) | Lobe::Principled(_) => self,
+            Lobe::MetallicRoughness { .. } | Lobe::Plastic(_) | Lobe::RoughPlastic(_) | Lobe::Principled(_) | Lobe::PrincipledThin(_) => self,
         }
     }
 }
@@ -301,6 +305,7 @@ impl Bsdf {
                 Lobe::Plastic(p) => sum += p.f(wo, wi),
                 Lobe::RoughPlastic(p) => sum += p.f(wo, wi),
                 Lobe::Principled(p) => sum += p.f(wo, wi),
+                Lobe::PrincipledThin(p) => sum += p.f(wo, wi),
                 Lobe::MetallicRoughness { base, metallic, spec, alpha } => {
                     sum += metallic_roughness::f(base, metallic, spec, alpha, wo, wi)
                 }
@@ -330,6 +335,7 @@ impl Bsdf {
                 Lobe::Plastic(lobe) => pdf += p * lobe.pdf(wo, wi),
                 Lobe::RoughPlastic(lobe) => pdf += p * lobe.pdf(wo, wi),
                 Lobe::Principled(lobe) => pdf += p * lobe.pdf(wo, wi),
+                Lobe::PrincipledThin(lobe) => pdf += p * lobe.pdf(wo, wi),
                 Lobe::MetallicRoughness { base, metallic, spec, alpha } => {
                     pdf += p * metallic_roughness::pdf(base, metallic, spec, alpha, wo, wi)
                 }
@@ -377,6 +383,7 @@ impl Bsdf {
             },
             Lobe::RoughPlastic(lobe) => lobe.sample(wo, u_rest, u)?,
             Lobe::Principled(lobe) => lobe.sample(wo, u_rest, u)?,
+            Lobe::PrincipledThin(lobe) => lobe.sample(wo, u_rest, u)?,
             Lobe::ThinGlass { eta, tint } => return delta(thin_dielectric::sample(wo, eta, u_rest).0, tint, 1.0),
             Lobe::MetallicRoughness { base, metallic, spec, alpha } => {
                 metallic_roughness::sample(base, metallic, spec, alpha, wo, u_rest, u)?
@@ -396,7 +403,7 @@ impl Bsdf {
         if !(pdf > 0.0) {
             return None;
         }
-        // Only rough glass and principled lobes transmit among the non-delta lobes.
+        // Only rough glass and principled lobes bend light among the non-delta lobes (a thin sheet does not).
         let eta = match self.lobes[chosen] {
             Lobe::RoughGlass { eta, .. } if wi.z < 0.0 => eta,
             Lobe::Principled(lobe) => lobe.eta_towards(wi),

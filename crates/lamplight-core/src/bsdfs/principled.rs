@@ -28,7 +28,8 @@
 //!   `G_cc = g(v) g(l)`, `g = 2 / (1 + sqrt(1 + 0.25^2 tan^2))`;
 //! - diffuse (outside only): `brdf C / pi |cos_l| (f_d + f_r)`, Burley's
 //!   `f_d = (1 - sw(cos_v) / 2)(1 - sw(cos_l) / 2)` and retro-reflection
-//!   `f_r = R_r (F_l + F_v + F_l F_v (R_r - 1))`, `R_r = 2 roughness (h.l)^2`;
+//!   `f_r = R_r (F_l + F_v + F_l F_v (R_r - 1))`, `R_r = 2 roughness (h.l)^2`,
+//!   blended by `flatness` towards Burley's fake subsurface ([`burley_diffuse`]);
 //! - sheen (outside, where the diffuse is): `sheen (1 - m) sw(h.l) lerp(1, C_tint, sheen_tint) |cos_l|`.
 //!
 //! Sampling (the same densities as Mitsuba's `sample` and `pdf`): from outside a
@@ -66,6 +67,8 @@ pub struct PrincipledParams {
     pub clearcoat: f64,
     /// `clearcoat_gloss`, 0 to 1.
     pub clearcoat_gloss: f64,
+    /// `flatness`, 0 to 1: blends the diffuse towards Burley's fake subsurface.
+    pub flatness: f64,
     /// `diffuse_reflectance_sampling_rate`.
     pub diffuse_rate: f64,
     /// `main_specular_sampling_rate`.
@@ -87,6 +90,7 @@ impl Default for PrincipledParams {
             sheen_tint: 0.0,
             clearcoat: 0.0,
             clearcoat_gloss: 0.0,
+            flatness: 0.0,
             diffuse_rate: 1.0,
             specular_rate: 1.0,
             clearcoat_rate: 1.0,
@@ -108,7 +112,7 @@ pub fn luminance(c: Rgb) -> f64 {
 
 /// Schlick's weight `clamp(1 - c, 0, 1)^5`.
 #[inline]
-fn schlick_weight(c: f64) -> f64 {
+pub(super) fn schlick_weight(c: f64) -> f64 {
     let m = (1.0 - c).clamp(0.0, 1.0);
     let m2 = m * m;
     m2 * m2 * m
@@ -116,7 +120,7 @@ fn schlick_weight(c: f64) -> f64 {
 
 /// `R0(eta) = ((eta - 1) / (eta + 1))^2`.
 #[inline]
-fn schlick_r0(eta: f64) -> f64 {
+pub(super) fn schlick_r0(eta: f64) -> f64 {
     let r = (eta - 1.0) / (eta + 1.0);
     r * r
 }
@@ -125,7 +129,7 @@ fn schlick_r0(eta: f64) -> f64 {
 /// the ray (`cos >= 0` sees `eta`, `cos < 0` sees `1 / eta`), else the same with
 /// the refracted direction's cosine (0 under total internal reflection).
 #[inline]
-fn schlick(r0: Rgb, cos: f64, eta: f64) -> Rgb {
+pub(super) fn schlick(r0: Rgb, cos: f64, eta: f64) -> Rgb {
     let eta_it = if cos >= 0.0 { eta } else { 1.0 / eta };
     let c = if eta_it > 1.0 {
         cos.abs()
@@ -140,7 +144,7 @@ fn schlick(r0: Rgb, cos: f64, eta: f64) -> Rgb {
 /// The exact dielectric Fresnel reflectance for `cos = v.h`, from either side
 /// (Mitsuba's `fresnel`: `cos < 0` meets `1 / eta`).
 #[inline]
-fn fresnel(cos: f64, eta: f64) -> f64 {
+pub(super) fn fresnel(cos: f64, eta: f64) -> f64 {
     if cos >= 0.0 {
         fresnel_dielectric(cos, eta)
     } else {
@@ -151,7 +155,7 @@ fn fresnel(cos: f64, eta: f64) -> f64 {
 /// Smith's GGX masking of `v` by normal `m` (Mitsuba's `smith_g1`):
 /// `2 / (1 + sqrt(1 + alpha^2 tan^2))`, 0 where `m` faces away from `v`'s side.
 #[inline]
-fn smith_g1(alpha: f64, v: Vec3, m: Vec3) -> f64 {
+pub(super) fn smith_g1(alpha: f64, v: Vec3, m: Vec3) -> f64 {
     if v.dot(m) * v.z <= 0.0 {
         return 0.0;
     }
@@ -164,7 +168,7 @@ fn smith_g1(alpha: f64, v: Vec3, m: Vec3) -> f64 {
 
 /// GGX's density of the normals visible from `v` (upper side): `D(m) G1(v, m) |v.m| / cos_v`.
 #[inline]
-fn visible_pdf(alpha: f64, v: Vec3, m: Vec3) -> f64 {
+pub(super) fn visible_pdf(alpha: f64, v: Vec3, m: Vec3) -> f64 {
     microfacet::d(alpha, m) * smith_g1(alpha, v, m) * v.dot(m).abs() / v.z
 }
 
@@ -211,7 +215,7 @@ fn clearcoat_g(v: Vec3, l: Vec3, m: Vec3) -> f64 {
 /// Mitsuba's macro/micro-surface check: `v` and `l` on the sides of `m` a
 /// reflection (or refraction) needs, `m` turned to `v`'s side.
 #[inline]
-fn compatible(m: Vec3, v: Vec3, l: Vec3, reflection: bool) -> bool {
+pub(super) fn compatible(m: Vec3, v: Vec3, l: Vec3, reflection: bool) -> bool {
     let m = if v.z < 0.0 { -m } else { m };
     v.dot(m) > 0.0 && if reflection { l.dot(m) > 0.0 } else { l.dot(m) < 0.0 }
 }
@@ -338,10 +342,9 @@ impl Principled {
         }
         if brdf > 0.0 {
             let (fl, fv) = (schlick_weight(l.z.abs()), schlick_weight(v.z.abs()));
-            let diffuse = (1.0 - 0.5 * fv) * (1.0 - 0.5 * fl);
             let rr = 2.0 * self.p.roughness * lh * lh;
-            let retro = rr * (fl + fv + fl * fv * (rr - 1.0));
-            value += base * (brdf * l.z.abs() * FRAC_1_PI * (diffuse + retro));
+            let shape = burley_diffuse(fv, fl, rr, v.z.abs(), l.z.abs(), self.p.flatness);
+            value += base * (brdf * l.z.abs() * FRAC_1_PI * shape);
             if self.p.sheen > 0.0 && 1.0 - m > 0.0 {
                 let sheen = Rgb::ONE + (tint - Rgb::ONE) * self.p.sheen_tint;
                 value += sheen * (self.p.sheen * (1.0 - m) * schlick_weight(lh.abs()) * l.z.abs());
@@ -460,9 +463,27 @@ impl Principled {
     }
 }
 
+/// Burley's diffuse shape for the Schlick weights `fv`, `fl` of the two cosines and
+/// `R_r = 2 roughness (h.l)^2`: `lerp(f_d + f_r, f_ss, flatness)` with
+/// `f_d = (1 - fv / 2)(1 - fl / 2)`, `f_r = R_r (fl + fv + fl fv (R_r - 1))` and the
+/// Hanrahan-Krueger-like `f_ss = 1.25 (F_ss (1 / (cos_l + cos_v) - 0.5) + 0.5)`,
+/// `F_ss = lerp(1, R_r / 2, fl) lerp(1, R_r / 2, fv)`.
+#[inline]
+pub(super) fn burley_diffuse(fv: f64, fl: f64, rr: f64, cos_v: f64, cos_l: f64, flatness: f64) -> f64 {
+    let diffuse = (1.0 - 0.5 * fv) * (1.0 - 0.5 * fl);
+    let retro = rr * (fl + fv + fl * fv * (rr - 1.0));
+    if flatness == 0.0 {
+        return diffuse + retro;
+    }
+    let fss90 = rr / 2.0;
+    let fss = lerp(1.0, fss90, fl) * lerp(1.0, fss90, fv);
+    let ss = 1.25 * (fss * (1.0 / (cos_l + cos_v) - 0.5) + 0.5);
+    lerp(diffuse + retro, ss, flatness)
+}
+
 /// `a (1 - t) + b t` (Dr.Jit's `lerp`).
 #[inline]
-fn lerp(a: f64, b: f64, t: f64) -> f64 {
+pub(super) fn lerp(a: f64, b: f64, t: f64) -> f64 {
     a * (1.0 - t) + b * t
 }
 

@@ -21,6 +21,7 @@ pub mod pbr;
 pub mod phong;
 pub mod plastic;
 pub mod principled;
+pub mod principled_thin;
 pub mod sided;
 pub mod texture;
 pub mod textured;
@@ -125,6 +126,8 @@ pub enum Model {
     },
     /// Mitsuba's principled BSDF of base colour `color` ([`crate::bsdfs::principled`]).
     Principled(crate::bsdfs::principled::PrincipledParams),
+    /// Mitsuba's thin principled BSDF of base colour `color` ([`crate::bsdfs::principled_thin`]).
+    PrincipledThin(crate::bsdfs::principled_thin::ThinParams),
 }
 
 /// Every property of a surface, the lecture's `Material`.

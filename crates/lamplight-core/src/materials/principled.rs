@@ -13,6 +13,7 @@
 //! | `spec_tint` | number or texture | 0 | 0 to 1: tints the dielectric's reflection towards `C` |
 //! | `sheen`, `sheen_tint` | number or texture | 0, 0 | the sheen lobe's weight and its tint towards `C` |
 //! | `clearcoat`, `clearcoat_gloss` | number or texture | 0, 0 | the clearcoat lobe's weight and gloss (GTR1 `alpha = lerp(0.1, 0.001, gloss)`) |
+//! | `flatness` | number or texture | 0 | 0 to 1: blends the diffuse towards Burley's fake subsurface |
 //! | `diffuse_reflectance_sampling_rate`, `main_specular_sampling_rate`, `clearcoat_sampling_rate` | number | 1, 1, 1 | the lobes' sampling weights (noise only, not the image) |
 //! | `emission`, `two_sided` | colour or texture, boolean | 0, false | emitted radiance, from both sides |
 //! | `normal_map`, `bump`, `alpha` | | | as for `phong` |
@@ -27,6 +28,7 @@ use std::sync::Arc;
 use super::textured::{scalar_param, Slot};
 use super::{Material, MaterialKind, Model, Texture, Textures};
 use crate::bsdfs::principled::{eta_from_specular, PrincipledParams};
+use crate::bsdfs::principled_thin::ThinParams;
 use crate::math::Rgb;
 use crate::params::{Kind, Param, ParamResult, ParamType as T, Params, Value};
 
@@ -47,6 +49,7 @@ pub const KIND: MaterialKind = Kind {
         Param::new("sheen_tint", T::Texture, "0", "0 to 1", "tint of the sheen towards the base colour"),
         Param::new("clearcoat", T::Texture, "0", "0 to 1", "weight of the clearcoat lobe"),
         Param::new("clearcoat_gloss", T::Texture, "0", "0 to 1", "gloss of the clearcoat"),
+        Param::new("flatness", T::Texture, "0", "0 to 1", "blend of the diffuse towards Burley's fake subsurface"),
         Param::new("diffuse_reflectance_sampling_rate", T::Number, "1", ">= 0", "sampling weight of the diffuse lobe"),
         Param::new("main_specular_sampling_rate", T::Number, "1", ">= 0", "sampling weight of the main specular lobes"),
         Param::new("clearcoat_sampling_rate", T::Number, "1", ">= 0", "sampling weight of the clearcoat"),
@@ -82,6 +85,10 @@ pub enum Scalar {
     Clearcoat,
     /// `clearcoat_gloss`.
     ClearcoatGloss,
+    /// `flatness`.
+    Flatness,
+    /// `principled_thin`'s `diff_trans` (0 to 2, stored halved as Mitsuba does).
+    DiffTrans,
 }
 
 impl Scalar {
@@ -96,12 +103,32 @@ impl Scalar {
             Scalar::SheenTint => &mut p.sheen_tint,
             Scalar::Clearcoat => &mut p.clearcoat,
             Scalar::ClearcoatGloss => &mut p.clearcoat_gloss,
+            Scalar::Flatness => &mut p.flatness,
+            Scalar::DiffTrans => return,
+        };
+        *field = value;
+    }
+
+    /// Writes `value` into its field of the thin model's `p` (`diff_trans` halved).
+    pub fn set_thin(self, p: &mut ThinParams, value: f64) {
+        let field = match self {
+            Scalar::Roughness => &mut p.roughness,
+            Scalar::SpecTrans => &mut p.spec_trans,
+            Scalar::SpecTint => &mut p.spec_tint,
+            Scalar::Sheen => &mut p.sheen,
+            Scalar::SheenTint => &mut p.sheen_tint,
+            Scalar::Flatness => &mut p.flatness,
+            Scalar::DiffTrans => {
+                p.diff_trans = value / 2.0;
+                return;
+            }
+            Scalar::Metallic | Scalar::Clearcoat | Scalar::ClearcoatGloss => return,
         };
         *field = value;
     }
 }
 
-const SCALARS: [(&str, Scalar, f64); 8] = [
+const SCALARS: [(&str, Scalar, f64); 9] = [
     ("roughness", Scalar::Roughness, 0.5),
     ("metallic", Scalar::Metallic, 0.0),
     ("spec_trans", Scalar::SpecTrans, 0.0),
@@ -110,6 +137,7 @@ const SCALARS: [(&str, Scalar, f64); 8] = [
     ("sheen_tint", Scalar::SheenTint, 0.0),
     ("clearcoat", Scalar::Clearcoat, 0.0),
     ("clearcoat_gloss", Scalar::ClearcoatGloss, 0.0),
+    ("flatness", Scalar::Flatness, 0.0),
 ];
 
 fn rate(p: &mut Params<'_>, key: &str) -> ParamResult<f64> {

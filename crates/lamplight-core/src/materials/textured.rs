@@ -71,8 +71,14 @@ impl Slot {
                 }
             }
             Slot::Principled(scalar) => {
-                if let Some(super::Model::Principled(p)) = &mut m.model {
-                    scalar.set(p, value.x.clamp(0.0, 1.0));
+                match &mut m.model {
+                    Some(super::Model::Principled(p)) => scalar.set(p, value.x.clamp(0.0, 1.0)),
+                    // `diff_trans` runs from 0 to 2.
+                    Some(super::Model::PrincipledThin(p)) => {
+                        let max = if scalar == super::principled::Scalar::DiffTrans { 2.0 } else { 1.0 };
+                        scalar.set_thin(p, value.x.clamp(0.0, max))
+                    }
+                    _ => {}
                 }
             }
         }

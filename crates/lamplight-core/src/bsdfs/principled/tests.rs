@@ -36,6 +36,7 @@ fn set(name: &str) -> (Rgb, PrincipledParams) {
                 ..d
             },
         ),
+        "flat" => (Rgb::new(0.8, 0.5, 0.4), PrincipledParams { flatness: 0.7, roughness: 0.6, ..d }),
         _ => unreachable!("{name}"),
     }
 }
@@ -75,6 +76,31 @@ fn sampled(p: &Principled, wo: Vec3, u_choice: f64, u: (f64, f64), channel: usiz
     let wi = p.sample(wo, u_choice, u)?;
     let pdf = p.pdf(wo, wi);
     (pdf > 0.0).then(|| Sampled::Smooth(wi, p.f(wo, wi)[channel] * wi.z.abs() / pdf))
+}
+
+/// The same numbers for a principled of `flatness` 0.7 (Burley's fake subsurface).
+const FLAT: [(&str, [[f64; 3]; 4], [[f64; 4]; 5]); 1] = [
+    ("flat", [[0.6993497, 0.4496789, 0.3664553], [0.737251, 0.4740758, 0.3863507], [0.9028986, 0.5847086, 0.4786453], [1.104883, 0.7282744, 0.6027383]], [[0.2062975, 0.1336248, 0.1094005, 0.3127905], [0.1574882, 0.1034836, 0.08548206, 0.2596289], [0.09742452, 0.06484421, 0.05398411, 0.1644426], [0.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 0.0]]),
+];
+
+#[test]
+fn flatness_matches_mitsuba() {
+    for (name, albedos, rows) in FLAT {
+        let (lobe, wo) = lobe_at(name, dir(30.0, 0.4));
+        for (wi, row) in directions().into_iter().zip(rows) {
+            let value = lobe.f(wo, wi) * wi.z.abs();
+            for (got, expected) in [value.x, value.y, value.z, lobe.pdf(wo, wi)].into_iter().zip(row) {
+                assert!((got - expected).abs() <= 1e-4 * expected.abs() + 1e-8, "{name} towards {wi}: {got} vs Mitsuba {expected}");
+            }
+        }
+        for (theta, expected) in [0.0, 30.0, 60.0, 80.0].into_iter().zip(albedos) {
+            let (lobe, wo) = lobe_at(name, dir(theta, 0.4));
+            for (channel, expected) in expected.into_iter().enumerate() {
+                let (albedo, _) = furnace(|a, u| sampled(&lobe, wo, a, u, channel));
+                assert!((albedo / expected - 1.0).abs() < 6e-3, "{name} theta {theta} channel {channel}: {albedo} vs Mitsuba {expected}");
+            }
+        }
+    }
 }
 
 #[test]
