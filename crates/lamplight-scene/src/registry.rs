@@ -45,10 +45,13 @@ pub static LIGHTS: &[&LightKind] = &[&lights::point::KIND, &lights::directional:
 
 /// Material kinds; the first is the default `type`.
 pub static MATERIALS: &[&MaterialKind] = &[
-        &materials::phong::KIND, &materials::pbr::KIND, &materials::plastic::KIND, &materials::principled::KIND,
-        &materials::principled_thin::KIND,
-        &materials::thin_dielectric::KIND,
-    ];
+    &materials::phong::KIND,
+    &materials::pbr::KIND,
+    &materials::plastic::KIND,
+    &materials::principled::KIND,
+    &materials::principled_thin::KIND,
+    &materials::thin_dielectric::KIND,
+];
 
 /// Camera kinds; the first is the default `type`.
 pub static CAMERAS: &[&CameraKind] = &[

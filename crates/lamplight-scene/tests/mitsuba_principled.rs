@@ -62,14 +62,13 @@ fn defaults_are_mitsubas_and_there_is_no_warning() {
 
 #[test]
 fn every_parameter_reaches_the_lobe() {
-    let (s, warnings) = read(&xml(
-        r#"<bsdf type="principled"><rgb name="base_color" value="0.2, 0.5, 0.7"/><float name="roughness" value="0.3"/>
+    let (s, warnings) =
+        read(&xml(r#"<bsdf type="principled"><rgb name="base_color" value="0.2, 0.5, 0.7"/><float name="roughness" value="0.3"/>
         <float name="metallic" value="0.25"/><float name="spec_trans" value="0.4"/><float name="specular" value="0.3"/>
         <float name="spec_tint" value="0.1"/><float name="sheen" value="0.6"/><float name="sheen_tint" value="0.7"/>
         <float name="clearcoat" value="0.8"/><float name="clearcoat_gloss" value="0.9"/><float name="anisotropic" value="0"/>
         <float name="diffuse_reflectance_sampling_rate" value="0.5"/><float name="main_specular_sampling_rate" value="2"/>
-        <float name="clearcoat_sampling_rate" value="0.25"/></bsdf>"#,
-    ));
+        <float name="clearcoat_sampling_rate" value="0.25"/></bsdf>"#));
     assert!(warnings.is_empty(), "{warnings:?}");
     let expected = PrincipledParams {
         roughness: 0.3,
@@ -155,16 +154,16 @@ fn bad_principled_parameters_give_their_exact_errors() {
 #[test]
 fn principledthin_reads_as_the_thin_sheet() {
     use lamplight_core::bsdfs::principled_thin::ThinParams;
-    let (s, warnings) = read(&xml(
-        r#"<bsdf type="principledthin"><rgb name="base_color" value="0.3, 0.6, 0.2"/><float name="spec_trans" value="0.4"/>
+    let (s, warnings) =
+        read(&xml(r#"<bsdf type="principledthin"><rgb name="base_color" value="0.3, 0.6, 0.2"/><float name="spec_trans" value="0.4"/>
         <float name="diff_trans" value="0.8"/><float name="eta" value="1.4"/><float name="flatness" value="0.2"/>
-        <float name="diffuse_transmittance_sampling_rate" value="0.5"/></bsdf>"#,
-    ));
+        <float name="diffuse_transmittance_sampling_rate" value="0.5"/></bsdf>"#));
     assert!(warnings.is_empty(), "{warnings:?}");
     let m = &s.materials[s.objects[0].material];
     let Some(Model::PrincipledThin(p)) = &m.model else { panic!("{:?}", m.model) };
     // Mitsuba halves diff_trans (0 to 2) before using it.
-    let expected = ThinParams { spec_trans: 0.4, diff_trans: 0.4, eta: 1.4, flatness: 0.2, rates: [1.0, 1.0, 1.0, 0.5], ..ThinParams::default() };
+    let expected =
+        ThinParams { spec_trans: 0.4, diff_trans: 0.4, eta: 1.4, flatness: 0.2, rates: [1.0, 1.0, 1.0, 0.5], ..ThinParams::default() };
     assert_eq!(*p, expected);
     assert!(!m.one_sided);
     assert!(matches!(bsdf_for(m, Vec3::ZERO, false).lobes(), [Lobe::PrincipledThin(_)]));

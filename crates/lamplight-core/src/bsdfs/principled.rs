@@ -250,7 +250,7 @@ impl Principled {
 
     /// Lamplight's local direction in Mitsuba's frame.
     #[inline]
-    fn to_mitsuba(&self, w: Vec3) -> Vec3 {
+    fn in_mitsuba_frame(&self, w: Vec3) -> Vec3 {
         if self.front {
             w
         } else {
@@ -391,19 +391,19 @@ impl Principled {
         if wi.z == 0.0 {
             return Rgb::ZERO;
         }
-        self.eval(self.to_mitsuba(wo), self.to_mitsuba(wi)) / wi.z.abs()
+        self.eval(self.in_mitsuba_frame(wo), self.in_mitsuba_frame(wi)) / wi.z.abs()
     }
 
     /// The solid-angle density of [`Principled::sample`], lamplight's local frame.
     #[inline]
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f64 {
-        self.density(self.to_mitsuba(wo), self.to_mitsuba(wi))
+        self.density(self.in_mitsuba_frame(wo), self.in_mitsuba_frame(wi))
     }
 
     /// A direction for `wo` (lamplight's local frame): `u_choice` picks the lobe, and
     /// reflection or refraction; `None` when the direction fails Mitsuba's checks.
     pub fn sample(&self, wo: Vec3, u_choice: f64, u: (f64, f64)) -> Option<Vec3> {
-        let v = self.to_mitsuba(wo);
+        let v = self.in_mitsuba_frame(wo);
         if v.z == 0.0 || !self.active(v) {
             return None;
         }
@@ -449,7 +449,7 @@ impl Principled {
                 l
             }
         };
-        Some(self.to_mitsuba(l))
+        Some(self.in_mitsuba_frame(l))
     }
 
     /// The relative index `n_t / n_i` of a refraction into `wi` (1 for a reflection).

@@ -153,7 +153,8 @@ fn build(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Material> {
     let mut maps = Vec::new();
     let mut params = PrincipledParams::default();
     // Mitsuba's rule: transmission is on when `spec_trans` is given and is not the number 0.
-    let transmits = p.item("spec_trans").is_some_and(|i| !matches!(i.value, Value::Number(x) if x == 0.0) && !matches!(i.value, Value::Integer(0)));
+    let transmits =
+        p.item("spec_trans").is_some_and(|i| !matches!(i.value, Value::Number(x) if x == 0.0) && !matches!(i.value, Value::Integer(0)));
     for (key, scalar, default) in SCALARS {
         let v = scalar_param(p, textures, key, default, Slot::Principled(scalar), &mut maps)?;
         if !(0.0..=1.0).contains(&v) {
@@ -163,7 +164,9 @@ fn build(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Material> {
     }
     let anisotropic = p.number_or("anisotropic", 0.0)?;
     if anisotropic != 0.0 {
-        return Err(p.key_error("anisotropic", format!("must be 0 (lamplight's shading frame has no tangent direction), got {anisotropic}")));
+        return Err(
+            p.key_error("anisotropic", format!("must be 0 (lamplight's shading frame has no tangent direction), got {anisotropic}"))
+        );
     }
     params.eta = match (p.has("eta"), p.has("specular")) {
         (true, true) => return Err(p.key_error("eta", "give either `eta` or `specular`, not both")),

@@ -91,7 +91,9 @@ fn build(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Material> {
     }
     let anisotropic = p.number_or("anisotropic", 0.0)?;
     if anisotropic != 0.0 {
-        return Err(p.key_error("anisotropic", format!("must be 0 (lamplight's shading frame has no tangent direction), got {anisotropic}")));
+        return Err(
+            p.key_error("anisotropic", format!("must be 0 (lamplight's shading frame has no tangent direction), got {anisotropic}"))
+        );
     }
     params.eta = super::plastic::ior(p, "eta", 1.5)?;
     for (rate, key) in params.rates.iter_mut().zip(RATES) {

@@ -164,7 +164,8 @@ fn principled_thin<'a>(ctx: &mut Ctx<'a>, p: &mut Plugin<'a>, loc: &Loc) -> Resu
 
 /// `principled`: lamplight's `principled` material of the same parameters.
 fn principled<'a>(ctx: &mut Ctx<'a>, p: &mut Plugin<'a>, loc: &Loc) -> Result<Vec<Entry>, ParamError> {
-    let mut e = vec![entry("type", text("principled", loc)), entry("base_color", colour_or_texture(ctx, p, "base_color", Rgb::splat(0.5))?)];
+    let mut e =
+        vec![entry("type", text("principled", loc)), entry("base_color", colour_or_texture(ctx, p, "base_color", Rgb::splat(0.5))?)];
     for key in PRINCIPLED_SCALARS {
         if let Some(item) = number_or_texture(ctx, p, key)? {
             e.push(entry(key, item));
