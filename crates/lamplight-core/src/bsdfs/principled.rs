@@ -469,7 +469,7 @@ impl Principled {
 /// Hanrahan-Krueger-like `f_ss = 1.25 (F_ss (1 / (cos_l + cos_v) - 0.5) + 0.5)`,
 /// `F_ss = lerp(1, R_r / 2, fl) lerp(1, R_r / 2, fv)`.
 #[inline]
-pub(super) fn burley_diffuse(fv: f64, fl: f64, rr: f64, cos_v: f64, cos_l: f64, flatness: f64) -> f64 {
+pub fn burley_diffuse(fv: f64, fl: f64, rr: f64, cos_v: f64, cos_l: f64, flatness: f64) -> f64 {
     let diffuse = (1.0 - 0.5 * fv) * (1.0 - 0.5 * fl);
     let retro = rr * (fl + fv + fl * fv * (rr - 1.0));
     if flatness == 0.0 {
