@@ -44,8 +44,14 @@ pub static SHAPES: &[&ShapeKind] = &[
 pub static LIGHTS: &[&LightKind] = &[&lights::point::KIND, &lights::directional::KIND, &lights::spot::KIND, &lights::projector::KIND];
 
 /// Material kinds; the first is the default `type`.
-pub static MATERIALS: &[&MaterialKind] =
-    &[&materials::phong::KIND, &materials::pbr::KIND, &materials::plastic::KIND, &materials::thin_dielectric::KIND];
+pub static MATERIALS: &[&MaterialKind] = &[
+    &materials::phong::KIND,
+    &materials::pbr::KIND,
+    &materials::plastic::KIND,
+    &materials::principled::KIND,
+    &materials::principled_thin::KIND,
+    &materials::thin_dielectric::KIND,
+];
 
 /// Camera kinds; the first is the default `type`.
 pub static CAMERAS: &[&CameraKind] = &[

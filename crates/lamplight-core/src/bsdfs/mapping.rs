@@ -13,6 +13,8 @@
 //! | `Refraction::Constant(w)` | refraction of weight `w` |
 //! | `emission` | area light radiance (see [`crate::lights::area`]) |
 //! | [`Material::model`] plastic | the coating over a diffuse base of albedo `C` (capped at 1), smooth ([`super::plastic`]) or rough ([`super::rough_plastic`]), alone |
+//! | [`Material::model`] principled | Mitsuba's principled BSDF ([`super::principled`]) of base colour `C`, alone |
+//! | [`Material::model`] thin principled | Mitsuba's `principledthin` ([`super::principled_thin`]) of base colour `C`, alone |
 //! | [`Material::model`] thin dielectric | a thin sheet ([`super::thin_dielectric`]), alone |
 //! | [`Material::distribution`] | the distribution of the rough glass and metal lobes (GGX or Beckmann, [`super::distribution`]) |
 //! | [`Material::pbr`] (glTF metallic-roughness) | the glTF BRDF ([`super::metallic_roughness`]) of base colour `C`, `metallic`, `alpha = max(roughness^2, 0.001)`, alone |
@@ -52,6 +54,13 @@ pub fn bsdf_for(material: &Material, point: Vec3, front_face: bool) -> Bsdf {
             return Bsdf::new(&[lobe]);
         }
         // The sheet has the same medium on both sides: the face does not matter.
+        // It tells the two sides apart itself, as Mitsuba's does.
+        Some(Model::Principled(params)) => {
+            return Bsdf::new(&[Lobe::Principled(super::principled::Principled::new(color.max(Rgb::ZERO), *params, front_face))])
+        }
+        Some(Model::PrincipledThin(params)) => {
+            return Bsdf::new(&[Lobe::PrincipledThin(super::principled_thin::PrincipledThin::new(color.max(Rgb::ZERO), *params))])
+        }
         Some(Model::ThinDielectric { eta }) => return Bsdf::new(&[Lobe::ThinGlass { eta: *eta, tint: Rgb::ONE }]),
         None => {}
     }

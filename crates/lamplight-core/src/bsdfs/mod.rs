@@ -19,6 +19,8 @@ pub mod mapping;
 pub mod metallic_roughness;
 pub mod microfacet;
 pub mod plastic;
+pub mod principled;
+pub mod principled_thin;
 pub mod rough_conductor;
 pub mod rough_dielectric;
 pub mod rough_plastic;
@@ -128,6 +130,10 @@ pub enum Lobe {
         /// GGX roughness (glTF's `roughness^2`).
         alpha: f64,
     },
+    /// Mitsuba's principled BSDF ([`principled`]).
+    Principled(principled::Principled),
+    /// Mitsuba's thin principled BSDF ([`principled_thin`]).
+    PrincipledThin(principled_thin::PrincipledThin),
     /// Smooth refraction only, with weight `Constant` or `1 - F` (delta).
     Refract {
         /// Relative index across the boundary.
@@ -149,6 +155,8 @@ impl Lobe {
                 | Lobe::MetallicRoughness { .. }
                 | Lobe::Plastic(_)
                 | Lobe::RoughPlastic(_)
+                | Lobe::Principled(_)
+                | Lobe::PrincipledThin(_)
         )
     }
 
@@ -158,7 +166,9 @@ impl Lobe {
             Lobe::Diffuse(a) => a,
             Lobe::Glossy { ks, .. } => ks,
             Lobe::Mirror(m) => m.bound(),
-            Lobe::RoughConductor { .. } | Lobe::Plastic(_) | Lobe::RoughPlastic(_) => Rgb::ONE,
+            Lobe::RoughConductor { .. } | Lobe::Plastic(_) | Lobe::RoughPlastic(_) | Lobe::Principled(_) | Lobe::PrincipledThin(_) => {
+                Rgb::ONE
+            }
             Lobe::Glass { tint, .. } | Lobe::RoughGlass { tint, .. } | Lobe::ThinGlass { tint, .. } => tint,
             Lobe::Refract { weight, .. } => weight.unwrap_or(Rgb::ONE),
             Lobe::MetallicRoughness { base, metallic, spec, .. } => metallic_roughness::bound(base, metallic, spec),
@@ -187,7 +197,9 @@ impl Lobe {
             Lobe::RoughConductor { .. } => self,
             Lobe::Refract { eta, weight } => Lobe::Refract { eta, weight: Some(weight.unwrap_or(Rgb::ONE) * s) },
             // Their bounds are at most 1 and the mapping uses them alone: never scaled.
-            Lobe::MetallicRoughness { .. } | Lobe::Plastic(_) | Lobe::RoughPlastic(_) => self,
+            Lobe::MetallicRoughness { .. } | Lobe::Plastic(_) | Lobe::RoughPlastic(_) | Lobe::Principled(_) | Lobe::PrincipledThin(_) => {
+                self
+            }
         }
     }
 }
@@ -296,6 +308,8 @@ impl Bsdf {
                 }
                 Lobe::Plastic(p) => sum += p.f(wo, wi),
                 Lobe::RoughPlastic(p) => sum += p.f(wo, wi),
+                Lobe::Principled(p) => sum += p.f(wo, wi),
+                Lobe::PrincipledThin(p) => sum += p.f(wo, wi),
                 Lobe::MetallicRoughness { base, metallic, spec, alpha } => {
                     sum += metallic_roughness::f(base, metallic, spec, alpha, wo, wi)
                 }
@@ -324,6 +338,8 @@ impl Bsdf {
                 }
                 Lobe::Plastic(lobe) => pdf += p * lobe.pdf(wo, wi),
                 Lobe::RoughPlastic(lobe) => pdf += p * lobe.pdf(wo, wi),
+                Lobe::Principled(lobe) => pdf += p * lobe.pdf(wo, wi),
+                Lobe::PrincipledThin(lobe) => pdf += p * lobe.pdf(wo, wi),
                 Lobe::MetallicRoughness { base, metallic, spec, alpha } => {
                     pdf += p * metallic_roughness::pdf(base, metallic, spec, alpha, wo, wi)
                 }
@@ -370,6 +386,8 @@ impl Bsdf {
                 plastic::PlasticSample::Diffuse(wi) => wi,
             },
             Lobe::RoughPlastic(lobe) => lobe.sample(wo, u_rest, u)?,
+            Lobe::Principled(lobe) => lobe.sample(wo, u_rest, u)?,
+            Lobe::PrincipledThin(lobe) => lobe.sample(wo, u_rest, u)?,
             Lobe::ThinGlass { eta, tint } => return delta(thin_dielectric::sample(wo, eta, u_rest).0, tint, 1.0),
             Lobe::MetallicRoughness { base, metallic, spec, alpha } => {
                 metallic_roughness::sample(base, metallic, spec, alpha, wo, u_rest, u)?
@@ -389,9 +407,10 @@ impl Bsdf {
         if !(pdf > 0.0) {
             return None;
         }
-        // Only a rough glass lobe transmits among the non-delta lobes.
+        // Only rough glass and principled lobes bend light among the non-delta lobes (a thin sheet does not).
         let eta = match self.lobes[chosen] {
             Lobe::RoughGlass { eta, .. } if wi.z < 0.0 => eta,
+            Lobe::Principled(lobe) => lobe.eta_towards(wi),
             _ => 1.0,
         };
         Some(BsdfSample { wi, weight: self.f(wo, wi) * wi.z.abs() / pdf, pdf, delta: false, eta })

@@ -20,6 +20,8 @@ pub mod normal_map;
 pub mod pbr;
 pub mod phong;
 pub mod plastic;
+pub mod principled;
+pub mod principled_thin;
 pub mod sided;
 pub mod texture;
 pub mod textured;
@@ -122,6 +124,10 @@ pub enum Model {
         /// Relative index of the sheet.
         eta: f64,
     },
+    /// Mitsuba's principled BSDF of base colour `color` ([`crate::bsdfs::principled`]).
+    Principled(crate::bsdfs::principled::PrincipledParams),
+    /// Mitsuba's thin principled BSDF of base colour `color` ([`crate::bsdfs::principled_thin`]).
+    PrincipledThin(crate::bsdfs::principled_thin::ThinParams),
 }
 
 /// Every property of a surface, the lecture's `Material`.

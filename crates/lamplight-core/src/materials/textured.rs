@@ -8,7 +8,7 @@
 //! need no per-parameter code. A material without textures is borrowed as it is.
 //!
 //! Values from textures are clamped where the field requires it: colours to
-//! `>= 0`, `shininess` to `>= 0`, `roughness`, `metallic` and `specular` to `[0, 1]`. A
+//! `>= 0`, `shininess` to `>= 0`, `roughness`, `metallic`, `specular` and the principled model's weights to `[0, 1]`. A
 //! scalar slot reads the texture's first channel (an image's `channel` chooses it).
 
 use super::{Material, Texture, Textures};
@@ -38,6 +38,8 @@ pub enum Slot {
     Specular,
     /// Its `specular_color`.
     SpecularColor,
+    /// A scalar of the principled model ([`super::principled`]).
+    Principled(super::principled::Scalar),
 }
 
 impl Slot {
@@ -66,6 +68,17 @@ impl Slot {
             Slot::SpecularColor => {
                 if let Some(pbr) = &mut m.pbr {
                     pbr.specular_color = colour;
+                }
+            }
+            Slot::Principled(scalar) => {
+                match &mut m.model {
+                    Some(super::Model::Principled(p)) => scalar.set(p, value.x.clamp(0.0, 1.0)),
+                    // `diff_trans` runs from 0 to 2.
+                    Some(super::Model::PrincipledThin(p)) => {
+                        let max = if scalar == super::principled::Scalar::DiffTrans { 2.0 } else { 1.0 };
+                        scalar.set_thin(p, value.x.clamp(0.0, max))
+                    }
+                    _ => {}
                 }
             }
         }

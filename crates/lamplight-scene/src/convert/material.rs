@@ -232,7 +232,7 @@ fn canonical(m: &Material) -> Material {
     let mut m = m.clone();
     if let Some(maps) = m.textures.take() {
         let mut maps: Vec<(Slot, Texture)> = maps.to_vec();
-        maps.sort_by_key(|(s, _)| *s as u8);
+        maps.sort_by_key(|(s, _)| format!("{s:?}"));
         for (s, _) in &maps {
             s.apply(&mut m, Rgb::ZERO);
         }

@@ -18,16 +18,16 @@
 //! | `mask` `opacity` | the nested BSDF with `alpha = opacity`, `alpha_mode = "blend"` (there with probability `opacity`, as Mitsuba) |
 //! | `normalmap` `normalmap` (a bitmap) | the nested BSDF with `normal_map` |
 //! | `bumpmap` (`scale`, one nested height `<texture>`) | the nested BSDF with `bump`, `bump_scale` |
-//! | `principled` `base_color`, `metallic`, `roughness` | `pbr` (the glTF metallic-roughness BRDF, not Mitsuba's Disney BRDF: a warning) |
+//! | `principled` (every parameter; `anisotropic` only 0) | `principled` of the same parameters (Mitsuba's own BSDF, `crates/lamplight-core/src/bsdfs/principled.rs`) |
+//! | `principledthin` (every parameter; `anisotropic` only 0) | `principled_thin` of the same parameters (`crates/lamplight-core/src/bsdfs/principled_thin.rs`) |
 //!
-//! `blendbsdf` and `principledthin` are errors: no lamplight material gives their
-//! image yet.
+//! `blendbsdf` is an error: no lamplight material gives its image yet.
 
 use lamplight_core::math::Rgb;
 use lamplight_core::params::{Entry, Item, Loc, ParamError, Value};
 
 use super::properties::{Plugin, PropValue};
-use super::textures::{colour_or_texture, number, texture};
+use super::textures::{colour_or_texture, number, number_or_texture, texture};
 use super::xml::El;
 use super::{conductors::CONDUCTORS, entry, num, table, table_of, text, vec3, Ctx};
 
@@ -130,6 +130,56 @@ fn nested<'a>(ctx: &mut Ctx<'a>, p: &Plugin<'a>) -> Result<Vec<Entry>, ParamErro
     }
     let inner = found.ok_or_else(|| err(&p.el.loc, format!("{}: needs a nested <bsdf>", p.label)))?;
     material(ctx, inner)
+}
+
+/// The texturable scalars of `principled`, with lamplight's names (the same).
+const PRINCIPLED_SCALARS: [&str; 10] =
+    ["roughness", "anisotropic", "metallic", "spec_trans", "spec_tint", "sheen", "sheen_tint", "clearcoat", "clearcoat_gloss", "flatness"];
+
+/// The texturable scalars of `principledthin` (lamplight's `principled_thin`, the same names).
+const THIN_SCALARS: [&str; 8] = ["roughness", "anisotropic", "spec_trans", "diff_trans", "spec_tint", "sheen", "sheen_tint", "flatness"];
+
+/// `principledthin`: lamplight's `principled_thin` material of the same parameters.
+fn principled_thin<'a>(ctx: &mut Ctx<'a>, p: &mut Plugin<'a>, loc: &Loc) -> Result<Vec<Entry>, ParamError> {
+    let mut e =
+        vec![entry("type", text("principled_thin", loc)), entry("base_color", colour_or_texture(ctx, p, "base_color", Rgb::splat(0.5))?)];
+    for key in THIN_SCALARS {
+        if let Some(item) = number_or_texture(ctx, p, key)? {
+            e.push(entry(key, item));
+        }
+    }
+    for key in [
+        "eta",
+        "specular_reflectance_sampling_rate",
+        "specular_transmittance_sampling_rate",
+        "diffuse_reflectance_sampling_rate",
+        "diffuse_transmittance_sampling_rate",
+    ] {
+        if let Some((v, vloc)) = p.number(key)? {
+            e.push(entry(key, num(v, &vloc)));
+        }
+    }
+    Ok(e)
+}
+
+/// `principled`: lamplight's `principled` material of the same parameters.
+fn principled<'a>(ctx: &mut Ctx<'a>, p: &mut Plugin<'a>, loc: &Loc) -> Result<Vec<Entry>, ParamError> {
+    let mut e =
+        vec![entry("type", text("principled", loc)), entry("base_color", colour_or_texture(ctx, p, "base_color", Rgb::splat(0.5))?)];
+    for key in PRINCIPLED_SCALARS {
+        if let Some(item) = number_or_texture(ctx, p, key)? {
+            e.push(entry(key, item));
+        }
+    }
+    if p.has("eta") && p.has("specular") {
+        return Err(err(loc, format!("{}: give either eta or specular, not both (as Mitsuba)", p.label)));
+    }
+    for key in ["eta", "specular", "diffuse_reflectance_sampling_rate", "main_specular_sampling_rate", "clearcoat_sampling_rate"] {
+        if let Some((v, vloc)) = p.number(key)? {
+            e.push(entry(key, num(v, &vloc)));
+        }
+    }
+    Ok(e)
 }
 
 /// An index of refraction: a number or one of [`IORS`].
@@ -358,22 +408,9 @@ pub fn material<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<Vec<Entry>, ParamEr
             e.push(entry("bump_scale", num(scale, &sloc)));
             e
         }
-        "principled" => {
-            ctx.warn(
-                &loc,
-                "bsdf \"principled\": approximated by lamplight's pbr (glTF metallic-roughness) material, not Mitsuba's principled BSDF",
-            );
-            let base = colour_or_texture(ctx, &mut p, "base_color", Rgb::splat(0.5))?;
-            let (metallic, mloc) = number(&mut p, "metallic", 0.0)?;
-            let (rough, rloc) = number(&mut p, "roughness", 0.5)?;
-            vec![
-                entry("type", text("pbr", &loc)),
-                entry("base_color", base),
-                entry("metallic", num(metallic, &mloc)),
-                entry("roughness", num(rough, &rloc)),
-            ]
-        }
-        "blendbsdf" | "principledthin" | "hair" | "measured" | "polarizer" | "retarder" | "pplastic" => {
+        "principled" => principled(ctx, &mut p, &loc)?,
+        "principledthin" => principled_thin(ctx, &mut p, &loc)?,
+        "blendbsdf" | "hair" | "measured" | "polarizer" | "retarder" | "pplastic" => {
             return Err(err(&p.el.require("type")?.loc, format!("{}: not yet supported (no lamplight material gives its image)", p.label)))
         }
         other => return Err(err(&p.el.require("type")?.loc, format!("bsdf \"{other}\": unknown BSDF"))),

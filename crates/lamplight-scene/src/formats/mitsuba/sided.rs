@@ -9,7 +9,7 @@
 //! | Mitsuba | `sided` |
 //! |---|---|
 //! | `diffuse`, `conductor`, `roughconductor`, `plastic`, `roughplastic` | `"front"` |
-//! | `twosided`, `dielectric`, `roughdielectric`, `thindielectric`, `null`, `principled` (read as lamplight's two-sided `pbr`) | both (the default) |
+//! | `twosided`, `dielectric`, `roughdielectric`, `thindielectric`, `null`, `principled` (lamplight's `principled` tells its two sides apart itself, as Mitsuba's), `principledthin` | both (the default) |
 //! | `mask`, `normalmap`, `bumpmap` | as the nested BSDF |
 //! | `blendbsdf` | `"front"` when both nested BSDFs are one-sided |
 

@@ -15,7 +15,7 @@
 //! from Mitsuba's (see docs/mitsuba.md).
 
 use lamplight_core::math::{Mat4, Rgb};
-use lamplight_core::params::{Item, Loc, ParamError};
+use lamplight_core::params::{Item, Loc, ParamError, Value};
 
 use super::properties::Plugin;
 use super::xml::El;
@@ -37,6 +37,34 @@ pub fn colour_or_texture<'a>(ctx: &mut Ctx<'a>, p: &mut Plugin<'a>, key: &str, d
     }
     let (c, loc) = p.color(key)?.unwrap_or((default, p.el.loc.clone()));
     Ok(vec3(c, &loc))
+}
+
+/// Parameter `key` of `p` as a number or a nested or referenced texture (read
+/// by lamplight through its first channel); `None` when absent.
+pub fn number_or_texture<'a>(ctx: &mut Ctx<'a>, p: &mut Plugin<'a>, key: &str) -> Result<Option<Item>, ParamError> {
+    if let Some(o) = p.object(key) {
+        let t = ctx.deref(o)?;
+        if t.tag != "texture" {
+            return Err(err(&o.loc, format!("{}: {key}: expected a number or a <texture>, got <{}>", p.label, t.tag)));
+        }
+        let mut item = texture(ctx, t)?;
+        // Mitsuba 3.9.1's checkerboard swaps its colours in `eval_1` (a scalar
+        // lookup: `color1` where `eval` gives `color0`); so does lamplight here, so
+        // that images match.
+        if t.get("type") == Some("checkerboard") {
+            if let Value::Table(table) = &mut item.value {
+                for e in &mut table.entries {
+                    e.key = match e.key.as_str() {
+                        "even" => "odd".into(),
+                        "odd" => "even".into(),
+                        _ => std::mem::take(&mut e.key),
+                    };
+                }
+            }
+        }
+        return Ok(Some(item));
+    }
+    Ok(p.number(key)?.map(|(v, loc)| super::num(v, &loc)))
 }
 
 /// Parameter `key` as a number (a texture is an error: `what` says why).

@@ -1,0 +1,122 @@
+//! `principled_thin`: Mitsuba 3's `principledthin` BSDF, the principled model of
+//! a thin sheet (leaves, paper, cloth; [`crate::bsdfs::principled_thin`]), with
+//! Mitsuba's parameters.
+//!
+//! | parameter | type | default | meaning |
+//! |---|---|---|---|
+//! | `base_color` | colour or texture | 0.5 | the base colour `C` |
+//! | `roughness` | number or texture | 0.5 | 0 to 1; GGX `alpha = max(0.001, roughness^2)` (transmission: `(0.65 eta - 0.35) roughness`) |
+//! | `anisotropic` | number | 0 | only 0: lamplight's shading frame has no tangent direction |
+//! | `spec_trans` | number or texture | 0 | 0 to 1: the glossy share (reflection and straight-through transmission) |
+//! | `diff_trans` | number or texture | 0 | 0 to 2: the diffuse share that is transmitted (Mitsuba's range) |
+//! | `eta` | number | 1.5 | relative index of the sheet |
+//! | `spec_tint` | number or texture | 0 | 0 to 1: tints the glossy reflection towards `C` |
+//! | `sheen`, `sheen_tint` | number or texture | 0, 0 | the sheen lobe's weight and its tint towards `C` |
+//! | `flatness` | number or texture | 0 | 0 to 1: blends the diffuse towards Burley's fake subsurface |
+//! | `specular_reflectance_sampling_rate`, `specular_transmittance_sampling_rate`, `diffuse_reflectance_sampling_rate`, `diffuse_transmittance_sampling_rate` | number | 1 | the lobes' sampling weights (noise only) |
+//! | `emission`, `two_sided` | colour or texture, boolean | 0, false | emitted radiance, from both sides |
+//! | `normal_map`, `bump`, `alpha` | | | as for `phong` |
+//!
+//! The sheet scatters the same from both sides and does not bend light. The
+//! Whitted tracer sees `C` as its diffuse term.
+
+use std::sync::Arc;
+
+use super::principled::Scalar;
+use super::textured::{scalar_param, Slot};
+use super::{Material, MaterialKind, Model, Texture, Textures};
+use crate::bsdfs::principled_thin::ThinParams;
+use crate::math::Rgb;
+use crate::params::{Kind, Param, ParamResult, ParamType as T, Params};
+
+/// `principled_thin`.
+pub const KIND: MaterialKind = Kind {
+    name: "principled_thin",
+    summary: "Mitsuba's thin principled BSDF (`principledthin`): a sheet with diffuse and glossy transmission",
+    params: &[
+        Param::new("base_color", T::Texture, "0.5", "0 to 1", "the base colour"),
+        Param::new("roughness", T::Texture, "0.5", "0 to 1", "GGX `alpha = max(0.001, roughness^2)`"),
+        Param::new("anisotropic", T::Number, "0", "0", "anisotropy (only 0)"),
+        Param::new("spec_trans", T::Texture, "0", "0 to 1", "glossy share"),
+        Param::new("diff_trans", T::Texture, "0", "0 to 2", "transmitted diffuse share (Mitsuba's range)"),
+        Param::new("eta", T::Number, "1.5", "> 0", "relative index of the sheet"),
+        Param::new("spec_tint", T::Texture, "0", "0 to 1", "tint of the glossy reflection towards the base colour"),
+        Param::new("sheen", T::Texture, "0", "0 to 1", "weight of the sheen lobe"),
+        Param::new("sheen_tint", T::Texture, "0", "0 to 1", "tint of the sheen towards the base colour"),
+        Param::new("flatness", T::Texture, "0", "0 to 1", "blend of the diffuse towards Burley's fake subsurface"),
+        Param::new("specular_reflectance_sampling_rate", T::Number, "1", ">= 0", "sampling weight of the glossy reflection"),
+        Param::new("specular_transmittance_sampling_rate", T::Number, "1", ">= 0", "sampling weight of the glossy transmission"),
+        Param::new("diffuse_reflectance_sampling_rate", T::Number, "1", ">= 0", "sampling weight of the diffuse reflection"),
+        Param::new("diffuse_transmittance_sampling_rate", T::Number, "1", ">= 0", "sampling weight of the diffuse transmission"),
+        Param::new("emission", T::Texture, "0", "radiance", "emitted radiance"),
+        Param::new("two_sided", T::Bool, "false", "", "emit from both sides of the surface, not only the front"),
+        super::normal_map::NORMAL_MAP_PARAMS[0],
+        super::normal_map::NORMAL_MAP_PARAMS[1],
+        super::bump::BUMP_PARAMS[0],
+        super::bump::BUMP_PARAMS[1],
+        super::alpha::ALPHA_PARAMS[0],
+        super::alpha::ALPHA_PARAMS[1],
+        super::alpha::ALPHA_PARAMS[2],
+    ],
+    build,
+};
+
+const SCALARS: [(&str, Scalar, f64, f64); 7] = [
+    ("roughness", Scalar::Roughness, 0.5, 1.0),
+    ("spec_trans", Scalar::SpecTrans, 0.0, 1.0),
+    ("diff_trans", Scalar::DiffTrans, 0.0, 2.0),
+    ("spec_tint", Scalar::SpecTint, 0.0, 1.0),
+    ("sheen", Scalar::Sheen, 0.0, 1.0),
+    ("sheen_tint", Scalar::SheenTint, 0.0, 1.0),
+    ("flatness", Scalar::Flatness, 0.0, 1.0),
+];
+
+const RATES: [&str; 4] = [
+    "specular_reflectance_sampling_rate",
+    "specular_transmittance_sampling_rate",
+    "diffuse_reflectance_sampling_rate",
+    "diffuse_transmittance_sampling_rate",
+];
+
+fn build(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Material> {
+    let base = textures.read(p, "base_color")?.unwrap_or(Texture::Constant(Rgb::splat(0.5)));
+    let mut maps = Vec::new();
+    let mut params = ThinParams::default();
+    for (key, scalar, default, max) in SCALARS {
+        let v = scalar_param(p, textures, key, default, Slot::Principled(scalar), &mut maps)?;
+        if !(0.0..=max).contains(&v) {
+            return Err(p.key_error(key, format!("must be between 0 and {max}, got {v}")));
+        }
+        scalar.set_thin(&mut params, v);
+    }
+    let anisotropic = p.number_or("anisotropic", 0.0)?;
+    if anisotropic != 0.0 {
+        return Err(
+            p.key_error("anisotropic", format!("must be 0 (lamplight's shading frame has no tangent direction), got {anisotropic}"))
+        );
+    }
+    params.eta = super::plastic::ior(p, "eta", 1.5)?;
+    for (rate, key) in params.rates.iter_mut().zip(RATES) {
+        *rate = p.number_or(key, 1.0)?;
+        if !(rate.is_finite() && *rate >= 0.0) {
+            return Err(p.key_error(key, format!("must be a non-negative number, got {rate}")));
+        }
+    }
+    let emission = super::plastic::emission(p, textures, &mut maps)?;
+    let diffuse = (1.0 - params.spec_trans) * (1.0 - params.diff_trans);
+    let mut m = Material {
+        color: base,
+        ka: Rgb::splat(0.1 * diffuse),
+        kd: Rgb::splat(diffuse),
+        emission,
+        model: Some(Model::PrincipledThin(params)),
+        textures: (!maps.is_empty()).then(|| Arc::from(maps)),
+        ..Material::default()
+    };
+    m.two_sided = p.boolean("two_sided")?.unwrap_or(false);
+    m.normal_map = super::normal_map::read(p, textures)?;
+    m.bump = super::bump::read(p, textures)?;
+    m.alpha = super::alpha::read(p, textures)?;
+    m.validate().map_err(|e| p.core_error(e))?;
+    Ok(m)
+}
