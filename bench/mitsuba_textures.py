@@ -96,6 +96,9 @@ def write_inputs(d):
     png(os.path.join(d, "cutout.png"), np.repeat(cut[:, :, None], 3, axis=2))
     ramp = np.round(np.linspace(0.1, 0.9, 32)[None, :].repeat(32, 0) * 255)
     png(os.path.join(d, "coverage.png"), np.repeat(ramp[:, :, None], 3, axis=2))
+    # Grey levels 0.15 to 0.85 in a 4 x 4 pattern, for a textured scalar (roughness).
+    grey = np.round((0.15 + 0.7 * rng.random((4, 4))) * 255)
+    png(os.path.join(d, "grey.png"), np.repeat(grey[:, :, None], 3, axis=2))
     with open(os.path.join(d, "quad.obj"), "w") as f:
         f.write(QUAD_OBJ)
 
@@ -141,6 +144,17 @@ def scenes(d):
                       "metallic": metallic, "roughness": rough, "specular": 0.5}
         kind = "metal" if metallic == 1.0 else "dielectric"
         out[f"textured pbr {kind}, roughness {rough}, vs principled"] = (ll, principled, light, sky)
+        # lamplight's `principled` kind is Mitsuba's principled BSDF itself, so
+        # the same textured material, read by the same texture code, must agree.
+        ll = (f'type = "principled"\nbase_color = {{ type = "image", file = "colours.png" }}\n'
+              f'metallic = {metallic}\nroughness = {rough}\nspecular = 0.5')
+        out[f"textured principled {kind}, roughness {rough}"] = (ll, principled, light, sky)
+    # A texture on a scalar weight (grey, so that the first channel is the luminance).
+    ll = ('type = "principled"\nbase_color = [0.7, 0.4, 0.2]\n'
+          'roughness = { type = "image", file = "grey.png", color_space = "linear" }\nclearcoat = 0.5')
+    principled = {"type": "principled", "base_color": {"type": "rgb", "value": [0.7, 0.4, 0.2]},
+                  "roughness": bitmap("grey.png", "repeat", "bilinear", raw=True), "clearcoat": 0.5}
+    out["textured principled roughness, clearcoat"] = (ll, principled, False, SKY)
     return out
 
 
