@@ -44,8 +44,13 @@ pub static SHAPES: &[&ShapeKind] = &[
 pub static LIGHTS: &[&LightKind] = &[&lights::point::KIND, &lights::directional::KIND, &lights::spot::KIND];
 
 /// Material kinds; the first is the default `type`.
-pub static MATERIALS: &[&MaterialKind] =
-    &[&materials::phong::KIND, &materials::pbr::KIND, &materials::plastic::KIND, &materials::thin_dielectric::KIND];
+pub static MATERIALS: &[&MaterialKind] = &[
+    &materials::phong::KIND,
+    &materials::pbr::KIND,
+    &materials::plastic::KIND,
+    &materials::thin_dielectric::KIND,
+    &materials::blend::KIND,
+];
 
 /// Camera kinds; the first is the default `type`.
 pub static CAMERAS: &[&CameraKind] = &[

@@ -214,7 +214,7 @@ fn uv_transform(t: &UvTransform) -> Result<Vec<(&'static str, Value)>, String> {
 pub(super) fn read_back(table_: &Table, images: &Images) -> Result<Material, String> {
     let node = crate::description::Node::from_table(table_.clone(), "material", Some("phong"), false).map_err(|e| e.message)?;
     let kind = Kind::find(registry::MATERIALS, &node.kind).ok_or("unknown material kind")?;
-    let textures = Textures { kinds: registry::TEXTURES, images: Some(images) };
+    let textures = Textures { kinds: registry::TEXTURES, images: Some(images), materials: None };
     let p = Params::new("material", &node.params);
     p.read(kind.params, &[], |p| (kind.build)(p, &textures)).map_err(|e| e.message)
 }
