@@ -117,17 +117,9 @@ pub enum Lobe {
         /// Colour filter of both branches.
         tint: Rgb,
     },
-    /// The glTF metallic-roughness BRDF ([`metallic_roughness`]).
-    MetallicRoughness {
-        /// Base colour `C`.
-        base: Rgb,
-        /// Metallic, 0 to 1.
-        metallic: f64,
-        /// The dielectric's Fresnel (`KHR_materials_ior`, `KHR_materials_specular`).
-        spec: metallic_roughness::Specular,
-        /// GGX roughness (glTF's `roughness^2`).
-        alpha: f64,
-    },
+    /// The glTF metallic-roughness BSDF ([`metallic_roughness`]), with
+    /// `KHR_materials_transmission`'s thin-walled transmission.
+    MetallicRoughness(metallic_roughness::MetallicRoughness),
     /// Smooth refraction only, with weight `Constant` or `1 - F` (delta).
     Refract {
         /// Relative index across the boundary.
@@ -146,7 +138,7 @@ impl Lobe {
                 | Lobe::Glossy { .. }
                 | Lobe::RoughConductor { .. }
                 | Lobe::RoughGlass { .. }
-                | Lobe::MetallicRoughness { .. }
+                | Lobe::MetallicRoughness(_)
                 | Lobe::Plastic(_)
                 | Lobe::RoughPlastic(_)
         )
@@ -161,7 +153,7 @@ impl Lobe {
             Lobe::RoughConductor { .. } | Lobe::Plastic(_) | Lobe::RoughPlastic(_) => Rgb::ONE,
             Lobe::Glass { tint, .. } | Lobe::RoughGlass { tint, .. } | Lobe::ThinGlass { tint, .. } => tint,
             Lobe::Refract { weight, .. } => weight.unwrap_or(Rgb::ONE),
-            Lobe::MetallicRoughness { base, metallic, spec, .. } => metallic_roughness::bound(base, metallic, spec),
+            Lobe::MetallicRoughness(lobe) => lobe.bound(),
         }
     }
 
@@ -187,7 +179,7 @@ impl Lobe {
             Lobe::RoughConductor { .. } => self,
             Lobe::Refract { eta, weight } => Lobe::Refract { eta, weight: Some(weight.unwrap_or(Rgb::ONE) * s) },
             // Their bounds are at most 1 and the mapping uses them alone: never scaled.
-            Lobe::MetallicRoughness { .. } | Lobe::Plastic(_) | Lobe::RoughPlastic(_) => self,
+            Lobe::MetallicRoughness(_) | Lobe::Plastic(_) | Lobe::RoughPlastic(_) => self,
         }
     }
 }
@@ -296,9 +288,7 @@ impl Bsdf {
                 }
                 Lobe::Plastic(p) => sum += p.f(wo, wi),
                 Lobe::RoughPlastic(p) => sum += p.f(wo, wi),
-                Lobe::MetallicRoughness { base, metallic, spec, alpha } => {
-                    sum += metallic_roughness::f(base, metallic, spec, alpha, wo, wi)
-                }
+                Lobe::MetallicRoughness(lobe) => sum += lobe.f(wo, wi),
                 _ => {}
             }
         }
@@ -324,9 +314,7 @@ impl Bsdf {
                 }
                 Lobe::Plastic(lobe) => pdf += p * lobe.pdf(wo, wi),
                 Lobe::RoughPlastic(lobe) => pdf += p * lobe.pdf(wo, wi),
-                Lobe::MetallicRoughness { base, metallic, spec, alpha } => {
-                    pdf += p * metallic_roughness::pdf(base, metallic, spec, alpha, wo, wi)
-                }
+                Lobe::MetallicRoughness(lobe) => pdf += p * lobe.pdf(wo, wi),
                 _ => {}
             }
         }
@@ -371,9 +359,7 @@ impl Bsdf {
             },
             Lobe::RoughPlastic(lobe) => lobe.sample(wo, u_rest, u)?,
             Lobe::ThinGlass { eta, tint } => return delta(thin_dielectric::sample(wo, eta, u_rest).0, tint, 1.0),
-            Lobe::MetallicRoughness { base, metallic, spec, alpha } => {
-                metallic_roughness::sample(base, metallic, spec, alpha, wo, u_rest, u)?
-            }
+            Lobe::MetallicRoughness(lobe) => lobe.sample(wo, u_rest, u)?,
             Lobe::Mirror(m) => return delta(dielectric::reflect_local(wo), m.reflectance(wo.z), 1.0),
             Lobe::Glass { eta, tint } => {
                 let s = dielectric::sample(wo, eta, u_rest);
@@ -389,7 +375,8 @@ impl Bsdf {
         if !(pdf > 0.0) {
             return None;
         }
-        // Only a rough glass lobe transmits among the non-delta lobes.
+        // Only a rough glass lobe transmits and bends among the non-delta lobes
+        // (the metallic-roughness transmission is thin-walled: `eta = 1`).
         let eta = match self.lobes[chosen] {
             Lobe::RoughGlass { eta, .. } if wi.z < 0.0 => eta,
             _ => 1.0,

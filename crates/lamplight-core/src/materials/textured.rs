@@ -8,7 +8,7 @@
 //! need no per-parameter code. A material without textures is borrowed as it is.
 //!
 //! Values from textures are clamped where the field requires it: colours to
-//! `>= 0`, `shininess` to `>= 0`, `roughness`, `metallic` and `specular` to `[0, 1]`. A
+//! `>= 0`, `shininess` to `>= 0`, `roughness`, `metallic`, `specular` and `transmission` to `[0, 1]`. A
 //! scalar slot reads the texture's first channel (an image's `channel` chooses it).
 
 use super::{Material, Texture, Textures};
@@ -38,6 +38,8 @@ pub enum Slot {
     Specular,
     /// Its `specular_color`.
     SpecularColor,
+    /// Its `transmission` (`KHR_materials_transmission`).
+    Transmission,
 }
 
 impl Slot {
@@ -66,6 +68,11 @@ impl Slot {
             Slot::SpecularColor => {
                 if let Some(pbr) = &mut m.pbr {
                     pbr.specular_color = colour;
+                }
+            }
+            Slot::Transmission => {
+                if let Some(pbr) = &mut m.pbr {
+                    pbr.transmission = value.x.clamp(0.0, 1.0);
                 }
             }
         }
