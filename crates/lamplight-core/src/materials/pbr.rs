@@ -97,15 +97,16 @@ pub fn derive_lecture_terms(m: &mut Material) {
     m.ks = crate::bsdfs::metallic_roughness::f0(base, metal, pbr.specular());
     m.shininess = shininess(r);
     m.reflection = if metal > 0.0 { Reflection::Constant(metal * base * (1.0 - r)) } else { Reflection::None };
+    // The thin wall: what the diffuse base gives up goes straight through. (Set
+    // at every point: a transmission texture varies it from the material's.)
     let t = pbr.transmission.clamp(0.0, 1.0);
+    let through = (1.0 - metal) * t * base;
     if t > 0.0 {
-        // The thin wall: what the diffuse base gives up goes straight through.
-        let through = (1.0 - metal) * t * base;
         m.kd = Rgb::splat((1.0 - metal) * (1.0 - t));
         m.ka = Rgb::splat(0.1 * ((1.0 - metal) * (1.0 - t) + metal * r));
-        m.refraction = Refraction::Constant { ior: 1.0, weight: through };
-        m.shadow_transmittance = through;
     }
+    (m.refraction, m.shadow_transmittance) =
+        if through != Rgb::ZERO { (Refraction::Constant { ior: 1.0, weight: through }, through) } else { (Refraction::None, Rgb::ZERO) };
 }
 
 /// A metallic-roughness material: base colour `base`, `metallic`, perceptual

@@ -1,7 +1,7 @@
 //! An imported [`Material`] written as the `[materials.NAME]` table of the
 //! kind that builds it back: `pbr` for glTF's metallic-roughness materials and
-//! MTL's PBR extension, `phong` for the rest (MTL's lecture model, glTF
-//! transmission's glass), every field written out, so that the user edits
+//! MTL's PBR extension (glTF's transmission included), `phong` for the rest
+//! (MTL's lecture model), every field written out, so that the user edits
 //! numbers and texture files in the TOML.
 //!
 //! A material is written from what the importer built, then read back through
@@ -75,6 +75,7 @@ pub(super) fn material_table(m: &Material, images: &mut Images) -> Result<Table,
             out.push(("ior", num(pbr.ior)));
             out.push(("specular", slot_or(Slot::Specular, num(pbr.specular), images)?));
             out.push(("specular_color", slot_or(Slot::SpecularColor, rgb(pbr.specular_color), images)?));
+            out.push(("transmission", slot_or(Slot::Transmission, num(pbr.transmission), images)?));
             out.push(("emission", slot_or(Slot::Emission, rgb(m.emission), images)?));
         }
         None => {
