@@ -261,5 +261,9 @@ from .cases_bsdfs2 import CASES as _BSDFS2_CASES  # noqa: E402 (it uses the help
 
 CASES += _BSDFS2_CASES
 
+from .cases_blend import CASES as _BLEND_CASES  # noqa: E402 (it uses the helpers above)
+
+CASES += _BLEND_CASES
+
 from mitsuba_xml import cases_scene2 as _scene2  # noqa: E402  (scene-level cases, written alongside these)
 CASES += _scene2.CASES
