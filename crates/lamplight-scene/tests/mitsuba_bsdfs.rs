@@ -184,7 +184,9 @@ fn blendbsdf_reads_as_a_blend_of_its_two_nested_bsdfs() {
     ));
     let blend = s.materials[s.objects[0].material].blend.clone().expect("a blend");
     assert!(!blend.a.one_sided && !blend.b.one_sided);
-    assert!(blend.weight.needs_coords());
+    // Mitsuba's checkerboard eval_1 (a weight) gives color1 where eval gives color0.
+    let lamplight_core::materials::Texture::UvChecker(c) = &blend.weight else { panic!("{:?}", blend.weight) };
+    assert_eq!((c.even, c.odd), (lamplight_core::math::Rgb::ONE, lamplight_core::math::Rgb::ZERO));
     assert_eq!(blend.a.color, lamplight_core::materials::Texture::Constant(lamplight_core::math::Rgb::new(0.5, 0.0, 0.0)));
     assert_eq!(
         error(&xml(r#"<bsdf type="blendbsdf"><bsdf type="diffuse"/></bsdf>"#)),

@@ -209,7 +209,7 @@ fn blend<'a>(ctx: &mut Ctx<'a>, p: &mut Plugin<'a>) -> Result<Vec<Entry>, ParamE
     let weight = match p.object("weight") {
         Some(o) => {
             let t = ctx.deref(o)?;
-            texture(ctx, t)?
+            super::textures::scalar_texture(ctx, t)?
         }
         None => {
             let (w, wloc) = p.number_or("weight", 0.5)?;
