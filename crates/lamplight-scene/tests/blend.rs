@@ -58,6 +58,13 @@ fn weights_0_and_1_render_exactly_the_components() {
         assert_eq!(render(&furnace(&blend("0"), ""), integrator, 2), a, "{integrator}: weight 0 is `a`, byte for byte");
         assert_eq!(render(&furnace(&blend("1"), ""), integrator, 2), b, "{integrator}: weight 1 is `b`, byte for byte");
     }
+    // A component's own textures and bump map are evaluated where it is picked.
+    let color = "{ type = \"uv_checker\", even = 0.2, odd = 0.9, uv_scale = [4, 4] }";
+    let bump = "{ type = \"uv_checker\", even = 0, odd = 1, uv_scale = [3, 3] }";
+    let keys = format!("color = {color}, kd = 1, ka = 0, ks = 0, bump = {bump}, bump_scale = 0.05");
+    let alone = render(&furnace(&format!("color = {color}\nkd = 1\nka = 0\nks = 0\nbump = {bump}\nbump_scale = 0.05"), ""), "path", 2);
+    let picked = render(&furnace(&format!("type = \"blend\"\na = {{ {keys} }}\nb = {MIRROR}\nweight = 0"), ""), "path", 2);
+    assert_eq!(picked, alone);
 }
 
 #[test]
