@@ -172,7 +172,7 @@ fn blendbsdf_reads_as_a_blend_of_its_two_nested_bsdfs() {
     assert!(blend.a.one_sided && blend.b.one_sided && !m.one_sided);
     assert!(blend.a.kd != lamplight_core::math::Rgb::ZERO && blend.b.kd == lamplight_core::math::Rgb::ZERO);
     // Inside a twosided both scatter on both sides; a <ref> is read in place; a texture weight is read.
-    let (s, _) = read(&format!(
+    let (s, _) = read(
         r#"<scene version="3.0.0">
     <sensor type="perspective"><film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film></sensor>
     <bsdf type="diffuse" id="red"><rgb name="reflectance" value="0.5, 0, 0"/></bsdf>
@@ -180,8 +180,8 @@ fn blendbsdf_reads_as_a_blend_of_its_two_nested_bsdfs() {
         <texture type="checkerboard" name="weight"><float name="color0" value="0"/><float name="color1" value="1"/></texture>
         <ref id="red"/><bsdf type="roughconductor"/></bsdf></bsdf></shape>
 </scene>
-"#
-    ));
+"#,
+    );
     let blend = s.materials[s.objects[0].material].blend.clone().expect("a blend");
     assert!(!blend.a.one_sided && !blend.b.one_sided);
     // Mitsuba's checkerboard eval_1 (a weight) gives color1 where eval gives color0.
