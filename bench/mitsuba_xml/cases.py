@@ -267,6 +267,10 @@ from .cases_principled import CASES as _PRINCIPLED_CASES  # noqa: E402 (it uses 
 
 CASES += _PRINCIPLED_CASES
 
+from .cases_blend import CASES as _BLEND_CASES  # noqa: E402 (it uses the helpers above)
+
+CASES += _BLEND_CASES
+
 from mitsuba_xml import cases_scene2 as _scene2  # noqa: E402  (scene-level cases, written alongside these)
 CASES += _scene2.CASES
 

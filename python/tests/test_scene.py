@@ -178,3 +178,23 @@ def test_every_registered_node_kind_has_a_constructor():
     assert image[16, 16].sum() > 0 and image[0, 0].sum() == 0, "lit inside the cone, dark outside"
     with pytest.raises(AttributeError):
         lamplight.objects.no_such_kind
+
+
+def test_blend_and_pbr_transmission_in_dicts():
+    # The same kinds as scene files: a blend of a named and an inline material,
+    # and a pbr material with a textured transmission, in a white furnace.
+    camera = {"type": "orthographic", "eye": [0.5, 0.5, 5], "look_at": [0.5, 0.5, 0], "half_width": 0.5, "half_height": 0.5}
+    square = {"type": "rectangle", "corner": [0, 0, 0], "edge_u": [1, 0, 0], "edge_v": [0, 1, 0], "material": "m"}
+    matte = {"color": 1, "kd": 0.8, "ka": 0, "ks": 0}
+    mirror = {"color": 1, "kd": 0, "ka": 0, "ks": 0, "reflection": {"type": "constant", "weight": 1}}
+    blend = {"background": 1, "camera": camera, "objects": [square],
+             "materials": {"matte": matte, "m": {"type": "blend", "a": "matte", "b": mirror, "weight": 0.5}}}
+    image = small(blend, width=8, height=8, spp=64, integrator="path")
+    assert abs(image.mean() - 0.9) < 0.02, image.mean()
+    pane = {"type": "pbr", "base_color": 1, "metallic": 0, "roughness": 0,
+            "transmission": {"type": "uv_checker", "even": 0, "odd": 1, "uv_scale": [2, 1]}}
+    clear = {"background": 1, "camera": camera, "objects": [square], "materials": {"m": pane}}
+    image = small(clear, width=8, height=8, spp=64, integrator="path")
+    assert abs(image.mean() - 1.0) < 0.01, image.mean()
+    with pytest.raises(Exception, match=r"materials.m.a: material \"m\": a: the blend contains itself \(m -> m\)"):
+        small({**blend, "materials": {"m": {"type": "blend", "a": "m", "b": {}}}}, width=4, height=4, spp=1)

@@ -103,6 +103,8 @@ pub struct Scene {
     /// Per material of constant colour: its path-tracing BSDF seen from the back
     /// (`[0]`) and from the front (`[1]`), built once (see [`Scene::bsdf`]).
     bsdfs: Vec<Option<[Bsdf; 2]>>,
+    /// Per material: the indices of a blend's two components ([`crate::materials::blend`]).
+    blend_parts: Vec<Option<[usize; 2]>>,
     names: Names,
 }
 
@@ -153,6 +155,8 @@ pub struct SceneBuilder {
     pub rr_depth: u32,
     /// [`Scene::hide_emitters`], `false`.
     pub hide_emitters: bool,
+    /// Per material: a blend's components, added as materials of their own.
+    blend_parts: Vec<Option<[usize; 2]>>,
     names: Names,
 }
 
@@ -176,6 +180,7 @@ impl SceneBuilder {
             min_weight: 0.0,
             rr_depth: 4,
             hide_emitters: false,
+            blend_parts: Vec::new(),
             names: Names::default(),
         }
     }
@@ -190,10 +195,23 @@ impl SceneBuilder {
         set_name(&mut self.names.materials, material, name);
     }
 
-    /// Adds a material after checking its numbers; returns its index.
+    /// Adds a material after checking its numbers; returns its index. A
+    /// blend's components are added first, as materials of their own, which
+    /// [`Scene::shade`] picks from per hit.
     pub fn material(&mut self, material: Material) -> Result<usize, Error> {
         material.validate()?;
+        let parts = match &material.blend {
+            Some(blend) => {
+                let max = crate::materials::blend::MAX_DEPTH;
+                if blend.depth() > max {
+                    return Err(Error::invalid("blend", format!("blends nested more than {max} deep")));
+                }
+                Some([self.material(blend.a.clone())?, self.material(blend.b.clone())?])
+            }
+            None => None,
+        };
         self.materials.push(material);
+        self.blend_parts.push(parts);
         Ok(self.materials.len() - 1)
     }
 
@@ -269,7 +287,14 @@ impl SceneBuilder {
         let plain = self
             .materials
             .iter()
-            .map(|m| m.normal_map.is_none() && m.bump.is_none() && m.textures.is_none() && m.pbr.is_none() && !m.color.needs_coords())
+            .map(|m| {
+                m.normal_map.is_none()
+                    && m.bump.is_none()
+                    && m.textures.is_none()
+                    && m.pbr.is_none()
+                    && m.blend.is_none()
+                    && !m.color.needs_coords()
+            })
             .collect();
         Ok(Scene {
             plain,
@@ -290,6 +315,7 @@ impl SceneBuilder {
             min_weight: self.min_weight,
             rr_depth: self.rr_depth,
             hide_emitters: self.hide_emitters,
+            blend_parts: self.blend_parts,
             names: self.names,
         })
     }

@@ -51,6 +51,7 @@ pub static MATERIALS: &[&MaterialKind] = &[
     &materials::principled::KIND,
     &materials::principled_thin::KIND,
     &materials::thin_dielectric::KIND,
+    &materials::blend::KIND,
 ];
 
 /// Camera kinds; the first is the default `type`.

@@ -188,7 +188,7 @@ fn gltf_scene(texture_transform: &str) -> String {
       "emissiveFactor": [0.2, 0.1, 0], "emissiveTexture": {{"index": 0}},
       "extensions": {{"KHR_materials_emissive_strength": {{"emissiveStrength": 2}},
                      "KHR_materials_specular": {{"specularFactor": 0.7}}, "KHR_materials_ior": {{"ior": 1.7}}}}}},
-    {{"name": "Glass", "pbrMetallicRoughness": {{"baseColorFactor": [0.9, 1, 0.9, 1], "roughnessFactor": 0.2}},
+    {{"name": "Glass", "pbrMetallicRoughness": {{"baseColorFactor": [0.9, 1, 0.9, 1], "metallicFactor": 0, "roughnessFactor": 0.2}},
       "extensions": {{"KHR_materials_transmission": {{"transmissionFactor": 0.8}}}}}}
   ],
   "textures": [{{"source": 0, "sampler": 0}}, {{"source": 1}}],
@@ -234,8 +234,8 @@ fn a_gltf_with_textures_a_camera_and_lights_converts_to_the_same_renders() {
     assert!(toml.contains("file = \"scene_textures/image1.png\", color_space = \"linear\""), "{toml}");
     assert!(dir.path().join("scene_textures/image1.png").is_file());
     assert!(toml.contains("uv_scale = [2.0, 0.5], uv_rotate = -17.188734536943613"), "{toml}");
-    // Transmission is the lecture's glass; materials keep the file's names.
-    assert!(toml.contains("refraction = { type = \"fresnel\", ior = 1.5 }"), "{toml}");
+    // Transmission is the pbr material's; materials keep the file's names.
+    assert!(toml.contains("transmission = 0.800000011920929\n"), "{toml}");
     assert!(toml.contains("[materials.Glass]\n") && toml.contains("part = 1\nmaterial = \"Glass\"\n"), "{toml}");
     assert!(toml.contains("part = 0\nmaterial = \"material_0\"\n"), "{toml}");
     assert_same_renders(&input, &out);

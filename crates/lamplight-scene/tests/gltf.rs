@@ -103,9 +103,14 @@ fn check_scene(imported: &import::Imported) {
     assert_eq!(metal.kd, Rgb::ZERO);
     assert_eq!(metal.shininess, 30.0);
     assert_eq!(metal.reflection, Reflection::Constant(Rgb::new(0.5, 0.25, 0.125)));
+    // KHR_materials_transmission: the pbr material's thin-walled transmission,
+    // KHR_materials_ior its Fresnel. glTF's default metallicFactor 1 makes it a
+    // metal, which transmits nothing (the specification's mix by metallic).
     let glass = imported.instances[1].material.as_ref().unwrap();
-    assert_eq!(glass.refraction, Refraction::Fresnel { ior: 1.33f32 as f64 });
-    // glTF's default roughnessFactor 1 is GGX alpha 1 (rough glass in the path tracer).
+    let pbr = glass.pbr.as_ref().unwrap();
+    assert_eq!((pbr.transmission, pbr.ior, pbr.metallic), (1.0, 1.33f32 as f64, 1.0));
+    assert_eq!(glass.refraction, Refraction::None);
+    // glTF's default roughnessFactor 1 (GGX alpha 1 in the path tracer).
     assert_eq!(glass.roughness, 1.0);
     let camera = &imported.cameras[0];
     assert_eq!(
@@ -371,4 +376,39 @@ fn specular_ior_and_blend_extensions_reach_the_pbr_material() {
     let alpha = m.alpha.as_ref().unwrap();
     assert!(alpha.blend);
     assert_eq!(alpha.texture, lamplight_core::materials::Texture::Constant(Rgb::splat(f64::from(0.4f32))));
+}
+
+#[test]
+fn a_transmission_texture_drives_transmission() {
+    // transmissionFactor x transmissionTexture.r (linear): 0.8 x 0 and 0.8 x 1
+    // on the two texels; the warning of old is gone.
+    let dir = tempfile::tempdir().unwrap();
+    image::RgbImage::from_fn(2, 1, |x, _| image::Rgb(if x == 0 { [0, 255, 255] } else { [255, 0, 0] }))
+        .save(dir.path().join("t.png"))
+        .unwrap();
+    let metal = r#"{"pbrMetallicRoughness": {"baseColorFactor": [1, 0.5, 0.25, 1], "metallicFactor": 1, "roughnessFactor": 0.5}}"#;
+    let transmitting = r#"{"pbrMetallicRoughness": {"baseColorFactor": [1, 0.5, 0.25, 1], "metallicFactor": 0, "roughnessFactor": 0.2},
+        "extensions": {"KHR_materials_transmission": {"transmissionFactor": 0.8, "transmissionTexture": {"index": 0}}}}"#;
+    let json = scene_json(Some(&data_uri(&triangle_buffer([0, 1, 2], 0.0))), 3, "")
+        .replace(metal, transmitting)
+        .replace(r#""accessors""#, r#""textures": [{"source": 0}], "images": [{"uri": "t.png"}], "accessors""#);
+    let imported = write_and_load(dir.path(), "t.gltf", json.as_bytes()).unwrap();
+    assert!(!imported.warnings.iter().any(|w| w.contains("transmission")), "{:?}", imported.warnings);
+    let m = imported.instances[0].material.as_ref().unwrap();
+    let at = |u: f64| {
+        m.at(&lamplight_core::materials::ShadingPoint { uv: [u, 0.5], ..lamplight_core::materials::ShadingPoint::at(Vec3::ZERO) })
+            .into_owned()
+    };
+    let (opaque, clear) = (at(0.25), at(0.75));
+    assert_eq!(opaque.pbr.as_ref().unwrap().transmission, 0.0);
+    assert_eq!((opaque.refraction.clone(), opaque.kd), (Refraction::None, Rgb::ONE));
+    let t = 0.8f32 as f64;
+    assert!((clear.pbr.as_ref().unwrap().transmission - t).abs() < 1e-12);
+    assert_eq!(clear.refraction, Refraction::Constant { ior: 1.0, weight: t * Rgb::new(1.0, 0.5, 0.25) });
+    // The path tracer's BSDF transmits only where the texture says.
+    let below = Vec3::new(0.1, 0.0, -1.0).normalize();
+    let wo = Vec3::new(0.0, 0.1, 1.0).normalize();
+    let f = |m: &lamplight_core::materials::Material| lamplight_core::bsdfs::bsdf_for(m, Vec3::ZERO, true).f(wo, below);
+    assert_eq!(f(&opaque), Rgb::ZERO);
+    assert!(f(&clear).min_element() > 0.0, "{}", f(&clear));
 }

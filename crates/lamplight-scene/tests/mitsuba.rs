@@ -249,7 +249,7 @@ fn malformed_and_unsupported_scenes_give_their_exact_errors() {
     }
     let body_cases: &[(&str, &str)] = &[
         (r#"<shape type="sphere"><bsdf type="velvet"/></shape>"#, "s.xml:10:34: bsdf \"velvet\": unknown BSDF"),
-        (r#"<shape type="sphere"><bsdf type="blendbsdf"/></shape>"#, "s.xml:10:34: bsdf \"blendbsdf\": not yet supported (no lamplight material gives its image)"),
+        (r#"<shape type="sphere"><bsdf type="measured"/></shape>"#, "s.xml:10:34: bsdf \"measured\": not yet supported (no lamplight material gives its image)"),
         (r#"<shape type="sphere"><float name="radius" value="big"/></shape>"#, "s.xml:10:50: shape \"sphere\": radius: expected a finite number, got \"big\""),
         (r#"<shape type="sphere"><ref id="nothing"/></shape>"#, "s.xml:10:31: ref: no object has id \"nothing\""),
         (r#"<shape type="sphere"><integer name="radius" value="1"/><integer name="radius" value="2"/></shape>"#, "s.xml:10:71: shape \"sphere\": property \"radius\" is given twice"),

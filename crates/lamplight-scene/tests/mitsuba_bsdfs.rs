@@ -159,3 +159,37 @@ fn toml_kinds_check_their_numbers() {
         assert!(e.contains(expected), "{material}: {e}");
     }
 }
+
+#[test]
+fn blendbsdf_reads_as_a_blend_of_its_two_nested_bsdfs() {
+    let (s, warnings) =
+        read(&xml(r#"<bsdf type="blendbsdf"><float name="weight" value="0.3"/><bsdf type="diffuse"/><bsdf type="conductor"/></bsdf>"#));
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let m = &s.materials[s.objects[0].material];
+    let blend = m.blend.as_ref().expect("a blend");
+    assert_eq!(blend.weight, lamplight_core::materials::Texture::Constant(lamplight_core::math::Rgb::splat(0.3)));
+    // Mitsuba's diffuse and conductor are one-sided, each component on its own.
+    assert!(blend.a.one_sided && blend.b.one_sided && !m.one_sided);
+    assert!(blend.a.kd != lamplight_core::math::Rgb::ZERO && blend.b.kd == lamplight_core::math::Rgb::ZERO);
+    // Inside a twosided both scatter on both sides; a <ref> is read in place; a texture weight is read.
+    let (s, _) = read(
+        r#"<scene version="3.0.0">
+    <sensor type="perspective"><film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film></sensor>
+    <bsdf type="diffuse" id="red"><rgb name="reflectance" value="0.5, 0, 0"/></bsdf>
+    <shape type="sphere"><bsdf type="twosided"><bsdf type="blendbsdf">
+        <texture type="checkerboard" name="weight"><float name="color0" value="0"/><float name="color1" value="1"/></texture>
+        <ref id="red"/><bsdf type="roughconductor"/></bsdf></bsdf></shape>
+</scene>
+"#,
+    );
+    let blend = s.materials[s.objects[0].material].blend.clone().expect("a blend");
+    assert!(!blend.a.one_sided && !blend.b.one_sided);
+    // Mitsuba's checkerboard eval_1 (a weight) gives color1 where eval gives color0.
+    let lamplight_core::materials::Texture::UvChecker(c) = &blend.weight else { panic!("{:?}", blend.weight) };
+    assert_eq!((c.even, c.odd), (lamplight_core::math::Rgb::ONE, lamplight_core::math::Rgb::ZERO));
+    assert_eq!(blend.a.color, lamplight_core::materials::Texture::Constant(lamplight_core::math::Rgb::new(0.5, 0.0, 0.0)));
+    assert_eq!(
+        error(&xml(r#"<bsdf type="blendbsdf"><bsdf type="diffuse"/></bsdf>"#)),
+        "s.xml:3:26: bsdf \"blendbsdf\": needs two nested BSDFs, got 1"
+    );
+}

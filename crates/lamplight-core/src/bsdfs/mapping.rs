@@ -30,6 +30,7 @@
 //! Then every lobe is scaled per channel so that the reflectance bounds sum to at
 //! most 1 ([`Bsdf::new`]): the lecture lets `kd + ks + kr` exceed 1, physics does not.
 
+use super::metallic_roughness::MetallicRoughness;
 use super::plastic::Plastic;
 use super::rough_plastic::RoughPlastic;
 use super::{microfacet, Bsdf, Lobe, MirrorFresnel};
@@ -42,7 +43,14 @@ pub fn bsdf_for(material: &Material, point: Vec3, front_face: bool) -> Bsdf {
     let color = material.color.evaluate(&crate::materials::ShadingPoint::at(point));
     if let Some(pbr) = &material.pbr {
         let alpha = (material.roughness * material.roughness).max(microfacet::MIN_ALPHA);
-        return Bsdf::new(&[Lobe::MetallicRoughness { base: color.min(Rgb::ONE), metallic: pbr.metallic, spec: pbr.specular(), alpha }]);
+        let lobe = MetallicRoughness {
+            base: color.min(Rgb::ONE),
+            metallic: pbr.metallic,
+            spec: pbr.specular(),
+            alpha,
+            transmission: pbr.transmission,
+        };
+        return Bsdf::new(&[Lobe::MetallicRoughness(lobe)]);
     }
     match &material.model {
         Some(Model::Plastic(coating)) => {

@@ -83,58 +83,116 @@ pub fn f0(base: Rgb, metallic: f64, spec: Specular) -> Rgb {
     specular_fresnel(base, metallic, spec, 0.0)
 }
 
-/// The BRDF for `wo`, `wi` above the surface.
-#[inline]
-pub fn f(base: Rgb, metallic: f64, spec: Specular, alpha: f64, wo: Vec3, wi: Vec3) -> Rgb {
-    if wo.z <= 0.0 || wi.z <= 0.0 {
-        return Rgb::ZERO;
-    }
-    let h = (wo + wi).normalize();
-    let s = schlick(wo.dot(h).abs());
-    let diffuse = base * (Rgb::ONE - spec.fresnel(s)) * ((1.0 - metallic) * std::f64::consts::FRAC_1_PI);
-    diffuse + microfacet::f(specular_fresnel(base, metallic, spec, s), alpha, wo, wi)
+/// The lobe: base colour `C`, metallic `m`, the dielectric's Fresnel, GGX
+/// `alpha` and `KHR_materials_transmission`'s transmission `t`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MetallicRoughness {
+    /// Base colour `C`.
+    pub base: Rgb,
+    /// Metallic, 0 to 1.
+    pub metallic: f64,
+    /// The dielectric's Fresnel (`KHR_materials_ior`, `KHR_materials_specular`).
+    pub spec: Specular,
+    /// GGX roughness (glTF's `roughness^2`).
+    pub alpha: f64,
+    /// Transmission `t`, 0 to 1: the share of the dielectric's diffuse base
+    /// replaced by the thin-walled microfacet BTDF.
+    pub transmission: f64,
 }
 
-/// The probability of sampling the specular lobe for `wo`.
+/// `v` mirrored through the surface plane (`z -> -z`).
 #[inline]
-fn specular_probability(base: Rgb, metallic: f64, spec: Specular, wo: Vec3) -> f64 {
-    let w_s = specular_fresnel(base, metallic, spec, schlick(wo.z)).element_sum() / 3.0;
-    let w_d = (1.0 - metallic) * (base * (Rgb::ONE - spec.f0)).element_sum() / 3.0;
-    if w_d <= 0.0 {
-        1.0
-    } else if w_s <= 0.0 {
-        0.0
-    } else {
-        (w_s / (w_s + w_d)).clamp(0.05, 0.95)
-    }
+fn mirrored(v: Vec3) -> Vec3 {
+    Vec3::new(v.x, v.y, -v.z)
 }
 
-/// Density of [`sample`] in solid angle.
-#[inline]
-pub fn pdf(base: Rgb, metallic: f64, spec: Specular, alpha: f64, wo: Vec3, wi: Vec3) -> f64 {
-    let p = specular_probability(base, metallic, spec, wo);
-    p * microfacet::pdf(alpha, wo, wi) + (1.0 - p) * lambertian::pdf(wo, wi)
-}
-
-/// A direction: the specular lobe when `u_choice < p_s`, else the diffuse one.
-pub fn sample(base: Rgb, metallic: f64, spec: Specular, alpha: f64, wo: Vec3, u_choice: f64, u: (f64, f64)) -> Option<Vec3> {
-    if wo.z <= 0.0 {
-        return None;
+impl MetallicRoughness {
+    /// The lobe without transmission (the core specification's model).
+    pub fn new(base: Rgb, metallic: f64, spec: Specular, alpha: f64) -> MetallicRoughness {
+        MetallicRoughness { base, metallic, spec, alpha, transmission: 0.0 }
     }
-    if u_choice < specular_probability(base, metallic, spec, wo) {
-        microfacet::sample(alpha, wo, u)
-    } else {
+
+    /// The BSDF for `wo` above the surface: the BRDF for `wi` above, the
+    /// thin-walled BTDF `(1 - m) t C (1 - F_d) D G2 / (4 cos_o |cos_i|)`, at
+    /// the half vector of `wo` and `wi` mirrored back above, for `wi` below.
+    #[inline]
+    pub fn f(&self, wo: Vec3, wi: Vec3) -> Rgb {
+        let MetallicRoughness { base, metallic, spec, alpha, transmission: t } = *self;
+        if wo.z <= 0.0 || wi.z == 0.0 {
+            return Rgb::ZERO;
+        }
+        if wi.z < 0.0 {
+            if t <= 0.0 {
+                return Rgb::ZERO;
+            }
+            let up = mirrored(wi);
+            let s = schlick(wo.dot((wo + up).normalize()).abs());
+            return microfacet::f(base * (Rgb::ONE - spec.fresnel(s)) * ((1.0 - metallic) * t), alpha, wo, up);
+        }
+        let h = (wo + wi).normalize();
+        let s = schlick(wo.dot(h).abs());
+        // `(1 - m)(1 - t)`: exactly `1 - m` without transmission.
+        let diffuse = base * (Rgb::ONE - spec.fresnel(s)) * ((1.0 - metallic) * (1.0 - t) * std::f64::consts::FRAC_1_PI);
+        diffuse + microfacet::f(specular_fresnel(base, metallic, spec, s), alpha, wo, wi)
+    }
+
+    /// The probability of sampling the specular reflection for `wo`; the rest
+    /// goes to the diffuse lobe (`1 - t` of it) and the transmission (`t`).
+    #[inline]
+    fn specular_probability(&self, wo: Vec3) -> f64 {
+        let MetallicRoughness { base, metallic, spec, .. } = *self;
+        let w_s = specular_fresnel(base, metallic, spec, schlick(wo.z)).element_sum() / 3.0;
+        let w_d = (1.0 - metallic) * (base * (Rgb::ONE - spec.f0)).element_sum() / 3.0;
+        if w_d <= 0.0 {
+            1.0
+        } else if w_s <= 0.0 {
+            0.0
+        } else {
+            (w_s / (w_s + w_d)).clamp(0.05, 0.95)
+        }
+    }
+
+    /// Density of [`MetallicRoughness::sample`] in solid angle.
+    #[inline]
+    pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f64 {
+        let p = self.specular_probability(wo);
+        if wi.z < 0.0 {
+            return if self.transmission > 0.0 && wo.z > 0.0 {
+                (1.0 - p) * self.transmission * microfacet::pdf(self.alpha, wo, mirrored(wi))
+            } else {
+                0.0
+            };
+        }
+        p * microfacet::pdf(self.alpha, wo, wi) + (1.0 - p) * (1.0 - self.transmission) * lambertian::pdf(wo, wi)
+    }
+
+    /// A direction: the specular lobe when `u_choice < p_s`; else the
+    /// transmission with probability `t` (a GGX reflection mirrored below the
+    /// surface: a thin wall bends no ray), and the diffuse lobe otherwise.
+    pub fn sample(&self, wo: Vec3, u_choice: f64, u: (f64, f64)) -> Option<Vec3> {
+        if wo.z <= 0.0 {
+            return None;
+        }
+        let p = self.specular_probability(wo);
+        if u_choice < p {
+            return microfacet::sample(self.alpha, wo, u);
+        }
+        let t = self.transmission;
+        if t > 0.0 && (u_choice - p) < (1.0 - p) * t {
+            return microfacet::sample(self.alpha, wo, u).map(mirrored);
+        }
         Some(lambertian::sample(u))
     }
-}
 
-/// Per-channel bound of the directional albedo: the diffuse weight plus the
-/// specular Fresnel's largest value, `(1 - m) C (1 - min(f0_d, f90_d)) + (1 -
-/// m) max(f0_d, f90_d) + m`, capped at 1.
-pub fn bound(base: Rgb, metallic: f64, spec: Specular) -> Rgb {
-    let lo = spec.f0.min(Rgb::splat(spec.f90));
-    let hi = spec.f0.max(Rgb::splat(spec.f90));
-    ((1.0 - metallic) * (base * (Rgb::ONE - lo) + hi) + Rgb::splat(metallic)).min(Rgb::ONE)
+    /// Per-channel bound of the directional albedo: the diffuse weight (shared
+    /// with the transmission) plus the specular Fresnel's largest value, `(1 -
+    /// m) C (1 - min(f0_d, f90_d)) + (1 - m) max(f0_d, f90_d) + m`, capped at 1.
+    pub fn bound(&self) -> Rgb {
+        let MetallicRoughness { base, metallic, spec, .. } = *self;
+        let lo = spec.f0.min(Rgb::splat(spec.f90));
+        let hi = spec.f0.max(Rgb::splat(spec.f90));
+        ((1.0 - metallic) * (base * (Rgb::ONE - lo) + hi) + Rgb::splat(metallic)).min(Rgb::ONE)
+    }
 }
 
 #[cfg(test)]
@@ -154,16 +212,17 @@ mod tests {
         let h = (wo + wi).normalize();
         let s = (1.0 - wo.dot(h)).powi(5);
         // Metal: Schlick with f0 = C times the GGX lobe, no diffuse term.
-        let metal = f(base, 1.0, Specular::GLTF, alpha, wo, wi);
+        let lobe = |m: f64, spec: Specular| MetallicRoughness::new(base, m, spec, alpha);
+        let metal = lobe(1.0, Specular::GLTF).f(wo, wi);
         let expected = microfacet::f(base + (Rgb::ONE - base) * s, alpha, wo, wi);
         assert!((metal - expected).length() < 1e-12, "{metal} vs {expected}");
         // Dielectric: Lambert weighted by 1 - F plus F times GGX, F0 = 0.04.
         let fd = 0.04 + 0.96 * s;
-        let dielectric = f(base, 0.0, Specular::GLTF, alpha, wo, wi);
+        let dielectric = lobe(0.0, Specular::GLTF).f(wo, wi);
         let expected = base * ((1.0 - fd) / std::f64::consts::PI) + microfacet::f(Rgb::splat(fd), alpha, wo, wi);
         assert!((dielectric - expected).length() < 1e-12, "{dielectric} vs {expected}");
         // Reciprocity.
-        assert!((f(base, 0.4, Specular::GLTF, alpha, wo, wi) - f(base, 0.4, Specular::GLTF, alpha, wi, wo)).length() < 1e-12);
+        assert!((lobe(0.4, Specular::GLTF).f(wo, wi) - lobe(0.4, Specular::GLTF).f(wi, wo)).length() < 1e-12);
         // KHR_materials_specular: f0 = min(F0(ior) color, 1) factor, f90 = factor, and
         // F_d = f0 + (f90 - f0) s weighs the lobes (the extension's formulas).
         let spec = Specular::khr(2.0, 0.5, Rgb::new(1.0, 2.0, 20.0));
@@ -171,14 +230,14 @@ mod tests {
         assert_eq!(spec, Specular { f0: Rgb::new(f0_ior, 2.0 * f0_ior, 1.0) * 0.5, f90: 0.5 });
         let fd = spec.f0 + (Rgb::splat(0.5) - spec.f0) * s;
         let expected = base * (Rgb::ONE - fd) / std::f64::consts::PI + microfacet::f(fd, alpha, wo, wi);
-        let got = f(base, 0.0, spec, alpha, wo, wi);
+        let got = lobe(0.0, spec).f(wo, wi);
         assert!((got - expected).length() < 1e-12, "{got} vs {expected}");
-        assert!((f(base, 0.4, spec, alpha, wo, wi) - f(base, 0.4, spec, alpha, wi, wo)).length() < 1e-12);
+        assert!((lobe(0.4, spec).f(wo, wi) - lobe(0.4, spec).f(wi, wo)).length() < 1e-12);
         // Index 1.5, factor 1, white: the extension-free model.
         let plain = Specular::khr(1.5, 1.0, Rgb::ONE);
         assert_eq!(plain, Specular::GLTF);
         // Factor 0: a Lambert surface.
-        let lambert = f(base, 0.0, Specular::khr(1.5, 0.0, Rgb::ONE), alpha, wo, wi);
+        let lambert = lobe(0.0, Specular::khr(1.5, 0.0, Rgb::ONE)).f(wo, wi);
         assert!((lambert - base / std::f64::consts::PI).length() < 1e-12);
     }
 
@@ -192,7 +251,7 @@ mod tests {
     }
 
     fn sampling_density_matches_the_pdf_for(spec: Specular) {
-        let (base, metallic, alpha) = (Rgb::new(0.5, 0.4, 0.3), 0.3, 0.4);
+        let lobe = MetallicRoughness::new(Rgb::new(0.5, 0.4, 0.3), 0.3, spec, 0.4);
         let wo = dir(40.0, 20.0);
         let (nt, np) = (16, 32);
         let mut expected = vec![0.0; nt * np];
@@ -204,7 +263,7 @@ mod tests {
                 let sin_t = (1.0 - cos_t * cos_t).sqrt();
                 let wi = Vec3::new(sin_t * phi.cos(), sin_t * phi.sin(), cos_t);
                 let cell_area = std::f64::consts::TAU / (nt * np * sub * sub) as f64;
-                expected[(i / sub) * np + j / sub] += pdf(base, metallic, spec, alpha, wo, wi) * cell_area;
+                expected[(i / sub) * np + j / sub] += lobe.pdf(wo, wi) * cell_area;
             }
         }
         let total: f64 = expected.iter().sum();
@@ -214,7 +273,7 @@ mod tests {
         let mut counts = vec![0.0; nt * np];
         let mut rng = crate::sampling::Rng::for_sample(3, 0, 0);
         for _ in 0..n {
-            if let Some(wi) = sample(base, metallic, spec, alpha, wo, rng.uniform(), (rng.uniform(), rng.uniform())) {
+            if let Some(wi) = lobe.sample(wo, rng.uniform(), (rng.uniform(), rng.uniform())) {
                 let i = (((1.0 - wi.z) * nt as f64) as usize).min(nt - 1);
                 let phi = super::super::super::shapes::surface::azimuth(wi.x, wi.y);
                 let j = ((phi / std::f64::consts::TAU * np as f64) as usize).min(np - 1);

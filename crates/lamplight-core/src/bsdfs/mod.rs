@@ -119,17 +119,9 @@ pub enum Lobe {
         /// Colour filter of both branches.
         tint: Rgb,
     },
-    /// The glTF metallic-roughness BRDF ([`metallic_roughness`]).
-    MetallicRoughness {
-        /// Base colour `C`.
-        base: Rgb,
-        /// Metallic, 0 to 1.
-        metallic: f64,
-        /// The dielectric's Fresnel (`KHR_materials_ior`, `KHR_materials_specular`).
-        spec: metallic_roughness::Specular,
-        /// GGX roughness (glTF's `roughness^2`).
-        alpha: f64,
-    },
+    /// The glTF metallic-roughness BSDF ([`metallic_roughness`]), with
+    /// `KHR_materials_transmission`'s thin-walled transmission.
+    MetallicRoughness(metallic_roughness::MetallicRoughness),
     /// Mitsuba's principled BSDF ([`principled`]).
     Principled(principled::Principled),
     /// Mitsuba's thin principled BSDF ([`principled_thin`]).
@@ -152,7 +144,7 @@ impl Lobe {
                 | Lobe::Glossy { .. }
                 | Lobe::RoughConductor { .. }
                 | Lobe::RoughGlass { .. }
-                | Lobe::MetallicRoughness { .. }
+                | Lobe::MetallicRoughness(_)
                 | Lobe::Plastic(_)
                 | Lobe::RoughPlastic(_)
                 | Lobe::Principled(_)
@@ -171,7 +163,7 @@ impl Lobe {
             }
             Lobe::Glass { tint, .. } | Lobe::RoughGlass { tint, .. } | Lobe::ThinGlass { tint, .. } => tint,
             Lobe::Refract { weight, .. } => weight.unwrap_or(Rgb::ONE),
-            Lobe::MetallicRoughness { base, metallic, spec, .. } => metallic_roughness::bound(base, metallic, spec),
+            Lobe::MetallicRoughness(lobe) => lobe.bound(),
         }
     }
 
@@ -197,9 +189,7 @@ impl Lobe {
             Lobe::RoughConductor { .. } => self,
             Lobe::Refract { eta, weight } => Lobe::Refract { eta, weight: Some(weight.unwrap_or(Rgb::ONE) * s) },
             // Their bounds are at most 1 and the mapping uses them alone: never scaled.
-            Lobe::MetallicRoughness { .. } | Lobe::Plastic(_) | Lobe::RoughPlastic(_) | Lobe::Principled(_) | Lobe::PrincipledThin(_) => {
-                self
-            }
+            Lobe::MetallicRoughness(_) | Lobe::Plastic(_) | Lobe::RoughPlastic(_) | Lobe::Principled(_) | Lobe::PrincipledThin(_) => self,
         }
     }
 }
@@ -310,9 +300,7 @@ impl Bsdf {
                 Lobe::RoughPlastic(p) => sum += p.f(wo, wi),
                 Lobe::Principled(p) => sum += p.f(wo, wi),
                 Lobe::PrincipledThin(p) => sum += p.f(wo, wi),
-                Lobe::MetallicRoughness { base, metallic, spec, alpha } => {
-                    sum += metallic_roughness::f(base, metallic, spec, alpha, wo, wi)
-                }
+                Lobe::MetallicRoughness(lobe) => sum += lobe.f(wo, wi),
                 _ => {}
             }
         }
@@ -340,9 +328,7 @@ impl Bsdf {
                 Lobe::RoughPlastic(lobe) => pdf += p * lobe.pdf(wo, wi),
                 Lobe::Principled(lobe) => pdf += p * lobe.pdf(wo, wi),
                 Lobe::PrincipledThin(lobe) => pdf += p * lobe.pdf(wo, wi),
-                Lobe::MetallicRoughness { base, metallic, spec, alpha } => {
-                    pdf += p * metallic_roughness::pdf(base, metallic, spec, alpha, wo, wi)
-                }
+                Lobe::MetallicRoughness(lobe) => pdf += p * lobe.pdf(wo, wi),
                 _ => {}
             }
         }
@@ -389,9 +375,7 @@ impl Bsdf {
             Lobe::Principled(lobe) => lobe.sample(wo, u_rest, u)?,
             Lobe::PrincipledThin(lobe) => lobe.sample(wo, u_rest, u)?,
             Lobe::ThinGlass { eta, tint } => return delta(thin_dielectric::sample(wo, eta, u_rest).0, tint, 1.0),
-            Lobe::MetallicRoughness { base, metallic, spec, alpha } => {
-                metallic_roughness::sample(base, metallic, spec, alpha, wo, u_rest, u)?
-            }
+            Lobe::MetallicRoughness(lobe) => lobe.sample(wo, u_rest, u)?,
             Lobe::Mirror(m) => return delta(dielectric::reflect_local(wo), m.reflectance(wo.z), 1.0),
             Lobe::Glass { eta, tint } => {
                 let s = dielectric::sample(wo, eta, u_rest);
@@ -407,7 +391,9 @@ impl Bsdf {
         if !(pdf > 0.0) {
             return None;
         }
-        // Only rough glass and principled lobes bend light among the non-delta lobes (a thin sheet does not).
+        // Only rough glass and principled lobes transmit and bend among the
+        // non-delta lobes (a thin sheet does not, nor the metallic-roughness
+        // transmission, which is thin-walled: `eta = 1`).
         let eta = match self.lobes[chosen] {
             Lobe::RoughGlass { eta, .. } if wi.z < 0.0 => eta,
             Lobe::Principled(lobe) => lobe.eta_towards(wi),

@@ -108,7 +108,7 @@ pub fn blend_sample(ray: &Ray, t: f64) -> f64 {
 
 /// The SplitMix64 step: add the golden ratio, then its finalizer.
 #[inline]
-fn mix(z: u64) -> u64 {
+pub(crate) fn mix(z: u64) -> u64 {
     let mut z = z.wrapping_add(0x9E37_79B9_7F4A_7C15);
     z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);

@@ -11,6 +11,7 @@
 //! [`Refraction`].
 
 pub mod alpha;
+pub mod blend;
 pub mod bump;
 pub mod combine;
 mod fresnel;
@@ -30,6 +31,7 @@ pub mod uv_checker;
 pub mod uv_set;
 pub mod uv_transform;
 
+pub use blend::Blend;
 pub use bump::BumpMap;
 pub use fresnel::{fresnel_conductor, fresnel_conductor_channel, fresnel_dielectric};
 pub use image::{ImageData, ImageLoader, ImageTexture};
@@ -180,6 +182,9 @@ pub struct Material {
     pub bump: Option<Arc<BumpMap>>,
     /// A cut-out mask ([`alpha`]): where it is below its cutoff the surface is not there.
     pub alpha: Option<Arc<alpha::AlphaMask>>,
+    /// Two materials mixed by a weight ([`blend`]): the scene shades each hit
+    /// as one of them, and this material's own lobes are none.
+    pub blend: Option<Arc<Blend>>,
 }
 
 impl Default for Material {
@@ -205,6 +210,7 @@ impl Default for Material {
             normal_map: None,
             bump: None,
             alpha: None,
+            blend: None,
         }
     }
 }
@@ -254,7 +260,7 @@ impl Material {
 
     /// Whether a texture drives some parameter or the colour varies over the surface.
     pub fn is_constant(&self) -> bool {
-        self.textures.is_none() && self.color.constant().is_some() && self.pbr.as_ref().is_none_or(Pbr::is_constant)
+        self.textures.is_none() && self.color.constant().is_some() && self.pbr.as_ref().is_none_or(Pbr::is_constant) && self.blend.is_none()
     }
 
     /// Whether some texture of the material is filtered over the pixel footprint.
@@ -263,6 +269,7 @@ impl Material {
             || self.textures.as_ref().is_some_and(|t| t.iter().any(|(_, t)| t.uses_footprint()))
             || self.normal_map.as_ref().is_some_and(|n| n.texture.uses_footprint())
             || self.bump.is_some()
+            || self.blend.as_ref().is_some_and(|b| b.weight.uses_footprint() || b.a.uses_footprint() || b.b.uses_footprint())
     }
 
     /// Whether evaluating the material needs the hit's surface coordinates.
@@ -272,6 +279,7 @@ impl Material {
             || self.bump.is_some()
             || self.textures.as_ref().is_some_and(|t| t.iter().any(|(_, t)| t.needs_coords()))
             || self.pbr.as_ref().is_some_and(Pbr::needs_coords)
+            || self.blend.as_ref().is_some_and(|b| b.weight.needs_coords())
     }
 
     /// The material at a shading point: every texture evaluated into its field

@@ -13,6 +13,7 @@
 //! | `shininess` | `clamp(2 / max(r^4, 1e-4) - 2, 1, 10000)`: the Blinn exponent of GGX `alpha = r^2` |
 //! | mirror | `m C (1 - r)`: a metal mirrors its base colour, fading as it roughens |
 //! | `ka` (times `C`) | `0.1 ((1 - m) + m r)`: the diffuse part, and the part of a metal's reflection its roughness spreads, both under the ambient light (the importers' `ka = 0.1 kd` convention), so that under a uniform surround the terms add to `C` |
+//! | with transmission `t > 0` | `kd = (1 - m)(1 - t)`, `ka` likewise, and a straight refraction (index 1) of weight `(1 - m) t C`, which shadow rays pass too |
 //!
 //! | parameter | type | default | meaning |
 //! |---|---|---|---|
@@ -22,6 +23,7 @@
 //! | `ior` | number | 1.5 | the dielectric's index (`KHR_materials_ior`): `f0_d = ((ior - 1) / (ior + 1))^2` |
 //! | `specular` | number or texture | 1 | `KHR_materials_specular`'s `specularFactor` x `specularTexture.a`: scales `f0_d` and sets `f90_d` |
 //! | `specular_color` | colour or texture | 1 | `specularColorFactor` x `specularColorTexture`: tints `f0_d` (capped at 1) |
+//! | `transmission` | number or texture | 0 | `KHR_materials_transmission`'s `transmissionFactor` x `transmissionTexture.r`: the share of the dielectric's diffuse base that is thin-walled microfacet transmission, tinted by `C` |
 //! | `emission` | colour or texture | 0 | emitted radiance |
 //! | `emission_strength` | number | 1 | multiplies `emission` (`KHR_materials_emissive_strength`) |
 //! | `two_sided` | boolean | false | emit from both sides |
@@ -34,7 +36,7 @@
 use std::sync::Arc;
 
 use super::textured::{scalar_param, Slot};
-use super::{Material, MaterialKind, Reflection, Texture, Textures};
+use super::{Material, MaterialKind, Reflection, Refraction, Texture, Textures};
 use crate::math::Rgb;
 use crate::params::{Kind, Param, ParamResult, ParamType as T, Params};
 
@@ -50,12 +52,16 @@ pub struct Pbr {
     pub specular: f64,
     /// `KHR_materials_specular`'s colour (1 by default).
     pub specular_color: Rgb,
+    /// `KHR_materials_transmission`'s transmission `t`, 0 to 1 (0 by default):
+    /// the share of the dielectric's diffuse base that is a thin-walled
+    /// microfacet BTDF ([`crate::bsdfs::metallic_roughness`]).
+    pub transmission: f64,
 }
 
 impl Pbr {
     /// Metallic `metallic` and glTF's dielectric (no extensions).
     pub fn new(metallic: f64) -> Pbr {
-        Pbr { metallic: metallic.clamp(0.0, 1.0), ior: 1.5, specular: 1.0, specular_color: Rgb::ONE }
+        Pbr { metallic: metallic.clamp(0.0, 1.0), ior: 1.5, specular: 1.0, specular_color: Rgb::ONE, transmission: 0.0 }
     }
 
     /// The dielectric's Fresnel for the BSDF.
@@ -91,6 +97,16 @@ pub fn derive_lecture_terms(m: &mut Material) {
     m.ks = crate::bsdfs::metallic_roughness::f0(base, metal, pbr.specular());
     m.shininess = shininess(r);
     m.reflection = if metal > 0.0 { Reflection::Constant(metal * base * (1.0 - r)) } else { Reflection::None };
+    // The thin wall: what the diffuse base gives up goes straight through. (Set
+    // at every point: a transmission texture varies it from the material's.)
+    let t = pbr.transmission.clamp(0.0, 1.0);
+    let through = (1.0 - metal) * t * base;
+    if t > 0.0 {
+        m.kd = Rgb::splat((1.0 - metal) * (1.0 - t));
+        m.ka = Rgb::splat(0.1 * ((1.0 - metal) * (1.0 - t) + metal * r));
+    }
+    (m.refraction, m.shadow_transmittance) =
+        if through != Rgb::ZERO { (Refraction::Constant { ior: 1.0, weight: through }, through) } else { (Refraction::None, Rgb::ZERO) };
 }
 
 /// A metallic-roughness material: base colour `base`, `metallic`, perceptual
@@ -124,6 +140,13 @@ pub const KIND: MaterialKind = Kind {
             "1",
             "",
             "tint of the dielectric's reflection at normal incidence (`KHR_materials_specular`)",
+        ),
+        Param::new(
+            "transmission",
+            T::ScalarTexture,
+            "0",
+            "0 to 1",
+            "share of the dielectric's diffuse base that is thin-walled GGX transmission tinted by the base colour (`KHR_materials_transmission`)",
         ),
         Param::new("emission", T::Texture, "0", "radiance", "emitted radiance"),
         Param::new("emission_strength", T::Number, "1", ">= 0", "multiplies `emission` (`KHR_materials_emissive_strength`)"),
@@ -159,6 +182,10 @@ fn build(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Material> {
         return Err(p.key_error("specular", format!("must be between 0 and 1, got {specular}")));
     }
     let specular_color = super::textured::color_param(p, textures, "specular_color", Rgb::ONE, Slot::SpecularColor, &mut maps)?;
+    let transmission = scalar_param(p, textures, "transmission", 0.0, Slot::Transmission, &mut maps)?;
+    if !(0.0..=1.0).contains(&transmission) {
+        return Err(p.key_error("transmission", format!("must be between 0 and 1, got {transmission}")));
+    }
     let strength = p.number_or("emission_strength", 1.0)?;
     if !(strength.is_finite() && strength >= 0.0) {
         return Err(p.key_error("emission_strength", format!("must be a non-negative number, got {strength}")));
@@ -174,7 +201,7 @@ fn build(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Material> {
     };
     let mut m = material(base, metallic, roughness, emission, maps);
     if let Some(pbr) = &mut m.pbr {
-        (pbr.ior, pbr.specular, pbr.specular_color) = (ior, specular, specular_color);
+        (pbr.ior, pbr.specular, pbr.specular_color, pbr.transmission) = (ior, specular, specular_color, transmission);
     }
     derive_lecture_terms(&mut m);
     m.two_sided = p.boolean("two_sided")?.unwrap_or(false);

@@ -110,6 +110,7 @@ fn build(p: &mut Params<'_>, textures: &super::Textures<'_>) -> ParamResult<Mate
         normal_map: normal_map::read(p, textures)?,
         bump: super::bump::read(p, textures)?,
         alpha: super::alpha::read(p, textures)?,
+        blend: None,
     };
     let material = Material { textures: (!maps.is_empty()).then(|| maps.into()), ..material };
     material.validate().map_err(|e| p.core_error(e))?;

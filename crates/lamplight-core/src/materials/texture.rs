@@ -45,11 +45,17 @@ pub struct Textures<'a> {
     pub kinds: &'a [&'a TextureKind],
     /// Reads image files (`None` where there is no scene file to read them beside).
     pub images: Option<&'a dyn ImageLoader>,
+    /// Reads the materials a `blend` mixes (`None` where there are no others to name).
+    pub materials: Option<&'a dyn super::blend::Components>,
 }
 
 impl std::fmt::Debug for Textures<'_> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Textures").field("kinds", &self.kinds.len()).field("images", &self.images.is_some()).finish()
+        f.debug_struct("Textures")
+            .field("kinds", &self.kinds.len())
+            .field("images", &self.images.is_some())
+            .field("materials", &self.materials.is_some())
+            .finish()
     }
 }
 

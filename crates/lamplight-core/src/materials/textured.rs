@@ -8,7 +8,7 @@
 //! need no per-parameter code. A material without textures is borrowed as it is.
 //!
 //! Values from textures are clamped where the field requires it: colours to
-//! `>= 0`, `shininess` to `>= 0`, `roughness`, `metallic`, `specular` and the principled model's weights to `[0, 1]`. A
+//! `>= 0`, `shininess` to `>= 0`, `roughness`, `metallic`, `specular`, `transmission` and the principled model's weights to `[0, 1]`. A
 //! scalar slot reads the texture's first channel (an image's `channel` chooses it).
 
 use super::{Material, Texture, Textures};
@@ -40,6 +40,8 @@ pub enum Slot {
     SpecularColor,
     /// A scalar of the principled model ([`super::principled`]).
     Principled(super::principled::Scalar),
+    /// Its `transmission` (`KHR_materials_transmission`).
+    Transmission,
 }
 
 impl Slot {
@@ -79,6 +81,11 @@ impl Slot {
                         scalar.set_thin(p, value.x.clamp(0.0, max))
                     }
                     _ => {}
+                }
+            }
+            Slot::Transmission => {
+                if let Some(pbr) = &mut m.pbr {
+                    pbr.transmission = value.x.clamp(0.0, 1.0);
                 }
             }
         }

@@ -51,6 +51,8 @@ pub enum ParamType {
     Texture,
     /// A number, or a texture table (a scalar read from a texture's first channel).
     ScalarTexture,
+    /// The name of a `[materials]` entry, or a material table `{ type = ..., ... }`.
+    Material,
     /// `[a, b]`, two numbers (texture coordinates).
     Pair,
     /// Four rows of four numbers.
@@ -73,6 +75,7 @@ impl fmt::Display for ParamType {
             ParamType::Color => "colour",
             ParamType::Texture => "colour or texture",
             ParamType::ScalarTexture => "number or texture",
+            ParamType::Material => "material name or table",
             ParamType::Pair => "[a, b]",
             ParamType::Matrix => "4x4 matrix",
             ParamType::Table => "table",
@@ -483,6 +486,7 @@ fn mismatch(ty: ParamType, value: &Value) -> Option<&'static str> {
         ParamType::Color => as_number(value).is_some() || numbers::<3>(value).is_some(),
         ParamType::Texture => as_number(value).is_some() || numbers::<3>(value).is_some() || matches!(value, Value::Table(_)),
         ParamType::ScalarTexture => as_number(value).is_some() || matches!(value, Value::Table(_)),
+        ParamType::Material => matches!(value, Value::String(_) | Value::Table(_)),
         ParamType::Pair => numbers::<2>(value).is_some(),
         ParamType::Matrix => {
             matches!(value, Value::Array(rows) if rows.len() == 4 && rows.iter().all(|r| numbers::<4>(&r.value).is_some()))
@@ -498,6 +502,7 @@ fn mismatch(ty: ParamType, value: &Value) -> Option<&'static str> {
         ParamType::Color => "a number or [r, g, b]",
         ParamType::Texture => "a number, [r, g, b] or a texture table { type = ..., ... }",
         ParamType::ScalarTexture => "a number or a texture table { type = ..., ... }",
+        ParamType::Material => "a material name or a material table { type = ..., ... }",
         ParamType::Pair => "[a, b]",
         ParamType::Matrix => "4 rows of 4 numbers",
         ParamType::Table | ParamType::Array => "",

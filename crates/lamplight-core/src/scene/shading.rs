@@ -5,7 +5,8 @@
 use std::borrow::Cow;
 
 use super::{Hit, Scene};
-use crate::materials::{Material, ShadingPoint};
+use crate::materials::blend::{choice_sample, picks_b};
+use crate::materials::{Blend, Material, ShadingPoint};
 use crate::math::Vec3;
 
 impl Scene {
@@ -54,6 +55,9 @@ impl Scene {
         if let (Some(map), Some(c)) = (&material.normal_map, &coords) {
             hit.normal = map.apply(&at, c, hit.normal, hit.geometric_normal, wo);
         }
+        if let Some(blend) = &material.blend {
+            return self.shade_component(hit, wo, footprint, blend, &at);
+        }
         if constant {
             return Cow::Borrowed(material);
         }
@@ -63,8 +67,22 @@ impl Scene {
         }
     }
 
+    /// Shades `hit` as one component of the blend `blend` (its material):
+    /// `b` with probability `w`, else `a` ([`crate::materials::blend`]).
+    /// `hit.material` becomes the component's, so that its prebuilt BSDF is found.
+    #[inline(never)]
+    fn shade_component(&self, hit: &mut Hit, wo: Vec3, footprint: f64, blend: &Blend, at: &ShadingPoint) -> Cow<'_, Material> {
+        let Some([a, b]) = self.blend_parts.get(hit.material).copied().flatten() else {
+            return Cow::Borrowed(&self.materials[hit.material]);
+        };
+        let u = choice_sample(hit.point, wo, hit.material as u64);
+        hit.material = if picks_b(u, blend.weight_at(at)) { b } else { a };
+        self.shade(hit, wo, footprint)
+    }
+
     /// The material of `hit` with its textures evaluated there
-    /// ([`Material::at`]; borrowed for a constant material).
+    /// ([`Material::at`]; borrowed for a constant material). A blend is its
+    /// own material here (black); [`Scene::shade`] picks its component.
     #[inline]
     pub fn material_at(&self, hit: &Hit) -> Cow<'_, Material> {
         let material = &self.materials[hit.material];

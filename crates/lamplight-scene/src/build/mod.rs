@@ -311,8 +311,8 @@ pub fn build_with_warnings(desc: &SceneDescription, source: &Source) -> Result<B
     // Texture files are found beside the scene file, and decoded once each,
     // whether a material or a light reads them.
     let images = crate::texture_files::ImageFiles::new(&dir);
-    let textures = lamplight_core::materials::Textures { kinds: crate::registry::TEXTURES, images: Some(&images) };
-    let materials = materials::add_all(desc, source, &mut builder, &textures)?;
+    let materials = materials::add_all(desc, source, &mut builder, &images)?;
+    let textures = lamplight_core::materials::Textures { kinds: crate::registry::TEXTURES, images: Some(&images), materials: None };
     for (name, &index) in &materials {
         builder.name_material(index, name);
     }

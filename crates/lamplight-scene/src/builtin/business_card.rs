@@ -165,6 +165,7 @@ pub fn build() -> Result<Scene, Error> {
             normal_map: None,
             bump: None,
             alpha: None,
+            blend: None,
         })?;
         let center = Vec3::from_array(s.center);
         let index = scene.object(Sphere::new(center, s.radius)?, material)?;

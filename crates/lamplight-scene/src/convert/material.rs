@@ -1,7 +1,7 @@
 //! An imported [`Material`] written as the `[materials.NAME]` table of the
 //! kind that builds it back: `pbr` for glTF's metallic-roughness materials and
-//! MTL's PBR extension, `phong` for the rest (MTL's lecture model, glTF
-//! transmission's glass), every field written out, so that the user edits
+//! MTL's PBR extension (glTF's transmission included), `phong` for the rest
+//! (MTL's lecture model), every field written out, so that the user edits
 //! numbers and texture files in the TOML.
 //!
 //! A material is written from what the importer built, then read back through
@@ -75,6 +75,7 @@ pub(super) fn material_table(m: &Material, images: &mut Images) -> Result<Table,
             out.push(("ior", num(pbr.ior)));
             out.push(("specular", slot_or(Slot::Specular, num(pbr.specular), images)?));
             out.push(("specular_color", slot_or(Slot::SpecularColor, rgb(pbr.specular_color), images)?));
+            out.push(("transmission", slot_or(Slot::Transmission, num(pbr.transmission), images)?));
             out.push(("emission", slot_or(Slot::Emission, rgb(m.emission), images)?));
         }
         None => {
@@ -214,7 +215,7 @@ fn uv_transform(t: &UvTransform) -> Result<Vec<(&'static str, Value)>, String> {
 pub(super) fn read_back(table_: &Table, images: &Images) -> Result<Material, String> {
     let node = crate::description::Node::from_table(table_.clone(), "material", Some("phong"), false).map_err(|e| e.message)?;
     let kind = Kind::find(registry::MATERIALS, &node.kind).ok_or("unknown material kind")?;
-    let textures = Textures { kinds: registry::TEXTURES, images: Some(images) };
+    let textures = Textures { kinds: registry::TEXTURES, images: Some(images), materials: None };
     let p = Params::new("material", &node.params);
     p.read(kind.params, &[], |p| (kind.build)(p, &textures)).map_err(|e| e.message)
 }

@@ -59,6 +59,9 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
     if document.animations().next().is_some() {
         reader.warnings.once("glTF animations ignored".to_string());
     }
+    if document.extensions_used().any(|e| e == "KHR_materials_volume") {
+        reader.warnings.once("glTF KHR_materials_volume ignored: transmission is thin-walled (no refraction, no absorption)".to_string());
+    }
     let scene_count = document.scenes().len();
     let whole_file = scene_count == 0;
     let roots: Vec<gltf::Node> = match document.default_scene().or_else(|| document.scenes().next()) {

@@ -12,7 +12,7 @@
 //! | `KHR_materials_specular`: `specularFactor` x `specularTexture`.a (linear), `specularColorFactor` x `specularColorTexture` (sRGB) | `specular`, `specular_color` |
 //! | `normalTexture`, its `scale` | the normal map (linear; the tangents from `TANGENT`, else MikkTSpace) |
 //! | `KHR_texture_transform` | the texture's UV transform, in lamplight's `v`-up convention (`F T R S F`, `F(u, v) = (u, 1 - v)`) |
-//! | `KHR_materials_transmission` `t > 0` | `Material::glass(ior, ..)` (index from `KHR_materials_ior`, default 1.5) with `kd`, `ka` scaled by `1 - t`, shadow rays passing `t B`, and GGX `roughness = r^2` (textures not read) |
+//! | `KHR_materials_transmission` `transmissionFactor` x `transmissionTexture`.r (linear) | `transmission`: thin-walled microfacet transmission replacing that share of the diffuse base (`KHR_materials_volume` is not read: a warning) |
 //!
 //! | `alphaMode` `MASK`, `alphaCutoff`; `BLEND` | coverage base colour alpha x `baseColorTexture` alpha ([`lamplight_core::materials::alpha`]): a cut-out at `alphaCutoff`; `BLEND` stochastic transparency |
 //!
@@ -47,11 +47,6 @@ fn clean(x: f32) -> f64 {
 
 fn rgb(c: [f32; 3]) -> Rgb {
     Rgb::new(clean(c[0]), clean(c[1]), clean(c[2]))
-}
-
-/// The Blinn exponent of roughness `r` ([`pbr::shininess`]).
-pub(super) fn shininess(roughness: f64) -> f64 {
-    pbr::shininess(roughness)
 }
 
 /// `texture * factor`, or the factor alone without a texture.
@@ -126,9 +121,6 @@ pub(super) fn map(
     warnings: &mut Warnings,
 ) -> Result<Material, LoadError> {
     let pbr_json = m.pbr_metallic_roughness();
-    if m.transmission().is_some_and(|t| t.transmission_texture().is_some()) {
-        warnings.once("glTF transmissionTexture ignored: the transmission factor is used".to_string());
-    }
     let [r, g, b, alpha_factor] = pbr_json.base_color_factor();
     let base_factor = rgb([r, g, b]).min(Rgb::ONE);
     let metal = clean(pbr_json.metallic_factor()).min(1.0);
@@ -136,20 +128,6 @@ pub(super) fn map(
     let strength = m.emissive_strength().map_or(1.0, clean);
     let emissive = rgb(m.emissive_factor()) * strength;
     let transmission = m.transmission().map_or(0.0, |t| clean(t.transmission_factor()).min(1.0));
-    if transmission > 0.0 {
-        let ior = m.ior().map(f64::from).filter(|i| i.is_finite() && *i > 0.0).unwrap_or(1.5);
-        let kd = (1.0 - metal) * base_factor;
-        let ks = Rgb::splat(0.04 * (1.0 - metal)) + metal * base_factor;
-        let glass = Material::glass(ior, ks.max_element(), shininess(rough));
-        return Ok(Material {
-            kd: (1.0 - transmission) * kd,
-            ka: 0.1 * (1.0 - transmission) * kd,
-            emission: emissive,
-            shadow_transmittance: transmission * base_factor,
-            roughness: rough * rough,
-            ..glass
-        });
-    }
     // `Some(None)`: blend; `Some(Some(c))`: a cut-out at `c`.
     let cutoff = match m.alpha_mode() {
         gltf::material::AlphaMode::Opaque => None,
@@ -208,9 +186,12 @@ pub(super) fn map(
             maps.push((Slot::SpecularColor, scaled(Some(t), specular_color)));
         }
     }
+    if let Some(t) = texture(m.transmission().and_then(|t| t.transmission_texture()), false, Channel::One(0))? {
+        maps.push((Slot::Transmission, scaled(Some(t), Rgb::splat(transmission))));
+    }
     let mut material = pbr::material(base, metal, rough, emission, maps);
     if let Some(p) = &mut material.pbr {
-        (p.ior, p.specular, p.specular_color) = (ior, specular, specular_color);
+        (p.ior, p.specular, p.specular_color, p.transmission) = (ior, specular, specular_color, transmission);
     }
     pbr::derive_lecture_terms(&mut material);
     material.alpha = alpha;
@@ -228,8 +209,8 @@ mod tests {
 
     #[test]
     fn roughness_maps_to_the_ggx_matched_exponent() {
-        assert_eq!(shininess(1.0), 1.0);
-        assert_eq!(shininess(0.5), 30.0);
-        assert_eq!(shininess(0.0), 10_000.0);
+        assert_eq!(pbr::shininess(1.0), 1.0);
+        assert_eq!(pbr::shininess(0.5), 30.0);
+        assert_eq!(pbr::shininess(0.0), 10_000.0);
     }
 }

@@ -21,13 +21,13 @@
 //! | `principled` (every parameter; `anisotropic` only 0) | `principled` of the same parameters (Mitsuba's own BSDF, `crates/lamplight-core/src/bsdfs/principled.rs`) |
 //! | `principledthin` (every parameter; `anisotropic` only 0) | `principled_thin` of the same parameters (`crates/lamplight-core/src/bsdfs/principled_thin.rs`) |
 //!
-//! `blendbsdf` is an error: no lamplight material gives its image yet.
+//! | `blendbsdf` `weight` (0.5, number or texture), two nested BSDFs | `blend` with `a`, `b` the nested BSDFs as material tables, each one-sided as Mitsuba's (both sides inside a `twosided`) |
 
 use lamplight_core::math::Rgb;
 use lamplight_core::params::{Entry, Item, Loc, ParamError, Value};
 
 use super::properties::{Plugin, PropValue};
-use super::textures::{colour_or_texture, number, number_or_texture, texture};
+use super::textures::{colour_or_texture, number, number_or_texture, scalar_texture, texture};
 use super::xml::El;
 use super::{conductors::CONDUCTORS, entry, num, table, table_of, text, vec3, Ctx};
 
@@ -250,6 +250,41 @@ fn unit_factor(ctx: &mut Ctx<'_>, p: &mut Plugin<'_>, key: &str) -> Result<(), P
     Ok(())
 }
 
+/// `blendbsdf`: lamplight's `blend` of its two nested BSDFs (material tables
+/// in place, each one-sided as Mitsuba's), by `weight` (a number or a
+/// texture, 0.5 by default).
+fn blend<'a>(ctx: &mut Ctx<'a>, p: &mut Plugin<'a>) -> Result<Vec<Entry>, ParamError> {
+    let loc = p.el.loc.clone();
+    let weight = match p.object("weight") {
+        Some(o) => {
+            let t = ctx.deref(o)?;
+            super::textures::scalar_texture(ctx, t)?
+        }
+        None => {
+            let (w, wloc) = p.number_or("weight", 0.5)?;
+            if !(0.0..=1.0).contains(&w) {
+                return Err(err(&wloc, format!("{}: weight: must be between 0 and 1, got {w}", p.label)));
+            }
+            num(w, &wloc)
+        }
+    };
+    let mut parts = Vec::new();
+    for &o in &p.objects {
+        let t = ctx.deref(o)?;
+        if t.tag != "bsdf" {
+            continue;
+        }
+        // In place even when referenced: a `twosided` around the blend must
+        // reach its components ([`super::sided::both_sides`]).
+        let entries = material(ctx, t)?;
+        let entries = super::sided::mark(ctx, t, entries)?;
+        parts.push(table(entries, o.loc.clone()));
+    }
+    let [a, b]: [Item; 2] =
+        parts.try_into().map_err(|parts: Vec<Item>| err(&loc, format!("{}: needs two nested BSDFs, got {}", p.label, parts.len())))?;
+    Ok(vec![entry("type", text("blend", &loc)), entry("weight", weight), entry("a", a), entry("b", b)])
+}
+
 /// The `phong` or `pbr` entries of the `<bsdf>` `el`.
 pub fn material<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<Vec<Entry>, ParamError> {
     let el = ctx.deref(el)?;
@@ -347,7 +382,7 @@ pub fn material<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<Vec<Entry>, ParamEr
             unit_factor(ctx, &mut p, "specular_transmittance")?;
             vec![entry("type", text("thin_dielectric", &loc)), entry("int_ior", num(int, &iloc)), entry("ext_ior", num(ext, &eloc))]
         }
-        "twosided" => nested(ctx, &p)?,
+        "twosided" => super::sided::both_sides(nested(ctx, &p)?),
         "null" => {
             let mut e = black(&loc);
             e.push(entry("alpha", num(0.0, &loc)));
@@ -355,9 +390,10 @@ pub fn material<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<Vec<Entry>, ParamEr
         }
         "mask" => {
             let opacity = match p.object("opacity") {
+                // Mitsuba reads the opacity through `eval_1`.
                 Some(o) => {
                     let t = ctx.deref(o)?;
-                    texture(ctx, t)?
+                    scalar_texture(ctx, t)?
                 }
                 None => {
                     let (a, aloc) = p.number_or("opacity", 0.5)?;
@@ -410,7 +446,8 @@ pub fn material<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<Vec<Entry>, ParamEr
         }
         "principled" => principled(ctx, &mut p, &loc)?,
         "principledthin" => principled_thin(ctx, &mut p, &loc)?,
-        "blendbsdf" | "hair" | "measured" | "polarizer" | "retarder" | "pplastic" => {
+        "blendbsdf" => blend(ctx, &mut p)?,
+        "hair" | "measured" | "polarizer" | "retarder" | "pplastic" => {
             return Err(err(&p.el.require("type")?.loc, format!("{}: not yet supported (no lamplight material gives its image)", p.label)))
         }
         other => return Err(err(&p.el.require("type")?.loc, format!("bsdf \"{other}\": unknown BSDF"))),

@@ -11,7 +11,7 @@
 //! | `diffuse`, `conductor`, `roughconductor`, `plastic`, `roughplastic` | `"front"` |
 //! | `twosided`, `dielectric`, `roughdielectric`, `thindielectric`, `null`, `principled` (lamplight's `principled` tells its two sides apart itself, as Mitsuba's), `principledthin` | both (the default) |
 //! | `mask`, `normalmap`, `bumpmap` | as the nested BSDF |
-//! | `blendbsdf` | `"front"` when both nested BSDFs are one-sided |
+//! | `blendbsdf` | both: each nested BSDF (a `blend` component) is marked itself |
 
 use lamplight_core::params::{Entry, ParamError};
 
@@ -44,10 +44,6 @@ fn one_sided_at<'a>(ctx: &Ctx<'a>, el: &'a El, depth: usize) -> Result<bool, Par
     Ok(match el.get("type").unwrap_or("") {
         "diffuse" | "conductor" | "roughconductor" | "plastic" | "roughplastic" => true,
         "mask" | "normalmap" | "bumpmap" => nested()?.first().copied().unwrap_or(false),
-        "blendbsdf" => {
-            let sides = nested()?;
-            !sides.is_empty() && sides.iter().all(|s| *s)
-        }
         _ => false,
     })
 }
@@ -59,4 +55,16 @@ pub fn mark<'a>(ctx: &Ctx<'a>, el: &'a El, mut entries: Vec<Entry>) -> Result<Ve
         entries.push(entry("sided", text("front", &el.loc)));
     }
     Ok(entries)
+}
+
+/// `entries` made to scatter on both sides (a `twosided` around them): no
+/// `sided`, in the material and in the components of a blend.
+pub fn both_sides(mut entries: Vec<Entry>) -> Vec<Entry> {
+    entries.retain(|e| e.key != "sided");
+    for e in &mut entries {
+        if let (true, lamplight_core::params::Value::Table(t)) = (e.key == "a" || e.key == "b", &mut e.item.value) {
+            t.entries = both_sides(std::mem::take(&mut t.entries));
+        }
+    }
+    entries
 }

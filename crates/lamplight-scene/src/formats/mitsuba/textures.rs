@@ -4,7 +4,7 @@
 //! |---|---|
 //! | `bitmap` `filename`, `filter_type` (`bilinear`, `nearest`), `wrap_mode` (`repeat`, `mirror`, `clamp`), `raw` | `image` `file`, `filter`, `wrap`, `color_space` (`raw = true`: `"linear"`) |
 //! | `to_uv` `(u, v) -> (s_u u + t_u, s_v v + t_v)` | `uv_scale = [s_u, s_v]`, `uv_offset = [t_u, 1 - s_v - t_v]` |
-//! | `checkerboard` `color0` (0.4), `color1` (0.2), `to_uv` | `uv_checker` `even = color0`, `odd = color1`, `uv_scale = [2 s_u, -2 s_v]`, `uv_offset = [2 t_u, 2 (s_v + t_v)]` |
+//! | `checkerboard` `color0` (0.4), `color1` (0.2), `to_uv` | `uv_checker` `even = color0`, `odd = color1`, `uv_scale = [2 s_u, -2 s_v]`, `uv_offset = [2 t_u, 2 (s_v + t_v)]`; where Mitsuba reads one channel (`blendbsdf`'s `weight`) `even = color1`, `odd = color0`, as its `eval_1` does ([`scalar_texture`]) |
 //! | `mesh_attribute` `name = "vertex_color"` | `vertex_color` |
 //!
 //! Mitsuba's `v` is lamplight's `1 - v`: Mitsuba flips a mesh file's `v` and
@@ -15,7 +15,7 @@
 //! from Mitsuba's (see docs/mitsuba.md).
 
 use lamplight_core::math::{Mat4, Rgb};
-use lamplight_core::params::{Item, Loc, ParamError, Value};
+use lamplight_core::params::{Item, Loc, ParamError};
 
 use super::properties::Plugin;
 use super::xml::El;
@@ -40,31 +40,38 @@ pub fn colour_or_texture<'a>(ctx: &mut Ctx<'a>, p: &mut Plugin<'a>, key: &str, d
 }
 
 /// Parameter `key` of `p` as a number or a nested or referenced texture (read
-/// by lamplight through its first channel); `None` when absent.
+/// by lamplight through its first channel, by Mitsuba through `eval_1`:
+/// [`scalar_texture`]); `None` when absent.
 pub fn number_or_texture<'a>(ctx: &mut Ctx<'a>, p: &mut Plugin<'a>, key: &str) -> Result<Option<Item>, ParamError> {
     if let Some(o) = p.object(key) {
         let t = ctx.deref(o)?;
         if t.tag != "texture" {
             return Err(err(&o.loc, format!("{}: {key}: expected a number or a <texture>, got <{}>", p.label, t.tag)));
         }
-        let mut item = texture(ctx, t)?;
-        // Mitsuba 3.9.1's checkerboard swaps its colours in `eval_1` (a scalar
-        // lookup: `color1` where `eval` gives `color0`); so does lamplight here, so
-        // that images match.
-        if t.get("type") == Some("checkerboard") {
-            if let Value::Table(table) = &mut item.value {
-                for e in &mut table.entries {
-                    e.key = match e.key.as_str() {
-                        "even" => "odd".into(),
-                        "odd" => "even".into(),
-                        _ => std::mem::take(&mut e.key),
-                    };
+        return scalar_texture(ctx, t).map(Some);
+    }
+    Ok(p.number(key)?.map(|(v, loc)| super::num(v, &loc)))
+}
+
+/// A `<texture>` read where Mitsuba evaluates one channel (`eval_1`, as
+/// `blendbsdf`'s `weight`): as [`texture`], except that a `checkerboard`'s
+/// colours trade places, because Mitsuba 3.9's checkerboard `eval_1` returns
+/// `color1` where its `eval` returns `color0` (measured: at `uv = (0.1, 0.1)`
+/// with `to_uv` scale 3, `eval` gives `color0` and `eval_1` `color1`).
+pub fn scalar_texture<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<Item, ParamError> {
+    let mut item = texture(ctx, el)?;
+    if el.get("type") == Some("checkerboard") {
+        if let lamplight_core::params::Value::Table(t) = &mut item.value {
+            for e in &mut t.entries {
+                match e.key.as_str() {
+                    "even" => e.key = "odd".into(),
+                    "odd" => e.key = "even".into(),
+                    _ => {}
                 }
             }
         }
-        return Ok(Some(item));
     }
-    Ok(p.number(key)?.map(|(v, loc)| super::num(v, &loc)))
+    Ok(item)
 }
 
 /// Parameter `key` as a number (a texture is an error: `what` says why).
