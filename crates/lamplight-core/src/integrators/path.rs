@@ -357,7 +357,8 @@ impl PathTracer {
     /// [`Integrator::sample`], telling `trace` what it does.
     fn sample_with<T: PathTrace + ?Sized>(&self, view: &View, x: u32, y: u32, index: u32, counts: &mut RayCounts, trace: &mut T) -> Rgb {
         let mut sampler = PixelSampler::new(view.seed, view.pixel_index(x, y), index);
-        let (dx, dy) = self.filter.sample(sampler.get_2d());
+        let (lo, hi) = view.offset_bounds(x, y);
+        let (dx, dy) = self.filter.sample_in(sampler.get_2d(), lo, hi);
         let lens = if view.lens { sampler.get_2d() } else { (0.5, 0.5) };
         let (fx, fy) = (x as f64 + 0.5 + dx, y as f64 + 0.5 + dy);
         let ray = view.camera.ray(fx, fy, view.width, view.height, lens);
