@@ -263,3 +263,6 @@ CASES += _BSDFS2_CASES
 
 from mitsuba_xml import cases_scene2 as _scene2  # noqa: E402  (scene-level cases, written alongside these)
 CASES += _scene2.CASES
+
+from mitsuba_xml import cases_sensors3 as _sensors3  # noqa: E402  (film and sensor cases)
+CASES += _sensors3.CASES

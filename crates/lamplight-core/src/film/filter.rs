@@ -1,8 +1,8 @@
 //! Pixel reconstruction filters, applied by filter importance sampling: each
-//! sample's film position is drawn from the filter's own distribution around the
-//! pixel centre and the sample gets weight 1 (Ernst et al. 2006). The pixel value
-//! is then a plain average of its own samples, a fixed-order sum that no other
-//! pixel touches, so images stay identical for any thread count.
+//! sample's film position is drawn from (nearly) the filter's own distribution
+//! around the pixel centre, with weight 1 or close to it (Ernst et al. 2006). The
+//! pixel value is then the average of its own weighted samples, a fixed-order
+//! sum that no other pixel touches, so images stay identical for any thread count.
 //!
 //! The filters are separable, `f(dx, dy) = f(dx) f(dy)`, with Mitsuba 3's 1D
 //! weights (`src/rfilters/`): the box `1` on `|x| <= 1/2`, the tent
@@ -18,7 +18,9 @@
 //! over its interval: the same expectation, one 2D sample per offset, no
 //! rejection, and the sampler's stratification kept. A pixel whose support lies
 //! wholly inside the image draws from the whole filter (the box always does, so
-//! its offsets are `u - 1/2` as before).
+//! its offsets are `u - 1/2` as before). The Gaussian mixes in a uniform share
+//! and weights its samples ([`Filter::sample_in`]), so that its long, faint
+//! tail is sampled too.
 
 /// A reconstruction filter.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
@@ -123,34 +125,57 @@ impl Filter {
         x.clamp(lo, hi)
     }
 
-    /// One axis of [`Filter::sample_in`]: the offset for uniform `u` drawn from
-    /// the weight on `[lo, hi]` intersected with the support.
-    fn sample_axis(&self, u: f64, lo: f64, hi: f64) -> f64 {
+    /// One axis of [`Filter::sample_in`]: the offset for uniform `u` on
+    /// `[lo, hi]` intersected with the support, and its weight.
+    fn sample_axis(&self, u: f64, lo: f64, hi: f64) -> (f64, f64) {
         let r = self.radius();
         let (a, b) = (lo.max(-r), hi.min(r));
         if !(a < b) {
             // No part of the support is inside the bounds: only a pixel outside
             // them (the border an adaptive render probes) gets here.
-            return u - 0.5;
+            return (u - 0.5, 1.0);
         }
         let (wa, wb) = (self.cumulative(a), self.cumulative(b));
-        self.inverse_cumulative(wa + u * (wb - wa), a, b)
+        if !matches!(self, Filter::Gaussian { .. }) {
+            return (self.inverse_cumulative(wa + u * (wb - wa), a, b), 1.0);
+        }
+        // The Gaussian's mixture with the uniform density (see `sample_in`).
+        let (mass, len) = (wb - wa, b - a);
+        let x = if u < UNIFORM_SHARE {
+            (a + u / UNIFORM_SHARE * len).min(b)
+        } else {
+            self.inverse_cumulative(wa + (u - UNIFORM_SHARE) / (1.0 - UNIFORM_SHARE) * mass, a, b)
+        };
+        let filter_density = self.weight(x) / mass;
+        (x, filter_density / ((1.0 - UNIFORM_SHARE) * filter_density + UNIFORM_SHARE / len))
     }
 
     /// The offset from a pixel's centre for a uniform point `u`, drawn from the
     /// filter restricted to the offsets `lo..hi` (per axis) whose positions lie
-    /// inside the image (see the module doc). With infinite bounds this is the
-    /// whole filter.
-    pub fn sample_in(&self, u: (f64, f64), lo: (f64, f64), hi: (f64, f64)) -> (f64, f64) {
-        (self.sample_axis(u.0, lo.0, hi.0), self.sample_axis(u.1, lo.1, hi.1))
+    /// inside the image (see the module doc), and the sample's weight: the
+    /// pixel is the mean of its samples' weighted radiance. The box and the
+    /// tent draw from the filter itself (weight 1). The Gaussian draws each
+    /// axis from the mixture `q = 0.9 f / W + 0.1 / (hi - lo)` of the filter's
+    /// density and the uniform one, with weight `(f / W) / q` (at most 1/0.9),
+    /// so that a pixel whose light reaches it only through the filter's tail
+    /// gets samples there (about one in 80 per axis in the outer quarter) and
+    /// its noise is measured rather than hidden by samples that all miss.
+    /// With infinite bounds this is the whole filter.
+    pub fn sample_in(&self, u: (f64, f64), lo: (f64, f64), hi: (f64, f64)) -> ((f64, f64), f64) {
+        let (x, wx) = self.sample_axis(u.0, lo.0, hi.0);
+        let (y, wy) = self.sample_axis(u.1, lo.1, hi.1);
+        ((x, y), wx * wy)
     }
 
     /// [`Filter::sample_in`] without bounds: the whole filter.
-    pub fn sample(&self, u: (f64, f64)) -> (f64, f64) {
+    pub fn sample(&self, u: (f64, f64)) -> ((f64, f64), f64) {
         let inf = f64::INFINITY;
         self.sample_in(u, (-inf, -inf), (inf, inf))
     }
 }
+
+/// The share of the Gaussian's samples drawn uniformly over its support (see [`Filter::sample_in`]).
+const UNIFORM_SHARE: f64 = 0.1;
 
 impl std::str::FromStr for Filter {
     type Err = String;
@@ -212,10 +237,12 @@ mod tests {
                 let mean = integral(|t| t * f.weight(t), a, b) / mass;
                 let second = integral(|t| t * t * f.weight(t), a, b) / mass;
                 let n = 20_000;
-                let xs: Vec<f64> = (0..n).map(|i| f.sample_axis((i as f64 + 0.5) / n as f64, lo, hi)).collect();
-                assert!(xs.iter().all(|&x| x >= a && x <= b), "{f:?} [{lo}, {hi}]");
-                let m1 = xs.iter().sum::<f64>() / n as f64;
-                let m2 = xs.iter().map(|x| x * x).sum::<f64>() / n as f64;
+                let xs: Vec<(f64, f64)> = (0..n).map(|i| f.sample_axis((i as f64 + 0.5) / n as f64, lo, hi)).collect();
+                assert!(xs.iter().all(|&(x, w)| x >= a && x <= b && w > 0.0 && w <= 1.0 / 0.9 + 1e-12), "{f:?} [{lo}, {hi}]");
+                let m0 = xs.iter().map(|(_, w)| w).sum::<f64>() / n as f64;
+                let m1 = xs.iter().map(|(x, w)| x * w).sum::<f64>() / n as f64;
+                let m2 = xs.iter().map(|(x, w)| x * x * w).sum::<f64>() / n as f64;
+                assert!((m0 - 1.0).abs() < 1e-4, "{f:?} [{lo}, {hi}]: weights average {m0}");
                 assert!((m1 - mean).abs() < 1e-4 && (m2 - second).abs() < 1e-4, "{f:?} [{lo}, {hi}]: {m1} {m2} vs {mean} {second}");
             }
         }
@@ -224,26 +251,30 @@ mod tests {
     #[test]
     fn offsets_invert_the_cumulative_weight() {
         // The tent in closed form: u = 1/8 gives (x + 1)^2 / 2 = 1/8, x = -1/2.
-        assert_eq!(Filter::Tent.sample((0.125, 0.875)), (-0.5, 0.5));
-        // The Gaussian is odd about the centre and its median is 0.
-        let (x, y) = GAUSS.sample((0.5, 0.9));
+        assert_eq!(Filter::Tent.sample((0.125, 0.875)), ((-0.5, 0.5), 1.0));
+        // The Gaussian's filter part (u from 0.1 on, rescaled) is odd about the
+        // centre, with its median at u = 0.55; its uniform part spans the support.
+        let ((x, y), _) = GAUSS.sample((0.55, 0.91));
         assert!(x.abs() < 1e-12);
-        let (y2, _) = GAUSS.sample((0.1, 0.5));
+        let ((y2, _), _) = GAUSS.sample((0.19, 0.5));
         assert!((y + y2).abs() < 1e-9, "{y} {y2}");
-        // Restricted to [0, 2], u = 1/2 is the point holding half the right half's weight.
-        let x = GAUSS.sample_axis(0.5, 0.0, f64::INFINITY);
+        assert_eq!(GAUSS.sample_axis(0.05, -1.0, 3.0).0, 0.5, "halfway along [-1, 2]");
+        // Restricted to [0, 2], the filter part's middle holds half the right half's weight.
+        let (x, w) = GAUSS.sample_axis(0.55, 0.0, f64::INFINITY);
         assert!((GAUSS.cumulative(x) - 0.75 * GAUSS.cumulative(2.0)).abs() < 1e-12, "{x}");
+        let density = GAUSS.weight(x) / (0.5 * GAUSS.cumulative(2.0));
+        assert!((w - density / (0.9 * density + 0.1 / 2.0)).abs() < 1e-15);
     }
 
     #[test]
     fn the_box_keeps_its_offsets() {
         // A pixel centre is at least 1/2 from the image's edge, so the box is never cut.
         for u in [0.0, 0.1, 0.37, 0.5, 0.999] {
-            assert_eq!(Filter::Box.sample_in((u, u), (-0.5, -7.5), (0.5, 2.5)), (u - 0.5, u - 0.5));
+            assert_eq!(Filter::Box.sample_in((u, u), (-0.5, -7.5), (0.5, 2.5)), ((u - 0.5, u - 0.5), 1.0));
         }
-        assert_eq!(Filter::Box.sample((0.0, 1.0)), (-0.5, 0.5));
+        assert_eq!(Filter::Box.sample((0.0, 1.0)), ((-0.5, 0.5), 1.0));
         // Bounds that miss the support give the pixel square.
-        assert_eq!(GAUSS.sample_in((0.25, 0.75), (3.0, -1.0), (4.0, 1.0)).0, -0.25);
+        assert_eq!(GAUSS.sample_in((0.25, 0.75), (3.0, -1.0), (4.0, 1.0)).0 .0, -0.25);
     }
 
     #[test]
