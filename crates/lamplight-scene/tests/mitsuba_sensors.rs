@@ -164,13 +164,21 @@ fn crop_windows_out_of_the_film_are_errors_at_their_place() {
         at(r#"<integer name="crop_width" value="0"/>"#),
         "s.xml:7:133: film \"hdrfilm\": crop_width: the crop window (0, 0) + 0 x 12 must have a size >= 1 and lie inside the 16 x 12 film"
     );
-    let toml = |crop: &str| error("s.toml", &format!("[render]\nwidth = 16\nheight = 12\ncrop = {crop}\n\n[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\nvfov = 40\n"));
-    assert_eq!(toml("[0, 0, 17, 4]"), "s.toml:4:8: render: crop: [0, 0, 17, 4] must have x, y >= 0, width, height >= 1 and lie inside the 16x12 image");
-    assert_eq!(toml("[-2, 0, 4, 4]"), "s.toml:4:8: render: crop: [-2, 0, 4, 4] must have x, y >= 0, width, height >= 1 and lie inside the 16x12 image");
+    let toml = |crop: &str| {
+        error(
+            "s.toml",
+            &format!("[render]\nwidth = 16\nheight = 12\ncrop = {crop}\n\n[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\nvfov = 40\n"),
+        )
+    };
     assert_eq!(
-        toml("[0, 0, 4]"),
-        "s.toml:4:8: render: crop: expected [x, y, width, height] (four whole numbers), got an array of 3"
+        toml("[0, 0, 17, 4]"),
+        "s.toml:4:8: render: crop: [0, 0, 17, 4] must have x, y >= 0, width, height >= 1 and lie inside the 16x12 image"
     );
+    assert_eq!(
+        toml("[-2, 0, 4, 4]"),
+        "s.toml:4:8: render: crop: [-2, 0, 4, 4] must have x, y >= 0, width, height >= 1 and lie inside the 16x12 image"
+    );
+    assert_eq!(toml("[0, 0, 4]"), "s.toml:4:8: render: crop: expected [x, y, width, height] (four whole numbers), got an array of 3");
 }
 
 #[test]
@@ -183,10 +191,9 @@ fn principal_point_offsets_become_lens_shifts() {
     assert!((shift[0] - 0.25).abs() < 1e-15 && (shift[1] + 0.15).abs() < 1e-15, "{shift:?}");
     assert!(warnings.is_empty(), "{warnings:?}");
     // thinlens: the same shift, and a warning that Mitsuba itself rejects it.
-    let thin = scene(offsets, "").replace("type=\"perspective\"", "type=\"thinlens\"").replace(
-        "<float name=\"fov\" value=\"45\"/>",
-        "<float name=\"fov\" value=\"45\"/><float name=\"focus_distance\" value=\"5\"/>",
-    );
+    let thin = scene(offsets, "")
+        .replace("type=\"perspective\"", "type=\"thinlens\"")
+        .replace("<float name=\"fov\" value=\"45\"/>", "<float name=\"fov\" value=\"45\"/><float name=\"focus_distance\" value=\"5\"/>");
     let (t, warnings) = table(&thin);
     assert_eq!(get(&t, "camera", "type"), &Value::String("thin_lens".into()));
     assert_eq!(numbers(get(&t, "camera", "shift")).len(), 2);
@@ -202,7 +209,8 @@ fn principal_point_offsets_become_lens_shifts() {
         error("s.xml", &scene(r#"<float name="principal_point_offset_y" value="1e9"/>"#, "")),
         "s.xml:4:85: sensor \"perspective\": principal_point_offset_y: expected a finite number of at most 100 in magnitude, got 1000000000"
     );
-    let ortho = scene(r#"<float name="principal_point_offset_x" value="0.1"/>"#, "").replace("type=\"perspective\"", "type=\"orthographic\"");
+    let ortho =
+        scene(r#"<float name="principal_point_offset_x" value="0.1"/>"#, "").replace("type=\"perspective\"", "type=\"orthographic\"");
     assert_eq!(error("s.xml", &ortho), "s.xml:4:85: sensor \"orthographic\": principal_point_offset is not supported, expected 0");
 }
 
@@ -224,12 +232,12 @@ fn a_shifted_mirrored_camera_moves_its_window_center() {
 #[test]
 fn toml_shift_errors_name_the_key() {
     let toml = |shift: &str| {
-        error("s.toml", &format!("[render]\nwidth = 16\nheight = 12\n\n[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\nvfov = 40\nshift = {shift}\n"))
+        error(
+            "s.toml",
+            &format!("[render]\nwidth = 16\nheight = 12\n\n[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\nvfov = 40\nshift = {shift}\n"),
+        )
     };
     assert_eq!(toml("[0.1]"), "s.toml:9:9: camera: shift: expected [a, b], got an array of 1");
     assert_eq!(toml("[nan, 0]"), "s.toml:9:9: camera: shift: must be finite numbers, got [NaN, 0.0]");
-    assert_eq!(
-        toml("[200, 0]"),
-        "s.toml:9:9: camera: invalid shift: must be two finite numbers of at most 100 in magnitude, got [200, 0]"
-    );
+    assert_eq!(toml("[200, 0]"), "s.toml:9:9: camera: invalid shift: must be two finite numbers of at most 100 in magnitude, got [200, 0]");
 }

@@ -48,7 +48,7 @@ pub const LOOK_AT_PARAMS: [Param; 8] = [
         "shift",
         T::Pair,
         "[0, 0]",
-        "finite, |s| <= 100",
+        "each -100 to 100",
         "lens shift `[x, y]` in units of the image's larger side, `x` right and `y` up (Blender's `shift_x`, `shift_y`; Mitsuba's principal point offset)",
     ),
 ];

@@ -155,10 +155,10 @@ impl Filter {
     /// inside the image (see the module doc), and the sample's weight: the
     /// pixel is the mean of its samples' weighted radiance. The box and the
     /// tent draw from the filter itself (weight 1). The Gaussian draws each
-    /// axis from the mixture `q = 0.9 f / W + 0.1 / (hi - lo)` of the filter's
-    /// density and the uniform one, with weight `(f / W) / q` (at most 1/0.9),
+    /// axis from the mixture `q = 0.75 f / W + 0.25 / (hi - lo)` of the filter's
+    /// density and the uniform one, with weight `(f / W) / q` (at most 4/3),
     /// so that a pixel whose light reaches it only through the filter's tail
-    /// gets samples there (about one in 80 per axis in the outer quarter) and
+    /// gets samples there (one in 32 per axis in each outer quarter) and
     /// its noise is measured rather than hidden by samples that all miss.
     /// With infinite bounds this is the whole filter.
     pub fn sample_in(&self, u: (f64, f64), lo: (f64, f64), hi: (f64, f64)) -> ((f64, f64), f64) {
@@ -175,7 +175,7 @@ impl Filter {
 }
 
 /// The share of the Gaussian's samples drawn uniformly over its support (see [`Filter::sample_in`]).
-const UNIFORM_SHARE: f64 = 0.1;
+const UNIFORM_SHARE: f64 = 0.25;
 
 impl std::str::FromStr for Filter {
     type Err = String;
@@ -238,7 +238,7 @@ mod tests {
                 let second = integral(|t| t * t * f.weight(t), a, b) / mass;
                 let n = 20_000;
                 let xs: Vec<(f64, f64)> = (0..n).map(|i| f.sample_axis((i as f64 + 0.5) / n as f64, lo, hi)).collect();
-                assert!(xs.iter().all(|&(x, w)| x >= a && x <= b && w > 0.0 && w <= 1.0 / 0.9 + 1e-12), "{f:?} [{lo}, {hi}]");
+                assert!(xs.iter().all(|&(x, w)| x >= a && x <= b && w > 0.0 && w <= 4.0 / 3.0 + 1e-12), "{f:?} [{lo}, {hi}]");
                 let m0 = xs.iter().map(|(_, w)| w).sum::<f64>() / n as f64;
                 let m1 = xs.iter().map(|(x, w)| x * w).sum::<f64>() / n as f64;
                 let m2 = xs.iter().map(|(x, w)| x * x * w).sum::<f64>() / n as f64;
@@ -252,18 +252,18 @@ mod tests {
     fn offsets_invert_the_cumulative_weight() {
         // The tent in closed form: u = 1/8 gives (x + 1)^2 / 2 = 1/8, x = -1/2.
         assert_eq!(Filter::Tent.sample((0.125, 0.875)), ((-0.5, 0.5), 1.0));
-        // The Gaussian's filter part (u from 0.1 on, rescaled) is odd about the
-        // centre, with its median at u = 0.55; its uniform part spans the support.
-        let ((x, y), _) = GAUSS.sample((0.55, 0.91));
+        // The Gaussian's filter part (u from 0.25 on, rescaled) is odd about the
+        // centre, with its median at u = 0.625; its uniform part spans the support.
+        let ((x, y), _) = GAUSS.sample((0.625, 0.91));
         assert!(x.abs() < 1e-12);
-        let ((y2, _), _) = GAUSS.sample((0.19, 0.5));
+        let ((y2, _), _) = GAUSS.sample((0.34, 0.5));
         assert!((y + y2).abs() < 1e-9, "{y} {y2}");
-        assert_eq!(GAUSS.sample_axis(0.05, -1.0, 3.0).0, 0.5, "halfway along [-1, 2]");
+        assert_eq!(GAUSS.sample_axis(0.125, -1.0, 3.0).0, 0.5, "halfway along [-1, 2]");
         // Restricted to [0, 2], the filter part's middle holds half the right half's weight.
-        let (x, w) = GAUSS.sample_axis(0.55, 0.0, f64::INFINITY);
+        let (x, w) = GAUSS.sample_axis(0.625, 0.0, f64::INFINITY);
         assert!((GAUSS.cumulative(x) - 0.75 * GAUSS.cumulative(2.0)).abs() < 1e-12, "{x}");
         let density = GAUSS.weight(x) / (0.5 * GAUSS.cumulative(2.0));
-        assert!((w - density / (0.9 * density + 0.1 / 2.0)).abs() < 1e-15);
+        assert!((w - density / (0.75 * density + 0.25 / 2.0)).abs() < 1e-15);
     }
 
     #[test]

@@ -195,7 +195,8 @@ fn checked_depth(scene: &Scene, options: &RenderOptions) -> Result<u32, Error> {
     }
     let w = options.pixel_window();
     if !w.is_inside(crop) {
-        let of = if options.crop.is_some() { format!("crop {crop:?} of the {width}x{height} image") } else { format!("{width}x{height} image") };
+        let of =
+            if options.crop.is_some() { format!("crop {crop:?} of the {width}x{height} image") } else { format!("{width}x{height} image") };
         return Err(Error::invalid("window", format!("{w:?} must be non-empty and inside the {of}")));
     }
     let max_depth = options.max_depth.unwrap_or(scene.max_depth);

@@ -274,9 +274,8 @@ pub fn settings(desc: &SceneDescription, source: &Source) -> Result<Settings, Lo
         let filter = match p.string("filter")? {
             None => None,
             Some(name) => Some(
-                name.parse::<lamplight_core::film::Filter>().map_err(|_| {
-                    p.key_error("filter", format!("expected {}, got \"{name}\"", lamplight_core::film::FILTER_NAMES))
-                })?,
+                name.parse::<lamplight_core::film::Filter>()
+                    .map_err(|_| p.key_error("filter", format!("expected {}, got \"{name}\"", lamplight_core::film::FILTER_NAMES)))?,
             ),
         };
         let crop = crop(p, width, height)?;

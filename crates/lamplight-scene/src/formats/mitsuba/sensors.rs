@@ -34,7 +34,10 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<(), ParamError> {
     let (width, height) = film(ctx, &p)?;
     let shift = principal_point(&mut p, width, height)?;
     if let (Some((_, sloc)), "thinlens") = (&shift, p.kind.as_str()) {
-        ctx.warn(sloc, "sensor \"thinlens\": principal_point_offset is read as a lens shift (Mitsuba 3.9's thinlens rejects it as unreferenced)");
+        ctx.warn(
+            sloc,
+            "sensor \"thinlens\": principal_point_offset is read as a lens shift (Mitsuba 3.9's thinlens rejects it as unreferenced)",
+        );
     }
     sampler(ctx, &p)?;
     let aspect = width as f64 / height as f64;
