@@ -102,12 +102,23 @@ impl Filter {
                     1.0 - (2.0 * (1.0 - w)).sqrt()
                 }
             }
-            Filter::Gaussian { .. } => {
-                let (mut a, mut b) = (lo, hi);
-                let mut x = 0.5 * (a + b);
+            Filter::Gaussian { sigma } => {
+                // Start from the table of the standard cut Gaussian (W(x) = sigma G(x / sigma)):
+                // its cell brackets the root and its chord is the first guess.
+                let table = standard_gaussian_table();
+                let target = w / sigma;
+                let k = table.partition_point(|&g| g <= target).clamp(1, TABLE_CELLS) - 1;
+                let cell = |i: usize| sigma * (-4.0 + 8.0 * i as f64 / TABLE_CELLS as f64);
+                let (g0, g1) = (table[k], table[k + 1]);
+                let (mut a, mut b) = (lo.max(cell(k)), hi.min(cell(k + 1)));
+                if !(a < b) {
+                    (a, b) = (lo, hi);
+                }
+                let chord = if g1 > g0 { cell(k) + (target - g0) / (g1 - g0) * (cell(k + 1) - cell(k)) } else { cell(k) };
+                let mut x = chord.clamp(a, b);
                 for _ in 0..64 {
                     let g = self.cumulative(x) - w;
-                    if g.abs() <= 1e-15 || b - a <= 1e-12 {
+                    if g == 0.0 {
                         break;
                     }
                     if g > 0.0 {
@@ -117,7 +128,12 @@ impl Filter {
                     }
                     let step = x - g / self.weight(x);
                     // Newton where it stays in the bracket, else bisection.
-                    x = if step > a && step < b { step } else { 0.5 * (a + b) };
+                    let next = if step > a && step < b { step } else { 0.5 * (a + b) };
+                    if (next - x).abs() <= 1e-15 || b - a <= 1e-15 {
+                        x = next;
+                        break;
+                    }
+                    x = next;
                 }
                 x
             }
@@ -172,6 +188,19 @@ impl Filter {
         let inf = f64::INFINITY;
         self.sample_in(u, (-inf, -inf), (inf, inf))
     }
+}
+
+/// Cells of [`standard_gaussian_table`].
+const TABLE_CELLS: usize = 256;
+
+/// `G(t)` at `t = -4 + 8 k / TABLE_CELLS`, `k = 0..=TABLE_CELLS`: the cumulative
+/// weight of the Gaussian of standard deviation 1 cut at 4 (built once).
+fn standard_gaussian_table() -> &'static [f64; TABLE_CELLS + 1] {
+    static TABLE: std::sync::OnceLock<[f64; TABLE_CELLS + 1]> = std::sync::OnceLock::new();
+    TABLE.get_or_init(|| {
+        let unit = Filter::Gaussian { sigma: 1.0 };
+        std::array::from_fn(|k| unit.cumulative(-4.0 + 8.0 * k as f64 / TABLE_CELLS as f64))
+    })
 }
 
 /// The share of the Gaussian's samples drawn uniformly over its support (see [`Filter::sample_in`]).
@@ -264,6 +293,21 @@ mod tests {
         assert!((GAUSS.cumulative(x) - 0.75 * GAUSS.cumulative(2.0)).abs() < 1e-12, "{x}");
         let density = GAUSS.weight(x) / (0.5 * GAUSS.cumulative(2.0));
         assert!((w - density / (0.75 * density + 0.25 / 2.0)).abs() < 1e-15);
+    }
+
+    #[test]
+    fn the_gaussians_inverse_is_exact_to_rounding() {
+        for f in [GAUSS, Filter::Gaussian { sigma: 0.3 }, Filter::Gaussian { sigma: 1.7 }] {
+            let r = f.radius();
+            for (lo, hi) in [(-r, r), (-0.2, r), (0.7 * r, r), (-r, -0.9 * r)] {
+                let (wa, wb) = (f.cumulative(lo), f.cumulative(hi));
+                for i in 0..=1000 {
+                    let w = wa + (wb - wa) * i as f64 / 1000.0;
+                    let x = f.inverse_cumulative(w, lo, hi);
+                    assert!((lo..=hi).contains(&x) && (f.cumulative(x) - w).abs() < 1e-14, "{f:?} [{lo}, {hi}] w {w}: x {x}");
+                }
+            }
+        }
     }
 
     #[test]
