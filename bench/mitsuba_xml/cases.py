@@ -279,3 +279,6 @@ CASES += _lights2.CASES
 
 from mitsuba_xml import cases_surfaces as _surfaces  # noqa: E402  (mesh normals, flip_normals, blended masks)
 CASES += _surfaces.CASES
+
+from mitsuba_xml import cases_sensors3 as _sensors3  # noqa: E402  (film and sensor cases)
+CASES += _sensors3.CASES

@@ -60,7 +60,8 @@ class Scene:
     def mesh_files(self) -> List[str]:
         """Mesh files the scene reads, as written."""
     def defaults(self) -> Dict[str, Any]:
-        """``width``, ``height``, ``spp``, ``seed``, ``integrator`` a render uses when not told."""
+        """``width``, ``height``, ``spp``, ``seed``, ``integrator`` a render uses when not told,
+        ``transfer``, and ``crop``: the ``(x0, y0, w, h)`` of the image the scene renders, or ``None``."""
     def build(self, width: Optional[int] = None, height: Optional[int] = None) -> None:
         """Builds now (errors show here); one build serves every image size, and
         ``width x height`` (default: the scene's size) is only checked."""

@@ -130,7 +130,7 @@ def render(
     Ctrl-C stops the render and raises ``KeyboardInterrupt``. ``window =
     (x0, y0, w, h)`` renders only those pixels of the full image (exactly the
     values the full render has there). ``time_limit`` (seconds), ``filter``
-    (``"box"``, ``"gaussian"``), ``environment`` (an ``.exr`` or ``.hdr``
+    (``"box"``, ``"tent"``, ``"gaussian"``), ``environment`` (an ``.exr`` or ``.hdr``
     equirectangular map lighting the scene) and ``exr_layers`` (``"variance"``,
     ``"samples"``: kept in ``image.layers`` and written by ``image.save`` to an
     ``.exr`` file) concern the path tracer. ``clamp`` scales every sample

@@ -135,3 +135,19 @@ def test_a_killed_worker_does_not_change_the_image():
             assert image.tobytes() == expected.tobytes()
     finally:
         cluster.close()
+
+
+def test_a_cropped_scene_is_refused_not_split_wrongly(client, tmp_path):
+    path = tmp_path / "cropped.toml"
+    path.write_text(
+        '[render]\nwidth = 40\nheight = 30\ncrop = [7, 5, 22, 17]\nintegrator = "path"\nspp = 4\nfilter = "gaussian"\n\n'
+        "[camera]\neye = [0, 1, 5]\nlook_at = [0, 0.5, 0]\nvfov = 40\n\n"
+        '[[objects]]\ntype = "sphere"\ncenter = [0, 0.5, 0]\nradius = 0.6\n\n'
+        '[[objects]]\ntype = "point_light"\nposition = [2, 3, 3]\nintensity = 20\n'
+    )
+    scene = lamplight.Scene.from_file(path)
+    assert scene.defaults()["crop"] == (7, 5, 22, 17)
+    expected = local(scene)
+    assert expected.shape == (17, 22, 3) and expected.max() > 0
+    with pytest.raises(ValueError, match="does not split a scene with \\[render\\] crop yet"):
+        lamplight.dask.render(scene, client, tiles=(3, 2))

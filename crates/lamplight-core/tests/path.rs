@@ -189,7 +189,7 @@ fn images_do_not_depend_on_threads_and_2n_continues_n() {
             let mut extra = Rgb::ZERO;
             for s in 4..8 {
                 let mut sampler = PixelSampler::new(0, k as u64, s);
-                let (dx, dy) = lamplight_core::film::Filter::Box.sample(sampler.get_2d());
+                let ((dx, dy), _) = lamplight_core::film::Filter::Box.sample(sampler.get_2d());
                 let ray = scene.camera.ray(x as f64 + 0.5 + dx, y as f64 + 0.5 + dy, 20, 20, (0.5, 0.5));
                 extra += tracer.li(&scene, &ray, &mut sampler, &mut counts);
             }

@@ -320,17 +320,19 @@ impl Scene {
     }
 
     /// The settings a render uses when it does not say: `width`, `height`,
-    /// `spp`, `seed` and `integrator`, and `transfer`, how the scene's PNGs
-    /// store values (`"srgb"` or `"linear"`).
+    /// `spp`, `seed` and `integrator`, `transfer`, how the scene's PNGs
+    /// store values (`"srgb"` or `"linear"`), and `crop`, the part
+    /// `(x0, y0, width, height)` of the image the scene renders (`None`: all).
     fn defaults<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let d = PyDict::new(py);
-        let Defaults { size: (width, height), spp, seed, integrator, transfer, .. } = self.defaults;
+        let Defaults { size: (width, height), spp, seed, integrator, transfer, crop, .. } = self.defaults;
         d.set_item("width", width)?;
         d.set_item("height", height)?;
         d.set_item("spp", spp)?;
         d.set_item("seed", seed)?;
         d.set_item("integrator", integrator.name)?;
         d.set_item("transfer", if transfer == lamplight_scene::image_io::Transfer::Linear { "linear" } else { "srgb" })?;
+        d.set_item("crop", crop.map(|c| (c.x0, c.y0, c.width, c.height)))?;
         Ok(d)
     }
 

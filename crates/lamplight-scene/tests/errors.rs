@@ -32,7 +32,7 @@ fn malformed_inputs_give_their_exact_errors() {
         ("[camera]\neye = [0, 0, 0\n".into(), "s.toml:2:15: unclosed array, expected `]`"),
         ("ambient = 1\n".into(), "s.toml: has no [camera] table, expected one"),
         (format!("colour = 1\n{CAMERA}"), "s.toml:1:1: scene: unknown key 'colour' (the top level takes: ambient, background, environment, render, camera, materials, meshes, definitions, objects)"),
-        (with_camera("colour = 1\n"), "s.toml:5:1: camera: unknown parameter 'colour' (it takes: eye, look_at, up, vfov, hfov, fov, pixel_offset)"),
+        (with_camera("colour = 1\n"), "s.toml:5:1: camera: unknown parameter 'colour' (it takes: eye, look_at, up, vfov, hfov, fov, pixel_offset, shift)"),
         ("[camera]\neye = \"here\"\n".into(), "s.toml:2:7: camera: eye: expected [x, y, z], got a string \"here\""),
         ("[camera]\neye = [0, 0]\n".into(), "s.toml:2:7: camera: eye: expected [x, y, z], got an array of 2"),
         (with_camera("[render]\nwidth = -5\n"), "s.toml:6:9: render: width: must be between 0 and 4294967295, got -5"),

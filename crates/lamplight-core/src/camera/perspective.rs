@@ -13,6 +13,13 @@
 //!   `tan(hfov/2) = a tan(vfov/2)` ([`Fov::half_tangents`]);
 //! - window form: `lookat`, `right` and `up` as given, with a [`Fit`] saying which
 //!   of them the aspect scales.
+//!
+//! A lens shift `shift = [sx, sy]` (Blender's `shift_x`, `shift_y`) slides the
+//! window in its own plane without turning the camera, in units of the image's
+//! larger side: `lookat + 2 right sx m / a + 2 up sy m` with `m = max(1, a)`, so
+//! `sx = 0.5` moves the view right by half the width of a landscape image and
+//! `sy > 0` moves it up. Lines parallel to the window stay parallel (a shifted
+//! architectural view), unlike turning the camera.
 
 use std::sync::Arc;
 
@@ -23,7 +30,7 @@ use crate::ray::Ray;
 use crate::Error;
 
 /// The look-at parameters, shared by the kinds built on the look-at form.
-pub const LOOK_AT_PARAMS: [Param; 7] = [
+pub const LOOK_AT_PARAMS: [Param; 8] = [
     Param::new("eye", T::Point, "", "", "eye position"),
     Param::new("look_at", T::Point, "", "", "point at the image centre"),
     Param::new("up", T::Vector, "[0, 1, 0]", "", "sky direction"),
@@ -37,6 +44,13 @@ pub const LOOK_AT_PARAMS: [Param; 7] = [
         "full field of view across the image's shorter side, whatever its aspect (pbrt's `fov`)",
     ),
     Param::new("pixel_offset", T::Number, "0.5", "0 to 1", "where in a pixel its sample is (0 = corner, 0.5 = centre)"),
+    Param::new(
+        "shift",
+        T::Pair,
+        "[0, 0]",
+        "each -100 to 100",
+        "lens shift `[x, y]` in units of the image's larger side, `x` right and `y` up (Blender's `shift_x`, `shift_y`; Mitsuba's principal point offset)",
+    ),
 ];
 
 /// `perspective`: the look-at pinhole camera (the default camera type).
@@ -92,6 +106,10 @@ pub fn read_look_at(p: &mut Params<'_>) -> ParamResult<Perspective> {
         _ => return Err(p.error("takes one of vfov, hfov and fov")),
     };
     let camera = Perspective::look_at(eye, target, sky, fov).map_err(|e| p.core_error(e))?;
+    let camera = match p.pair("shift")? {
+        Some(shift) => camera.with_shift(shift).map_err(|e| p.core_error(e))?,
+        None => camera,
+    };
     with_offset(p, camera)
 }
 
@@ -130,7 +148,13 @@ pub struct Perspective {
     eye: Vec3,
     window: Window,
     pixel_offset: f64,
+    /// Lens shift `[sx, sy]` in units of the image's larger side (see the module doc).
+    shift: [f64; 2],
 }
+
+/// Largest lens shift, in image sides: far beyond any lens, small enough that
+/// window points stay finite.
+pub const MAX_SHIFT: f64 = 100.0;
 
 impl Perspective {
     /// A camera at `eye` looking at `target`, `sky` giving the up direction, with a
@@ -146,7 +170,7 @@ impl Perspective {
         let r = w.cross(sky).try_normalize().ok_or_else(|| Error::invalid("camera", "up is parallel to the viewing direction"))?;
         let u = r.cross(w);
         let tan_half = fov.half_tan()?;
-        Ok(Perspective { eye, window: Window::LookAt { lookat: eye + w, r, u, fov, tan_half }, pixel_offset: 0.5 })
+        Ok(Perspective { eye, window: Window::LookAt { lookat: eye + w, r, u, fov, tan_half }, pixel_offset: 0.5, shift: [0.0; 2] })
     }
 
     /// The lecture's raw window: centre `lookat`, half-width vector `right`,
@@ -158,7 +182,7 @@ impl Perspective {
         if right.cross(up).length_squared() == 0.0 {
             return Err(Error::invalid("camera", "right and up must be non-zero and not parallel"));
         }
-        Ok(Perspective { eye, window: Window::Vectors { lookat, right, up, fit }, pixel_offset: 0.5 })
+        Ok(Perspective { eye, window: Window::Vectors { lookat, right, up, fit }, pixel_offset: 0.5, shift: [0.0; 2] })
     }
 
     /// The same camera with its single sample at `offset` inside each pixel (0.5 =
@@ -170,14 +194,36 @@ impl Perspective {
         Ok(Perspective { pixel_offset: offset, ..self })
     }
 
+    /// The same camera with lens shift `shift = [sx, sy]` (see the module doc),
+    /// each finite and at most [`MAX_SHIFT`] in magnitude.
+    pub fn with_shift(self, shift: [f64; 2]) -> Result<Perspective, Error> {
+        if !shift.iter().all(|s| s.is_finite() && s.abs() <= MAX_SHIFT) {
+            return Err(Error::invalid(
+                "shift",
+                format!("must be two finite numbers of at most {MAX_SHIFT} in magnitude, got [{}, {}]", shift[0], shift[1]),
+            ));
+        }
+        Ok(Perspective { shift, ..self })
+    }
+
     /// The eye: the origin of every ray.
     pub fn eye(&self) -> Vec3 {
         self.eye
     }
 
-    /// The window `(lookat, right, up)` for an image of aspect `aspect = width / height`.
+    /// The window `(lookat, right, up)` for an image of aspect `aspect = width / height`,
+    /// its centre moved by the lens shift.
     #[inline]
     pub fn window_at(&self, aspect: f64) -> (Vec3, Vec3, Vec3) {
+        let (lookat, right, up) = self.unshifted_window(aspect);
+        if self.shift == [0.0; 2] {
+            return (lookat, right, up);
+        }
+        let larger = aspect.max(1.0);
+        (lookat + right * (2.0 * self.shift[0] * larger / aspect) + up * (2.0 * self.shift[1] * larger), right, up)
+    }
+
+    fn unshifted_window(&self, aspect: f64) -> (Vec3, Vec3, Vec3) {
         match self.window {
             Window::LookAt { lookat, r, u, fov, tan_half } => {
                 let (tan_h, tan_v) = fov.half_tangents(tan_half, aspect);
@@ -304,6 +350,35 @@ mod tests {
         let wide = angle(cam.ray(10.0, 0.0, 20, 10, CENTRE), cam.ray(10.0, 10.0, 20, 10, CENTRE));
         let tall = angle(cam.ray(0.0, 10.0, 10, 20, CENTRE), cam.ray(10.0, 10.0, 10, 20, CENTRE));
         assert!((wide - 30.0).abs() < 1e-9 && (tall - 30.0).abs() < 1e-9, "{wide} {tall}");
+    }
+
+    #[test]
+    fn a_lens_shift_moves_a_point_by_the_shift_times_the_larger_side() {
+        // Looking down -z, hfov 90 at 200x100: tan(hfov/2) = 1, tan(vfov/2) = 1/2, so
+        // the point (0.5, 0.25, -1) is at alpha = beta = 1/2, pixel (150, 25). A shift
+        // of [0.25, 0.1] moves the view right by 0.25 * 200 and up by 0.1 * 200 pixels,
+        // so the point lands 50 pixels left and 20 lower: (100, 45).
+        let cam = Perspective::look_at(Vec3::ZERO, -Vec3::Z, Vec3::Y, Fov::HorizontalDeg(90.0)).unwrap();
+        let point = Vec3::new(0.5, 0.25, -1.0);
+        let through = |c: &Perspective, x, y| c.ray(x, y, 200, 100, CENTRE).dir.normalize();
+        assert!((through(&cam, 150.0, 25.0) - point.normalize()).length() < 1e-14);
+        let shifted = cam.clone().with_shift([0.25, 0.1]).unwrap();
+        assert!((through(&shifted, 100.0, 45.0) - point.normalize()).length() < 1e-14);
+        // A tall image: the larger side is the height (100 of 50x100), so the same
+        // shift moves it 25 pixels left and 10 lower.
+        let tall = |c: &Perspective| {
+            let (lookat, right, up) = c.window_at(0.5);
+            let d = point * (1.0 / -point.z) - lookat;
+            let (alpha, beta) = (d.dot(right) / right.length_squared(), d.dot(up) / up.length_squared());
+            ((alpha + 1.0) * 25.0, (1.0 - beta) * 50.0)
+        };
+        let (x0, y0) = tall(&cam);
+        let (x1, y1) = tall(&shifted);
+        assert!((x0 - x1 - 25.0).abs() < 1e-12 && (y1 - y0 - 10.0).abs() < 1e-12, "{x0} {y0} {x1} {y1}");
+        assert_eq!(
+            cam.with_shift([f64::NAN, 0.0]).unwrap_err().to_string(),
+            "invalid shift: must be two finite numbers of at most 100 in magnitude, got [NaN, 0]"
+        );
     }
 
     #[test]

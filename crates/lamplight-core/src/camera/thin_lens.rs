@@ -38,6 +38,7 @@ pub const KIND: CameraKind = Kind {
         LOOK_AT_PARAMS[4],
         LOOK_AT_PARAMS[5],
         LOOK_AT_PARAMS[6],
+        LOOK_AT_PARAMS[7],
         Param::new("lens_radius", T::Number, "", "scene units, >= 0", "radius of the aperture (pbrt's lensradius); 0 is a pinhole"),
         Param::new(
             "focal_distance",
@@ -150,6 +151,23 @@ mod tests {
 
     fn lens_grid() -> impl Iterator<Item = (f64, f64)> {
         (0..7).flat_map(|i| (0..7).map(move |j| (i as f64 / 7.0 + 0.05, j as f64 / 7.0 + 0.05)))
+    }
+
+    #[test]
+    fn a_shifted_lens_focuses_the_shifted_pixel() {
+        // Looking down -z, hfov 90 at 200x100, focused at 2: the point (1, 0.5, -2)
+        // on the plane of focus is at pixel (150, 25) without a shift and at
+        // (100, 45) with shift [0.25, 0.1] (see the perspective camera's test);
+        // every lens sample's ray through that pixel goes through it.
+        let pinhole = Perspective::look_at(Vec3::ZERO, -Vec3::Z, Vec3::Y, Fov::HorizontalDeg(90.0)).unwrap();
+        let lens = ThinLens::new(pinhole.with_shift([0.25, 0.1]).unwrap(), 0.2, 2.0).unwrap();
+        let point = Vec3::new(1.0, 0.5, -2.0);
+        for u in [(0.1, 0.9), (0.5, 0.5), (0.8, 0.3)] {
+            let ray = lens.ray(100.0, 45.0, 200, 100, u);
+            let t = (point.z - ray.origin.z) / ray.dir.z;
+            assert!((ray.at(t) - point).length() < 1e-12, "{u:?}: {}", ray.at(t));
+        }
+        assert_eq!(lens.axis(), -Vec3::Z);
     }
 
     #[test]

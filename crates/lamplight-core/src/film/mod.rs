@@ -7,7 +7,7 @@ pub mod tonemap;
 
 pub(crate) use accumulated::{variance_of_mean, TileBlock};
 pub use accumulated::{Film, PixelSum, TILE};
-pub use filter::Filter;
+pub use filter::{Filter, FILTER_NAMES};
 
 /// Largest sample radiance the film accepts, per channel. A sample beyond it
 /// (or NaN, or infinite) is replaced by black and counted

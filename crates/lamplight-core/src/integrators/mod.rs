@@ -81,6 +81,10 @@ pub struct View<'a> {
     pub pixel_offset: f64,
     /// Largest channel a sample keeps ([`crate::RenderOptions::clamp`]; infinite: no clamp).
     pub clamp: f64,
+    /// The film positions samples may take, `[x0, y0, x1, y1]` in pixels: the
+    /// whole image, or its crop ([`crate::RenderOptions::crop`]). A filter
+    /// wider than a pixel is cut there ([`Filter::sample_in`]).
+    pub sample_bounds: [f64; 4],
 }
 
 impl<'a> View<'a> {
@@ -97,7 +101,25 @@ impl<'a> View<'a> {
             lens: camera.uses_lens_sample(),
             pixel_offset: camera.pixel_offset(),
             clamp: f64::INFINITY,
+            sample_bounds: [0.0, 0.0, width as f64, height as f64],
         }
+    }
+
+    /// The same view with samples drawn only inside `crop` (`None`: the whole image).
+    pub fn with_crop(self, crop: Option<crate::render::PixelWindow>) -> View<'a> {
+        match crop {
+            None => self,
+            Some(c) => View { sample_bounds: [c.x0 as f64, c.y0 as f64, (c.x0 + c.width) as f64, (c.y0 + c.height) as f64], ..self },
+        }
+    }
+
+    /// The filter offsets whose positions lie in [`View::sample_bounds`], for
+    /// the pixel `(x, y)` centred at `(x + 1/2, y + 1/2)`: `(lo, hi)` per axis.
+    #[inline]
+    pub fn offset_bounds(&self, x: u32, y: u32) -> ((f64, f64), (f64, f64)) {
+        let (cx, cy) = (x as f64 + 0.5, y as f64 + 0.5);
+        let [x0, y0, x1, y1] = self.sample_bounds;
+        ((x0 - cx, y0 - cy), (x1 - cx, y1 - cy))
     }
 
     /// The same view with samples clamped to `clamp` in their largest channel

@@ -357,11 +357,18 @@ impl PathTracer {
     /// [`Integrator::sample`], telling `trace` what it does.
     fn sample_with<T: PathTrace + ?Sized>(&self, view: &View, x: u32, y: u32, index: u32, counts: &mut RayCounts, trace: &mut T) -> Rgb {
         let mut sampler = PixelSampler::new(view.seed, view.pixel_index(x, y), index);
-        let (dx, dy) = self.filter.sample(sampler.get_2d());
+        let (lo, hi) = view.offset_bounds(x, y);
+        let ((dx, dy), weight) = self.filter.sample_in(sampler.get_2d(), lo, hi);
         let lens = if view.lens { sampler.get_2d() } else { (0.5, 0.5) };
         let (fx, fy) = (x as f64 + 0.5 + dx, y as f64 + 0.5 + dy);
         let ray = view.camera.ray(fx, fy, view.width, view.height, lens);
         let cone = if view.scene.uses_footprints() { Cone::of_pixel(view, &ray, fx, fy, lens) } else { Cone::default() };
-        self.li_traced(view.scene, &ray, cone, &mut sampler, counts, trace)
+        let l = self.li_traced(view.scene, &ray, cone, &mut sampler, counts, trace);
+        // The box and the tent weigh every sample 1: their radiance is kept as it is.
+        if weight == 1.0 {
+            l
+        } else {
+            l * weight
+        }
     }
 }

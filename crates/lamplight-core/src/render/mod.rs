@@ -53,8 +53,13 @@ pub struct RenderOptions {
     /// (the path tracer).
     pub filter: Filter,
     /// Render only this part of the `width x height` image (the result has the
-    /// window's size); `None` renders all of it.
+    /// window's size); `None` renders all of it (or the crop).
     pub window: Option<PixelWindow>,
+    /// The film's crop (Mitsuba's `hdrfilm` crop window): the part of the
+    /// `width x height` image that is rendered, with samples drawn only inside
+    /// it, so a filter wider than a pixel is cut at the crop's edges as at the
+    /// image's. The image is the crop (or the window, which must lie in it).
+    pub crop: Option<PixelWindow>,
     /// Largest channel a sample may have: a brighter sample is scaled down to
     /// it, hue kept (pbrt-v4's film `maxcomponentvalue`). Removes fireflies at the cost
     /// of bias (the image is darker than the true mean wherever it acts); `None`
@@ -78,10 +83,22 @@ pub struct PixelWindow {
     pub height: u32,
 }
 
+impl PixelWindow {
+    /// Whether the window has pixels and all of them lie in `outer`.
+    pub fn is_inside(&self, outer: PixelWindow) -> bool {
+        self.width > 0
+            && self.height > 0
+            && self.x0 >= outer.x0
+            && self.y0 >= outer.y0
+            && self.x0 as u64 + self.width as u64 <= outer.x0 as u64 + outer.width as u64
+            && self.y0 as u64 + self.height as u64 <= outer.y0 as u64 + outer.height as u64
+    }
+}
+
 impl RenderOptions {
-    /// The pixels to render: the window, or the whole image.
+    /// The pixels to render: the window, or the crop, or the whole image.
     pub fn pixel_window(&self) -> PixelWindow {
-        self.window.unwrap_or(PixelWindow { x0: 0, y0: 0, width: self.width, height: self.height })
+        self.window.or(self.crop).unwrap_or(PixelWindow { x0: 0, y0: 0, width: self.width, height: self.height })
     }
 }
 
@@ -98,6 +115,7 @@ impl Default for RenderOptions {
             time_limit: None,
             filter: Filter::Box,
             window: None,
+            crop: None,
             clamp: None,
             adaptive: None,
         }
@@ -170,9 +188,16 @@ fn checked_depth(scene: &Scene, options: &RenderOptions) -> Result<u32, Error> {
     if width as u64 * height as u64 > 1 << 28 {
         return Err(Error::invalid("image", format!("{width}x{height} is too large (at most 2^28 pixels)")));
     }
+    let full = PixelWindow { x0: 0, y0: 0, width, height };
+    let crop = options.crop.unwrap_or(full);
+    if !crop.is_inside(full) {
+        return Err(Error::invalid("crop", format!("{crop:?} must be non-empty and inside the {width}x{height} image")));
+    }
     let w = options.pixel_window();
-    if w.width == 0 || w.height == 0 || w.x0 as u64 + w.width as u64 > width as u64 || w.y0 as u64 + w.height as u64 > height as u64 {
-        return Err(Error::invalid("window", format!("{w:?} must be non-empty and inside the {width}x{height} image")));
+    if !w.is_inside(crop) {
+        let of =
+            if options.crop.is_some() { format!("crop {crop:?} of the {width}x{height} image") } else { format!("{width}x{height} image") };
+        return Err(Error::invalid("window", format!("{w:?} must be non-empty and inside the {of}")));
     }
     let max_depth = options.max_depth.unwrap_or(scene.max_depth);
     if max_depth == 0 {
@@ -396,7 +421,7 @@ pub(crate) fn integrator_for(scene: &Scene, options: &RenderOptions) -> Result<B
 /// The view of the render of `scene` with `options` through `camera` (the
 /// scene's camera sized for the image, [`crate::camera::Camera::for_image`]).
 pub(crate) fn view_of<'a>(scene: &'a Scene, camera: &'a dyn crate::camera::Camera, options: &RenderOptions) -> View<'a> {
-    View::new(scene, camera, options.width, options.height, options.spp, options.seed).with_clamp(options.clamp)
+    View::new(scene, camera, options.width, options.height, options.spp, options.seed).with_clamp(options.clamp).with_crop(options.crop)
 }
 
 /// What one tile of one pass did.

@@ -54,6 +54,8 @@ pub struct Settings {
     pub transfer: crate::image_io::Transfer,
     /// The path tracer's pixel filter, when given.
     pub filter: Option<lamplight_core::film::Filter>,
+    /// The film's crop `[x, y, width, height]`, when given (checked inside the image).
+    pub crop: Option<lamplight_core::PixelWindow>,
     /// Camera rays see emitters and the sky as black (default `false`).
     pub hide_emitters: bool,
     /// An `.exr` output holds the variance layer too (default `false`).
@@ -124,7 +126,20 @@ pub const RENDER_PARAMS: &[Param] = &[
         "",
         "how PNG and PPM store the values: `\"srgb\"`-encoded, or `\"linear\"` for display-referred numbers (POV-Ray's `File_Gamma 1`) (`--transfer`)",
     ),
-    Param::new("filter", T::String, "\"box\"", "", "path tracer: pixel filter, `\"box\"` or `\"gaussian\"` (sigma 0.5 pixel) (`--filter`)"),
+    Param::new(
+        "filter",
+        T::String,
+        "\"box\"",
+        "",
+        "path tracer: pixel filter, `\"box\"`, `\"tent\"` (radius 1 pixel) or `\"gaussian\"` (sigma 0.5 pixel, cut at 2), as Mitsuba's: cut at the image's (or crop's) edge and renormalised (`--filter`)",
+    ),
+    Param::new(
+        "crop",
+        T::Array,
+        "none",
+        "[x, y, width, height] in pixels, inside the image",
+        "render only this part of the `width x height` image, seen by the same camera (Mitsuba's `hdrfilm` crop window); samples stay inside it, so a wide filter is cut at its edges; `--window` then picks pixels inside it",
+    ),
     Param::new(
         "variance",
         T::Bool,
@@ -260,9 +275,10 @@ pub fn settings(desc: &SceneDescription, source: &Source) -> Result<Settings, Lo
             None => None,
             Some(name) => Some(
                 name.parse::<lamplight_core::film::Filter>()
-                    .map_err(|_| p.key_error("filter", format!("expected \"box\" or \"gaussian\", got \"{name}\"")))?,
+                    .map_err(|_| p.key_error("filter", format!("expected {}, got \"{name}\"", lamplight_core::film::FILTER_NAMES)))?,
             ),
         };
+        let crop = crop(p, width, height)?;
         let hide_emitters = p.boolean("hide_emitters")?.unwrap_or(false);
         let variance = p.boolean("variance")?.unwrap_or(false);
         Ok(Settings {
@@ -279,6 +295,7 @@ pub fn settings(desc: &SceneDescription, source: &Source) -> Result<Settings, Lo
             integrator,
             transfer,
             filter,
+            crop,
             hide_emitters,
             variance,
         })
@@ -286,6 +303,34 @@ pub fn settings(desc: &SceneDescription, source: &Source) -> Result<Settings, Lo
     let settings = read(&mut p).map_err(|e| source.param_error(e))?;
     p.finish().map_err(|e| source.param_error(e))?;
     Ok(settings)
+}
+
+/// `[render] crop = [x, y, width, height]`: four whole numbers, a non-empty
+/// rectangle inside the `width x height` image.
+fn crop(p: &mut Params<'_>, width: u32, height: u32) -> lamplight_core::params::ParamResult<Option<lamplight_core::PixelWindow>> {
+    use lamplight_core::params::Value;
+    let Some(item) = p.item("crop") else { return Ok(None) };
+    let whole: Option<Vec<i64>> = match &item.value {
+        Value::Array(items) if items.len() == 4 => items
+            .iter()
+            .map(|i| match i.value {
+                Value::Integer(v) => Some(v),
+                _ => None,
+            })
+            .collect(),
+        _ => None,
+    };
+    let Some(v) = whole else {
+        return Err(p.key_error("crop", format!("expected [x, y, width, height] (four whole numbers), got {}", item.value.describe())));
+    };
+    let (x, y, w, h) = (v[0], v[1], v[2], v[3]);
+    if x < 0 || y < 0 || w < 1 || h < 1 || x + w > width as i64 || y + h > height as i64 {
+        return Err(p.key_error(
+            "crop",
+            format!("[{x}, {y}, {w}, {h}] must have x, y >= 0, width, height >= 1 and lie inside the {width}x{height} image"),
+        ));
+    }
+    Ok(Some(lamplight_core::PixelWindow { x0: x as u32, y0: y as u32, width: w as u32, height: h as u32 }))
 }
 
 /// Builds the core scene (for any image size: the camera applies the aspect when rendering).

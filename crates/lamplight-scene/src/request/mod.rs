@@ -112,6 +112,8 @@ pub struct Defaults {
     pub transfer: crate::image_io::Transfer,
     /// The pixel filter, when the scene says.
     pub filter: Option<Filter>,
+    /// The film's crop in pixels of `size`, when the scene has one (`[render] crop`).
+    pub crop: Option<PixelWindow>,
     /// Whether the variance layer is made unasked (`[render] variance`, Mitsuba's
     /// `moment`), where the output can hold it ([`Job::add_scene_layers`]).
     pub variance: bool,
@@ -130,6 +132,7 @@ impl Defaults {
             integrator: s.integrator,
             transfer: s.transfer,
             filter: s.filter,
+            crop: s.crop,
             variance: s.variance,
         }
     }
@@ -147,6 +150,7 @@ pub fn program_defaults() -> Defaults {
         integrator: integrators::default_integrator(),
         transfer: Default::default(),
         filter: None,
+        crop: None,
         variance: false,
     }
 }
@@ -348,14 +352,38 @@ impl Request {
         };
         let filter: Filter = match &self.filter {
             None => d.filter.unwrap_or(Filter::Box),
-            Some(name) => name.parse().map_err(|_| bad(format!("{} must be \"box\" or \"gaussian\", got {name:?}", n("filter"))))?,
+            Some(name) => {
+                name.parse().map_err(|_| bad(format!("{} must be {}, got {name:?}", n("filter"), lamplight_core::film::FILTER_NAMES)))?
+            }
         };
+        let crop = d.crop;
+        if let Some(c) = crop {
+            // The crop is in pixels of the scene's film: at another size it would name other pixels.
+            if (width, height) != d.size {
+                return Err(bad(format!(
+                    "the scene crops its {}x{} image to (x0={}, y0={}, width={}, height={}); {} and {} must keep that size \
+                     (or remove [render] crop)",
+                    d.size.0,
+                    d.size.1,
+                    c.x0,
+                    c.y0,
+                    c.width,
+                    c.height,
+                    n("width"),
+                    n("height")
+                )));
+            }
+        }
         let window = self.window.map(|(x0, y0, w, h)| PixelWindow { x0, y0, width: w, height: h });
         if let Some(w) = window {
-            if w.width == 0 || w.height == 0 || w.x0 as u64 + w.width as u64 > width as u64 || w.y0 as u64 + w.height as u64 > height as u64
-            {
+            let inside = crop.unwrap_or(PixelWindow { x0: 0, y0: 0, width, height });
+            if !w.is_inside(inside) {
+                let of = match crop {
+                    None => format!("the {width}x{height} image"),
+                    Some(c) => format!("the scene's crop (x0={}, y0={}, width={}, height={})", c.x0, c.y0, c.width, c.height),
+                };
                 return Err(bad(format!(
-                    "{} (x0={}, y0={}, width={}, height={}) must be non-empty and inside the {width}x{height} image",
+                    "{} (x0={}, y0={}, width={}, height={}) must be non-empty and inside {of}",
                     n("window"),
                     w.x0,
                     w.y0,
@@ -383,6 +411,7 @@ impl Request {
             time_limit,
             filter,
             window,
+            crop,
             clamp: self.clamp,
             adaptive,
         };

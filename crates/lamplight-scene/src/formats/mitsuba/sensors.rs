@@ -7,8 +7,10 @@
 //! | a mirroring `to_world` (negative determinant) | the `window` camera with the mirrored `right` |
 //! | `thinlens` `aperture_radius`, `focus_distance` | `thin_lens` `lens_radius`, `focal_distance` |
 //! | `orthographic` | `orthographic`, `half_width` and `half_height` from `to_world`'s scale (`[-1, 1]` by `[-1/a, 1/a]`) |
+//! | `principal_point_offset_x`, `_y` (in film widths and heights, `y` down) | `shift = [x W / L, -y H / L]`, `L = max(W, H)` (the window camera: its `window_center`) |
 //! | `hdrfilm` `width`, `height` (768 x 576) | `width`, `height` |
-//! | `rfilter` `box`, `gaussian` (stddev 0.5, the default) | `filter` `box`, `gaussian` (others: warning, box) |
+//! | `hdrfilm` `crop_offset_x`, `crop_offset_y`, `crop_width`, `crop_height` | `crop = [x, y, width, height]` |
+//! | `rfilter` `box`, `tent`, `gaussian` (stddev 0.5, the default) | `filter` `box`, `tent`, `gaussian` (others: warning, box) |
 //! | `sampler` `sample_count` (4) | `spp` |
 //!
 //! Mitsuba's camera looks down its local `+z` with `+y` up and `+x` to the
@@ -30,6 +32,13 @@ fn err(loc: &Loc, message: impl Into<String>) -> ParamError {
 pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<(), ParamError> {
     let mut p = Plugin::new(el)?;
     let (width, height) = film(ctx, &p)?;
+    let shift = principal_point(&mut p, width, height)?;
+    if let (Some((_, sloc)), "thinlens") = (&shift, p.kind.as_str()) {
+        ctx.warn(
+            sloc,
+            "sensor \"thinlens\": principal_point_offset is read as a lens shift (Mitsuba 3.9's thinlens rejects it as unreferenced)",
+        );
+    }
     sampler(ctx, &p)?;
     let aspect = width as f64 / height as f64;
     let (m, mloc) = p.transform("to_world")?.unwrap_or((Mat4::IDENTITY, el.loc.clone()));
@@ -41,13 +50,6 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<(), ParamError> {
     for key in ["near_clip", "far_clip"] {
         if let Some((_, loc)) = p.number(key)? {
             ctx.warn(&loc, format!("{}: {key} is not supported (lamplight does not clip), ignored", p.label));
-        }
-    }
-    for key in ["principal_point_offset_x", "principal_point_offset_y"] {
-        if let Some((v, loc)) = p.number(key)? {
-            if v != 0.0 {
-                return Err(err(&loc, format!("{}: {key} is not supported, expected 0", p.label)));
-            }
         }
     }
     let loc = el.loc.clone();
@@ -66,11 +68,16 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<(), ParamError> {
                     return Err(err(&mloc, "sensor \"thinlens\": a mirroring to_world is not supported"));
                 }
                 let f = forward.normalize();
+                // The shift in units of the larger side is 2 [x W / L, -y H / L] of
+                // the half-width and half-height vectors: 2 [x, -y] of `right`, `up`.
+                let [sx, sy] = shift.as_ref().map_or([0.0; 2], |s| s.0);
+                let larger = aspect.max(1.0);
+                let center = eye + f + right * (tx * 2.0 * sx * larger / aspect) + up * (ty * 2.0 * sy * larger);
                 table_of(
                     vec![
                         ("type", text("window", &loc)),
                         ("eye", vec3(eye, &mloc)),
-                        ("window_center", vec3(eye + f, &mloc)),
+                        ("window_center", vec3(center, &mloc)),
                         ("right", vec3(right * tx, &floc)),
                         ("up", vec3(up * ty, &floc)),
                     ],
@@ -88,10 +95,16 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<(), ParamError> {
                     pairs.push(("lens_radius", r));
                     pairs.push(("focal_distance", f));
                 }
+                if let Some(([sx, sy], sloc)) = &shift {
+                    pairs.push(("shift", super::pair(*sx, *sy, sloc)));
+                }
                 table_of(pairs, &loc)
             }
         }
         "orthographic" => {
+            if let Some((_, sloc)) = &shift {
+                return Err(err(sloc, "sensor \"orthographic\": principal_point_offset is not supported, expected 0"));
+            }
             if mirrored {
                 return Err(err(&mloc, "sensor \"orthographic\": a mirroring to_world is not supported"));
             }
@@ -124,6 +137,30 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<(), ParamError> {
     }
     ctx.finish(p);
     Ok(())
+}
+
+/// `principal_point_offset_x` and `_y` as lamplight's lens shift `[sx, sy]`
+/// (units of the larger side, `y` up), with where the first of them is
+/// written; `None` when both are absent or 0. Mitsuba moves the view right by
+/// `x` film widths and down by `y` film heights (checked against Mitsuba 3.9:
+/// `x = 0.25` turns the centre ray to a quarter of the width right of the axis).
+fn principal_point(p: &mut Plugin<'_>, width: u32, height: u32) -> Result<Option<([f64; 2], Loc)>, ParamError> {
+    let mut offset = [0.0; 2];
+    let mut at = None;
+    for (k, key) in ["principal_point_offset_x", "principal_point_offset_y"].into_iter().enumerate() {
+        if let Some((v, loc)) = p.number(key)? {
+            if !(v.is_finite() && v.abs() <= lamplight_core::camera::perspective::MAX_SHIFT) {
+                return Err(err(&loc, format!("{}: {key}: expected a finite number of at most 100 in magnitude, got {v}", p.label)));
+            }
+            offset[k] = v;
+            at.get_or_insert(loc);
+        }
+    }
+    if offset == [0.0; 2] {
+        return Ok(None);
+    }
+    let larger = width.max(height) as f64;
+    Ok(at.map(|loc| ([offset[0] * width as f64 / larger, -offset[1] * height as f64 / larger], loc)))
 }
 
 /// `tan(hfov / 2)`, `tan(vfov / 2)`, the kept key and degrees, and where the field of view is written.
@@ -203,11 +240,7 @@ fn film(ctx: &mut Ctx<'_>, sensor: &Plugin<'_>) -> Result<(u32, u32), ParamError
     };
     let width = side(&mut p, "width", 768)?;
     let height = side(&mut p, "height", 576)?;
-    for key in ["crop_offset_x", "crop_offset_y", "crop_width", "crop_height"] {
-        if let Some((_, loc)) = p.integer(key)? {
-            return Err(err(&loc, format!("{}: {key}: crop windows are not supported (render with --window)", p.label)));
-        }
-    }
+    crop(ctx, &mut p, width, height)?;
     for key in ["file_format", "pixel_format", "component_format", "banner", "high_quality_edges", "sample_border"] {
         let _ = p.take(key);
     }
@@ -218,6 +251,14 @@ fn film(ctx: &mut Ctx<'_>, sensor: &Plugin<'_>) -> Result<(u32, u32), ParamError
             let mut fp = Plugin::new(f)?;
             let name = match fp.kind.as_str() {
                 "box" => "box",
+                "tent" => {
+                    if let Some((r, loc)) = fp.number("radius")? {
+                        if r != 1.0 {
+                            ctx.warn(&loc, format!("rfilter \"tent\": radius {r} is read as 1 (lamplight's tent)"));
+                        }
+                    }
+                    "tent"
+                }
                 "gaussian" => {
                     if let Some((s, loc)) = fp.number("stddev")? {
                         if s != 0.5 {
@@ -238,6 +279,37 @@ fn film(ctx: &mut Ctx<'_>, sensor: &Plugin<'_>) -> Result<(u32, u32), ParamError
     ctx.render.push(entry("filter", text(&filter, &el.loc)));
     ctx.finish(p);
     Ok((width as u32, height as u32))
+}
+
+/// The film's crop window into `[render] crop`: `crop_offset_x`, `_y` (0) and
+/// `crop_width`, `crop_height` (the rest of the film), inside the film.
+fn crop(ctx: &mut Ctx<'_>, p: &mut Plugin<'_>, width: i64, height: i64) -> Result<(), ParamError> {
+    let mut read = |key: &str| p.integer(key);
+    let (x, y) = (read("crop_offset_x")?, read("crop_offset_y")?);
+    let (w, h) = (read("crop_width")?, read("crop_height")?);
+    let Some(loc) = [&x, &y, &w, &h].into_iter().flatten().map(|(_, l)| l.clone()).next() else { return Ok(()) };
+    let bad = |(v, loc): &(i64, Loc), message: String| if *v < 0 { Err(err(loc, message)) } else { Ok(()) };
+    for (v, key) in [(&x, "crop_offset_x"), (&y, "crop_offset_y")] {
+        if let Some(v) = v {
+            bad(v, format!("{}: {key}: must be at least 0, got {}", p.label, v.0))?;
+        }
+    }
+    let (x0, y0) = (x.as_ref().map_or(0, |v| v.0), y.as_ref().map_or(0, |v| v.0));
+    let cw = w.as_ref().map_or(width - x0, |v| v.0);
+    let ch = h.as_ref().map_or(height - y0, |v| v.0);
+    for (v, side, key, full, offset) in [(cw, &w, "crop_width", width, x0), (ch, &h, "crop_height", height, y0)] {
+        if v < 1 || offset + v > full {
+            let at = side.as_ref().map_or(&loc, |s| &s.1);
+            return Err(err(
+                at,
+                format!("{}: {key}: the crop window ({x0}, {y0}) + {cw} x {ch} must have a size >= 1 and lie inside the {width} x {height} film", p.label),
+            ));
+        }
+    }
+    let item = |v: i64| int(v, &loc);
+    let value = lamplight_core::params::Value::Array(vec![item(x0), item(y0), item(cw), item(ch)]);
+    ctx.render.push(entry("crop", lamplight_core::params::Item { value, loc: loc.clone() }));
+    Ok(())
 }
 
 /// `sample_count` into `spp`.
