@@ -166,7 +166,7 @@ def test_every_registered_node_kind_has_a_constructor():
         make = getattr(lamplight.objects, name)
         assert make.__name__ == name
     sphere = next(k for k in kinds if k["name"] == "sphere")
-    assert [p["name"] for p in sphere["params"]] == ["center", "radius", "material"]
+    assert [p["name"] for p in sphere["params"]] == ["center", "radius", "material", "flip_normals"]
     assert sphere["params"][1]["default"] is None, "radius is required"
     spot = lamplight.objects.spot_light(position=[0, 3, 0], look_at=[0, 0, 0], intensity=40, outer_angle=30)
     assert spot == {"type": "spot_light", "position": [0, 3, 0], "look_at": [0, 0, 0], "intensity": 40, "outer_angle": 30}
