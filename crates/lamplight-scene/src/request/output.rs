@@ -1,0 +1,112 @@
+//! Running a resolved [`Job`] and writing what it rendered: the environment
+//! map, the warning for a scene no light reaches, the mean image and the extra
+//! layers, and the image file with its display transform.
+
+use std::path::Path;
+
+use lamplight_core::film::tonemap::ToneMap;
+use lamplight_core::film::Image;
+use lamplight_core::{RenderControl, RenderStats, Scene};
+
+use super::{bad, Job, Layer, RequestError};
+use crate::image_io::Format;
+
+/// A finished render: the image, the extra layers asked for and the statistics.
+#[derive(Clone, Debug)]
+pub struct Rendered {
+    /// Linear radiance (of the window, when one was asked for).
+    pub image: Image,
+    /// The layers asked for, in order, as `(layer, image)`; `samples` is one channel repeated.
+    pub layers: Vec<(Layer, Image)>,
+    /// Figures about the render.
+    pub stats: RenderStats,
+}
+
+impl Job {
+    /// Lights `scene` with the job's environment map, if any.
+    pub fn prepare(&self, scene: &mut Scene) -> Result<(), RequestError> {
+        let Some(path) = &self.environment else { return Ok(()) };
+        let env = crate::env_map::load_map(path).map_err(bad)?;
+        scene.environment = Some(std::sync::Arc::new(lamplight_core::lights::Environment::Map(env)));
+        Ok(())
+    }
+
+    /// A warning when no light reaches anything the camera sees in `scene`
+    /// (prepared), as a probe of camera rays finds
+    /// ([`lamplight_core::lights::reach`]): the image would be black but for
+    /// what emits towards the camera.
+    pub fn light_warning(&self, scene: &Scene) -> Option<String> {
+        let (w, h) = (self.options.width, self.options.height);
+        if lamplight_core::lights::LightSet::new(scene).count() == 0 && scene.ambient.max_element() <= 0.0 {
+            return Some("the scene has no lights: add a light, an emitting material, a background or an ambient term".to_string());
+        }
+        (!lamplight_core::lights::reach::reaches_camera_hits(scene, scene.camera.as_ref(), w, h)).then(|| {
+            "no light reaches anything the camera sees: emitters send light from their front (outward) side only \
+             (set `two_sided = true` on the material to emit from both), and point, spot and directional lights light \
+             only the side of a surface that faces them"
+                .to_string()
+        })
+    }
+
+    /// Renders `scene` (prepared) with the job's options: the mean image and the
+    /// layers asked for, from the film's per-pixel sums (any integrator).
+    pub fn run(&self, scene: &Scene, control: &RenderControl) -> Result<Rendered, lamplight_core::Error> {
+        if self.layers.is_empty() {
+            // The image alone: the renderer need not keep every pixel's sums.
+            let (image, stats) = lamplight_core::render_image(scene, &self.options, control)?;
+            return Ok(Rendered { image, layers: Vec::new(), stats });
+        }
+        let (film, stats) = lamplight_core::render(scene, &self.options, control)?;
+        let layers = self
+            .layers
+            .iter()
+            .map(|layer| match layer {
+                Layer::Variance => (Layer::Variance, film.variance()),
+                Layer::Samples => {
+                    let mut image = Image::new(film.width(), film.height());
+                    image.pixels.iter_mut().zip(film.sample_counts()).for_each(|(p, n)| *p = [n; 3]);
+                    (Layer::Samples, image)
+                }
+            })
+            .collect();
+        Ok(Rendered { image: film.mean(), layers, stats })
+    }
+}
+
+/// How an image file is written: the display transform of `.png`/`.ppm`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DisplayTransform {
+    /// Exposure in stops (the image is scaled by `2^EV`).
+    pub exposure: f64,
+    /// Tone map.
+    pub tonemap: ToneMap,
+    /// How PNG and PPM store the values (the scene's, unless `--transfer`).
+    pub transfer: crate::image_io::Transfer,
+}
+
+/// Writes `rendered` to `path` (the format by extension): EXR keeps linear
+/// radiance and the extra layers; display formats get the exposure and tone map
+/// and cannot hold layers.
+pub fn write(path: &Path, rendered: &Rendered, display: DisplayTransform) -> Result<(), crate::image_io::ImageError> {
+    let format = Format::from_path(path)?;
+    if format == Format::Exr {
+        if rendered.layers.is_empty() {
+            return crate::image_io::write_image(path, &rendered.image);
+        }
+        let layers: Vec<crate::exr_layers::ExtraLayer> = rendered
+            .layers
+            .iter()
+            .map(|(layer, image)| match layer {
+                Layer::Variance => crate::exr_layers::ExtraLayer::rgb("variance", image),
+                Layer::Samples => crate::exr_layers::ExtraLayer::single("samples", image.pixels.iter().map(|p| p[0]).collect()),
+            })
+            .collect();
+        return crate::exr_layers::write_exr_with_layers(path, &rendered.image, &layers);
+    }
+    if display.exposure == 0.0 && display.tonemap == ToneMap::Clamp {
+        // No copy of the image: at 1280x720 one costs a Whitted render some 3 %.
+        return crate::image_io::write_image_as(path, &rendered.image, display.transfer);
+    }
+    let mapped = lamplight_core::film::tonemap::apply(&rendered.image, display.exposure, display.tonemap);
+    crate::image_io::write_image_as(path, &mapped, display.transfer)
+}
