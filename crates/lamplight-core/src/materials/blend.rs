@@ -156,17 +156,10 @@ pub fn material(weight: Texture, mut a: Material, mut b: Material) -> Result<Mat
 pub const KIND: MaterialKind = Kind {
     name: "blend",
     summary: "two materials mixed by a weight, `(1 - w) a + w b` (Blender's Mix Shader, Mitsuba's `blendbsdf`)",
-    params: &[
+    params: super::surface_params![
         Param::new("a", T::Material, "", "", "the material where `weight` is 0: a `[materials]` name or a material table"),
         Param::new("b", T::Material, "", "", "the material where `weight` is 1"),
         Param::new("weight", T::ScalarTexture, "0.5", "0 to 1", "`w`: the share of `b`"),
-        super::normal_map::NORMAL_MAP_PARAMS[0],
-        super::normal_map::NORMAL_MAP_PARAMS[1],
-        super::bump::BUMP_PARAMS[0],
-        super::bump::BUMP_PARAMS[1],
-        super::alpha::ALPHA_PARAMS[0],
-        super::alpha::ALPHA_PARAMS[1],
-        super::alpha::ALPHA_PARAMS[2],
     ],
     build,
 };

@@ -10,6 +10,25 @@
 //! lights in shadow, and `R`, `T` are the weights of [`Reflection`] and
 //! [`Refraction`].
 
+/// A material kind's parameter table: its own rows, then the rows every
+/// surface material shares (normal map, bump map and alpha, in that order), so
+/// that the shared rows are written once.
+macro_rules! surface_params {
+    ($($own:expr),* $(,)?) => {
+        &[
+            $($own,)*
+            $crate::materials::normal_map::NORMAL_MAP_PARAMS[0],
+            $crate::materials::normal_map::NORMAL_MAP_PARAMS[1],
+            $crate::materials::bump::BUMP_PARAMS[0],
+            $crate::materials::bump::BUMP_PARAMS[1],
+            $crate::materials::alpha::ALPHA_PARAMS[0],
+            $crate::materials::alpha::ALPHA_PARAMS[1],
+            $crate::materials::alpha::ALPHA_PARAMS[2],
+        ]
+    };
+}
+use surface_params;
+
 pub mod alpha;
 pub mod blend;
 pub mod bump;

@@ -128,7 +128,7 @@ pub fn material(base: Texture, metallic: f64, roughness: f64, emission: Rgb, tex
 pub const KIND: MaterialKind = Kind {
     name: "pbr",
     summary: "the glTF 2.0 metallic-roughness material: Lambert diffuse and GGX specular mixed by `metallic`, Schlick Fresnel",
-    params: &[
+    params: super::surface_params![
         Param::new("base_color", T::Texture, "1", "", "base colour `C`"),
         Param::new("metallic", T::ScalarTexture, "0", "0 to 1", "metalness `m`"),
         Param::new("roughness", T::ScalarTexture, "0.5", "0 to 1", "perceptual roughness `r`; GGX `alpha = r^2`"),
@@ -152,13 +152,6 @@ pub const KIND: MaterialKind = Kind {
         Param::new("emission_strength", T::Number, "1", ">= 0", "multiplies `emission` (`KHR_materials_emissive_strength`)"),
         Param::new("two_sided", T::Bool, "false", "", "emit from both sides of the surface, not only the front"),
         super::sided::SIDED_PARAM,
-        super::normal_map::NORMAL_MAP_PARAMS[0],
-        super::normal_map::NORMAL_MAP_PARAMS[1],
-        super::bump::BUMP_PARAMS[0],
-        super::bump::BUMP_PARAMS[1],
-        super::alpha::ALPHA_PARAMS[0],
-        super::alpha::ALPHA_PARAMS[1],
-        super::alpha::ALPHA_PARAMS[2],
     ],
     build,
 };

@@ -16,7 +16,7 @@
 //! | `{ type = "fresnel", ior = N }` | refraction weighted `1 - F` |
 //! | `{ type = "constant", ior = N, weight = COLOUR }` | refraction with a constant weight |
 
-use super::normal_map::{self, NORMAL_MAP_PARAMS};
+use super::normal_map;
 use super::textured::{color_param, scalar_param, Slot};
 use super::{Material, MaterialKind, Metal, Reflection, Refraction};
 use crate::params::{Kind, Param, ParamResult, ParamType as T, Params};
@@ -25,7 +25,7 @@ use crate::params::{Kind, Param, ParamResult, ParamType as T, Params};
 pub const KIND: MaterialKind = Kind {
     name: "phong",
     summary: "the lecture's model: ambient, diffuse and Blinn terms, emission, mirror reflection and refraction",
-    params: &[
+    params: super::surface_params![
         Param::new("color", T::Texture, "0.5", "", "surface colour `C`"),
         Param::new(
             "checker",
@@ -58,13 +58,6 @@ pub const KIND: MaterialKind = Kind {
         ),
         Param::new("roughness", T::ScalarTexture, "0", "0 to 1", "microfacet roughness of Fresnel glass and conductors in the path tracer"),
         Param::new("distribution", T::String, "ggx", "ggx, beckmann", "microfacet distribution of rough glass and conductors"),
-        NORMAL_MAP_PARAMS[0],
-        NORMAL_MAP_PARAMS[1],
-        super::bump::BUMP_PARAMS[0],
-        super::bump::BUMP_PARAMS[1],
-        super::alpha::ALPHA_PARAMS[0],
-        super::alpha::ALPHA_PARAMS[1],
-        super::alpha::ALPHA_PARAMS[2],
     ],
     build,
 };

@@ -29,7 +29,7 @@ use crate::params::{Kind, Param, ParamResult, ParamType as T, Params};
 pub const KIND: MaterialKind = Kind {
     name: "plastic",
     summary: "a diffuse base under a smooth or rough dielectric coating (Mitsuba's `plastic` and `roughplastic`)",
-    params: &[
+    params: super::surface_params![
         Param::new("diffuse_reflectance", T::Texture, "0.5", "0 to 1", "albedo of the diffuse base"),
         Param::new("specular_reflectance", T::Color, "1", "0 to 1", "scales the coating's reflection"),
         Param::new("int_ior", T::Number, "1.49", "> 0", "index of refraction of the coating"),
@@ -40,13 +40,6 @@ pub const KIND: MaterialKind = Kind {
         Param::new("emission", T::Texture, "0", "radiance", "emitted radiance"),
         Param::new("two_sided", T::Bool, "false", "", "emit from both sides of the surface, not only the front"),
         super::sided::SIDED_PARAM,
-        super::normal_map::NORMAL_MAP_PARAMS[0],
-        super::normal_map::NORMAL_MAP_PARAMS[1],
-        super::bump::BUMP_PARAMS[0],
-        super::bump::BUMP_PARAMS[1],
-        super::alpha::ALPHA_PARAMS[0],
-        super::alpha::ALPHA_PARAMS[1],
-        super::alpha::ALPHA_PARAMS[2],
     ],
     build,
 };

@@ -33,7 +33,7 @@ use crate::params::{Kind, Param, ParamResult, ParamType as T, Params};
 pub const KIND: MaterialKind = Kind {
     name: "principled_thin",
     summary: "Mitsuba's thin principled BSDF (`principledthin`): a sheet with diffuse and glossy transmission",
-    params: &[
+    params: super::surface_params![
         Param::new("base_color", T::Texture, "0.5", "0 to 1", "the base colour"),
         Param::new("roughness", T::Texture, "0.5", "0 to 1", "GGX `alpha = max(0.001, roughness^2)`"),
         Param::new("anisotropic", T::Number, "0", "0", "anisotropy (only 0)"),
@@ -50,13 +50,6 @@ pub const KIND: MaterialKind = Kind {
         Param::new("diffuse_transmittance_sampling_rate", T::Number, "1", ">= 0", "sampling weight of the diffuse transmission"),
         Param::new("emission", T::Texture, "0", "radiance", "emitted radiance"),
         Param::new("two_sided", T::Bool, "false", "", "emit from both sides of the surface, not only the front"),
-        super::normal_map::NORMAL_MAP_PARAMS[0],
-        super::normal_map::NORMAL_MAP_PARAMS[1],
-        super::bump::BUMP_PARAMS[0],
-        super::bump::BUMP_PARAMS[1],
-        super::alpha::ALPHA_PARAMS[0],
-        super::alpha::ALPHA_PARAMS[1],
-        super::alpha::ALPHA_PARAMS[2],
     ],
     build,
 };

@@ -23,18 +23,11 @@ pub const KIND: MaterialKind = Kind {
     name: "thin_dielectric",
     summary:
         "a thin dielectric sheet: Fresnel reflection summed over its two faces, transmission without bending (Mitsuba's `thindielectric`)",
-    params: &[
+    params: super::surface_params![
         Param::new("int_ior", T::Number, "1.5046", "> 0", "index of refraction of the sheet"),
         Param::new("ext_ior", T::Number, "1.00028", "> 0", "index of refraction outside"),
         Param::new("emission", T::Texture, "0", "radiance", "emitted radiance"),
         Param::new("two_sided", T::Bool, "false", "", "emit from both sides of the surface, not only the front"),
-        super::normal_map::NORMAL_MAP_PARAMS[0],
-        super::normal_map::NORMAL_MAP_PARAMS[1],
-        super::bump::BUMP_PARAMS[0],
-        super::bump::BUMP_PARAMS[1],
-        super::alpha::ALPHA_PARAMS[0],
-        super::alpha::ALPHA_PARAMS[1],
-        super::alpha::ALPHA_PARAMS[2],
     ],
     build,
 };
