@@ -85,6 +85,37 @@ impl SlabRay {
     }
 }
 
+/// [`SlabRay::test`] for eight boxes in one AVX pass: the same operations in the
+/// same order per lane, so the entry distances and the mask are bit for bit
+/// those of two four-box tests (`planes[r]` is row `r` of the eight boxes).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[inline]
+pub(super) fn test8_avx2(ray: &SlabRay, planes: &[[f32; 8]; 6], t_max: f32) -> ([f32; 8], u32) {
+    use std::arch::x86_64::*;
+    let splat = |v: Vec4| _mm256_set1_ps(v.x);
+    // SAFETY: each row is eight f32s; unaligned loads.
+    let row = |r: usize| unsafe { _mm256_loadu_ps(planes[r].as_ptr()) };
+    let axis = |a: usize| {
+        let inv = splat(ray.inv_dir[a]);
+        let to_min = _mm256_mul_ps(_mm256_sub_ps(row(a), splat(ray.upper_origin[a])), inv);
+        let to_max = _mm256_mul_ps(_mm256_sub_ps(row(a + 3), splat(ray.lower_origin[a])), inv);
+        (_mm256_min_ps(to_min, to_max), _mm256_max_ps(to_min, to_max))
+    };
+    let (near_x, far_x) = axis(0);
+    let (near_y, far_y) = axis(1);
+    let (near_z, far_z) = axis(2);
+    let enter = _mm256_max_ps(_mm256_max_ps(_mm256_max_ps(near_x, near_y), near_z), splat(ray.t_min));
+    let exit = _mm256_min_ps(_mm256_min_ps(_mm256_min_ps(far_x, far_y), far_z), _mm256_set1_ps(t_max));
+    let below = _mm256_mul_ps(enter, _mm256_set1_ps(1.0 - WIDEN));
+    let above = _mm256_mul_ps(exit, _mm256_set1_ps(1.0 + WIDEN));
+    let hit = _mm256_cmp_ps::<_CMP_LE_OS>(below, above);
+    let mut out = [0.0f32; 8];
+    // SAFETY: `out` holds eight f32s; unaligned store.
+    unsafe { _mm256_storeu_ps(out.as_mut_ptr(), enter) };
+    (out, _mm256_movemask_ps(hit) as u32)
+}
+
 /// The children whose bits are set in `mask`, as `(entry distance, slot)` sorted
 /// farthest first, and how many there are: traversal pushes all but the last and
 /// continues with the last, the nearest. Insertion sort: a node has at most eight.
@@ -151,6 +182,50 @@ mod tests {
         let (enter, mask) = back.test(rows([0.0; 3], [1.0; 3]), f32::INFINITY);
         assert_eq!(mask, 0b1111);
         assert!((enter.x - 2.0).abs() < 1e-5);
+    }
+
+    /// The AVX test of eight boxes gives the bits of two four-box tests: random
+    /// boxes (some empty, as unused slots are), rays with zero direction
+    /// components, origins inside and outside, finite and infinite `t_max`.
+    #[cfg(target_arch = "x86_64")]
+    #[test]
+    #[allow(clippy::needless_range_loop)] // slots index two rows of the planes at once
+    fn eight_boxes_at_once_are_two_four_box_tests_bit_for_bit() {
+        if !std::arch::is_x86_feature_detected!("avx2") {
+            eprintln!("skipped: this CPU has no AVX2");
+            return;
+        }
+        let mut rng = crate::sampling::Rng::for_sample(3, 0, 0);
+        let mut value = |scale: f64| ((rng.uniform() - 0.5) * scale) as f32;
+        let mut entered = 0;
+        for case in 0..4000 {
+            let mut planes = [[0.0f32; 8]; 6];
+            for slot in 0..8 {
+                for axis in 0..3 {
+                    let (a, b) = (value(8.0), value(8.0));
+                    (planes[axis][slot], planes[axis + 3][slot]) = (a.min(b), a.max(b));
+                }
+                if case % 5 == slot {
+                    (planes[0][slot], planes[3][slot]) = (f32::INFINITY, f32::NEG_INFINITY);
+                }
+            }
+            let mut dir = Vec3::new(value(2.0).into(), value(2.0).into(), value(2.0).into());
+            if case % 3 == 0 {
+                dir[case % 9 / 3] = 0.0;
+            }
+            let origin = Vec3::new(value(12.0).into(), value(12.0).into(), value(12.0).into());
+            let ray = SlabRay::new(origin, dir, if case % 7 == 0 { 0.5 } else { 0.0 });
+            let t_max = if case % 2 == 0 { f32::INFINITY } else { value(10.0).abs() };
+            // SAFETY: the CPU has AVX2 (checked above).
+            let (enter, mask) = unsafe { test8_avx2(&ray, &planes, t_max) };
+            let half = |h: usize| ray.test(|r| Vec4::from_slice(&planes[r][4 * h..4 * h + 4]), t_max);
+            let ((lo, lo_mask), (hi, hi_mask)) = (half(0), half(1));
+            let want: Vec<u32> = lo.to_array().iter().chain(&hi.to_array()).map(|v| v.to_bits()).collect();
+            assert_eq!(enter.map(f32::to_bits).to_vec(), want, "case {case}: entry distances");
+            assert_eq!(mask, lo_mask | hi_mask << 4, "case {case}: mask");
+            entered += mask.count_ones();
+        }
+        assert!(entered > 1000, "the cases enter boxes ({entered})");
     }
 
     #[test]
