@@ -7,7 +7,7 @@ as distances here).
 
     python3 bench/gen_rays.py                       # once: rays into $ANCHOR_RAYS
     bench/embree/build.sh                           # once: the Embree harness
-    cargo build --release -p lamplight-cli
+    cargo build --release -p lamplight-cli        # or LAMPLIGHT=/path/to/another/build
     ANCHOR_RAYS=/tmp/anchor-rays python3 bench/raycast_compare.py [--meshes bunny,igea,igea-1m] [--runs 5]
 
 For each mesh and set (`incoherent`, `primary` camera rays, and any-hit
@@ -32,7 +32,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 RAYS = Path(os.environ.get("ANCHOR_RAYS", "/tmp/anchor-rays"))
 HARNESS = Path(os.environ.get("EMBREE_HARNESS", "/tmp/lamplight-embree/harness"))
-LAMPLIGHT = ROOT / "target/release/lamplight"
+LAMPLIGHT = Path(os.environ.get("LAMPLIGHT", ROOT / "target/release/lamplight"))  # or another build, for before/after
 MODES = {"incoherent": ["1", "8", "16", "stream"], "primary": ["1", "4", "8", "16", "stream"], "occlusion": ["o1", "o8", "o16", "ostream"]}
 
 
