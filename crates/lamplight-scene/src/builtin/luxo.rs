@@ -155,4 +155,14 @@ mod tests {
         assert_eq!(visible(below), Rgb::ONE, "the bulb casts no shadow, the shade opens downwards");
         assert_eq!(visible(above), Rgb::ZERO, "the shade's back blocks the light");
     }
+
+    #[test]
+    fn the_glowing_bulb_lights_only_through_its_point_light() {
+        let scene = build().unwrap();
+        let bulb = scene.lights[0].own_object().expect("the point light owns its bulb");
+        assert!(scene.materials[scene.objects[bulb].material].emission.max_element() > 0.0, "object {bulb} is the bulb");
+        let lights = lamplight_core::lights::LightSet::new(&scene);
+        assert!(lights.area.is_empty(), "the bulb must not be sampled as an area light too");
+        assert!(lights.is_bulb(bulb));
+    }
 }
