@@ -32,6 +32,7 @@ pub mod accel;
 pub mod batch;
 pub mod bsdfs;
 pub mod camera;
+pub mod cpu;
 mod error;
 pub mod explain;
 pub mod film;

@@ -1,4 +1,4 @@
-//! A 4-wide bounding volume hierarchy with SIMD box tests.
+//! An 8-wide bounding volume hierarchy with SIMD box tests.
 //!
 //! The BVH knows nothing of shapes: it is built from one [`Aabb`] per primitive and
 //! traversed with a closure that intersects primitive `i` (the obvhs design). The
@@ -9,9 +9,14 @@
 //! `BENCHMARKS.md` for what each step gained.
 //!
 //! Build: a binary tree by binned SAH ([`super::sah`]), collapsed into nodes of
-//! up to four children by repeatedly opening the child with the largest surface
+//! up to eight children by repeatedly opening the child with the largest surface
 //! area. A node stores its children's boxes as `f32` structure-of-arrays, so one
-//! ray is tested against four boxes with a few SSE instructions (glam's `Vec4`).
+//! ray is tested against eight boxes in one AVX test on CPUs with AVX2 (detected
+//! at run time; the whole traversal, with the closure inlined into it, is then
+//! compiled for AVX2), two SSE tests elsewhere, with the same bits either way
+//! ([`super::slab::test8`]). Eight children rather than four halve the levels a
+//! ray descends through over a scene's objects: fewer box tests, pushes and pops
+//! per ray (`BENCHMARKS.md`, issue 24).
 //!
 //! Exactness: geometry is `f64`, the boxes `f32`. Boxes are rounded outwards and
 //! tested by [`super::slab`], which is conservative for `f64` rays (it may report a
@@ -21,7 +26,7 @@
 //! stack; entries farther than the closest hit so far are skipped when popped.
 //!
 //! A handful of primitives (at most [`FLAT_MAX`], a Cornell box) are stored
-//! flat instead: nodes of four single-primitive leaves, all tested, the entered
+//! flat instead: nodes of eight single-primitive leaves, all tested, the entered
 //! ones visited nearest first, with no stack or per-level ordering. Measured with
 //! callgrind: the Cornell box's 8 objects need 12 % fewer instructions flat than
 //! as a tree, but luxo's 20 or so (quadrics in loose boxes) need 9 % more: the tree
@@ -29,33 +34,45 @@
 
 use std::mem::MaybeUninit;
 
-use glam::Vec4;
-
 use super::sah::{self, Costs, Tree};
-use super::slab::{farthest_first, SlabRay, WIDEN};
+use super::slab::{farthest_first, has_avx2, test8, SlabRay, WIDEN};
 use super::Aabb;
 use crate::math::Vec3;
 
 /// Marks a child reference as a leaf: low bits are the first index in `indices`.
 const LEAF: u32 = 1 << 31;
-/// Traversal stack size: three pending siblings per level of a tree whose depth
-/// the SAH build bounds by `SAH_DEPTH + 32`.
-const STACK: usize = 3 * (sah::SAH_DEPTH + 32) + 4;
+/// Children per node.
+const WIDTH: usize = 8;
+/// Traversal stack size: `WIDTH - 1` pending siblings per level of a tree whose
+/// depth the SAH build bounds by `SAH_DEPTH + 32`.
+const STACK: usize = (WIDTH - 1) * (sah::SAH_DEPTH + 32) + WIDTH;
 /// Most primitives stored flat (see the module documentation).
 pub const FLAT_MAX: usize = 12;
 
-/// Up to four children: their boxes (structure of arrays) and references.
+/// Up to eight children: their boxes (structure of arrays) and references.
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(32))]
 struct Node {
-    /// `[min_x, min_y, min_z, max_x, max_y, max_z]`, each for the four children.
-    planes: [[f32; 4]; 6],
+    /// `[min_x, min_y, min_z, max_x, max_y, max_z]`, each for the eight children.
+    planes: [[f32; WIDTH]; 6],
     /// Child node index, or `LEAF | first index` for a leaf.
-    child: [u32; 4],
+    child: [u32; WIDTH],
     /// Primitive count of leaf children (0 for interior children).
-    count: [u8; 4],
+    count: [u8; WIDTH],
     /// Bit `i` set when child `i` exists.
     valid: u8,
+}
+
+impl Node {
+    /// No children.
+    const EMPTY: Node = Node { planes: [[0.0; WIDTH]; 6], child: [0; WIDTH], count: [0; WIDTH], valid: 0 };
+
+    /// The entry distances of the children and the mask of those entered before `t_max`.
+    #[inline(always)]
+    fn test<const AVX2: bool>(&self, ray: &SlabRay, t_max: f32) -> ([f32; WIDTH], u32) {
+        let (enter, mask) = test8::<AVX2>(ray, &self.planes, t_max);
+        (enter, mask & self.valid as u32)
+    }
 }
 
 /// A built hierarchy over primitives `0..n`.
@@ -71,7 +88,7 @@ pub struct Bvh {
 /// Size figures of a built BVH.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct BvhStats {
-    /// Number of 4-wide nodes.
+    /// Number of 8-wide nodes.
     pub nodes: usize,
     /// Number of leaves.
     pub leaves: usize,
@@ -121,7 +138,7 @@ impl Bvh {
         }
         let tree = sah::build(bounds, costs);
         let mut bvh = Bvh {
-            nodes: Vec::with_capacity(bounds.len() / 4 + 1),
+            nodes: Vec::with_capacity(bounds.len() / WIDTH + 1),
             indices: Vec::with_capacity(bounds.len()),
             bounds: Some(tree.bounds()),
             flat: false,
@@ -129,7 +146,7 @@ impl Bvh {
         match &tree {
             Tree::Leaf { .. } => {
                 // A single leaf still gets a root node, so traversal has one shape.
-                bvh.nodes.push(Node { planes: [[0.0; 4]; 6], child: [0; 4], count: [0; 4], valid: 0 });
+                bvh.nodes.push(Node::EMPTY);
                 bvh.set_child(0, 0, &tree);
             }
             Tree::Interior { .. } => {
@@ -139,18 +156,18 @@ impl Bvh {
         bvh
     }
 
-    /// Up to [`FLAT_MAX`] primitives, four per node, each its own leaf.
+    /// Up to [`FLAT_MAX`] primitives, eight per node, each its own leaf.
     fn flat(bounds: &[Aabb]) -> Bvh {
         let mut bvh = Bvh {
-            nodes: Vec::with_capacity(bounds.len().div_ceil(4)),
+            nodes: Vec::with_capacity(bounds.len().div_ceil(WIDTH)),
             indices: (0..bounds.len() as u32).collect(),
             bounds: Some(bounds.iter().fold(Aabb::EMPTY, |all, b| all.union(*b))),
             flat: true,
         };
         for (i, b) in bounds.iter().enumerate() {
-            let (node, slot) = (i / 4, i % 4);
+            let (node, slot) = (i / WIDTH, i % WIDTH);
             if slot == 0 {
-                bvh.nodes.push(Node { planes: [[0.0; 4]; 6], child: [0; 4], count: [0; 4], valid: 0 });
+                bvh.nodes.push(Node::EMPTY);
             }
             let planes =
                 [round_down(b.min.x), round_down(b.min.y), round_down(b.min.z), round_up(b.max.x), round_up(b.max.y), round_up(b.max.z)];
@@ -186,12 +203,12 @@ impl Bvh {
         }
     }
 
-    /// Makes a node for interior `tree` from up to four of its descendants: the
-    /// child with the largest surface area is opened until there are four.
+    /// Makes a node for interior `tree` from up to eight of its descendants: the
+    /// child with the largest surface area is opened until there are eight.
     fn collapse(&mut self, tree: &Tree) -> usize {
         let Tree::Interior { children, .. } = tree else { unreachable!("collapse is called on interior trees") };
         let mut kids: Vec<&Tree> = vec![&children.0, &children.1];
-        while kids.len() < 4 {
+        while kids.len() < WIDTH {
             let widest = kids
                 .iter()
                 .enumerate()
@@ -203,7 +220,7 @@ impl Bvh {
             kids.push(&children.1);
         }
         let index = self.nodes.len();
-        self.nodes.push(Node { planes: [[0.0; 4]; 6], child: [0; 4], count: [0; 4], valid: 0 });
+        self.nodes.push(Node::EMPTY);
         for (slot, kid) in kids.into_iter().enumerate() {
             self.set_child(index, slot, kid);
         }
@@ -223,7 +240,7 @@ impl Bvh {
         let mut stack: Vec<(usize, usize)> = (0..roots).map(|i| (i, 1)).collect();
         while let Some((i, d)) = stack.pop() {
             let Some(node) = self.nodes.get(i) else { break };
-            for slot in 0..4 {
+            for slot in 0..WIDTH {
                 if node.valid & (1 << slot) == 0 {
                     continue;
                 }
@@ -240,14 +257,12 @@ impl Bvh {
 
     /// [`Bvh::traverse`] of a flat hierarchy: every box tested, the entered ones
     /// sorted by entry distance and visited until one lies beyond the closest hit.
-    #[inline]
-    fn traverse_flat(&self, ray: &SlabRay, mut t_max: f64, mut intersect: impl FnMut(u32, f64) -> Option<f64>) -> f64 {
+    #[inline(always)]
+    fn traverse_flat<const AVX2: bool>(&self, ray: &SlabRay, mut t_max: f64, mut intersect: impl FnMut(u32, f64) -> Option<f64>) -> f64 {
         let mut entered = [(0f32, 0u32); FLAT_MAX];
         let mut n = 0;
         for node in &self.nodes {
-            let (enter, mask) = ray.test(|r| Vec4::from_array(node.planes[r]), t_max as f32);
-            let enter = enter.to_array();
-            let mut mask = mask & node.valid as u32;
+            let (enter, mut mask) = node.test::<AVX2>(ray, t_max as f32);
             while mask != 0 {
                 let slot = mask.trailing_zeros() as usize;
                 mask &= mask - 1;
@@ -278,13 +293,37 @@ impl Bvh {
     /// parameter of a hit closer than `t_max`, which then becomes the new `t_max`.
     /// Returns the final `t_max` (unchanged if nothing was hit).
     #[inline]
-    pub fn traverse(&self, origin: Vec3, dir: Vec3, t_min: f64, mut t_max: f64, mut intersect: impl FnMut(u32, f64) -> Option<f64>) -> f64 {
+    pub fn traverse(&self, origin: Vec3, dir: Vec3, t_min: f64, t_max: f64, intersect: impl FnMut(u32, f64) -> Option<f64>) -> f64 {
         if self.nodes.is_empty() {
             return t_max;
         }
+        #[cfg(target_arch = "x86_64")]
+        if has_avx2() {
+            // SAFETY: the CPU has AVX2.
+            return unsafe { self.traverse_avx2(origin, dir, t_min, t_max, intersect) };
+        }
+        self.traverse_with::<false>(origin, dir, t_min, t_max, intersect)
+    }
+
+    /// [`Bvh::traverse`] compiled for AVX2, the closure inlined into it.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn traverse_avx2(&self, origin: Vec3, dir: Vec3, t_min: f64, t_max: f64, intersect: impl FnMut(u32, f64) -> Option<f64>) -> f64 {
+        self.traverse_with::<true>(origin, dir, t_min, t_max, intersect)
+    }
+
+    #[inline(always)]
+    fn traverse_with<const AVX2: bool>(
+        &self,
+        origin: Vec3,
+        dir: Vec3,
+        t_min: f64,
+        mut t_max: f64,
+        mut intersect: impl FnMut(u32, f64) -> Option<f64>,
+    ) -> f64 {
         let ray = SlabRay::new(origin, dir, t_min);
         if self.flat {
-            return self.traverse_flat(&ray, t_max, intersect);
+            return self.traverse_flat::<AVX2>(&ray, t_max, intersect);
         }
         // Uninitialized: zero-filling the stack cost more than a short traversal.
         let mut stack = [const { MaybeUninit::<(u32, f32, u8)>::uninit() }; STACK];
@@ -301,8 +340,7 @@ impl Bvh {
                 }
             } else {
                 let node = &self.nodes[current as usize];
-                let (enter, mask) = ray.test(|r| Vec4::from_array(node.planes[r]), t_max as f32);
-                let mask = mask & node.valid as u32;
+                let (enter, mask) = node.test::<AVX2>(&ray, t_max as f32);
                 if mask != 0 && mask & (mask - 1) == 0 {
                     // One child entered (the usual case): nothing to order.
                     let slot = mask.trailing_zeros() as usize;
@@ -312,7 +350,7 @@ impl Bvh {
                 }
                 if mask != 0 {
                     // Push the entered children farthest first, then continue with the nearest.
-                    let (order, n) = farthest_first(&enter.to_array(), mask);
+                    let (order, n) = farthest_first(&enter, mask);
                     for &(t, slot) in &order[..n - 1] {
                         stack[top].write((node.child[slot as usize], t, node.count[slot as usize]));
                         top += 1;
@@ -343,16 +381,32 @@ impl Bvh {
     /// True as soon as `occluded(i)` is true for a primitive whose leaf box the ray
     /// enters within `(t_min, t_max)`: the any-hit query for shadow rays.
     #[inline]
-    pub fn any(&self, origin: Vec3, dir: Vec3, t_min: f64, t_max: f64, mut occluded: impl FnMut(u32) -> bool) -> bool {
+    pub fn any(&self, origin: Vec3, dir: Vec3, t_min: f64, t_max: f64, occluded: impl FnMut(u32) -> bool) -> bool {
         if self.nodes.is_empty() {
             return false;
         }
+        #[cfg(target_arch = "x86_64")]
+        if has_avx2() {
+            // SAFETY: the CPU has AVX2.
+            return unsafe { self.any_avx2(origin, dir, t_min, t_max, occluded) };
+        }
+        self.any_with::<false>(origin, dir, t_min, t_max, occluded)
+    }
+
+    /// [`Bvh::any`] compiled for AVX2, the closure inlined into it.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn any_avx2(&self, origin: Vec3, dir: Vec3, t_min: f64, t_max: f64, occluded: impl FnMut(u32) -> bool) -> bool {
+        self.any_with::<true>(origin, dir, t_min, t_max, occluded)
+    }
+
+    #[inline(always)]
+    fn any_with<const AVX2: bool>(&self, origin: Vec3, dir: Vec3, t_min: f64, t_max: f64, mut occluded: impl FnMut(u32) -> bool) -> bool {
         let ray = SlabRay::new(origin, dir, t_min);
         let t_max32 = t_max as f32;
         if self.flat {
             return self.nodes.iter().any(|node| {
-                let (_, mask) = ray.test(|r| Vec4::from_array(node.planes[r]), t_max32);
-                let mut mask = mask & node.valid as u32;
+                let (_, mut mask) = node.test::<AVX2>(&ray, t_max32);
                 while mask != 0 {
                     let slot = mask.trailing_zeros() as usize;
                     mask &= mask - 1;
@@ -370,8 +424,7 @@ impl Bvh {
             top -= 1;
             // SAFETY: entries below `top` were written before.
             let node = &self.nodes[unsafe { stack[top].assume_init() } as usize];
-            let (_, mask) = ray.test(|r| Vec4::from_array(node.planes[r]), t_max32);
-            let mut mask = mask & node.valid as u32;
+            let (_, mut mask) = node.test::<AVX2>(&ray, t_max32);
             while mask != 0 {
                 let slot = mask.trailing_zeros() as usize;
                 mask &= mask - 1;
@@ -427,6 +480,23 @@ mod tests {
             let found = bvh.traverse(o, d, 0.0, f64::INFINITY, test);
             assert_eq!(found, brute);
             assert_eq!(bvh.any(o, d, 0.0, f64::INFINITY, |i| test(i, f64::INFINITY).is_some()), brute.is_finite());
+            // Both box tests visit the same primitives in the same order.
+            let visits = |avx2: bool| {
+                let mut seen = Vec::new();
+                let mut record = |i: u32, t_max: f64| {
+                    seen.push(i);
+                    test(i, t_max)
+                };
+                let t = if avx2 {
+                    bvh.traverse_with::<true>(o, d, 0.0, f64::INFINITY, &mut record)
+                } else {
+                    bvh.traverse_with::<false>(o, d, 0.0, f64::INFINITY, &mut record)
+                };
+                (t, seen)
+            };
+            if has_avx2() {
+                assert_eq!(visits(true), visits(false));
+            }
         }
     }
 

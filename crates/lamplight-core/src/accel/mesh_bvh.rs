@@ -32,7 +32,7 @@
 
 use std::mem::MaybeUninit;
 
-use glam::{Vec3A, Vec4};
+use glam::Vec3A;
 
 use super::slab::{farthest_first, SlabRay, WIDEN};
 use super::tri4::{ShearRay, Tri4};
@@ -236,19 +236,8 @@ pub struct MeshBvhStats {
 /// The entry distances of a node's eight children, and the mask of those entered.
 #[inline(always)]
 fn test_node<const AVX2: bool>(ray: &SlabRay, node: &Node, t_max: f32) -> ([f32; WIDTH], u32) {
-    #[cfg(target_arch = "x86_64")]
-    if AVX2 {
-        // SAFETY: `AVX2` is set only on CPUs that have it.
-        let (enter, mask) = unsafe { super::slab::test8_avx2(ray, &node.planes, t_max) };
-        return (enter, mask & node.valid as u32);
-    }
-    let half = |h: usize| ray.test(|r| Vec4::from_slice(&node.planes[r][4 * h..4 * h + 4]), t_max);
-    let (lo, lo_mask) = half(0);
-    let (hi, hi_mask) = half(1);
-    let mut enter = [0.0; WIDTH];
-    enter[..4].copy_from_slice(&lo.to_array());
-    enter[4..].copy_from_slice(&hi.to_array());
-    (enter, (lo_mask | hi_mask << 4) & node.valid as u32)
+    let (enter, mask) = super::slab::test8::<AVX2>(ray, &node.planes, t_max);
+    (enter, mask & node.valid as u32)
 }
 
 impl MeshBvh {

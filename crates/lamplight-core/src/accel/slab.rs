@@ -116,6 +116,40 @@ pub(super) fn test8_avx2(ray: &SlabRay, planes: &[[f32; 8]; 6], t_max: f32) -> (
     (out, _mm256_movemask_ps(hit) as u32)
 }
 
+/// The entry distances of eight boxes (`planes[r]` is row `r` of the eight) and
+/// the mask of those entered before `t_max`: one AVX test when `AVX2` (set only
+/// on CPUs that have it, by a caller compiled for it), else two four-box tests,
+/// with the same bits either way. Lanes of unused slots must be masked by the caller.
+#[inline(always)]
+pub(super) fn test8<const AVX2: bool>(ray: &SlabRay, planes: &[[f32; 8]; 6], t_max: f32) -> ([f32; 8], u32) {
+    #[cfg(target_arch = "x86_64")]
+    if AVX2 {
+        // SAFETY: `AVX2` is set only on CPUs that have it.
+        return unsafe { test8_avx2(ray, planes, t_max) };
+    }
+    let half = |h: usize| ray.test(|r| Vec4::from_slice(&planes[r][4 * h..4 * h + 4]), t_max);
+    let (lo, lo_mask) = half(0);
+    let (hi, hi_mask) = half(1);
+    let mut enter = [0.0; 8];
+    enter[..4].copy_from_slice(&lo.to_array());
+    enter[4..].copy_from_slice(&hi.to_array());
+    (enter, lo_mask | hi_mask << 4)
+}
+
+/// Whether this CPU runs the eight-box test in one AVX pass (detected once per
+/// process by the standard library, then a load and a test).
+#[inline(always)]
+pub(super) fn has_avx2() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        std::arch::is_x86_feature_detected!("avx2")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
+    }
+}
+
 /// The children whose bits are set in `mask`, as `(entry distance, slot)` sorted
 /// farthest first, and how many there are: traversal pushes all but the last and
 /// continues with the last, the nearest. Insertion sort: a node has at most eight.

@@ -190,17 +190,65 @@ pub trait Integrator: Send + Sync {
     /// row: the default body is compiled for each integrator, so its loop calls
     /// [`Integrator::sample`] directly rather than through the trait object
     /// (1.5 % of a Whitted render's instructions went to those calls).
-    fn sample_row(&self, view: &View, (x0, y): (u32, u32), samples: Range<u32>, counts: &mut RayCounts, sums: &mut [PixelSum]) -> u64 {
-        let mut nonfinite = 0;
-        for (x, sum) in (x0..).zip(sums.iter_mut()) {
-            for s in samples.clone() {
-                match crate::film::kept(self.sample(view, x, y, s, counts), view.clamp) {
-                    Some(l) => sum.add(l),
-                    None => nonfinite += 1,
-                }
+    ///
+    /// On CPUs with [`crate::cpu::RENDER_FEATURES`] the loop, with the
+    /// integrator's sample inlined into it, runs compiled for them (the same
+    /// values, see [`crate::cpu`]).
+    fn sample_row(&self, view: &View, row: (u32, u32), samples: Range<u32>, counts: &mut RayCounts, sums: &mut [PixelSum]) -> u64 {
+        #[cfg(target_arch = "x86_64")]
+        if crate::cpu::render_features() {
+            // SAFETY: the CPU has every feature `sample_row_features` is compiled for.
+            return unsafe { sample_row_features(self, view, row, samples, counts, sums) };
+        }
+        sample_row_loop(self, view, row, samples, counts, sums)
+    }
+}
+
+/// [`Integrator::sample_row`]'s loop, inlined into each compilation of it.
+#[inline(always)]
+fn sample_row_loop<I: Integrator + ?Sized>(
+    integrator: &I,
+    view: &View,
+    (x0, y): (u32, u32),
+    samples: Range<u32>,
+    counts: &mut RayCounts,
+    sums: &mut [PixelSum],
+) -> u64 {
+    let mut nonfinite = 0;
+    for (x, sum) in (x0..).zip(sums.iter_mut()) {
+        for s in samples.clone() {
+            match crate::film::kept(integrator.sample(view, x, y, s, counts), view.clamp) {
+                Some(l) => sum.add(l),
+                None => nonfinite += 1,
             }
         }
-        nonfinite
+    }
+    nonfinite
+}
+
+/// [`sample_row_loop`] compiled for [`crate::cpu::RENDER_FEATURES`] (the list is
+/// written out here because the attribute takes a literal; a test keeps the two equal).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt,gfni")]
+unsafe fn sample_row_features<I: Integrator + ?Sized>(
+    integrator: &I,
+    view: &View,
+    row: (u32, u32),
+    samples: Range<u32>,
+    counts: &mut RayCounts,
+    sums: &mut [PixelSum],
+) -> u64 {
+    sample_row_loop(integrator, view, row, samples, counts, sums)
+}
+
+#[cfg(all(test, target_arch = "x86_64"))]
+mod feature_tests {
+    /// The attribute of `sample_row_features` names [`crate::cpu::RENDER_FEATURES`].
+    #[test]
+    fn the_render_loop_is_compiled_for_the_detected_features() {
+        let source = include_str!("mod.rs");
+        let attribute = format!("#[target_feature(enable = \"{}\")]\nunsafe fn sample_row_features", crate::cpu::RENDER_FEATURES);
+        assert!(source.contains(&attribute), "sample_row_features must be compiled for RENDER_FEATURES");
     }
 }
 

@@ -125,6 +125,7 @@ impl PathTracer {
     /// camera, pbrt-v4's approximation (`Camera::Approximate_dp_dxy`) of ray
     /// differentials through diffuse and glossy bounces, which keeps a far
     /// texture seen in a mirror or through a bounce filtered as if seen directly.
+    #[inline(always)]
     fn li_traced<T: PathTrace + ?Sized>(
         &self,
         scene: &Scene,
@@ -264,6 +265,7 @@ impl PathTracer {
 
     /// One light sample at `hit`, MIS-weighted against the BSDF.
     #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
     fn sample_light<T: PathTrace + ?Sized>(
         &self,
         scene: &Scene,
@@ -340,6 +342,7 @@ impl Integrator for PathTracer {
     /// filter around the pixel centre, the next one is the lens sample (only for a
     /// camera that takes one), and the path's vertices use the rest. Its passes
     /// double, so a render of `2N` samples continues one of `N`.
+    #[inline(always)]
     fn sample(&self, view: &View, x: u32, y: u32, index: u32, counts: &mut RayCounts) -> Rgb {
         self.sample_with(view, x, y, index, counts, &mut NoTrace)
     }
@@ -355,6 +358,7 @@ impl Integrator for PathTracer {
 
 impl PathTracer {
     /// [`Integrator::sample`], telling `trace` what it does.
+    #[inline(always)]
     fn sample_with<T: PathTrace + ?Sized>(&self, view: &View, x: u32, y: u32, index: u32, counts: &mut RayCounts, trace: &mut T) -> Rgb {
         let mut sampler = PixelSampler::new(view.seed, view.pixel_index(x, y), index);
         let (lo, hi) = view.offset_bounds(x, y);

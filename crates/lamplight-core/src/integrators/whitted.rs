@@ -106,6 +106,7 @@ impl Integrator for Whitted {
     /// `n > 1` samples are stratified over the pixel ([`stratified_2d`], strata
     /// shifted by `pixel_offset - 0.5`) and jittered by the sample's own generator,
     /// which then draws the lens sample if the camera takes one.
+    #[inline(always)]
     fn sample(&self, view: &View, x: u32, y: u32, index: u32, counts: &mut RayCounts) -> Rgb {
         self.sample_with(view, x, y, index, counts, &mut NoTrace)
     }
@@ -121,6 +122,7 @@ impl Integrator for Whitted {
 
 impl Whitted {
     /// [`Integrator::sample`], telling `trace` what it does.
+    #[inline(always)]
     fn sample_with<T: WhittedTrace + ?Sized>(&self, view: &View, x: u32, y: u32, index: u32, counts: &mut RayCounts, trace: &mut T) -> Rgb {
         let offset = view.pixel_offset;
         // Made only when a value is drawn: a single pinhole sample needs none.
@@ -166,9 +168,10 @@ impl Whitted {
     }
 
     /// [`Whitted::trace_cone`], telling `trace` each ray, hit, term and weight.
-    /// Never inlined: a call, as `trace_with` was before recording existed; inlined
-    /// into `sample` the work list's copies cost 0.35 % more instructions (`BENCHMARKS.md`).
-    #[inline(never)]
+    /// Inlined into the render loop, so that the loop's second compilation
+    /// ([`crate::cpu`]) covers it (a call of its own cost 0.35 % fewer
+    /// instructions in the baseline compilation, `BENCHMARKS.md`).
+    #[inline(always)]
     fn trace_traced<T: WhittedTrace + ?Sized>(
         &self,
         scene: &Scene,
