@@ -73,8 +73,16 @@ fi
 phase "maturin develop"
 VIRTUAL_ENV="$PWD/.venv" PATH="$PWD/.venv/bin:$PATH" .venv/bin/maturin develop --locked --quiet
 phase "pytest"
-cargo build --locked --quiet -p lamplight-cli
-LAMPLIGHT_CLI="$PWD/target/debug/lamplight" .venv/bin/python -m pytest python/tests -q -p no:cacheprovider
+# The binary `cargo test` built for lamplight-cli's own tests. A separate
+# `cargo build -p lamplight-cli` sees fewer features on shared dependencies
+# than the whole workspace with its dev-dependencies (serde, syn, getrandom,
+# either), so it compiled serde and everything above it a second time (issue 24).
+cli="${CARGO_TARGET_DIR:-$PWD/target}/debug/lamplight"
+if [ ! -x "$cli" ]; then
+  echo "error: $cli is missing: \`cargo test --workspace\` should have built it" >&2
+  exit 1
+fi
+LAMPLIGHT_CLI="$cli" .venv/bin/python -m pytest python/tests -q -p no:cacheprovider --durations=15
 phase ""
 echo "== time per phase ($(nproc 2>/dev/null || echo '?') CPUs; load average at the end of each phase)"
 printf '%s\n' "${phases[@]}"
