@@ -2,6 +2,7 @@
 
 import _thread
 import subprocess
+import signal
 import threading
 import time
 
@@ -72,6 +73,11 @@ def test_a_raising_callback_stops_the_render():
 
 
 def test_ctrl_c_interrupts_a_long_render():
+    # A suite started in the background by a shell without job control inherits
+    # SIGINT ignored, and interrupt_main then does nothing: the render ran its
+    # full 1-2 minutes and the test failed. Python's own handler is put back
+    # for the length of the test, as an interactive session has it.
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
     timer = threading.Timer(0.5, _thread.interrupt_main)
     start = time.monotonic()
     timer.start()
@@ -80,6 +86,7 @@ def test_ctrl_c_interrupts_a_long_render():
             lamplight.render("spheres", width=1280, height=720, spp=256, progress=False)
     finally:
         timer.cancel()
+        signal.signal(signal.SIGINT, previous)
     assert time.monotonic() - start < 20, "the render stopped soon after Ctrl-C"
     # The module still works afterwards.
     assert lamplight.render("business-card", width=8, height=8, progress=False).shape == (8, 8, 3)
