@@ -38,8 +38,9 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 LAMPLIGHT = os.environ.get("LAMPLIGHT", os.path.join(ROOT, "target", "release", "lamplight"))
 
 
-def set_variant():
-    for v in ("llvm_ad_rgb", "scalar_rgb"):
+def set_variant(variants=("llvm_ad_rgb", "scalar_rgb")):
+    """Sets the first of `variants` that loads and returns its name."""
+    for v in variants:
         try:
             mi.set_variant(v)
             return v
@@ -103,6 +104,41 @@ def time_to_rmse(points, target):
     return float("nan"), False
 
 
+def references(size, spp):
+    """Two independent renders per renderer (seeds 7 and 8): (m1, m2, l1, l2)."""
+    m1, _ = render_mitsuba(size, spp, seed=7)
+    m2, _ = render_mitsuba(size, spp, seed=8)
+    l1, _ = render_lamplight(size, spp, seed=7)
+    l2, _ = render_lamplight(size, spp, seed=8)
+    return m1, m2, l1, l2
+
+
+def speed(size, spp, runs=1):
+    """Render times (s) at size x size and spp, lamplight and Mitsuba alternating:
+    (lamplight times, Mitsuba times)."""
+    t_l, t_m = [], []
+    for _ in range(runs):
+        t_l.append(render_lamplight(size, spp)[1])
+        t_m.append(render_mitsuba(size, spp)[1])
+    return t_l, t_m
+
+
+def ladder_points(size, ladder, ref_l, ref_m, runs=1):
+    """For each spp of `ladder`: (spp, lamplight median s, lamplight RMSE, Mitsuba
+    median s, Mitsuba RMSE), each RMSE against that renderer's own reference. Seed 1
+    throughout, so the images (and RMSEs) are the same in every run."""
+    rows = []
+    for spp in ladder:
+        t_l, t_m = [], []
+        for _ in range(runs):
+            il, t = render_lamplight(size, spp, seed=1)
+            t_l.append(t)
+            im, t = render_mitsuba(size, spp, seed=1)
+            t_m.append(t)
+        rows.append((spp, float(np.median(t_l)), rmse(il, ref_l), float(np.median(t_m)), rmse(im, ref_m)))
+    return rows
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--size", type=int, default=128)
@@ -126,10 +162,8 @@ def main():
     # Two independent renders per renderer: their difference measures each one's
     # noise, which is subtracted from the squared difference between renderers to
     # leave the systematic part (E|a - b|^2 = bias^2 + var_a + var_b).
-    m1, tm = render_mitsuba(args.size, args.ref_spp, seed=7)
-    m2, _ = render_mitsuba(args.size, args.ref_spp, seed=8)
-    l1, tl = render_lamplight(args.size, args.ref_spp, seed=7)
-    l2, _ = render_lamplight(args.size, args.ref_spp, seed=8)
+    t0 = time.perf_counter()
+    m1, m2, l1, l2 = references(args.size, args.ref_spp)
     ref_m, ref_l = 0.5 * (m1 + m2), 0.5 * (l1 + l2)
     if args.save:
         for name, arr in (("m1", m1), ("m2", m2), ("l1", l1), ("l2", l2)):
@@ -154,7 +188,7 @@ def main():
     print(f"  without the {np.sum(~off)} pixels that see the light: {np.sqrt(mse_off) / mean * 100:.3f} %, "
           f"noise removed {np.sqrt(max(0.0, mse_off - vm_off - vl_off)) / mean * 100:.3f} %")
     print("mean per channel lamplight / Mitsuba = " + ", ".join(f"{r:.4f}" for r in ref_l.mean(axis=(0, 1)) / ref_m.mean(axis=(0, 1))))
-    print(f"(reference renders took {tl:.1f} s lamplight, {tm:.1f} s Mitsuba, Mitsuba sampler {SAMPLER})")
+    print(f"(the four reference renders took {time.perf_counter() - t0:.1f} s, Mitsuba sampler {SAMPLER})")
     # Where the disagreement sits: the light itself, its edge pixels, the rest.
     light = ref_m.max(axis=2) > 5.0
     edge = (~light) & (~off)
@@ -167,8 +201,7 @@ def main():
 
     if not args.skip_speed:
         n = args.speed_size * args.speed_size * args.speed_spp
-        _, t_l = render_lamplight(args.speed_size, args.speed_spp)
-        _, t_m = render_mitsuba(args.speed_size, args.speed_spp)
+        (t_l,), (t_m,) = speed(args.speed_size, args.speed_spp)
         print(f"\n## Speed: {args.speed_size}x{args.speed_size}, {args.speed_spp} spp")
         print(f"lamplight: {t_l:.2f} s, {n / t_l / 1e6:.3f} M samples/s")
         print(f"Mitsuba {variant} ({SAMPLER} sampler): {t_m:.2f} s, {n / t_m / 1e6:.3f} M samples/s")
@@ -178,15 +211,13 @@ def main():
     # Time to quality: each renderer against its own high-spp reference (other seeds),
     # so that the residual difference between the renderers does not set a floor.
     ladder = [int(s) for s in args.ladder.split(",")]
-    pts_l, pts_m = [], []
     print(f"\n## Time to quality: {args.size}x{args.size}, RMSE against each renderer's own 2 x {args.ref_spp}-spp render")
     print("spp | lamplight s | lamplight RMSE | Mitsuba s | Mitsuba RMSE")
-    for spp in ladder:
-        il, t_l = render_lamplight(args.size, spp, seed=1)
-        im, t_m = render_mitsuba(args.size, spp, seed=1)
-        pts_l.append((t_l, rmse(il, ref_l)))
-        pts_m.append((t_m, rmse(im, ref_m)))
-        print(f"{spp} | {t_l:.3f} | {pts_l[-1][1]:.5f} | {t_m:.3f} | {pts_m[-1][1]:.5f}")
+    rows = ladder_points(args.size, ladder, ref_l, ref_m)
+    for spp, t_l, e_l, t_m, e_m in rows:
+        print(f"{spp} | {t_l:.3f} | {e_l:.5f} | {t_m:.3f} | {e_m:.5f}")
+    pts_l = [(r[1], r[2]) for r in rows]
+    pts_m = [(r[3], r[4]) for r in rows]
     target = 0.02 * mean
     (t_l, x_l), (t_m, x_m) = time_to_rmse(pts_l, target), time_to_rmse(pts_m, target)
     mark = lambda x: " (extrapolated)" if x else ""

@@ -76,6 +76,31 @@ def agreement(out, ref_t, ref_p, any_hit, directions):
     return res
 
 
+def measure(mesh, kind, runs, tmp, threads=(1, 2)):
+    """One mesh and set (`incoherent`, `primary`, `occlusion`): Embree's answers on
+    1 thread with rtcIntersect1 (the reference), then for each thread count every
+    Embree API (the best kept: per CPU-second on 1 thread, wall-clock otherwise)
+    and lamplight, each the median of `runs` casts; lamplight's agreement with
+    Embree on 1 thread. `tmp` is a scratch folder (Path)."""
+    rays = "incoherent" if kind == "occlusion" else kind
+    any_hit = kind == "occlusion"
+    tile = 1024 if rays == "primary" else 0
+    ref = embree(mesh, rays, "o1" if any_hit else "1", 1, 1, 0, ["--t-out", str(tmp / "et.npy"), "--prim-out", str(tmp / "ep.npy")])
+    ref_t = np.load(tmp / "et.npy")
+    ref_p = None if any_hit else np.load(tmp / "ep.npy")
+    row = {"mesh": mesh, "set": kind, "triangles": ref["triangles"], "embree_bvh_bytes_per_tri": ref["bvh_bytes"] / ref["triangles"]}
+    for n in threads:
+        results = [embree(mesh, rays, m, n, runs, tile) for m in MODES[kind]]
+        best = max(results, key=lambda r: r["mrays_per_cpu_s"] if n == 1 else r["mrays_wall"])
+        ours = lamplight(mesh, rays, n, runs, tmp, any_hit)
+        row[f"embree_{n}t"] = best
+        row[f"embree_all_{n}t"] = {r["mode"]: (r["mrays_wall"], r["mrays_per_cpu_s"]) for r in results}
+        row[f"lamplight_{n}t"] = ours
+        if n == 1:
+            row["agreement"] = agreement(tmp, ref_t, ref_p, any_hit, np.load(files(mesh, rays)[3]))
+    return row
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--meshes", default="bunny,igea,igea-1m")
@@ -91,22 +116,7 @@ def main():
         tmp = Path(tmp)
         for mesh in args.meshes.split(","):
             for kind in args.sets.split(","):
-                rays = "incoherent" if kind == "occlusion" else kind
-                any_hit = kind == "occlusion"
-                tile = 1024 if rays == "primary" else 0
-                ref = embree(mesh, rays, "o1" if any_hit else "1", 1, 1, 0, ["--t-out", str(tmp / "et.npy"), "--prim-out", str(tmp / "ep.npy")])
-                ref_t = np.load(tmp / "et.npy")
-                ref_p = None if any_hit else np.load(tmp / "ep.npy")
-                row = {"mesh": mesh, "set": kind, "triangles": ref["triangles"], "embree_bvh_bytes_per_tri": ref["bvh_bytes"] / ref["triangles"]}
-                for threads in (1, 2):
-                    results = [embree(mesh, rays, m, threads, args.runs, tile) for m in MODES[kind]]
-                    best = max(results, key=lambda r: r["mrays_per_cpu_s"] if threads == 1 else r["mrays_wall"])
-                    ours = lamplight(mesh, rays, threads, args.runs, tmp, any_hit)
-                    row[f"embree_{threads}t"] = best
-                    row[f"embree_all_{threads}t"] = {r["mode"]: (r["mrays_wall"], r["mrays_per_cpu_s"]) for r in results}
-                    row[f"lamplight_{threads}t"] = ours
-                    if threads == 1:
-                        row["agreement"] = agreement(tmp, ref_t, ref_p, any_hit, np.load(files(mesh, rays)[3]))
+                row = measure(mesh, kind, args.runs, tmp)
                 rows.append(row)
                 e1, l1, e2, l2 = row["embree_1t"], row["lamplight_1t"], row["embree_2t"], row["lamplight_2t"]
                 print(f"{mesh} {kind}: embree 1t {e1['mode']} {e1['mrays_wall']:.2f} ({e1['mrays_per_cpu_s']:.2f}/cpu-s), "
