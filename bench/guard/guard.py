@@ -30,7 +30,10 @@ except ImportError:  # Python before 3.11
 ROOT = Path(__file__).resolve().parents[2]
 BASELINE = ROOT / "bench/guard/baseline.toml"
 # Two runs of one case may differ by this much (per cent) and still count as repeating.
-REPEAT_TOLERANCE = 0.01
+# Idle rayon workers spin and a mutex is contended a scheduler-dependent number of
+# times: 5-25 thousand instructions a run, up to 0.011 % of the smallest case
+# (measured); 0.05 % stays 60 times below the 3 % the guard fails on.
+REPEAT_TOLERANCE = 0.05
 
 # name -> (what it measures, argument list; {inputs}, {out}, {bunny} are filled in).
 # Every case is single-threaded with a fixed seed, so its instruction count is a
