@@ -402,7 +402,7 @@ impl MeshBvh {
     }
 }
 
-/// Writes the collapsed 4-wide nodes and the leaf packets.
+/// Writes the collapsed 8-wide nodes and the leaf packets.
 struct Emitter<'a, F: Fn(usize) -> [[f32; 3]; 3]> {
     bvh: &'a mut MeshBvh,
     refs: &'a [Ref],

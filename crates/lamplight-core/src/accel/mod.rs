@@ -2,7 +2,7 @@
 //!
 //! Two hierarchies, for two jobs:
 //!
-//! - [`Bvh`] (`bvh.rs`), the renderer's: 4-wide, `f32` boxes over `f64` shapes
+//! - [`Bvh`] (`bvh.rs`), the renderer's: 8-wide, `f32` boxes over `f64` shapes
 //!   tested through a closure. It is both levels of the scene: one over the
 //!   objects, and one inside every [`crate::shapes::TriangleMesh`] over its
 //!   triangles. Built by the binned SAH of `sah.rs` with the cost weights of

@@ -1,5 +1,5 @@
 //! Top-down binned SAH construction of a binary tree (Wald 2007), the first stage
-//! of the BVH build; [`super::bvh`] then collapses it into 4-wide nodes. This is
+//! of the BVH build; [`super::bvh`] then collapses it into 8-wide nodes. This is
 //! the builder of both levels of the renderer's BVH: the scene's objects
 //! ([`Costs::OBJECTS`]) and each triangle mesh's triangles ([`Costs::TRIANGLES`]).
 //! The batch ray-casting BVH (`mesh_bvh.rs`) has its own; the module
