@@ -26,24 +26,18 @@
 //!
 //! Box test: [`super::slab`], shared with the scene's BVH (an `f32` ray converts
 //! to `f64` exactly), conservative so that no box a triangle hit lies in is
-//! missed. Traversal is ordered (nearest child first, by entry distance; popped
-//! entries beyond the closest hit are skipped); the any-hit
-//! query stops at the first hit.
-
-use std::mem::MaybeUninit;
+//! missed. Traversal, one ray at a time or several interleaved: `mesh_walk.rs`.
 
 use glam::Vec3A;
 
-use super::slab::{farthest_first, SlabRay, WIDEN};
-use super::tri4::{ShearRay, Tri4};
-use crate::math::Vec3;
+use super::tri4::Tri4;
 
 /// Marks a child reference as a leaf.
-const LEAF: u32 = 1 << 31;
+pub(super) const LEAF: u32 = 1 << 31;
 /// A leaf reference holds its packet count in bits 28..31 ...
-const COUNT_SHIFT: u32 = 28;
+pub(super) const COUNT_SHIFT: u32 = 28;
 /// ... and its first packet in bits 0..28.
-const FIRST_MASK: u32 = (1 << COUNT_SHIFT) - 1;
+pub(super) const FIRST_MASK: u32 = (1 << COUNT_SHIFT) - 1;
 /// SAH bins per axis.
 const BINS: usize = 16;
 /// Largest leaf, in triangles (two packets).
@@ -55,10 +49,10 @@ const PARALLEL: usize = 4096;
 /// Depth below which splits follow the SAH (median splits deeper).
 const SAH_DEPTH: usize = 48;
 /// Children per node.
-const WIDTH: usize = 8;
+pub(super) const WIDTH: usize = 8;
 /// Traversal stack: `WIDTH - 1` siblings per level of a tree at most
 /// `SAH_DEPTH + 32` deep.
-const STACK: usize = (WIDTH - 1) * (SAH_DEPTH + 32) + WIDTH;
+pub(super) const STACK: usize = (WIDTH - 1) * (SAH_DEPTH + 32) + WIDTH;
 
 /// Eight child boxes (rows min x, y, z, max x, y, z) and references. An unused
 /// slot has its bit clear in `valid` (and an empty box, `min = +inf`, `max = -inf`).
@@ -67,12 +61,12 @@ const STACK: usize = (WIDTH - 1) * (SAH_DEPTH + 32) + WIDTH;
 /// incoherent rays waits mostly on node loads.
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(64))]
-struct Node {
-    planes: [[f32; WIDTH]; 6],
+pub(super) struct Node {
+    pub(super) planes: [[f32; WIDTH]; 6],
     /// Node index, or `LEAF | count << COUNT_SHIFT | first packet`.
-    child: [u32; WIDTH],
+    pub(super) child: [u32; WIDTH],
     /// Bit `i` set when child `i` exists (fits in the padding of the fourth line).
-    valid: u8,
+    pub(super) valid: u8,
 }
 
 const EMPTY_NODE: Node = Node {
@@ -218,8 +212,8 @@ fn partition(refs: &mut [Ref], left: impl Fn(&Ref) -> bool) -> usize {
 /// A built hierarchy over a triangle mesh.
 #[derive(Clone, Debug, Default)]
 pub struct MeshBvh {
-    nodes: Vec<Node>,
-    packets: Vec<Tri4>,
+    pub(super) nodes: Vec<Node>,
+    pub(super) packets: Vec<Tri4>,
 }
 
 /// Size figures of a [`MeshBvh`].
@@ -231,13 +225,6 @@ pub struct MeshBvhStats {
     pub packets: usize,
     /// Bytes of nodes and packets together.
     pub bytes: usize,
-}
-
-/// The entry distances of a node's eight children, and the mask of those entered.
-#[inline(always)]
-fn test_node<const AVX2: bool>(ray: &SlabRay, node: &Node, t_max: f32) -> ([f32; WIDTH], u32) {
-    let (enter, mask) = super::slab::test8::<AVX2>(ray, &node.planes, t_max);
-    (enter, mask & node.valid as u32)
 }
 
 impl MeshBvh {
@@ -269,6 +256,17 @@ impl MeshBvh {
         bvh
     }
 
+    /// The length of the diagonal of the mesh's bounding box (0 when empty).
+    pub fn diagonal(&self) -> f32 {
+        let Some(root) = self.nodes.first() else { return 0.0 };
+        let (mut lo, mut hi) = (Vec3A::INFINITY, Vec3A::NEG_INFINITY);
+        for slot in (0..WIDTH).filter(|slot| root.valid & 1 << slot != 0) {
+            let corner = |row: usize| Vec3A::new(root.planes[row][slot], root.planes[row + 1][slot], root.planes[row + 2][slot]);
+            (lo, hi) = (lo.min(corner(0)), hi.max(corner(3)));
+        }
+        (hi - lo).length()
+    }
+
     /// Node and packet counts and bytes.
     pub fn stats(&self) -> MeshBvhStats {
         MeshBvhStats {
@@ -276,129 +274,6 @@ impl MeshBvh {
             packets: self.packets.len(),
             bytes: self.nodes.len() * size_of::<Node>() + self.packets.len() * size_of::<Tri4>(),
         }
-    }
-
-    /// The nearest hit of `o + t d` with `t` in `(0, t_max)`: parameter and triangle.
-    #[inline]
-    pub fn closest(&self, o: [f32; 3], d: [f32; 3], t_max: f32) -> Option<(f32, u32)> {
-        #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU has AVX2.
-            return unsafe { self.closest_avx2(o, d, t_max) };
-        }
-        self.closest_any::<false>(o, d, t_max)
-    }
-
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    unsafe fn closest_avx2(&self, o: [f32; 3], d: [f32; 3], t_max: f32) -> Option<(f32, u32)> {
-        self.closest_any::<true>(o, d, t_max)
-    }
-
-    #[inline(always)]
-    fn closest_any<const AVX2: bool>(&self, o: [f32; 3], d: [f32; 3], mut t_max: f32) -> Option<(f32, u32)> {
-        let shear = ShearRay::new(o, d)?;
-        if self.nodes.is_empty() {
-            return None;
-        }
-        let ray = SlabRay::new(Vec3::from(o.map(f64::from)), Vec3::from(d.map(f64::from)), 0.0);
-        let mut best = None;
-        let mut stack = [const { MaybeUninit::<(u32, f32)>::uninit() }; STACK];
-        let mut top = 0usize;
-        let mut current = 0u32;
-        loop {
-            if current & LEAF != 0 {
-                let first = (current & FIRST_MASK) as usize;
-                let count = ((current & !LEAF) >> COUNT_SHIFT) as usize;
-                for packet in &self.packets[first..first + count] {
-                    if let Some((t, prim)) = packet.intersect(&shear, t_max) {
-                        t_max = t;
-                        best = Some((t, prim));
-                    }
-                }
-            } else {
-                let node = &self.nodes[current as usize];
-                let (enter, mask) = test_node::<AVX2>(&ray, node, t_max);
-                if mask != 0 && mask & (mask - 1) == 0 {
-                    // One child entered: nothing to order.
-                    current = node.child[mask.trailing_zeros() as usize];
-                    continue;
-                }
-                if mask != 0 {
-                    // Push the entered children farthest first; continue with the nearest.
-                    let (order, n) = farthest_first(&enter, mask);
-                    for &(t, slot) in &order[..n - 1] {
-                        stack[top].write((node.child[slot as usize], t));
-                        top += 1;
-                    }
-                    current = node.child[order[n - 1].1 as usize];
-                    continue;
-                }
-            }
-            loop {
-                if top == 0 {
-                    return best;
-                }
-                top -= 1;
-                // SAFETY: entries below `top` were written by the pushes above.
-                let (child, enter) = unsafe { stack[top].assume_init() };
-                if enter <= t_max * (1.0 + WIDEN) {
-                    current = child;
-                    break;
-                }
-            }
-        }
-    }
-
-    /// Whether `o + t d` hits any triangle with `t` in `(0, t_max)` (stops at the first).
-    #[inline]
-    pub fn occluded(&self, o: [f32; 3], d: [f32; 3], t_max: f32) -> bool {
-        #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU has AVX2.
-            return unsafe { self.occluded_avx2(o, d, t_max) };
-        }
-        self.occluded_any::<false>(o, d, t_max)
-    }
-
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    unsafe fn occluded_avx2(&self, o: [f32; 3], d: [f32; 3], t_max: f32) -> bool {
-        self.occluded_any::<true>(o, d, t_max)
-    }
-
-    #[inline(always)]
-    fn occluded_any<const AVX2: bool>(&self, o: [f32; 3], d: [f32; 3], t_max: f32) -> bool {
-        let Some(shear) = ShearRay::new(o, d) else { return false };
-        if self.nodes.is_empty() {
-            return false;
-        }
-        let ray = SlabRay::new(Vec3::from(o.map(f64::from)), Vec3::from(d.map(f64::from)), 0.0);
-        let mut stack = [const { MaybeUninit::<u32>::uninit() }; STACK];
-        stack[0].write(0);
-        let mut top = 1usize;
-        while top > 0 {
-            top -= 1;
-            // SAFETY: entries below `top` were written before.
-            let node = &self.nodes[unsafe { stack[top].assume_init() } as usize];
-            let (_, mut mask) = test_node::<AVX2>(&ray, node, t_max);
-            while mask != 0 {
-                let slot = mask.trailing_zeros() as usize;
-                mask &= mask - 1;
-                let child = node.child[slot];
-                if child & LEAF != 0 {
-                    let first = (child & FIRST_MASK) as usize;
-                    let count = ((child & !LEAF) >> COUNT_SHIFT) as usize;
-                    if self.packets[first..first + count].iter().any(|p| p.occludes(&shear, t_max)) {
-                        return true;
-                    }
-                } else {
-                    stack[top].write(child);
-                    top += 1;
-                }
-            }
-        }
-        false
     }
 }
 

@@ -8,7 +8,8 @@
 //!   triangles. Built by the binned SAH of `sah.rs` with the cost weights of
 //!   [`Costs`] (objects or triangles).
 //! - [`MeshBvh`] (`mesh_bvh.rs`), batch ray casting's ([`crate::batch::MeshAccel`]):
-//!   8-wide, one `f32` mesh, triangles stored inline in 4-wide packets.
+//!   8-wide, one `f32` mesh, triangles stored inline in 4-wide packets; its
+//!   traversal (`mesh_walk.rs`) interleaves the rays of a batch.
 //!
 //! **Why two SAH builders.** Both bin centroids into 16 bins per axis, fall back
 //! to median splits below a depth, and build large subtrees on other threads, but
@@ -35,6 +36,7 @@
 mod aabb;
 mod bvh;
 mod mesh_bvh;
+mod mesh_walk;
 mod sah;
 mod slab;
 pub mod tri4;

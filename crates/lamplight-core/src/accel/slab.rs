@@ -29,6 +29,7 @@ use crate::math::{max_abs, Vec3};
 pub(super) const WIDEN: f32 = 4.0 * f32::EPSILON;
 
 /// A ray prepared for [`SlabRay::test`].
+#[derive(Clone, Copy)]
 pub(super) struct SlabRay {
     /// Per axis: an `f32` above the origin coordinate, splatted. Minimum planes are
     /// measured from it.

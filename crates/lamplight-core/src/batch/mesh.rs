@@ -18,6 +18,7 @@
 
 use super::{BatchRay, BatchTarget, Float, RayHit};
 use crate::accel::{MeshBvh, MeshBvhStats};
+use crate::math::Vec3;
 use crate::Error;
 
 /// A triangle mesh prepared for batch ray casting.
@@ -76,6 +77,33 @@ impl MeshAccel {
         AccelMemory { triangles: self.triangles, bvh, bytes_per_triangle: bvh.bytes as f64 / self.triangles.max(1) as f64 }
     }
 
+    /// Whether the rays `ray(0..n)` mostly travel together: of up to
+    /// [`COHERENCE_PAIRS`] neighbouring pairs spread over them, more than half have
+    /// directions within about 8 degrees (cosine above 0.99) and origins within 1 %
+    /// of the mesh's size (camera rays in pixel order, shadow rays towards one
+    /// light). Such rays walk the same nodes one after the other, so the nodes stay
+    /// in cache and the branches are predictable, and one ray at a time is faster
+    /// for them; interleaving ([`MeshBvh::closest_batch`]) is faster for rays that
+    /// scatter, whose walks wait on memory (`BENCHMARKS.md`, issue 24). Either way
+    /// gives the same answers, so the guess costs speed at worst, never a result.
+    fn coherent(&self, n: usize, ray: impl Fn(usize) -> Option<(Vec3, Vec3)>) -> bool {
+        if n < 2 {
+            return true;
+        }
+        let near = f64::from(self.bvh.diagonal()) * 0.01;
+        let pairs = COHERENCE_PAIRS.min(n - 1);
+        let together = (0..pairs)
+            .filter(|k| {
+                let i = k * (n - 1) / pairs;
+                let (Some((oa, da)), Some((ob, db))) = (ray(i), ray(i + 1)) else { return false };
+                let cos = da.dot(db);
+                // cos > 0.99 |da| |db|, squared to spare the roots.
+                cos > 0.0 && cos * cos > 0.9801 * da.length_squared() * db.length_squared() && oa.distance_squared(ob) <= near * near
+            })
+            .count();
+        2 * together > pairs
+    }
+
     /// Nearest hit of one ray `origin + s dir`: `(s, triangle)` with the
     /// parameter `s` in `(0, s_max)`, measured along `dir` as given (not a
     /// distance unless `dir` is unit). A zero or non-finite ray hits nothing.
@@ -104,8 +132,69 @@ impl BatchTarget for MeshAccel {
     /// Asks the kernel for `s < t_max / |d|` (rounded to `f32`).
     #[inline]
     fn occluded<T: Float>(&self, ray: &BatchRay<T>, t_max: f64) -> bool {
-        self.bvh.occluded(ray.origin.map(T::to_f32), ray.dir.map(T::to_f32), (t_max / ray.length()) as f32)
+        self.bvh.occluded(ray.origin.map(T::to_f32), ray.dir.map(T::to_f32), occlusion_limit(ray, t_max))
     }
+
+    /// The rays interleaved ([`MeshBvh::closest_batch`]) unless they are coherent
+    /// ([`MeshAccel::coherent`]): the same answers as [`MeshAccel::nearest`] one by
+    /// one, bit for bit.
+    fn nearest_all<T: Float>(&self, n: usize, ray: impl Fn(usize) -> Option<BatchRay<T>>, mut answer: impl FnMut(usize, Option<RayHit>)) {
+        if self.coherent(n, |i| ray(i).map(|r| vectors(&r))) {
+            for i in 0..n {
+                answer(i, ray(i).and_then(|ray| self.nearest(&ray)));
+            }
+            return;
+        }
+        self.bvh.closest_batch(
+            n,
+            |i| ray(i).map_or(UNUSABLE, |r| (r.origin.map(T::to_f32), r.dir.map(T::to_f32), f32::INFINITY)),
+            |i, hit| {
+                answer(
+                    i,
+                    hit.and_then(|(s, triangle)| {
+                        let length = ray(i)?.length();
+                        Some(RayHit { t: f64::from(s) * length, object: 0, primitive: Some(triangle), normal: None, shape_error: 0.0 })
+                    }),
+                )
+            },
+        );
+    }
+
+    /// The rays interleaved ([`MeshBvh::occluded_batch`]) unless they are
+    /// coherent, answers as [`MeshAccel::occluded`]'s.
+    fn occluded_all<T: Float>(&self, n: usize, ray: impl Fn(usize) -> Option<(BatchRay<T>, f64)>, mut answer: impl FnMut(usize, bool)) {
+        if self.coherent(n, |i| ray(i).map(|(r, _)| vectors(&r))) {
+            for i in 0..n {
+                answer(i, ray(i).is_some_and(|(ray, t_max)| self.occluded(&ray, t_max)));
+            }
+            return;
+        }
+        self.bvh.occluded_batch(
+            n,
+            |i| ray(i).map_or(UNUSABLE, |(r, t_max)| (r.origin.map(T::to_f32), r.dir.map(T::to_f32), occlusion_limit(&r, t_max))),
+            answer,
+        );
+    }
+}
+
+/// Neighbouring ray pairs [`MeshAccel::coherent`] looks at: enough to tell camera
+/// rays from scattered ones, few enough to cost nothing next to 1024 walks.
+const COHERENCE_PAIRS: usize = 32;
+
+/// What the kernels are given for a ray that [`BatchRay::new`] refused: a zero
+/// direction, which [`crate::accel::MeshBvh`] answers as a miss without a walk.
+const UNUSABLE: ([f32; 3], [f32; 3], f32) = ([0.0; 3], [0.0; 3], f32::INFINITY);
+
+/// A ray's origin and direction in `f64`.
+#[inline]
+fn vectors<T: Float>(ray: &BatchRay<T>) -> (Vec3, Vec3) {
+    (Vec3::from_array(ray.origin.map(T::to_f64)), Vec3::from_array(ray.dir.map(T::to_f64)))
+}
+
+/// The kernel's parameter limit for a distance limit `t_max`: `t_max / |d|`, rounded to `f32`.
+#[inline]
+fn occlusion_limit<T: Float>(ray: &BatchRay<T>, t_max: f64) -> f32 {
+    (t_max / ray.length()) as f32
 }
 
 #[cfg(test)]
@@ -284,6 +373,41 @@ mod tests {
         let mem = accel.memory();
         assert_eq!(mem.triangles, f.len());
         assert!(mem.bytes_per_triangle > 36.0 && mem.bytes_per_triangle < 100.0, "{mem:?}");
+    }
+
+    #[test]
+    fn camera_rays_go_one_by_one_scattered_rays_interleaved_with_the_same_answers() {
+        let (v, f) = sphere(3, [0.0; 3]);
+        let accel = MeshAccel::new(&v, &f).unwrap();
+        // A 40x40 camera looking at the sphere, rays in pixel order.
+        let camera: Vec<[f32; 3]> = (0..1600).map(|i| [(i % 40) as f32 / 20.0 - 1.0, (i / 40) as f32 / 20.0 - 1.0, 4.0]).collect();
+        let eye = vec![[0.0f32, 0.0, -5.0]; camera.len()];
+        let mut rng = Rng::for_sample(9, 0, 0);
+        let mut r = |s: f64| (rng.uniform() * 2.0 - 1.0) as f32 * s as f32;
+        let origins: Vec<[f32; 3]> = (0..1600).map(|_| [r(3.0), r(3.0), r(3.0)]).collect();
+        let mut dirs: Vec<[f32; 3]> = (0..1600).map(|_| [r(1.0), r(1.0), r(1.0)]).collect();
+        dirs[17] = [0.0; 3];
+        dirs[901] = [f32::INFINITY, 0.0, 0.0];
+        let vectors_of = |o: &[[f32; 3]], d: &[[f32; 3]]| {
+            let (o, d) = (o.to_vec(), d.to_vec());
+            move |i: usize| BatchRay::new(o[i], d[i]).map(|r| vectors(&r))
+        };
+        assert!(accel.coherent(camera.len(), vectors_of(&eye, &camera)), "camera rays are coherent");
+        assert!(!accel.coherent(dirs.len(), vectors_of(&origins, &dirs)), "scattered rays are not");
+        for (o, d) in [(&eye, &camera), (&origins, &dirs)] {
+            let (t, _, prim) = cast(&accel, o, d, 2);
+            let limits: Vec<f64> = (0..o.len()).map(|i| [2.5, 4.0, f64::INFINITY][i % 3]).collect();
+            let mut hit = vec![false; o.len()];
+            batch::occluded(&accel, &RaySlices::new(o, d).unwrap(), Some(&limits), &mut hit, 2).unwrap();
+            for i in 0..o.len() {
+                let ray = BatchRay::new(o[i], d[i]);
+                let one = ray.and_then(|ray| accel.nearest(&ray));
+                assert_eq!(t[i].to_bits(), one.map_or(f32::INFINITY, |h| h.t as f32).to_bits(), "ray {i}");
+                assert_eq!(prim[i], one.and_then(|h| h.primitive).map_or(-1, i64::from), "ray {i}");
+                assert_eq!(hit[i], ray.is_some_and(|ray| accel.occluded(&ray, limits[i])), "ray {i}");
+            }
+            assert!(hit.iter().any(|&h| h) && hit.iter().any(|&h| !h));
+        }
     }
 
     #[test]

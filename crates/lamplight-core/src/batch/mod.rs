@@ -130,6 +130,27 @@ pub trait BatchTarget: Sync {
 
     /// Whether `ray` hits anything at a distance `t` in `(0, t_max)`.
     fn occluded<T: Float>(&self, ray: &BatchRay<T>, t_max: f64) -> bool;
+
+    /// [`BatchTarget::nearest`] of rays `0..n`, ray `i` being `ray(i)` (`None`
+    /// misses): `answer(i, hit)` receives each ray's answer once, in any order.
+    /// A target may overlap the rays' work (the mesh does, [`MeshAccel`]); the
+    /// answers must be those of `nearest`, bit for bit.
+    #[inline]
+    fn nearest_all<T: Float>(&self, n: usize, ray: impl Fn(usize) -> Option<BatchRay<T>>, mut answer: impl FnMut(usize, Option<RayHit>)) {
+        for i in 0..n {
+            answer(i, ray(i).and_then(|ray| self.nearest(&ray)));
+        }
+    }
+
+    /// [`BatchTarget::occluded`] of rays `0..n`, ray `i` being `ray(i)` with its
+    /// limit (`None` rays are not occluded), with the same freedom as
+    /// [`BatchTarget::nearest_all`].
+    #[inline]
+    fn occluded_all<T: Float>(&self, n: usize, ray: impl Fn(usize) -> Option<(BatchRay<T>, f64)>, mut answer: impl FnMut(usize, bool)) {
+        for i in 0..n {
+            answer(i, ray(i).is_some_and(|(ray, t_max)| self.occluded(&ray, t_max)));
+        }
+    }
 }
 
 /// A batch of rays, read one at a time (so that callers can keep theirs in
@@ -303,10 +324,11 @@ pub fn cast<B: BatchTarget, R: Rays, T: Float>(target: &B, rays: &R, out: Hits<'
         .collect();
     run(threads, || {
         parts.into_par_iter().for_each(|mut part| {
-            for j in 0..part.t.len() {
+            let ray = |j: usize| {
                 let (o, d) = rays.get(part.start + j);
-                let ray = BatchRay::new(o, d);
-                let hit = ray.and_then(|ray| target.nearest(&ray));
+                BatchRay::new(o, d)
+            };
+            target.nearest_all(part.t.len(), ray, |j, hit| {
                 part.t[j] = T::from_f64(hit.map_or(f64::INFINITY, |h| h.t));
                 if let Some(object) = part.object.as_deref_mut() {
                     object[j] = hit.map_or(-1, |h| h.object as i64);
@@ -317,12 +339,14 @@ pub fn cast<B: BatchTarget, R: Rays, T: Float>(target: &B, rays: &R, out: Hits<'
                 if let Some(normal) = part.normal.as_deref_mut() {
                     normal[j] = hit.and_then(|h| h.normal).unwrap_or([0.0; 3]).map(T::from_f64);
                 }
-                if let (Some(error), Some(ray), Some(hit)) = (part.error.as_deref_mut(), ray, hit) {
-                    error[j] = T::from_f64(answer_error::<T>(target.t_error(&ray, &hit), hit.t));
-                } else if let Some(error) = part.error.as_deref_mut() {
-                    error[j] = T::from_f64(f64::INFINITY);
+                if let Some(error) = part.error.as_deref_mut() {
+                    // A hit comes only from a usable ray, so `ray(j)` is `Some` with it.
+                    error[j] = T::from_f64(match (ray(j), hit) {
+                        (Some(ray), Some(hit)) => answer_error::<T>(target.t_error(&ray, &hit), hit.t),
+                        _ => f64::INFINITY,
+                    });
                 }
-            }
+            });
         })
     })
 }
@@ -352,12 +376,12 @@ pub fn occluded<B: BatchTarget, R: Rays>(
     }
     run(threads, || {
         hit_out.par_chunks_mut(CHUNK).enumerate().for_each(|(k, hits)| {
-            for (j, hit) in hits.iter_mut().enumerate() {
-                let i = k * CHUNK + j;
-                let (o, d) = rays.get(i);
-                let limit = t_max.map_or(f64::INFINITY, |t| t[i]);
-                *hit = BatchRay::new(o, d).is_some_and(|ray| target.occluded(&ray, limit));
-            }
+            let start = k * CHUNK;
+            let ray = |j: usize| {
+                let (o, d) = rays.get(start + j);
+                BatchRay::new(o, d).map(|ray| (ray, t_max.map_or(f64::INFINITY, |t| t[start + j])))
+            };
+            target.occluded_all(hits.len(), ray, |j, hit| hits[j] = hit);
         })
     })
 }
