@@ -3,7 +3,7 @@
 //! is every pixel whose camera ray hit something (its value differs from the
 //! neutral background); a pixel clips when a channel reaches 1 (255 in a PNG).
 
-mod common;
+use crate::common;
 
 use std::fmt::Write;
 use std::path::Path;

@@ -3,7 +3,7 @@
 //! the camera and the lights written out; what cannot be converted is refused
 //! with one exact message.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 

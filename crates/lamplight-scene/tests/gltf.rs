@@ -2,7 +2,7 @@
 //! `.glb` and with an external `.bin`), the shared sample models, and a table
 //! of malformed files with the exact error each gives.
 
-mod common;
+use crate::common;
 
 use base64::Engine;
 use common::{error_of, shared_data, triangles, write_and_load};

@@ -7,7 +7,7 @@
 //! the tolerance admits last-bit differences of `tan`/`powf` between C libraries,
 //! which can move a value across a rounding boundary or, rarely, a silhouette pixel.
 //!
-//! To regenerate after an intended change: `LAMPLIGHT_BLESS=1 cargo test -p lamplight-scene --test golden`,
+//! To regenerate after an intended change: `LAMPLIGHT_BLESS=1 cargo test -p lamplight-scene --test all golden::`,
 //! then look at the new images before committing them. On failure the rendered image
 //! and a difference mask are written next to the test binary's target directory.
 

@@ -3,8 +3,6 @@
 //! `mesh` node with an emitting material (the last two placed by a transform, so
 //! through an instance).
 
-mod common;
-
 use std::path::Path;
 
 use lamplight_core::lights::LightSet;

@@ -2,7 +2,7 @@
 //! normals, materials), the shared bunny and Cornell box, and a table of
 //! malformed files with the exact error each gives.
 
-mod common;
+use crate::common;
 
 use common::{error_of, shared_data, triangles, write_and_load};
 use lamplight_core::materials::{Reflection, Refraction};

@@ -2,7 +2,7 @@
 //! with and without normals, polygons, strips), the shared real meshes, and a
 //! table of malformed files with the exact error each gives.
 
-mod common;
+use crate::common;
 
 use common::{error_of, shared_data, write_and_load};
 use lamplight_core::math::Vec3;

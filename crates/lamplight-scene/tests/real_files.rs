@@ -3,7 +3,7 @@
 //! black), not blown out (not a white glow), and no sample is NaN or infinite.
 //! Skips with a message when the folder is absent.
 
-mod common;
+use crate::common;
 
 use common::shared_data;
 use lamplight_core::{render_image, RenderControl, RenderOptions};

@@ -1,6 +1,6 @@
 //! `docs/scene-format.md` holds the registry's reference tables word for word:
 //! a kind or parameter added to the registry without the docs fails here.
-//! `LAMPLIGHT_BLESS=1 cargo test -p lamplight-scene --test reference` rewrites
+//! `LAMPLIGHT_BLESS=1 cargo test -p lamplight-scene --test all reference::` rewrites
 //! the generated part after a deliberate change.
 
 use std::path::Path;

@@ -3,7 +3,7 @@
 //! same material with the texel's constant, and the shared glTF samples with
 //! their own textures.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

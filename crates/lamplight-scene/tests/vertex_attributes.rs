@@ -1,7 +1,7 @@
 //! Texture coordinates, colours and tangents read from OBJ, PLY and glTF files
 //! the test writes, and the messages of broken ones.
 
-mod common;
+use crate::common;
 
 use base64::Engine;
 use common::{error_of, write_and_load};

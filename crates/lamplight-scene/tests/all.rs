@@ -1,0 +1,37 @@
+//! Every integration test of this crate, as modules of one test binary: each
+//! binary links the whole dependency graph, so one binary instead of one per
+//! file saves most of `cargo test`'s link time and the generic code compiled
+//! again for each (issue 24, the test suite's time). A new test file is one
+//! more `mod` line here; `cargo test -p lamplight-scene --test all NAME` runs one.
+
+mod common;
+
+mod alpha_blend;
+mod bare_mesh;
+mod blend;
+mod business_card;
+mod cameras;
+mod convert;
+mod environment;
+mod errors;
+mod explain;
+mod fuzz_props;
+mod gltf;
+mod golden;
+mod lights;
+mod mesh_lights;
+mod mitsuba;
+mod mitsuba_bsdfs;
+mod mitsuba_principled;
+mod mitsuba_sensors;
+mod native;
+mod obj;
+mod path_convergence;
+mod path_footprint;
+mod ply;
+mod real_files;
+mod reference;
+mod special_files;
+mod textures;
+mod transmission;
+mod vertex_attributes;
