@@ -9,7 +9,8 @@
 //!   [`Costs`] (objects or triangles).
 //! - [`MeshBvh`] (`mesh_bvh.rs`), batch ray casting's ([`crate::batch::MeshAccel`]):
 //!   8-wide, one `f32` mesh, triangles stored inline in 4-wide packets; its
-//!   traversal (`mesh_walk.rs`) interleaves the rays of a batch.
+//!   traversal interleaves scattered rays (`mesh_walk.rs`) and walks coherent
+//!   ones eight to a packet (`mesh_packet.rs`).
 //!
 //! **Why two SAH builders.** Both bin centroids into 16 bins per axis, fall back
 //! to median splits below a depth, and build large subtrees on other threads, but
@@ -36,6 +37,7 @@
 mod aabb;
 mod bvh;
 mod mesh_bvh;
+mod mesh_packet;
 mod mesh_walk;
 mod sah;
 mod slab;
@@ -44,4 +46,5 @@ pub mod tri4;
 pub use aabb::Aabb;
 pub use bvh::{Bvh, BvhStats};
 pub use mesh_bvh::{MeshBvh, MeshBvhStats};
+pub use mesh_packet::{PacketRay, PACKET};
 pub use sah::Costs;

@@ -117,6 +117,69 @@ pub(super) fn test8_avx2(ray: &SlabRay, planes: &[[f32; 8]; 6], t_max: f32) -> (
     (out, _mm256_movemask_ps(hit) as u32)
 }
 
+/// Eight rays prepared for testing one box at a time, a ray per AVX lane: the
+/// packet walk of camera rays (`mesh_packet.rs`). Lane `i` holds ray `i`'s
+/// [`SlabRay`] values, so [`SlabPacket::test_box`] does per lane exactly what
+/// [`test8_avx2`] does per box: the same operations on the same values in the same
+/// order, and the same bits.
+#[cfg(target_arch = "x86_64")]
+#[derive(Clone, Copy)]
+pub(super) struct SlabPacket {
+    upper_origin: [std::arch::x86_64::__m256; 3],
+    lower_origin: [std::arch::x86_64::__m256; 3],
+    inv_dir: [std::arch::x86_64::__m256; 3],
+    t_min: std::arch::x86_64::__m256,
+}
+
+#[cfg(target_arch = "x86_64")]
+impl SlabPacket {
+    /// The eight rays' values, lane by lane.
+    #[target_feature(enable = "avx2")]
+    #[inline]
+    pub(super) fn new(rays: &[SlabRay; 8]) -> SlabPacket {
+        use std::arch::x86_64::*;
+        let lanes = |f: &dyn Fn(&SlabRay) -> f32| {
+            let v = rays.each_ref().map(f);
+            // SAFETY: eight f32s; unaligned load.
+            unsafe { _mm256_loadu_ps(v.as_ptr()) }
+        };
+        let axes = |f: &dyn Fn(&SlabRay, usize) -> f32| [0, 1, 2].map(|a| lanes(&|r| f(r, a)));
+        SlabPacket {
+            upper_origin: axes(&|r, a| r.upper_origin[a].x),
+            lower_origin: axes(&|r, a| r.lower_origin[a].x),
+            inv_dir: axes(&|r, a| r.inv_dir[a].x),
+            t_min: lanes(&|r| r.t_min.x),
+        }
+    }
+
+    /// Box `slot` of `planes` against the eight rays, each with its own `t_max`
+    /// lane: the entry distances and the mask of the rays that enter it.
+    #[target_feature(enable = "avx2")]
+    #[inline]
+    pub(super) fn test_box(
+        &self,
+        planes: &[[f32; 8]; 6],
+        slot: usize,
+        t_max: std::arch::x86_64::__m256,
+    ) -> (std::arch::x86_64::__m256, u32) {
+        use std::arch::x86_64::*;
+        let axis = |a: usize| {
+            let inv = self.inv_dir[a];
+            let to_min = _mm256_mul_ps(_mm256_sub_ps(_mm256_set1_ps(planes[a][slot]), self.upper_origin[a]), inv);
+            let to_max = _mm256_mul_ps(_mm256_sub_ps(_mm256_set1_ps(planes[a + 3][slot]), self.lower_origin[a]), inv);
+            (_mm256_min_ps(to_min, to_max), _mm256_max_ps(to_min, to_max))
+        };
+        let (near_x, far_x) = axis(0);
+        let (near_y, far_y) = axis(1);
+        let (near_z, far_z) = axis(2);
+        let enter = _mm256_max_ps(_mm256_max_ps(_mm256_max_ps(near_x, near_y), near_z), self.t_min);
+        let exit = _mm256_min_ps(_mm256_min_ps(_mm256_min_ps(far_x, far_y), far_z), t_max);
+        let below = _mm256_mul_ps(enter, _mm256_set1_ps(1.0 - WIDEN));
+        let above = _mm256_mul_ps(exit, _mm256_set1_ps(1.0 + WIDEN));
+        (enter, _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OS>(below, above)) as u32)
+    }
+}
+
 /// The entry distances of eight boxes (`planes[r]` is row `r` of the eight) and
 /// the mask of those entered before `t_max`: one AVX test when `AVX2` (set only
 /// on CPUs that have it, by a caller compiled for it), else two four-box tests,
@@ -217,6 +280,57 @@ mod tests {
         let (enter, mask) = back.test(rows([0.0; 3], [1.0; 3]), f32::INFINITY);
         assert_eq!(mask, 0b1111);
         assert!((enter.x - 2.0).abs() < 1e-5);
+    }
+
+    /// The packet test of one box against eight rays gives, lane by lane, the
+    /// bits of each ray's own eight-box test (random rays and boxes as below).
+    #[cfg(target_arch = "x86_64")]
+    #[test]
+    #[allow(clippy::needless_range_loop)] // slots index two rows of the planes at once
+    fn one_box_against_eight_rays_is_each_rays_own_test_bit_for_bit() {
+        if !std::arch::is_x86_feature_detected!("avx2") {
+            eprintln!("skipped: this CPU has no AVX2");
+            return;
+        }
+        let mut rng = crate::sampling::Rng::for_sample(4, 0, 0);
+        let mut value = |scale: f64| ((rng.uniform() - 0.5) * scale) as f32;
+        let mut entered = 0;
+        for case in 0..500 {
+            let mut planes = [[0.0f32; 8]; 6];
+            for slot in 0..8 {
+                for axis in 0..3 {
+                    let (a, b) = (value(8.0), value(8.0));
+                    (planes[axis][slot], planes[axis + 3][slot]) = (a.min(b), a.max(b));
+                }
+            }
+            let rays: [SlabRay; 8] = std::array::from_fn(|lane| {
+                let mut dir = Vec3::new(value(2.0).into(), value(2.0).into(), value(2.0).into());
+                if (case + lane) % 3 == 0 {
+                    dir[lane % 3] = 0.0;
+                }
+                let origin = Vec3::new(value(12.0).into(), value(12.0).into(), value(12.0).into());
+                SlabRay::new(origin, dir, if lane == 5 { 0.5 } else { 0.0 })
+            });
+            let t_max: [f32; 8] = std::array::from_fn(|lane| if (case + lane) % 2 == 0 { f32::INFINITY } else { value(10.0).abs() });
+            // SAFETY: the CPU has AVX2 (checked above).
+            unsafe {
+                use std::arch::x86_64::*;
+                let packet = SlabPacket::new(&rays);
+                let limits = _mm256_loadu_ps(t_max.as_ptr());
+                for slot in 0..8 {
+                    let (enter, mask) = packet.test_box(&planes, slot, limits);
+                    let mut lanes = [0.0f32; 8];
+                    _mm256_storeu_ps(lanes.as_mut_ptr(), enter);
+                    for lane in 0..8 {
+                        let (want, want_mask) = test8_avx2(&rays[lane], &planes, t_max[lane]);
+                        assert_eq!(lanes[lane].to_bits(), want[slot].to_bits(), "case {case} slot {slot} lane {lane}");
+                        assert_eq!(mask >> lane & 1, want_mask >> slot & 1, "case {case} slot {slot} lane {lane}");
+                        entered += mask >> lane & 1;
+                    }
+                }
+            }
+        }
+        assert!(entered > 1000 && entered < 31000, "both entered and missed boxes: {entered}");
     }
 
     /// The AVX test of eight boxes gives the bits of two four-box tests: random
