@@ -12,10 +12,10 @@ use std::sync::{Arc, Mutex};
 
 use lamplight_core::camera::Camera;
 use lamplight_core::Scene as CoreScene;
-use lamplight_scene::build::{self, imported, SceneFile};
 use lamplight_scene::builtin::{self, Builtin};
 use lamplight_scene::description::{Node, SceneDescription};
 use lamplight_scene::formats::native::Source as FileSource;
+use lamplight_scene::instantiate::{self, imported, SceneFile};
 use lamplight_scene::request::{program_defaults, Defaults, SceneRequest};
 use lamplight_scene::{import, LoadError};
 use pyo3::exceptions::PyValueError;
@@ -121,11 +121,11 @@ impl Scene {
                 ((b.build)().map_err(|e| SceneError::new_err(format!("cannot build scene '{}': {e}", b.name)))?, Vec::new())
             }
             Origin::Toml(file) => {
-                let built = build::build_with_warnings(&file.description, &file.source).map_err(load_error)?;
+                let built = instantiate::build_with_warnings(&file.description, &file.source).map_err(load_error)?;
                 (built.scene, built.warnings)
             }
             Origin::Dict { file, .. } => {
-                let built = build::build_with_warnings(&file.description, &file.source).map_err(dict_error)?;
+                let built = instantiate::build_with_warnings(&file.description, &file.source).map_err(dict_error)?;
                 (built.scene, built.warnings)
             }
             Origin::Mesh(path) => {
@@ -238,7 +238,7 @@ impl Scene {
         let table = convert::table(plain.bind(py), "camera")?;
         let desc = Node::from_table(table, "camera", Some("perspective"), false).map_err(dict_param_error)?;
         // Built now, so that a bad camera fails here rather than at the first render.
-        let camera = lamplight_scene::build::camera::camera(&desc).map_err(dict_param_error)?;
+        let camera = lamplight_scene::instantiate::camera::camera(&desc).map_err(dict_param_error)?;
         let origin = match &self.origin {
             Origin::Builtin(b) => Origin::Builtin(b),
             Origin::Toml(file) => Origin::Toml(file.clone()),

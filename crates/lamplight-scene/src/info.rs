@@ -3,7 +3,7 @@
 //!
 //! A mesh file (OBJ, PLY, glTF, GLB) is described as the importer read it, so
 //! "no camera" and "no lights" say what a render will add
-//! ([`crate::build::viewer`]). A scene file (or built-in scene) is built, and
+//! ([`crate::instantiate::viewer`]). A scene file (or built-in scene) is built, and
 //! described from the built scene and its description.
 
 use std::fmt::Write;
@@ -14,8 +14,8 @@ use lamplight_core::math::Vec3;
 use lamplight_core::params::Value;
 use lamplight_core::Scene;
 
-use crate::build::SceneFile;
 use crate::import::{self, Imported, ImportedLight, ImportedProjection};
+use crate::instantiate::SceneFile;
 use crate::request::{RequestError, SceneRequest, SceneSpec};
 
 /// The description of the scene `request` names, one `key: value` line each

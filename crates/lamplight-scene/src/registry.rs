@@ -5,11 +5,11 @@
 //! `--integrator` and Python's `integrator=` all read.
 //!
 //! A kind is one file (its struct, its `KIND` with the parameter table, its
-//! tests) and one line here. The builder ([`crate::build`]) finds kinds only
+//! tests) and one line here. The builder ([`crate::instantiate`]) finds kinds only
 //! through these lists (`Kind::find`), the reference in `docs/scene-format.md` is generated
 //! from them ([`reference()`]), and the error tests feed every kind a mistyped key.
 //! Kinds that need this crate (an implicit surface's expression parser) live in
-//! `build/`; the structural node types (`group`, `instance`, `mesh`) are the
+//! `instantiate/`; the structural node types (`group`, `instance`, `mesh`) are the
 //! builder's own and are documented by [`STRUCTURAL`].
 
 use lamplight_core::camera::{self, CameraKind};
@@ -18,7 +18,7 @@ use lamplight_core::materials::{self, MaterialKind, TextureKind};
 use lamplight_core::params::{Param, ParamType as T};
 use lamplight_core::shapes::{self, quadric::kinds as quadrics, ShapeKind};
 
-use crate::build::implicit;
+use crate::instantiate::implicit;
 
 /// Shape kinds.
 pub static SHAPES: &[&ShapeKind] = &[

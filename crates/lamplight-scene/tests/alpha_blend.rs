@@ -5,7 +5,7 @@ use std::path::Path;
 
 use lamplight_core::math::{Rgb, Vec3};
 use lamplight_core::{integrators, render_image, RenderControl, RenderOptions};
-use lamplight_scene::build::SceneFile;
+use lamplight_scene::instantiate::SceneFile;
 
 /// A blue glowing quad of coverage 0.3 in front of a red glowing one, seen
 /// head-on by an orthographic camera that they fill.

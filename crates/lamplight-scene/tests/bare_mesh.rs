@@ -1,5 +1,5 @@
 //! What a bare mesh (a file with no camera and no lights) gets: the viewer's
-//! framing and lighting (`build::viewer`), measured on renders. The object mask
+//! framing and lighting (`instantiate::viewer`), measured on renders. The object mask
 //! is every pixel whose camera ray hit something (its value differs from the
 //! neutral background); a pixel clips when a channel reaches 1 (255 in a PNG).
 
@@ -11,7 +11,7 @@ use std::path::Path;
 use lamplight_core::film::Image;
 use lamplight_core::math::Rgb;
 use lamplight_core::{render_image, RenderControl, RenderOptions, Scene};
-use lamplight_scene::build::{imported, viewer};
+use lamplight_scene::instantiate::{imported, viewer};
 
 /// A UV sphere of radius `r` about `c` (`n` segments around, `n / 2` rings), as OBJ text.
 fn sphere_obj(c: [f64; 3], r: f64, n: usize, mtl: Option<&str>) -> String {

@@ -6,7 +6,7 @@
 use std::path::Path;
 
 use lamplight_core::{integrators, render_image, RenderControl, RenderOptions};
-use lamplight_scene::build::SceneFile;
+use lamplight_scene::instantiate::SceneFile;
 
 const DIFFUSE: &str = "{ color = 1, kd = 0.8, ka = 0, ks = 0 }";
 const MIRROR: &str = "{ color = 1, kd = 0, ka = 0, ks = 0, reflection = { type = \"constant\", weight = 1 } }";

@@ -6,7 +6,7 @@ use std::path::Path;
 use lamplight_core::camera::{Camera, Fov, Orthographic, Perspective, ThinLens};
 use lamplight_core::math::Vec3;
 use lamplight_core::{render_image, RenderControl, RenderOptions, Scene};
-use lamplight_scene::build::SceneFile;
+use lamplight_scene::instantiate::SceneFile;
 
 const SCENE: &str = "[render]\nspp = 4\n\
     [materials.white]\ncolor = 1\nkd = 1\nka = 0\n\

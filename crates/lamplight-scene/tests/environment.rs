@@ -6,7 +6,7 @@ use std::path::Path;
 
 use lamplight_core::film::Image;
 use lamplight_core::{integrators, render_image, RenderControl, RenderOptions};
-use lamplight_scene::build::SceneFile;
+use lamplight_scene::instantiate::SceneFile;
 
 /// An 8 x 4 map, each texel a different colour: texel `(x, y)` is `(x + 1, y + 1, 0.5)`.
 fn write_map(dir: &Path) {

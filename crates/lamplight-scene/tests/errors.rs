@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use lamplight_scene::build::SceneFile;
+use lamplight_scene::instantiate::SceneFile;
 
 const CAMERA: &str = "[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\nvfov = 40\n";
 
@@ -205,7 +205,7 @@ fn every_registered_kind_reports_a_mistyped_parameter_at_its_key() {
         let text = format!("[camera]\ntype = \"{name}\"\n{} = 1\n", mistyped(key));
         cases.push(("camera".into(), text, (3, 1), key));
     }
-    let key = lamplight_scene::build::RENDER_PARAMS[2].name;
+    let key = lamplight_scene::instantiate::RENDER_PARAMS[2].name;
     cases.push(("render".into(), with_camera(&format!("[render]\n{} = 1\n", mistyped(key))), (6, 1), key));
     assert!(cases.len() > 20, "every kind is covered: {}", cases.len());
     let mut failures = Vec::new();

@@ -6,7 +6,7 @@
 
 use std::path::Path;
 
-use lamplight_scene::build::SceneFile;
+use lamplight_scene::instantiate::SceneFile;
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed};
 

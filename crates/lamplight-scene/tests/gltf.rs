@@ -303,7 +303,7 @@ fn orthographic_cameras_see_their_window_at_every_aspect() {
     let imported = write_and_load(dir.path(), "ortho.gltf", &orthographic_scene(3.0, 1.5)).unwrap();
     assert_eq!(imported.cameras[0].projection, ImportedProjection::Orthographic { xmag: 3.0, ymag: 1.5 });
     assert!(!imported.warnings.iter().any(|w| w.contains("orthographic")), "{:?}", imported.warnings);
-    let scene = lamplight_scene::build::imported::build(&dir.path().join("ortho.gltf"), &imported).unwrap();
+    let scene = lamplight_scene::instantiate::imported::build(&dir.path().join("ortho.gltf"), &imported).unwrap();
     let eye = Vec3::new(0.0, 1.0, 15.0);
     // xmag and ymag are half-extents; an image of another aspect than 3 : 1.5
     // widens the window along one side, never crops or stretches it.

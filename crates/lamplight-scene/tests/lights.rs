@@ -3,7 +3,7 @@
 use std::path::Path;
 
 use lamplight_core::{render_image, RenderControl, RenderOptions};
-use lamplight_scene::build::SceneFile;
+use lamplight_scene::instantiate::SceneFile;
 
 /// A white Lambertian floor (`kd = 1`, no ambient) seen from the light's own
 /// position straight down, so that pixel `(x, y)` sees the floor point at angle

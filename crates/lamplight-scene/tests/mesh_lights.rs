@@ -6,7 +6,7 @@
 use std::path::Path;
 
 use lamplight_core::lights::LightSet;
-use lamplight_scene::build::{imported, SceneFile};
+use lamplight_scene::instantiate::{imported, SceneFile};
 
 #[test]
 fn obj_with_an_emissive_mtl_is_an_area_light_and_needs_no_default_light() {

@@ -383,7 +383,7 @@ fn mutated_scenes_never_panic() {
         let Ok(text) = String::from_utf8(bytes) else { continue };
         if let Ok((table, source)) = mitsuba::parse_table(path, text, &[]) {
             if let Ok(description) = lamplight_scene::description::SceneDescription::from_table(table) {
-                let file = lamplight_scene::build::SceneFile { description, source };
+                let file = lamplight_scene::instantiate::SceneFile { description, source };
                 let _ = file.build();
             }
         }

@@ -138,7 +138,7 @@ fn toml_kinds_check_their_numbers() {
     let sphere = "[[objects]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"m\"\n";
     let build = |material: &str| {
         let text = format!("{camera}[materials.m]\n{material}\n{sphere}");
-        match lamplight_scene::build::SceneFile::parse(Path::new("t.toml"), &text) {
+        match lamplight_scene::instantiate::SceneFile::parse(Path::new("t.toml"), &text) {
             Ok(f) => f.build().map_err(|e| e.to_string()),
             Err(e) => Err(e.to_string()),
         }

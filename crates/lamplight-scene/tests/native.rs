@@ -6,8 +6,8 @@ use std::path::{Path, PathBuf};
 
 use lamplight_core::film::Image;
 use lamplight_core::{render_image, RenderControl, RenderOptions, Scene};
-use lamplight_scene::build::SceneFile;
 use lamplight_scene::builtin;
+use lamplight_scene::instantiate::SceneFile;
 
 fn example(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples").join(format!("{name}.toml"))

@@ -6,7 +6,7 @@ use std::path::Path;
 
 use lamplight_core::film::Image;
 use lamplight_core::{integrators, render_image, RenderControl, RenderOptions};
-use lamplight_scene::build::SceneFile;
+use lamplight_scene::instantiate::SceneFile;
 
 /// A 64 x 64 linear checker of one-texel cells, black and white: mean 0.5.
 fn write_checker(dir: &Path) {

@@ -7,7 +7,7 @@ use crate::common;
 
 use common::shared_data;
 use lamplight_core::{render_image, RenderControl, RenderOptions};
-use lamplight_scene::build::imported;
+use lamplight_scene::instantiate::imported;
 
 const FILES: &[&str] = &[
     "meshes/stanford-bunny.obj",

@@ -20,7 +20,7 @@ const READERS: &[&str] = &["toml", "npy", "exr", "hdr", "obj", "ply", "gltf", "g
 fn read(path: &Path) -> Result<(), String> {
     let ext = path.extension().and_then(|e| e.to_str()).unwrap_or_default();
     match ext {
-        "toml" => lamplight_scene::build::SceneFile::read(path).and_then(|f| f.settings().map(drop)).map_err(|e| e.to_string()),
+        "toml" => lamplight_scene::instantiate::SceneFile::read(path).and_then(|f| f.settings().map(drop)).map_err(|e| e.to_string()),
         "npy" => lamplight_scene::npy::read(path).and_then(|a| a.rows3_f32().map(drop)).map_err(|e| e.to_string()),
         "exr" | "hdr" => lamplight_scene::env_map::read_environment(path).map(drop).map_err(|e| e.to_string()),
         _ => lamplight_scene::import::load(path).map(drop).map_err(|e| e.to_string()),

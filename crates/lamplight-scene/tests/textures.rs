@@ -9,7 +9,7 @@ use std::path::Path;
 
 use lamplight_core::film::{srgb_decode, Image};
 use lamplight_core::{integrators, render_image, RenderControl, RenderOptions};
-use lamplight_scene::build::SceneFile;
+use lamplight_scene::instantiate::SceneFile;
 
 /// A 4 x 2 PNG, texel `(x, y)` (row 0 at the top) of 8-bit sRGB `(60 x + 10, 200 - 90 y, 128)`.
 fn texel8(x: u32, y: u32) -> [u8; 3] {
@@ -126,7 +126,7 @@ fn bad_texture_tables_name_their_key() {
 fn seen_and_texture_means(file: &str) -> Option<([f64; 3], [f64; 3], usize)> {
     let data = common::shared_data("gltf_samples_show_their_texture_colours")?;
     let path = data.join(file);
-    let scene = lamplight_scene::build::imported::load(&path).unwrap_or_else(|e| panic!("{e}"));
+    let scene = lamplight_scene::instantiate::imported::load(&path).unwrap_or_else(|e| panic!("{e}"));
     let (w, h) = (64u32, 64u32);
     let mut sum = [0.0; 3];
     let mut n = 0;

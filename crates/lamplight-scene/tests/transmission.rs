@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use lamplight_core::{integrators, render_image, RenderControl, RenderOptions};
-use lamplight_scene::build::SceneFile;
+use lamplight_scene::instantiate::SceneFile;
 
 const CAMERA: &str =
     "[camera]\ntype = \"orthographic\"\neye = [0.5, 0.5, 5]\nlook_at = [0.5, 0.5, 0]\nhalf_width = 0.5\nhalf_height = 0.5\n";

@@ -167,7 +167,7 @@ mod tests {
         let c = ViewCamera { eye: Vec3::new(1.3, 1.6, 3.0), look_at: Vec3::new(-0.2, 0.25, 0.8), up: Vec3::Y, vfov: 42.0 };
         assert_eq!(c.to_toml(), "[camera]\neye = [1.3, 1.6, 3]\nlook_at = [-0.2, 0.25, 0.8]\nup = [0, 1, 0]\nvfov = 42\n");
         let c = ViewCamera { eye: Vec3::new(0.3, 1.2e-17, 2.0), look_at: Vec3::new(-0.7173913, 0.0, -1.45217), up: Vec3::Y, vfov: 37.5 };
-        let file = lamplight_scene::build::SceneFile::parse(std::path::Path::new("view.toml"), &c.to_toml()).unwrap();
+        let file = lamplight_scene::instantiate::SceneFile::parse(std::path::Path::new("view.toml"), &c.to_toml()).unwrap();
         let (read, built) = (file.build().unwrap().camera, c.build().unwrap());
         for (x, y) in [(0.5, 0.5), (99.5, 40.25)] {
             let (a, b) = (read.ray(x, y, 100, 50, (0.5, 0.5)), built.ray(x, y, 100, 50, (0.5, 0.5)));

@@ -1,5 +1,5 @@
 //! A mesh file (OBJ, PLY, glTF, GLB) as a TOML scene that renders to the same
-//! bytes as rendering the file itself ([`crate::build::imported`]):
+//! bytes as rendering the file itself ([`crate::instantiate::imported`]):
 //!
 //! - the geometry stays in the file: one `[meshes.STEM]` entry names it (a
 //!   path relative to the TOML), and one `mesh` node per part (`part = i`,
@@ -23,9 +23,9 @@ use lamplight_core::params::{Table, Value};
 
 use super::images::{relative_to, Images};
 use super::material::{item, material_table, num, read_back, rgb, same_material, table, vec3};
-use crate::build::{imported, viewer};
 use crate::error::LoadError;
 use crate::import::{self, ImportedLight, ImportedProjection};
+use crate::instantiate::{imported, viewer};
 
 /// The scene table of the mesh file `input` for a TOML written to `output`,
 /// the warnings, and the image files to extract (absolute path, bytes).

@@ -1,5 +1,5 @@
 //! The scene description: plain data between a scene source (a TOML file, a
-//! Python dict, later other renderers' formats) and [`crate::build`].
+//! Python dict, later other renderers' formats) and [`crate::instantiate`].
 //!
 //! Every format first produces a generic [`Table`] tree whose values and keys
 //! carry their place ([`Loc`]); [`SceneDescription::from_table`] then sorts the

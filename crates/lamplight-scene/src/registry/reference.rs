@@ -6,7 +6,7 @@ use std::fmt::Write;
 use lamplight_core::params::Param;
 
 use super::{CAMERAS, LIGHTS, MATERIALS, NODE_COMMON, SHAPES, SHAPE_COMMON, STRUCTURAL, TEXTURES};
-use crate::build::{RENDER_PARAMS, SCENE_PARAMS};
+use crate::instantiate::{RENDER_PARAMS, SCENE_PARAMS};
 
 /// Markdown tables of every kind and its parameters, in the order of the
 /// reference: top level, `[render]`, cameras, materials, textures, node keys,
@@ -18,7 +18,7 @@ pub fn reference() -> String {
         &mut out,
         "`environment`",
         "A sky of a colour or an equirectangular map, at infinity.",
-        crate::build::environment::ENVIRONMENT_PARAMS,
+        crate::instantiate::environment::ENVIRONMENT_PARAMS,
     );
     section(&mut out, "`[render]`", "", RENDER_PARAMS);
     for k in CAMERAS {
@@ -41,7 +41,7 @@ pub fn reference() -> String {
     for k in LIGHTS {
         section(&mut out, &format!("Light `{}`", k.name), k.summary, k.params);
     }
-    section(&mut out, "`[meshes.NAME]`", "give either `file` or `positions` + `indices`", crate::build::MESH_PARAMS);
+    section(&mut out, "`[meshes.NAME]`", "give either `file` or `positions` + `indices`", crate::instantiate::MESH_PARAMS);
     out
 }
 

@@ -16,9 +16,9 @@ use lamplight_core::film::Filter;
 use lamplight_core::integrators::{self, IntegratorEntry};
 use lamplight_core::{PixelWindow, RenderOptions, Scene};
 
-use crate::build::{imported, Built, SceneFile};
 use crate::builtin::{self, Builtin};
 use crate::import;
+use crate::instantiate::{imported, Built, SceneFile};
 
 mod output;
 mod sampling;
@@ -30,11 +30,11 @@ pub mod limits {
     /// Deepest ray depth. Whitted tracing may spawn a reflected and a refracted
     /// ray at every hit, so a camera ray's work grows as `2^depth`: 64 levels
     /// already allow more rays than any render could trace.
-    pub const MAX_DEPTH: u32 = crate::build::MAX_DEPTH_LIMIT;
+    pub const MAX_DEPTH: u32 = crate::instantiate::MAX_DEPTH_LIMIT;
     /// Most pixels in an image (`2^28`, e.g. 16384x16384).
-    pub const MAX_PIXELS: u64 = crate::build::MAX_PIXELS;
+    pub const MAX_PIXELS: u64 = crate::instantiate::MAX_PIXELS;
     /// Most samples per pixel.
-    pub const MAX_SPP: u32 = crate::build::MAX_SPP;
+    pub const MAX_SPP: u32 = crate::instantiate::MAX_SPP;
     /// Most worker threads: far above any machine's cores; more would only cost
     /// memory, and huge counts make the thread pool fail (the batch-ray API's
     /// limit too, so `render` and `raycast` agree).
@@ -42,7 +42,7 @@ pub mod limits {
     /// Longest time limit, seconds (about 31 years: beyond it is a typo).
     pub const MAX_TIME_LIMIT: f64 = 1e9;
     /// Most ray-march steps an implicit surface may take per ray (its `max_steps`).
-    pub const MAX_MARCH_STEPS: i64 = crate::build::implicit::MAX_STEPS;
+    pub const MAX_MARCH_STEPS: i64 = crate::instantiate::implicit::MAX_STEPS;
 }
 
 /// How the front end spells its options, for messages.
@@ -121,7 +121,7 @@ pub struct Defaults {
 
 impl Defaults {
     /// The settings of a scene file's `[render]` table.
-    pub fn from_settings(s: &crate::build::Settings) -> Defaults {
+    pub fn from_settings(s: &crate::instantiate::Settings) -> Defaults {
         Defaults {
             size: (s.width, s.height),
             spp: s.spp,

@@ -21,7 +21,7 @@ use super::properties::Plugin;
 use super::xml::El;
 use super::{entry, int, text, Ctx};
 
-const DEEPEST: i64 = crate::build::MAX_DEPTH_LIMIT as i64;
+const DEEPEST: i64 = crate::instantiate::MAX_DEPTH_LIMIT as i64;
 
 fn err(loc: &Loc, message: impl Into<String>) -> ParamError {
     ParamError { loc: loc.clone(), message: message.into() }

@@ -59,7 +59,7 @@ fn operation(op: &El) -> Result<Mat4, ParamError> {
             let angle = op.require("angle")?;
             let rad = parse_float(&angle.value, &angle.loc)?.to_radians();
             let unit = axis.try_normalize().ok_or_else(|| err(&op.loc, "rotate: the axis must not be zero"))?;
-            Ok(crate::build::transform::axis_rotation(unit, rad))
+            Ok(crate::instantiate::transform::axis_rotation(unit, rad))
         }
         "matrix" => {
             let v = op.require("value")?;

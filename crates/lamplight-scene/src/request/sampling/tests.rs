@@ -5,7 +5,7 @@ use std::path::Path;
 
 use lamplight_core::{Adaptive, Antialias, NoiseThreshold};
 
-use crate::build::SceneFile;
+use crate::instantiate::SceneFile;
 use crate::request::{AntialiasRequest, Naming, Request, SceneRequest};
 
 fn scene(render: &str) -> SceneRequest {

@@ -1,6 +1,7 @@
-//! A [`SceneDescription`] to a core [`Scene`]: settings, the camera, materials
-//! and the node tree, every kind found through [`crate::registry`] and every
-//! error a [`LoadError`] at the place of the key it concerns.
+//! The third stage, instantiate: a [`SceneDescription`] to a core [`Scene`]:
+//! settings, the camera, materials and the node tree, every kind found through
+//! [`crate::registry`] and every error a [`LoadError`] at the place of the key
+//! it concerns. (Named for what it does; `build/` reads as build output.)
 
 use std::path::Path;
 
