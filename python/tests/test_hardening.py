@@ -22,12 +22,12 @@ def scene_with(**parts):
     [
         (dict(width=2**32), "width must be at most 4294967295, got 4294967296"),
         (dict(height=-5), "height must be at least 1, got -5"),
-        (dict(spp=2**40), "spp must be at most 1048576, got 1099511627776"),
+        (dict(spp=2**40), "spp must be between 1 and 1048576, got 1099511627776"),
         (dict(threads=-1), "threads must be at least 0 (0 uses all cores), got -1"),
         (dict(threads=2**70), "threads must be at most 1024 (0 uses all cores), got 1180591620717411303424"),
         (dict(seed=-1), "seed must be at least 0, got -1"),
         (dict(seed=2**64), "seed must be at most 18446744073709551615, got 18446744073709551616"),
-        (dict(max_depth=2**33), "max_depth must be at most 64, got 8589934592"),
+        (dict(max_depth=2**33), "max_depth must be between 1 and 64 (work grows as 2^depth), got 8589934592"),
         (dict(window=(0, 0, -1, 2)), "window width must be at least 0, got -1"),
     ],
 )

@@ -34,7 +34,7 @@ use clap::Args;
 use lamplight_core::batch::{self, Hits, MeshAccel, RaySlices};
 use lamplight_scene::npy::{self, NpyError};
 
-use lamplight_scene::request::limits::MAX_THREADS;
+use lamplight_scene::request::{limits, Naming};
 
 use crate::args::UsageError;
 
@@ -94,9 +94,7 @@ fn check_writable(path: &Path) -> anyhow::Result<()> {
 
 /// Reads the mesh and the rays, casts, writes the answers.
 pub fn raycast_command(args: RaycastArgs) -> anyhow::Result<()> {
-    if args.threads > MAX_THREADS {
-        return Err(UsageError(format!("--threads must be at most {MAX_THREADS} (0 uses all cores), got {}", args.threads)).into());
-    }
+    limits::THREADS.check(args.threads as u64, Naming::Flags).map_err(UsageError)?;
     if args.repeat == 0 {
         return Err(UsageError("--repeat must be at least 1".into()).into());
     }

@@ -81,7 +81,7 @@ fn bad_input_is_one_line_and_exit_code_2() {
         ),
         (&["--pixel", "1,1", "--sample", "1"], "--sample 1 does not exist: the render takes 1 sample at pixel (1, 1), numbered 0 to 0"),
         (&["--pixel", "1,1", "--sample", "-1"], "invalid value '-1' for '--sample <K>': must be a positive number"),
-        (&["--pixel", "1,1", "--max-depth", "0"], "--max-depth must be between 1 and 64, got 0 (work grows as 2^depth)"),
+        (&["--pixel", "1,1", "--max-depth", "0"], "--max-depth must be between 1 and 64 (work grows as 2^depth), got 0"),
     ];
     for (extra, message) in cases {
         let mut args = vec!["explain", "spheres", "--width", "64"];

@@ -21,7 +21,7 @@ fn bad_input_stops_the_viewer_before_it_listens() {
     let out = lamplight(&["view", "luxo", "--max-depth", "65"]);
     assert_eq!(
         String::from_utf8_lossy(&out.stderr),
-        "lamplight: error: --max-depth must be between 1 and 64, got 65 (work grows as 2^depth)\n"
+        "lamplight: error: --max-depth must be between 1 and 64 (work grows as 2^depth), got 65\n"
     );
 }
 

@@ -49,7 +49,9 @@ pub mod shapes;
 
 pub use error::Error;
 pub use render::adaptive;
-pub use render::{render, render_image, Adaptive, Antialias, NoiseThreshold, PixelWindow, RenderControl, RenderOptions, RenderStats};
+pub use render::{
+    render, render_image, Adaptive, Antialias, NoiseThreshold, PixelWindow, RenderControl, RenderOptions, RenderStats, MAX_PIXELS,
+};
 pub use scene::{Scene, SceneBuilder};
 
 /// The types most programs need.

@@ -12,6 +12,8 @@ use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 
+use lamplight_scene::request::{limits, Naming};
+
 use crate::SceneError;
 
 /// Nesting depth beyond which a dict is rejected (scene files allow 64 levels of nodes,
@@ -115,11 +117,35 @@ fn value(obj: &Bound<'_, PyAny>, path: &str) -> PyResult<Value> {
 
 /// A whole-number keyword argument: a Python int of any size, checked here
 /// against `T`'s range so that the error is a `ValueError` naming the argument
-/// and its bound (`spp must be at most 1048576, got 1099511627776`) rather than
-/// PyO3's bare `OverflowError`. `min` and `max` are the argument's real limits as
-/// the messages quote them (the request layer checks values inside `T` again,
-/// in its own words); `note` follows the bound (` (0 uses all cores)`).
+/// and its bound (`seed must be at most 18446744073709551615, got ...`) rather
+/// than PyO3's bare `OverflowError`. `min` and `max` are the argument's real
+/// limits as the messages quote them; `note` follows the bound. Settings with a
+/// range of the request layer use [`setting`] instead, so that their message is
+/// that layer's whatever the value.
 pub fn whole<T: TryFrom<i128>>(name: &str, value: Option<&Bound<'_, PyAny>>, min: i128, max: i128, note: &str) -> PyResult<Option<T>> {
+    whole_with(name, value, |shown, below| {
+        if below {
+            format!("{name} must be at least {min}{note}, got {shown}")
+        } else {
+            format!("{name} must be at most {max}{note}, got {shown}")
+        }
+    })
+}
+
+/// The setting of `range` (`spp`, `max_depth`, `threads`) as [`whole`] reads it,
+/// passed on unchecked when it fits `T`: the request layer checks the range. A
+/// value too large (or negative) for `T` gets the request layer's own message
+/// ([`limits::Range::message`]), so that every value outside the range reads alike.
+pub fn setting<T: TryFrom<i128>>(range: &limits::Range, value: Option<&Bound<'_, PyAny>>) -> PyResult<Option<T>> {
+    whole_with(range.key, value, |shown, below| range.message(shown, below, Naming::Keywords))
+}
+
+/// [`whole`] with the message for a value below `T`'s range (`true`) or above it.
+fn whole_with<T: TryFrom<i128>>(
+    name: &str,
+    value: Option<&Bound<'_, PyAny>>,
+    message: impl Fn(&str, bool) -> String,
+) -> PyResult<Option<T>> {
     let Some(value) = value.filter(|v| !v.is_none()) else { return Ok(None) };
     if value.is_instance_of::<PyBool>() || !value.is_instance_of::<PyInt>() {
         return Err(PyTypeError::new_err(format!("{name} must be an int, got {}", value.get_type().name()?)));
@@ -130,7 +156,6 @@ pub fn whole<T: TryFrom<i128>>(name: &str, value: Option<&Bound<'_, PyAny>>, min
     let negative = || value.lt(0).unwrap_or(false);
     match v.and_then(|v| T::try_from(v).ok()) {
         Some(t) => Ok(Some(t)),
-        None if negative() => Err(PyValueError::new_err(format!("{name} must be at least {min}{note}, got {}", shown()))),
-        None => Err(PyValueError::new_err(format!("{name} must be at most {max}{note}, got {}", shown()))),
+        None => Err(PyValueError::new_err(message(&shown(), negative()))),
     }
 }

@@ -12,7 +12,7 @@ use lamplight_scene::request::{limits, Naming, Request};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
-use crate::convert::whole;
+use crate::convert::{setting, whole};
 use crate::scene::Scene;
 
 /// What `Scene.explain` is asked.
@@ -60,11 +60,11 @@ pub fn explain(py: Python<'_>, scene: &Scene, a: ExplainArgs<'_>) -> PyResult<Py
     let request = Request {
         width: whole("width", a.width.as_ref(), 1, u32::MAX.into(), "")?,
         height: whole("height", a.height.as_ref(), 1, u32::MAX.into(), "")?,
-        spp: whole("spp", a.spp.as_ref(), 1, limits::MAX_SPP.into(), "")?,
+        spp: setting(&limits::SPP, a.spp.as_ref())?,
         antialias: crate::render::antialias_arg(a.antialias.as_ref())?,
         noise_threshold: a.noise_threshold,
         min_spp: whole("min_spp", a.min_spp.as_ref(), 1, limits::MAX_SPP.into(), "")?,
-        max_depth: whole("max_depth", a.max_depth.as_ref(), 1, limits::MAX_DEPTH.into(), "")?,
+        max_depth: setting(&limits::DEPTH, a.max_depth.as_ref())?,
         seed: whole("seed", a.seed.as_ref(), 0, u64::MAX.into(), "")?,
         integrator: a.integrator,
         clamp: a.clamp,

@@ -17,8 +17,9 @@
 //! says where precision was lost far from the origin. A ray with a zero or
 //! non-finite direction or a non-finite origin misses.
 
-use lamplight_core::batch::{self, Float, Hits, Rays, MAX_THREADS};
+use lamplight_core::batch::{self, Float, Hits, Rays};
 use lamplight_core::Scene as CoreScene;
+use lamplight_scene::request::{limits, Naming};
 use numpy::ndarray::ArrayView2;
 use numpy::{Element, PyArray1, PyArray2, PyArrayMethods, PyUntypedArray, PyUntypedArrayMethods};
 use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
@@ -92,9 +93,7 @@ pub fn intersect<'py>(
     if n != m {
         return Err(PyValueError::new_err(format!("origins and directions must have the same number of rows, got {n} and {m}")));
     }
-    if threads > MAX_THREADS {
-        return Err(PyValueError::new_err(format!("threads must be at most {MAX_THREADS} (0 uses all cores), got {threads}")));
-    }
+    limits::THREADS.check(threads as u64, Naming::Keywords).map_err(PyValueError::new_err)?;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()

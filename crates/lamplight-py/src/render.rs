@@ -23,7 +23,7 @@ use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::convert::whole;
+use crate::convert::{setting, whole};
 use crate::scene::Scene;
 
 /// How often the waiting thread looks at signals and progress.
@@ -85,7 +85,7 @@ pub fn render_array<'py>(
         antialias: antialias_arg(antialias.as_ref())?,
         noise_threshold,
         min_spp: whole("min_spp", min_spp.as_ref(), 1, limits::MAX_SPP.into(), "")?,
-        max_depth: whole("max_depth", max_depth.as_ref(), 1, limits::MAX_DEPTH.into(), "")?,
+        max_depth: setting(&limits::DEPTH, max_depth.as_ref())?,
         threads: Some(threads_arg(threads.as_ref())?),
         seed,
         integrator,
@@ -224,7 +224,7 @@ fn size_spp_seed(
     Ok((
         whole("width", width.as_ref(), 1, u32::MAX.into(), "")?,
         whole("height", height.as_ref(), 1, u32::MAX.into(), "")?,
-        whole("spp", spp.as_ref(), 1, limits::MAX_SPP.into(), "")?,
+        setting(&limits::SPP, spp.as_ref())?,
         whole("seed", seed.as_ref(), 0, u64::MAX.into(), "")?,
     ))
 }
@@ -246,9 +246,9 @@ pub fn antialias_arg(value: Option<&Bound<'_, PyAny>>) -> PyResult<Option<reques
     }
 }
 
-/// `threads` as Python gave it (`None` or 0: every core), checked ([`whole`]).
+/// `threads` as Python gave it (`None` or 0: every core), read by [`setting`].
 pub fn threads_arg(threads: Option<&Bound<'_, PyAny>>) -> PyResult<usize> {
-    Ok(whole("threads", threads, 0, limits::MAX_THREADS as i128, " (0 uses all cores)")?.unwrap_or(0))
+    Ok(setting(&limits::THREADS, threads)?.unwrap_or(0))
 }
 
 fn to_array<'py>(py: Python<'py>, image: &Image) -> PyResult<Bound<'py, PyArray3<f32>>> {

@@ -100,7 +100,7 @@ fn settings_out_of_bounds_are_refused_with_the_request_layer_s_words() {
     let err = viewer.app.set_request(|r| r.spp = Some(u32::MAX)).unwrap_err();
     assert_eq!(err, "spp must be between 1 and 1048576, got 4294967295");
     let err = viewer.app.set_request(|r| r.max_depth = Some(65)).unwrap_err();
-    assert_eq!(err, "max_depth must be between 1 and 64, got 65 (work grows as 2^depth)");
+    assert_eq!(err, "max_depth must be between 1 and 64 (work grows as 2^depth), got 65");
     assert_eq!(viewer.app.lock().request.spp, None, "the refused settings were not kept");
     let request = Request { width: Some(100_000), height: Some(100_000), ..Request::default() };
     let err = Viewer::start(ViewOptions { scene: "luxo".into(), listen: Some("127.0.0.1:0".parse().unwrap()), request }).err();

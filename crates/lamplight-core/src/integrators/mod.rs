@@ -28,7 +28,7 @@ mod whitted;
 
 pub use path::{power_heuristic, unoccluded, PathTracer};
 pub use simple_path::SimplePath;
-pub use whitted::Whitted;
+pub use whitted::{Whitted, MAX_DEPTH_LIMIT};
 
 /// Every integrator by name; the first is the default.
 pub static INTEGRATORS: &[IntegratorEntry] = &[whitted::ENTRY, path::ENTRY];

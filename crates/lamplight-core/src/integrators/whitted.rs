@@ -61,8 +61,9 @@ pub struct Whitted {
     area_lights: Vec<AreaLight>,
 }
 
-/// The deepest recursion the integrator accepts: the work list lives on the stack
-/// and holds at most `max_depth + 1` pending rays.
+/// The deepest recursion the integrators accept: the work list lives on the stack
+/// and holds at most `max_depth + 1` pending rays. The one statement of the
+/// depth limit: scene files and front ends check against it.
 pub const MAX_DEPTH_LIMIT: u32 = 64;
 
 #[derive(Clone, Copy)]

@@ -179,14 +179,19 @@ fn thread_pool(threads: usize) -> Result<rayon::ThreadPool, Error> {
     rayon::ThreadPoolBuilder::new().num_threads(threads).build().map_err(|e| Error::Render(format!("cannot start worker threads: {e}")))
 }
 
+/// Most pixels in an image (`2^28`, e.g. 16384x16384): the film's buffers of a
+/// larger image would not fit in memory. The one statement of the limit; the
+/// front ends' checks (`lamplight_scene::request::limits`) read it.
+pub const MAX_PIXELS: u64 = 1 << 28;
+
 /// Checks the image size and samples, and returns the depth limit in force.
 fn checked_depth(scene: &Scene, options: &RenderOptions) -> Result<u32, Error> {
     let RenderOptions { width, height, spp, .. } = *options;
     if width == 0 || height == 0 || spp == 0 {
         return Err(Error::invalid("image", "width, height and samples per pixel must be at least 1"));
     }
-    if width as u64 * height as u64 > 1 << 28 {
-        return Err(Error::invalid("image", format!("{width}x{height} is too large (at most 2^28 pixels)")));
+    if width as u64 * height as u64 > MAX_PIXELS {
+        return Err(Error::invalid("image", format!("{width}x{height} is too large (at most {MAX_PIXELS} pixels)")));
     }
     let full = PixelWindow { x0: 0, y0: 0, width, height };
     let crop = options.crop.unwrap_or(full);

@@ -63,10 +63,10 @@ pub struct Settings {
     pub variance: bool,
 }
 
-/// Deepest `max_depth` a file may ask for (as the command line's `--max-depth`).
-pub const MAX_DEPTH_LIMIT: u32 = 64;
-/// Most pixels in an image (the renderer's limit).
-pub const MAX_PIXELS: u64 = 1 << 28;
+/// Deepest `max_depth` a file may ask for: the renderer's limit (as the command line's `--max-depth`).
+pub use lamplight_core::integrators::MAX_DEPTH_LIMIT;
+/// Most pixels in an image: the renderer's limit.
+pub use lamplight_core::MAX_PIXELS;
 /// Most samples per pixel.
 pub const MAX_SPP: u32 = 1 << 20;
 

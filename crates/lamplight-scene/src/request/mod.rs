@@ -25,25 +25,7 @@ mod sampling;
 pub use output::{write, DisplayTransform, Rendered};
 pub use sampling::{AntialiasRequest, NOISE_DEFAULT_SPP};
 
-/// The limits every front end enforces, in one place.
-pub mod limits {
-    /// Deepest ray depth. Whitted tracing may spawn a reflected and a refracted
-    /// ray at every hit, so a camera ray's work grows as `2^depth`: 64 levels
-    /// already allow more rays than any render could trace.
-    pub const MAX_DEPTH: u32 = crate::instantiate::MAX_DEPTH_LIMIT;
-    /// Most pixels in an image (`2^28`, e.g. 16384x16384).
-    pub const MAX_PIXELS: u64 = crate::instantiate::MAX_PIXELS;
-    /// Most samples per pixel.
-    pub const MAX_SPP: u32 = crate::instantiate::MAX_SPP;
-    /// Most worker threads: far above any machine's cores; more would only cost
-    /// memory, and huge counts make the thread pool fail (the batch-ray API's
-    /// limit too, so `render` and `raycast` agree).
-    pub const MAX_THREADS: usize = lamplight_core::batch::MAX_THREADS;
-    /// Longest time limit, seconds (about 31 years: beyond it is a typo).
-    pub const MAX_TIME_LIMIT: f64 = 1e9;
-    /// Most ray-march steps an implicit surface may take per ray (its `max_steps`).
-    pub const MAX_MARCH_STEPS: i64 = crate::instantiate::implicit::MAX_STEPS;
-}
+pub mod limits;
 
 /// How the front end spells its options, for messages.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -318,23 +300,13 @@ impl Request {
         let d = defaults;
         let (width, height) = image_size(self.width, self.height, d.size, naming)?;
         if let Some(spp) = self.spp {
-            if !(1..=limits::MAX_SPP).contains(&spp) {
-                return Err(bad(format!("{} must be between 1 and {}, got {spp}", n("spp"), limits::MAX_SPP)));
-            }
+            limits::SPP.check(spp.into(), naming).map_err(bad)?;
         }
         if let Some(depth) = self.max_depth {
-            if !(1..=limits::MAX_DEPTH).contains(&depth) {
-                return Err(bad(format!(
-                    "{} must be between 1 and {}, got {depth} (work grows as 2^depth)",
-                    n("max_depth"),
-                    limits::MAX_DEPTH
-                )));
-            }
+            limits::DEPTH.check(depth.into(), naming).map_err(bad)?;
         }
         let threads = self.threads.unwrap_or(0);
-        if threads > limits::MAX_THREADS {
-            return Err(bad(format!("{} must be at most {} (0 uses all cores), got {threads}", n("threads"), limits::MAX_THREADS)));
-        }
+        limits::THREADS.check(threads as u64, naming).map_err(bad)?;
         let time_limit = match self.time_limit {
             None => None,
             Some(t) if t.is_finite() && t > 0.0 && t < limits::MAX_TIME_LIMIT => Some(Duration::from_secs_f64(t)),
@@ -482,7 +454,7 @@ mod tests {
         let r = Request { max_depth: Some(65), ..Request::default() };
         assert_eq!(
             r.resolve(&luxo().defaults, Naming::Flags).unwrap_err().0,
-            "--max-depth must be between 1 and 64, got 65 (work grows as 2^depth)"
+            "--max-depth must be between 1 and 64 (work grows as 2^depth), got 65"
         );
         let r = Request { integrator: Some("photon".into()), ..Request::default() };
         assert_eq!(
