@@ -1,7 +1,7 @@
 """Type stubs of the native module ``lamplight._lamplight`` (Rust, PyO3)."""
 
 import os
-from typing import Any, Callable, Dict, List, Optional, Tuple, Union
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -77,18 +77,21 @@ class Scene:
         x: int,
         y: int,
         sample: Optional[int] = None,
+        *,
+        # BEGIN settings explain generated from crates/lamplight-py/src/settings.rs (LAMPLIGHT_BLESS=1 pytest python/tests/test_keywords.py rewrites)
         width: Optional[int] = None,
         height: Optional[int] = None,
         spp: Optional[int] = None,
         integrator: Optional[str] = None,
         seed: Optional[int] = None,
         max_depth: Optional[int] = None,
-        clamp: Optional[float] = None,
         filter: Optional[str] = None,
-        environment: Optional[_Path] = None,
+        environment: Optional[Union[str, os.PathLike[str]]] = None,
+        clamp: Optional[float] = None,
         antialias: Optional[Union[bool, float]] = None,
         noise_threshold: Optional[float] = None,
         min_spp: Optional[int] = None,
+        # END settings
     ) -> Dict[str, Any]:
         """Why pixel ``(x, y)`` of the render these settings make has its colour.
 
@@ -155,38 +158,56 @@ def scene_from_state(state: Tuple[str, Any, Optional[str], Optional[Dict[str, An
 
 def render_array(
     scene: Scene,
+    progress: Optional[Callable[[int, int], Any]] = None,
+    *,
+    # BEGIN settings generated from crates/lamplight-py/src/settings.rs (LAMPLIGHT_BLESS=1 pytest python/tests/test_keywords.py rewrites)
     width: Optional[int] = None,
     height: Optional[int] = None,
     spp: Optional[int] = None,
     integrator: Optional[str] = None,
-    threads: int = 0,
+    threads: Optional[int] = None,
     seed: Optional[int] = None,
     max_depth: Optional[int] = None,
     window: Optional[Tuple[int, int, int, int]] = None,
-    progress: Optional[Callable[[int, int], Any]] = None,
     time_limit: Optional[float] = None,
     filter: Optional[str] = None,
-    environment: Optional[str] = None,
-    exr_layers: Optional[List[str]] = None,
+    environment: Optional[Union[str, os.PathLike[str]]] = None,
+    exr_layers: Optional[Sequence[str]] = None,
     clamp: Optional[float] = None,
     antialias: Optional[Union[bool, float]] = None,
     noise_threshold: Optional[float] = None,
     min_spp: Optional[int] = None,
+    # END settings
 ) -> Tuple[npt.NDArray[np.float32], Dict[str, Any], Dict[str, npt.NDArray[np.float32]]]:
     """The render under :func:`lamplight.render`: a float32 array ``(h, w, 3)``,
     a dict of statistics and a dict of the extra layers asked for. Settings left
-    ``None`` come from the scene, then the defaults (the command line's request
+    out or ``None`` come from the scene, then the defaults (the command line's request
     layer). Releases the GIL; Ctrl-C cancels."""
 
 def resolve_settings(
     scene: Scene,
+    *,
+    # BEGIN settings generated from crates/lamplight-py/src/settings.rs (LAMPLIGHT_BLESS=1 pytest python/tests/test_keywords.py rewrites)
     width: Optional[int] = None,
     height: Optional[int] = None,
     spp: Optional[int] = None,
     integrator: Optional[str] = None,
+    threads: Optional[int] = None,
     seed: Optional[int] = None,
+    max_depth: Optional[int] = None,
+    window: Optional[Tuple[int, int, int, int]] = None,
+    time_limit: Optional[float] = None,
+    filter: Optional[str] = None,
+    environment: Optional[Union[str, os.PathLike[str]]] = None,
+    exr_layers: Optional[Sequence[str]] = None,
+    clamp: Optional[float] = None,
+    antialias: Optional[Union[bool, float]] = None,
+    noise_threshold: Optional[float] = None,
+    min_spp: Optional[int] = None,
+    # END settings
 ) -> Tuple[int, int, int, str, int]:
-    """``(width, height, spp, integrator, seed)`` a render with these arguments would use."""
+    """``(width, height, spp, integrator, seed)`` a render with these settings would
+    use; every setting is checked as a render checks it."""
 
 def write_image(
     path: _Path,

@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import difflib
+import functools
+import inspect
 import os
 import sys
 import warnings
@@ -34,21 +37,60 @@ def load(path: Union[str, "os.PathLike[str]"]) -> Scene:
     return Scene.from_file(os.fspath(path))
 
 
-def resolve(scene: Scene, width, height, spp, integrator, seed) -> Tuple[int, int, int, str, int]:
+#: ``(name, annotation, explain)`` of every render setting, in order: the one
+#: table (``crates/lamplight-py/src/settings.rs``) that ``render_array``,
+#: ``Scene.explain``, the wrappers here and in :mod:`lamplight.dask` and the
+#: type stub take their keywords from.
+RENDER_KEYWORDS: Tuple[Tuple[str, str, bool], ...] = tuple(_lamplight.render_keywords())
+
+
+def with_settings(
+    skip: Sequence[str] = (), defaults: Optional[dict] = None, positional: bool = True
+) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
+    """Gives ``func(head..., *, extra..., **settings)`` the signature ``head...,
+    <every render setting>, *, extra...``, the settings in the table's order
+    (positional too when ``positional``), each defaulting to ``defaults[name]``
+    or ``None``, less those in ``skip``. The settings reach ``func`` as keywords;
+    a misspelt one is a ``TypeError`` naming the nearest setting."""
+
+    def wrap(func: Callable[..., Any]) -> Callable[..., Any]:
+        own = inspect.signature(func)
+        head = [p for p in own.parameters.values() if p.kind is inspect.Parameter.POSITIONAL_OR_KEYWORD]
+        extra = [p for p in own.parameters.values() if p.kind is inspect.Parameter.KEYWORD_ONLY]
+        kind = inspect.Parameter.POSITIONAL_OR_KEYWORD if positional else inspect.Parameter.KEYWORD_ONLY
+        settings = [
+            inspect.Parameter(name, kind, default=(defaults or {}).get(name), annotation=annotation)
+            for name, annotation, _ in RENDER_KEYWORDS
+            if name not in skip
+        ]
+        signature = own.replace(parameters=head + settings + extra)
+        names = [p.name for p in signature.parameters.values()]
+
+        @functools.wraps(func)
+        def wrapper(*args, **kwargs):
+            for key in kwargs:
+                if key not in names:
+                    near = difflib.get_close_matches(key, names, n=1)
+                    hint = f" (did you mean '{near[0]}'?)" if near else ""
+                    raise TypeError(f"{func.__name__}() got an unexpected keyword argument '{key}'{hint}")
+            bound = signature.bind(*args, **kwargs)
+            bound.apply_defaults()
+            values = dict(bound.arguments)
+            leading = [values.pop(p.name) for p in head]
+            return func(*leading, **values)
+
+        wrapper.__signature__ = signature  # type: ignore[attr-defined]
+        return wrapper
+
+    return wrap
+
+
+def resolve(scene: Scene, **settings) -> Tuple[int, int, int, str, int]:
     """Size, samples, integrator and seed: the arguments, else the scene's own
     settings, else the defaults, resolved by the same request layer as the
     command line (with only a width or only a height the other side keeps the
-    scene's aspect)."""
-    _check_ints(width=width, height=height, spp=spp, seed=seed)
-    return _lamplight.resolve_settings(scene, width, height, spp, integrator, seed)
-
-
-def _check_ints(**values) -> None:
-    """Python's own types first, so that ``width=2.5`` says what it is; the ranges
-    (``threads=-1``, ``width=2**32``) are checked by the extension, naming the bound."""
-    for name, value in values.items():
-        if value is not None and (isinstance(value, bool) or not isinstance(value, int)):
-            raise TypeError(f"{name} must be an int, got {type(value).__name__}")
+    scene's aspect). Every other setting is checked too."""
+    return _lamplight.resolve_settings(scene, **settings)
 
 
 def _in_notebook() -> bool:
@@ -96,26 +138,13 @@ def progress_reporter(progress: Progress, desc: str = "lamplight", unit: str = "
     return report, bar.close
 
 
+@with_settings()
 def render(
     scene: SceneLike,
-    width: Optional[int] = None,
-    height: Optional[int] = None,
-    spp: Optional[int] = None,
-    integrator: Optional[str] = None,
-    threads: int = 0,
-    seed: Optional[int] = None,
-    max_depth: Optional[int] = None,
+    *,
     progress: Progress = None,
-    time_limit: Optional[float] = None,
-    filter: Optional[str] = None,
-    window: Optional[Tuple[int, int, int, int]] = None,
     base_dir: Optional[Union[str, "os.PathLike[str]"]] = None,
-    environment: Optional[Union[str, "os.PathLike[str]"]] = None,
-    exr_layers: Optional[Sequence[str]] = None,
-    clamp: Optional[float] = None,
-    antialias: Optional[Union[bool, float]] = None,
-    noise_threshold: Optional[float] = None,
-    min_spp: Optional[int] = None,
+    **settings: Any,
 ) -> Image:
     """Renders ``scene`` and returns an :class:`Image`: a float32 array
     ``(height, width, 3)`` of linear radiance, the numbers ``lamplight render``
@@ -149,29 +178,9 @@ def render(
     says what was spent, and ``exr_layers=["samples"]`` where.
     """
     s = as_scene(scene, base_dir)
-    _check_ints(width=width, height=height, spp=spp, seed=seed, max_depth=max_depth, threads=threads, min_spp=min_spp)
     callback, close = progress_reporter(progress)
     try:
-        array, stats, layers = _lamplight.render_array(
-            s,
-            width,
-            height,
-            spp,
-            integrator,
-            threads,
-            seed,
-            max_depth,
-            window,
-            callback,
-            time_limit,
-            filter,
-            os.fspath(environment) if environment is not None else None,
-            list(exr_layers) if exr_layers is not None else None,
-            clamp,
-            antialias,
-            noise_threshold,
-            min_spp,
-        )
+        array, stats, layers = _lamplight.render_array(s, progress=callback, **settings)
     finally:
         close()
     for warning in stats.get("warnings", []):

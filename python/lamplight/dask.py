@@ -37,7 +37,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 import numpy as np
 
 from ._lamplight import Scene
-from ._render import SceneLike, as_scene, progress_reporter, resolve
+from ._render import SceneLike, as_scene, progress_reporter, resolve, with_settings
 from .image import Image
 
 Tiles = Union[None, int, Tuple[int, int]]
@@ -193,21 +193,24 @@ def _render_frame(payload, digest: str, camera: Optional[dict], options: Dict[st
     return array
 
 
-def _options(scene: Scene, width, height, spp, integrator, seed, max_depth, threads, filter, sampling) -> Dict[str, Any]:
-    width, height, _, integrator, seed = resolve(scene, width, height, spp, integrator, seed)
-    return dict(
-        width=width,
-        height=height,
-        # As given, not resolved: the scene's own (adaptive) sampling then
-        # resolves on the worker as it does locally.
-        spp=spp,
-        integrator=integrator,
-        seed=seed,
-        max_depth=max_depth,
-        threads=threads,
-        filter=filter,
-        **sampling,
-    )
+#: Settings a split render cannot honour: each tile is a window of its own,
+#: tiles stopped by a clock would end at different passes, and only the image
+#: comes back from the workers.
+_LOCAL_ONLY = ("window", "time_limit", "exr_layers")
+
+#: What a task uses when not told: one thread (a worker runs as many tasks at
+#: once as it has threads) and the box filter.
+_TASK_DEFAULTS = {"threads": 1, "filter": "box"}
+
+
+def _options(scene: Scene, settings: Dict[str, Any]) -> Dict[str, Any]:
+    """The keywords each task renders with: ``settings`` checked here by the
+    request layer, with the size, integrator and seed resolved so that every
+    tile cuts the same image."""
+    width, height, _, integrator, seed = resolve(scene, **settings)
+    # spp as given, not resolved: the scene's own (adaptive) sampling then
+    # resolves on the worker as it does locally.
+    return dict(settings, width=width, height=height, integrator=integrator, seed=seed)
 
 
 def _gather(client, futures, progress, desc: str, unit: str) -> list:
@@ -228,25 +231,17 @@ def _gather(client, futures, progress, desc: str, unit: str) -> list:
         close()
 
 
+@with_settings(skip=_LOCAL_ONLY, defaults=_TASK_DEFAULTS, positional=False)
 def render(
     scene: SceneLike,
     client,
-    width: Optional[int] = None,
-    height: Optional[int] = None,
-    spp: Optional[int] = None,
-    integrator: Optional[str] = None,
+    *,
     tiles: Tiles = None,
-    seed: Optional[int] = None,
-    max_depth: Optional[int] = None,
-    threads: int = 1,
-    filter: str = "box",
     ship_meshes: bool = False,
     progress=None,
     retries: int = 2,
     base_dir=None,
-    antialias=None,
-    noise_threshold=None,
-    min_spp=None,
+    **settings: Any,
 ) -> Image:
     """Renders ``scene`` on the cluster of ``client`` (a ``distributed.Client``),
     one task per tile, and returns the same :class:`~lamplight.Image`, byte for
@@ -258,13 +253,13 @@ def render(
     sends mesh files from here instead of reading them on the workers.
     ``progress`` reports finished tiles as for ``lamplight.render``; ``retries``
     re-runs a task that raised (a worker that died is handled by Dask anyway).
-    ``antialias``, ``noise_threshold`` and ``min_spp`` are as for
-    ``lamplight.render``: adaptive sampling decides per pixel from the pixel and
-    its neighbours, so the tiles stitch to the local image.
+    Every setting of ``lamplight.render`` but ``window``, ``time_limit`` and
+    ``exr_layers`` is here and means the same; adaptive sampling (``antialias``,
+    ``noise_threshold``, ``min_spp``) decides per pixel from the pixel and its
+    neighbours, so the tiles stitch to the local image.
     """
     s = as_scene(scene, base_dir)
-    sampling = dict(antialias=antialias, noise_threshold=noise_threshold, min_spp=min_spp)
-    options = _options(s, width, height, spp, integrator, seed, max_depth, threads, filter, sampling)
+    options = _options(s, settings)
     if s.defaults().get("crop") is not None:
         # Not yet: tiles of a crop did not reproduce the local render's bytes (unresolved).
         raise ValueError("lamplight.dask.render does not split a scene with [render] crop yet; render it with lamplight.render")
@@ -286,25 +281,17 @@ def render(
     return image
 
 
+@with_settings(skip=_LOCAL_ONLY, defaults=_TASK_DEFAULTS, positional=False)
 def render_frames(
     scenes: Union[SceneLike, Sequence[SceneLike]],
     client,
     cameras: Optional[Sequence[Dict[str, Any]]] = None,
-    width: Optional[int] = None,
-    height: Optional[int] = None,
-    spp: Optional[int] = None,
-    integrator: Optional[str] = None,
-    seed: Optional[int] = None,
-    max_depth: Optional[int] = None,
-    threads: int = 1,
-    filter: str = "box",
+    *,
     ship_meshes: bool = False,
     progress=None,
     retries: int = 2,
     base_dir=None,
-    antialias=None,
-    noise_threshold=None,
-    min_spp=None,
+    **settings: Any,
 ) -> List[Image]:
     """Renders the frames of an animation on the cluster, one task per frame,
     and returns one :class:`~lamplight.Image` per frame, in order.
@@ -329,9 +316,8 @@ def render_frames(
         index = list(range(len(frames)))
     if not frames:
         return []
-    sampling = dict(antialias=antialias, noise_threshold=noise_threshold, min_spp=min_spp)
-    options = [_options(s, width, height, spp, integrator, seed, max_depth, threads, filter, sampling) for s, _ in frames]
-    if cameras is not None and width is None and height is None:
+    options = [_options(s, settings) for s, _ in frames]
+    if cameras is not None and settings.get("width") is None and settings.get("height") is None:
         # A camera path keeps one size: the scene's.
         options = [options[0]] * len(frames)
     digests = [_digest(p) for p in payloads]

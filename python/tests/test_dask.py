@@ -32,6 +32,8 @@ def local(scene, **kw):
         ("spheres", dict(width=96, height=54, spp=2, tiles=7)),
         ("cornell-box", dict(width=32, height=32, spp=4, integrator="path", tiles=(3, 2))),
         ("luxo", dict(width=64, height=36, tiles=64)),
+        # Settings come from the one table: clamp and the noise threshold reach the tasks too.
+        ("cornell-box", dict(width=24, height=24, spp=16, integrator="path", clamp=0.5, noise_threshold=0.2, min_spp=4, tiles=5)),
     ],
 )
 def test_dask_render_equals_the_local_render(client, scene, args):

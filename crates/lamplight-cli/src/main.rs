@@ -119,10 +119,9 @@ fn render_command(job: RenderJob) -> anyhow::Result<()> {
     let build_start = Instant::now();
     let (width, height) = (job.options.width, job.options.height);
     // Scene errors are the user's input: exit code 2, one line naming file and place.
-    let built = scene.build_with_warnings().map_err(|e| UsageError(e.0))?;
+    let built = scene.instantiate(&job).map_err(|e| UsageError(e.0))?;
     print_warnings(&built.warnings);
-    let mut built = built.scene;
-    job.prepare(&mut built).map_err(|e| UsageError(e.0))?;
+    let built = built.scene;
     print_warnings(job.light_warning(&built).as_slice());
     let build_time = build_start.elapsed();
 
@@ -194,10 +193,9 @@ fn render_command(job: RenderJob) -> anyhow::Result<()> {
 /// Prints the ray tree (or paths) of one pixel, as text or JSON, to stdout.
 fn explain_command(job: ExplainJob) -> anyhow::Result<()> {
     let ExplainJob { scene, job, pixel, sample, json } = job;
-    let built = scene.build_with_warnings().map_err(|e| UsageError(e.0))?;
+    let built = scene.instantiate(&job).map_err(|e| UsageError(e.0))?;
     print_warnings(&built.warnings);
-    let mut built = built.scene;
-    job.prepare(&mut built).map_err(|e| UsageError(e.0))?;
+    let built = built.scene;
     let explained = lamplight_scene::explain::explain(&built, &job, pixel, sample, request::Naming::Flags).map_err(UsageError::from)?;
     let mut out = io::stdout().lock();
     if json {

@@ -16,6 +16,7 @@ pub mod intersect;
 pub mod kinds;
 pub mod render;
 pub mod scene;
+pub mod settings;
 
 pyo3::create_exception!(_lamplight, SceneError, pyo3::exceptions::PyValueError, "A scene that cannot be read or built.");
 
@@ -28,6 +29,7 @@ fn _lamplight(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(render::render_array, m)?)?;
     m.add_function(wrap_pyfunction!(kinds::kinds, m)?)?;
     m.add_function(wrap_pyfunction!(render::resolve_settings, m)?)?;
+    m.add_function(wrap_pyfunction!(settings::render_keywords, m)?)?;
     m.add_function(wrap_pyfunction!(image::write_image, m)?)?;
     m.add_function(wrap_pyfunction!(image::encode_png, m)?)?;
     m.add_function(wrap_pyfunction!(image::read_exr, m)?)?;

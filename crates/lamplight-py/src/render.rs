@@ -13,17 +13,15 @@ use std::sync::mpsc::{self, RecvTimeoutError};
 use std::sync::Arc;
 use std::time::Duration;
 
-use std::path::PathBuf;
-
 use lamplight_core::film::Image;
 use lamplight_core::RenderControl;
-use lamplight_scene::request::{self, limits, Layer, Naming, Request};
+use lamplight_scene::request::{self, limits, Layer, Naming};
 use numpy::{PyArray1, PyArray3, PyArrayMethods};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::convert::{setting, whole};
+use crate::convert::setting;
 use crate::scene::Scene;
 
 /// How often the waiting thread looks at signals and progress.
@@ -31,71 +29,25 @@ const POLL: Duration = Duration::from_millis(100);
 
 type Rendered = Result<request::Rendered, lamplight_core::Error>;
 
-/// `window = (x0, y0, w, h)` as Python gave it, each checked by [`whole`].
-type Window<'py> = (Bound<'py, PyAny>, Bound<'py, PyAny>, Bound<'py, PyAny>, Bound<'py, PyAny>);
-
 /// The image array, the statistics and the extra layers.
 type RenderArrays<'py> = (Bound<'py, PyArray3<f32>>, Bound<'py, PyDict>, Bound<'py, PyDict>);
 
 /// Renders `scene` and returns a float32 array `(h, w, 3)` of linear radiance
 /// (of the pixel `window = (x0, y0, w, h)` when given), a dict of statistics and
 /// a dict of the extra layers asked for (`exr_layers`: `"variance"` `(h, w, 3)`,
-/// `"samples"` `(h, w)`). Every setting left `None` comes from the scene, then the
-/// defaults, through the same request layer as the command line.
+/// `"samples"` `(h, w)`). The settings are the keywords of
+/// [`crate::settings::KEYWORDS`]; every one left out or `None` comes from the
+/// scene, then the defaults, through the same request layer as the command line.
 /// `progress(done, total)` is called from this thread.
 #[pyfunction]
-#[pyo3(signature = (scene, width=None, height=None, spp=None, integrator=None, threads=None, seed=None, max_depth=None, window=None, progress=None, time_limit=None, filter=None, environment=None, exr_layers=None, clamp=None, antialias=None, noise_threshold=None, min_spp=None))]
-#[allow(clippy::too_many_arguments)]
+#[pyo3(signature = (scene, progress=None, **settings))]
 pub fn render_array<'py>(
     py: Python<'py>,
     scene: &Scene,
-    width: Option<Bound<'py, PyAny>>,
-    height: Option<Bound<'py, PyAny>>,
-    spp: Option<Bound<'py, PyAny>>,
-    integrator: Option<String>,
-    threads: Option<Bound<'py, PyAny>>,
-    seed: Option<Bound<'py, PyAny>>,
-    max_depth: Option<Bound<'py, PyAny>>,
-    window: Option<Window<'py>>,
     progress: Option<Bound<'py, PyAny>>,
-    time_limit: Option<f64>,
-    filter: Option<String>,
-    environment: Option<PathBuf>,
-    exr_layers: Option<Vec<String>>,
-    clamp: Option<f64>,
-    antialias: Option<Bound<'py, PyAny>>,
-    noise_threshold: Option<f64>,
-    min_spp: Option<Bound<'py, PyAny>>,
+    settings: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<RenderArrays<'py>> {
-    let layers =
-        exr_layers.unwrap_or_default().iter().map(|l| l.parse::<Layer>().map_err(PyValueError::new_err)).collect::<PyResult<Vec<_>>>()?;
-    let (width, height, spp, seed) = size_spp_seed(width, height, spp, seed)?;
-    let window = match window {
-        None => None,
-        Some((x0, y0, w, h)) => {
-            let side =
-                |name: &str, v: &Bound<'py, PyAny>| whole::<u32>(name, Some(v), 0, u32::MAX.into(), "").map(Option::unwrap_or_default);
-            Some((side("window x0", &x0)?, side("window y0", &y0)?, side("window width", &w)?, side("window height", &h)?))
-        }
-    };
-    let request = Request {
-        width,
-        height,
-        spp,
-        antialias: antialias_arg(antialias.as_ref())?,
-        noise_threshold,
-        min_spp: whole("min_spp", min_spp.as_ref(), 1, limits::MAX_SPP.into(), "")?,
-        max_depth: setting(&limits::DEPTH, max_depth.as_ref())?,
-        threads: Some(threads_arg(threads.as_ref())?),
-        seed,
-        integrator,
-        time_limit,
-        clamp,
-        filter,
-        window,
-        environment,
-        layers,
-    };
+    let request = crate::settings::request(settings, "render_array", false)?;
     let mut job = request.resolve(scene.settings(), Naming::Keywords).map_err(|e| PyValueError::new_err(e.0))?;
     job.add_scene_layers(scene.settings(), true);
     let core = scene.core_for(py, &job)?;
@@ -194,39 +146,16 @@ pub fn render_array<'py>(
     Ok((array, info, layers))
 }
 
-/// The settings a render of `scene` would use: `(width, height, spp,
-/// integrator, seed)`, each the argument, else the scene's, else the default,
-/// through the request layer (so Dask splits exactly the image a local render makes).
+/// The settings a render of `scene` with these keywords would use: `(width,
+/// height, spp, integrator, seed)`, each the argument, else the scene's, else the
+/// default, through the request layer (so Dask splits exactly the image a local
+/// render makes).
 #[pyfunction]
-#[pyo3(signature = (scene, width=None, height=None, spp=None, integrator=None, seed=None))]
-pub fn resolve_settings(
-    scene: &Scene,
-    width: Option<Bound<'_, PyAny>>,
-    height: Option<Bound<'_, PyAny>>,
-    spp: Option<Bound<'_, PyAny>>,
-    integrator: Option<String>,
-    seed: Option<Bound<'_, PyAny>>,
-) -> PyResult<(u32, u32, u32, &'static str, u64)> {
-    let (width, height, spp, seed) = size_spp_seed(width, height, spp, seed)?;
-    let request = Request { width, height, spp, integrator, seed, ..Request::default() };
+#[pyo3(signature = (scene, **settings))]
+pub fn resolve_settings(scene: &Scene, settings: Option<&Bound<'_, PyDict>>) -> PyResult<(u32, u32, u32, &'static str, u64)> {
+    let request = crate::settings::request(settings, "resolve_settings", false)?;
     let o = request.resolve(scene.settings(), Naming::Keywords).map_err(|e| PyValueError::new_err(e.0))?.options;
     Ok((o.width, o.height, o.spp, o.integrator.name, o.seed))
-}
-
-/// `width`, `height`, `spp` and `seed` as Python gave them, checked ([`whole`]).
-#[allow(clippy::type_complexity)]
-fn size_spp_seed(
-    width: Option<Bound<'_, PyAny>>,
-    height: Option<Bound<'_, PyAny>>,
-    spp: Option<Bound<'_, PyAny>>,
-    seed: Option<Bound<'_, PyAny>>,
-) -> PyResult<(Option<u32>, Option<u32>, Option<u32>, Option<u64>)> {
-    Ok((
-        whole("width", width.as_ref(), 1, u32::MAX.into(), "")?,
-        whole("height", height.as_ref(), 1, u32::MAX.into(), "")?,
-        setting(&limits::SPP, spp.as_ref())?,
-        whole("seed", seed.as_ref(), 0, u64::MAX.into(), "")?,
-    ))
 }
 
 /// `antialias` as Python gave it: `True`, `False` or a threshold `>= 0`.

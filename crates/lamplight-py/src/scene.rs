@@ -15,8 +15,8 @@ use lamplight_core::Scene as CoreScene;
 use lamplight_scene::builtin::{self, Builtin};
 use lamplight_scene::description::{Node, SceneDescription};
 use lamplight_scene::formats::native::Source as FileSource;
-use lamplight_scene::instantiate::{self, imported, SceneFile};
-use lamplight_scene::request::{program_defaults, Defaults, SceneRequest};
+use lamplight_scene::instantiate::{self, SceneFile};
+use lamplight_scene::request::{program_defaults, Defaults, SceneRequest, SceneSpec};
 use lamplight_scene::{import, LoadError};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -116,27 +116,28 @@ impl Scene {
     }
 
     fn build_core(&self) -> PyResult<(CoreScene, Vec<String>)> {
-        let (mut scene, warnings) = match &self.origin {
-            Origin::Builtin(b) => {
-                ((b.build)().map_err(|e| SceneError::new_err(format!("cannot build scene '{}': {e}", b.name)))?, Vec::new())
-            }
-            Origin::Toml(file) => {
-                let built = instantiate::build_with_warnings(&file.description, &file.source).map_err(load_error)?;
-                (built.scene, built.warnings)
-            }
+        // The request layer builds what a job renders, as for the command line;
+        // only a dict's errors are worded here, by key path without a file.
+        let spec = match &self.origin {
+            Origin::Builtin(b) => SceneSpec::Builtin(b),
+            Origin::Toml(file) => SceneSpec::File(Box::new(file.clone())),
             Origin::Dict { file, .. } => {
                 let built = instantiate::build_with_warnings(&file.description, &file.source).map_err(dict_error)?;
-                (built.scene, built.warnings)
+                return Ok(self.with_own_camera(built.scene, built.warnings));
             }
-            Origin::Mesh(path) => {
-                let built = imported::load_with_warnings(path).map_err(load_error)?;
-                (built.scene, built.warnings)
-            }
+            Origin::Mesh(path) => SceneSpec::Mesh(path.clone()),
         };
+        let request = SceneRequest { spec, name: String::new(), defaults: self.defaults };
+        let built = request.build_with_warnings().map_err(|e| SceneError::new_err(e.0))?;
+        Ok(self.with_own_camera(built.scene, built.warnings))
+    }
+
+    /// `scene` seen by the camera given with `with_camera`, if one was.
+    fn with_own_camera(&self, mut scene: CoreScene, warnings: Vec<String>) -> (CoreScene, Vec<String>) {
         if let Some((_, camera)) = &self.camera {
             scene.camera = camera.clone();
         }
-        Ok((scene, warnings))
+        (scene, warnings)
     }
 
     fn from_dict_with(py: Python<'_>, dict: &Bound<'_, PyAny>, base_dir: Option<PathBuf>) -> PyResult<Scene> {
@@ -377,45 +378,16 @@ impl Scene {
 
     /// Why pixel `(x, y)` has its colour: the ray tree of each sample (Whitted)
     /// or its paths (path tracer), as dicts and lists; see the type stubs.
-    #[pyo3(signature = (x, y, sample=None, width=None, height=None, spp=None, integrator=None, seed=None, max_depth=None, clamp=None, filter=None, environment=None, antialias=None, noise_threshold=None, min_spp=None))]
-    #[allow(clippy::too_many_arguments)]
+    #[pyo3(signature = (x, y, sample=None, **settings))]
     fn explain<'py>(
         &self,
         py: Python<'py>,
         x: Bound<'py, PyAny>,
         y: Bound<'py, PyAny>,
         sample: Option<Bound<'py, PyAny>>,
-        width: Option<Bound<'py, PyAny>>,
-        height: Option<Bound<'py, PyAny>>,
-        spp: Option<Bound<'py, PyAny>>,
-        integrator: Option<String>,
-        seed: Option<Bound<'py, PyAny>>,
-        max_depth: Option<Bound<'py, PyAny>>,
-        clamp: Option<f64>,
-        filter: Option<String>,
-        environment: Option<PathBuf>,
-        antialias: Option<Bound<'py, PyAny>>,
-        noise_threshold: Option<f64>,
-        min_spp: Option<Bound<'py, PyAny>>,
+        settings: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<PyObject> {
-        let args = crate::explain::ExplainArgs {
-            x,
-            y,
-            sample,
-            width,
-            height,
-            spp,
-            integrator,
-            seed,
-            max_depth,
-            clamp,
-            filter,
-            environment,
-            antialias,
-            noise_threshold,
-            min_spp,
-        };
-        crate::explain::explain(py, self, args)
+        crate::explain::explain(py, self, (x, y), sample, settings)
     }
 
     fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(PyObject, Bound<'py, PyTuple>)> {

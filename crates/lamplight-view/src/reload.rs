@@ -31,8 +31,7 @@ pub const QUIET: Duration = Duration::from_millis(60);
 pub fn load(arg: &str, request: &Request) -> Result<Loaded, String> {
     let scene = SceneRequest::resolve(arg).map_err(|e| e.0)?;
     let job = request.resolve(&scene.defaults, Naming::Flags).map_err(|e| e.0)?;
-    let mut built = scene.build_with_warnings().map_err(|e| e.0)?;
-    job.prepare(&mut built.scene).map_err(|e| e.0)?;
+    let built = scene.instantiate(&job).map_err(|e| e.0)?;
     Ok(Loaded::new(built.scene, scene.defaults, built.warnings))
 }
 

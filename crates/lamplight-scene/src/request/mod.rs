@@ -212,6 +212,16 @@ impl SceneRequest {
         self.build_with_warnings().map(|built| built.scene)
     }
 
+    /// The scene `job` renders: built ([`SceneRequest::build_with_warnings`])
+    /// and lit by the job's environment map ([`Job::prepare`]). The one way every
+    /// front end (the command line's render and explain, the viewer) goes from a
+    /// request to a scene that renders.
+    pub fn instantiate(&self, job: &Job) -> Result<Built, RequestError> {
+        let mut built = self.build_with_warnings()?;
+        job.prepare(&mut built.scene)?;
+        Ok(built)
+    }
+
     /// Builds the scene and keeps the warnings of the mesh files it read
     /// (`FILE: what`, each once), for the front end to show.
     pub fn build_with_warnings(&self) -> Result<Built, RequestError> {
