@@ -165,7 +165,7 @@ def test_environment_and_exr_layers_equal_the_command_line(cli, tmp_path):
     assert (tmp_path / "py.exr").read_bytes() == out.read_bytes()
     whitted = lamplight.render("spheres", width=8, height=8, spp=2, exr_layers=["samples"], progress=False)
     assert (whitted.layers["samples"] == 2).all(), "every integrator fills the film the layers come from"
-    with pytest.raises(ValueError, match="unknown layer 'depth'"):
+    with pytest.raises(ValueError, match='unknown layer "depth"'):
         lamplight.render("cornell-box", width=8, height=8, integrator="path", exr_layers=["depth"], progress=False)
 
 

@@ -103,7 +103,7 @@ def test_dict_errors_are_the_file_errors_with_the_key_path(tmp_path):
 def test_scene_arguments_of_the_wrong_kind():
     with pytest.raises(TypeError, match="built-in name, a file path, a dict"):
         lamplight.render(42)
-    with pytest.raises(ValueError, match="unknown scene 'nope'"):
+    with pytest.raises(ValueError, match='unknown scene "nope"'):
         lamplight.render("nope")
     with pytest.raises(ValueError, match="unknown scene file type"):
         lamplight.Scene("scene.txt")

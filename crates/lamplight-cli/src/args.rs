@@ -482,7 +482,7 @@ mod tests {
     #[test]
     fn bad_input_is_a_one_line_usage_error() {
         let cases: &[(&[&str], &str)] = &[
-            (&["foo"], "unknown scene 'foo' (built-in scenes: luxo, business-card, cornell-box, spheres)"),
+            (&["foo"], "unknown scene \"foo\" (built-in scenes: luxo, business-card, cornell-box, spheres)"),
             (&["--time-limit", "0"], "--time-limit must be a positive number of seconds, got 0"),
             (&["--width", "0"], "--width must be at least 1"),
             (&["--height", "0"], "--height must be at least 1"),

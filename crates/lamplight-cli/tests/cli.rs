@@ -121,7 +121,7 @@ fn piped_stderr_gets_the_summary_and_no_progress_bar() {
 fn bad_input_exits_with_2() {
     let dir = tempfile::tempdir().unwrap();
     let dir = dir.path();
-    fails(dir, &["render", "foo"], 2, "unknown scene 'foo' (built-in scenes: luxo, business-card, cornell-box, spheres)");
+    fails(dir, &["render", "foo"], 2, "unknown scene \"foo\" (built-in scenes: luxo, business-card, cornell-box, spheres)");
     fails(dir, &["render", "--width", "0"], 2, "--width must be at least 1");
     fails(dir, &["render", "--spp", "0"], 2, "--spp must be between 1 and 1048576, got 0");
     fails(dir, &["render", "--spp", "4294967295"], 2, "--spp must be between 1 and 1048576, got 4294967295");

@@ -14,7 +14,7 @@ fn bad_input_stops_the_viewer_before_it_listens() {
     let out = lamplight(&["view", "nosuch"]);
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.starts_with("lamplight: error: unknown scene 'nosuch' (built-in scenes: "), "{err}");
+    assert!(err.starts_with("lamplight: error: unknown scene \"nosuch\" (built-in scenes: "), "{err}");
     let out = lamplight(&["view", "luxo", "--width", "100000", "--height", "100000"]);
     assert_eq!(out.status.code(), Some(2));
     assert_eq!(String::from_utf8_lossy(&out.stderr), "lamplight: error: image 100000x100000 is too large (at most 268435456 pixels)\n");

@@ -71,7 +71,7 @@ pub fn write_image(
                 let samples: numpy::PyReadonlyArray2<'_, f32> = value.extract()?;
                 ExtraLayer::single("samples", samples.as_array().iter().copied().collect())
             }
-            other => return Err(PyValueError::new_err(format!("unknown layer '{other}' (variance, samples)"))),
+            other => return Err(PyValueError::new_err(lamplight_scene::request::Layer::unknown(other))),
         };
         if layer.channels.iter().any(|(_, v)| v.len() != image.pixels.len()) {
             return Err(PyValueError::new_err(format!("layer '{name}' does not have the image's {}x{} pixels", image.width, image.height)));

@@ -184,8 +184,7 @@ impl Scene {
     /// The built-in scene `name`.
     #[staticmethod]
     fn builtin(name: &str) -> PyResult<Scene> {
-        let b = builtin::find(name)
-            .ok_or_else(|| PyValueError::new_err(format!("unknown scene '{name}' (built-in scenes: {})", builtin::names())))?;
+        let b = builtin::find(name).ok_or_else(|| PyValueError::new_err(builtin::unknown(name)))?;
         Scene::new(Origin::Builtin(b), None)
     }
 

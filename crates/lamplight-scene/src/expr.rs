@@ -283,7 +283,12 @@ impl Parser<'_> {
             _ => {
                 return Err(ExprError {
                     offset: start,
-                    message: format!("unknown name '{name}' (variables: x, y, z; constants: pi, e; functions: sin, cos, tan, sqrt, abs, exp, ln, min, max, pow)"),
+                    message: {
+                        let names = ["x", "y", "z", "pi", "e", "sin", "cos", "tan", "sqrt", "abs", "exp", "ln", "min", "max", "pow"];
+                        let hint =
+                            lamplight_core::params::suggestion(name, names).map(|s| format!("did you mean '{s}'? ")).unwrap_or_default();
+                        format!("unknown name '{name}' ({hint}variables: x, y, z; constants: pi, e; functions: sin, cos, tan, sqrt, abs, exp, ln, min, max, pow)")
+                    },
                 })
             }
         };
@@ -319,6 +324,12 @@ mod tests {
         let torus = "(x*x+y*y+z*z+R*R-r*r)^2 - 4*R*R*(x*x+y*y)".replace('R', "1").replace('r', "0.25");
         assert_eq!(eval(&torus, 1.25, 0.0, 0.0), 0.0, "a point on the tube");
         assert!((eval("sin(pi/2) + ln(e)", 0.0, 0.0, 0.0) - 2.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn a_misspelt_function_names_the_nearest() {
+        let err = Expr::compile("sqr(x)").unwrap_err();
+        assert!(err.message.starts_with("unknown name 'sqr' (did you mean 'sqrt'? variables: x, y, z;"), "{}", err.message);
     }
 
     #[test]

@@ -110,7 +110,7 @@ impl std::str::FromStr for Transfer {
         match s {
             "srgb" => Ok(Transfer::Srgb),
             "linear" => Ok(Transfer::Linear),
-            _ => Err(format!("unknown transfer \"{s}\", expected \"srgb\" or \"linear\"")),
+            _ => Err(lamplight_core::params::unknown("transfer", s, &["srgb", "linear"])),
         }
     }
 }

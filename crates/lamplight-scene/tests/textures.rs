@@ -115,7 +115,7 @@ fn bad_texture_tables_name_their_key() {
     assert!(missing.starts_with("e.toml:6:") && missing.contains("none.png") && missing.contains("no such file"), "{missing}");
     assert_eq!(
         error("kd = { type = \"image\", file = \"t.png\", wrap = \"tile\" }"),
-        "e.toml:6:47: material \"m\": kd: wrap: unknown value \"tile\", expected \"repeat\", \"mirror\" or \"clamp\""
+        "e.toml:6:47: material \"m\": kd: wrap: unknown value \"tile\" (values: repeat, mirror, clamp)"
     );
     assert_eq!(error("type = \"pbr\"\nmetallic = 2"), "e.toml:7:12: material \"m\": metallic: must be between 0 and 1, got 2");
 }

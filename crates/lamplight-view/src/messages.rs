@@ -52,7 +52,9 @@ pub fn handle(app: &Arc<App>, text: &str, answers: &mpsc::Sender<String>) -> Opt
         "settings" => settings(app, &message),
         "explain" => explain(app, &message, answers.clone()),
         "save" | "save_camera" => save(app, &message, answers.clone()),
-        other => Err(format!("unknown message type {other:?} (camera, reset, settings, explain, save, save_camera)")),
+        other => {
+            Err(lamplight_core::params::unknown("message type", other, &["camera", "reset", "settings", "explain", "save", "save_camera"]))
+        }
     };
     result.err().map(|e| error_reply(&e))
 }

@@ -220,7 +220,7 @@ impl std::str::FromStr for Filter {
             "box" => Ok(Filter::Box),
             "tent" => Ok(Filter::Tent),
             "gaussian" => Ok(Filter::Gaussian { sigma: 0.5 }),
-            _ => Err(format!("unknown filter '{s}' (box, tent, gaussian)")),
+            _ => Err(crate::params::unknown("filter", s, &["box", "tent", "gaussian"])),
         }
     }
 }
@@ -337,6 +337,6 @@ mod tests {
     fn names_parse() {
         assert_eq!("tent".parse::<Filter>(), Ok(Filter::Tent));
         assert_eq!("gaussian".parse::<Filter>(), Ok(GAUSS));
-        assert_eq!("mitchell".parse::<Filter>(), Err("unknown filter 'mitchell' (box, tent, gaussian)".into()));
+        assert_eq!("mitchell".parse::<Filter>(), Err("unknown filter \"mitchell\" (filters: box, tent, gaussian)".into()));
     }
 }

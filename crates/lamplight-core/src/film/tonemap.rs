@@ -23,7 +23,7 @@ impl std::str::FromStr for ToneMap {
         match s {
             "clamp" | "none" => Ok(ToneMap::Clamp),
             "filmic" => Ok(ToneMap::Filmic),
-            _ => Err(format!("unknown tone map '{s}' (clamp, filmic)")),
+            _ => Err(crate::params::unknown("tone map", s, &["clamp", "filmic"])),
         }
     }
 }

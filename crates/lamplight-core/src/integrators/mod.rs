@@ -320,7 +320,7 @@ impl std::str::FromStr for &'static IntegratorEntry {
     type Err = String;
 
     fn from_str(s: &str) -> Result<&'static IntegratorEntry, String> {
-        find(s).ok_or_else(|| format!("unknown integrator '{s}' ({})", names()))
+        find(s).ok_or_else(|| crate::params::unknown("integrator", s, &INTEGRATORS.iter().map(|e| e.name).collect::<Vec<_>>()))
     }
 }
 
@@ -351,7 +351,7 @@ mod tests {
     fn integrators_are_found_by_name() {
         assert_eq!(default_integrator().name, "whitted");
         assert_eq!("path".parse::<&IntegratorEntry>().unwrap().name, "path");
-        assert_eq!("photon".parse::<&IntegratorEntry>().unwrap_err(), "unknown integrator 'photon' (whitted, path)");
+        assert_eq!("photon".parse::<&IntegratorEntry>().unwrap_err(), "unknown integrator \"photon\" (integrators: whitted, path)");
         assert_eq!(quoted_names(), "\"whitted\" or \"path\"");
         let names: std::collections::HashSet<_> = INTEGRATORS.iter().map(|e| e.name).collect();
         assert_eq!(names.len(), INTEGRATORS.len(), "names are unique");

@@ -131,8 +131,22 @@ impl<B: 'static> Kind<B> {
 /// `unknown texture "checkers" (did you mean 'checker'? textures: checker)`.
 pub fn unknown_kind<B: 'static>(what: &str, name: &str, kinds: &[&Kind<B>]) -> String {
     let names: Vec<&str> = kinds.iter().map(|k| k.name).collect();
-    let hint = suggestion(name, names.iter().copied()).map(|s| format!("did you mean '{s}'? ")).unwrap_or_default();
-    format!("unknown {what} \"{name}\" ({hint}{what}s: {})", names.join(", "))
+    unknown(what, name, &names)
+}
+
+/// The one wording of a name that is none of `known`, `what` saying what it
+/// names: `unknown filter "gauss" (did you mean 'gaussian'? filters: box, tent,
+/// gaussian)`, the hint only for a near miss ([`suggestion`]), `none defined`
+/// when nothing is known. Every "unknown X" of the program reads so.
+pub fn unknown(what: &str, name: &str, known: &[&str]) -> String {
+    unknown_among(what, name, known, &format!("{what}s"))
+}
+
+/// [`unknown`] with the list labelled `label` (`built-in scenes`).
+pub fn unknown_among(what: &str, name: &str, known: &[&str], label: &str) -> String {
+    let hint = suggestion(name, known.iter().copied()).map(|s| format!("did you mean '{s}'? ")).unwrap_or_default();
+    let list = if known.is_empty() { "none defined".to_string() } else { known.join(", ") };
+    format!("unknown {what} \"{name}\" ({hint}{label}: {list})")
 }
 
 /// A parameter could not be read: where, and what was expected.
@@ -152,12 +166,14 @@ impl fmt::Display for ParamError {
 
 impl std::error::Error for ParamError {}
 
-/// The key among `valid` nearest to `key`, when it is close enough to be a typo.
+/// The key among `valid` nearest to `key`, when it is close enough to be a typo:
+/// at most a third of the longer name changed (at least one edit), and never the
+/// whole of `key` (`w` is no typo of `x`).
 pub fn suggestion<'a>(key: &str, valid: impl IntoIterator<Item = &'a str>) -> Option<&'a str> {
     valid
         .into_iter()
         .map(|v| (strsim::damerau_levenshtein(key, v), v))
-        .filter(|(d, v)| *d <= (v.len().max(key.len()) / 3).max(1))
+        .filter(|(d, v)| *d <= (v.len().max(key.len()) / 3).max(1) && *d < key.chars().count())
         .min_by_key(|(d, _)| *d)
         .map(|(_, v)| v)
 }
@@ -306,7 +322,7 @@ impl<'a> Params<'a> {
     fn choice_opt(&mut self, key: &str, choices: &[&'static str]) -> ParamResult<Option<&'static str>> {
         let Some(s) = self.string(key)? else { return Ok(None) };
         let found = choices.iter().find(|c| **c == s).copied();
-        found.map(Some).ok_or_else(|| self.key_error(key, format!("unknown value \"{s}\", expected {}", quoted(choices))))
+        found.map(Some).ok_or_else(|| self.key_error(key, unknown("value", s, choices)))
     }
 
     /// `[x, y, z]` of finite numbers.

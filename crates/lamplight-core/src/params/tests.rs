@@ -77,3 +77,21 @@ fn suggestions_are_only_for_near_misses() {
     assert_eq!(suggestion("colour", ["color", "kd"]), Some("color"));
     assert_eq!(suggestion("qq", ["radius", "center"]), None);
 }
+
+#[test]
+fn every_unknown_name_reads_alike_and_suggests_a_near_miss() {
+    assert_eq!(
+        "gausian".parse::<crate::film::Filter>().unwrap_err(),
+        "unknown filter \"gausian\" (did you mean 'gaussian'? filters: box, tent, gaussian)"
+    );
+    assert_eq!(
+        "pth".parse::<&crate::integrators::IntegratorEntry>().unwrap_err(),
+        "unknown integrator \"pth\" (did you mean 'path'? integrators: whitted, path)"
+    );
+    assert_eq!(
+        "filmik".parse::<crate::film::tonemap::ToneMap>().unwrap_err(),
+        "unknown tone map \"filmik\" (did you mean 'filmic'? tone maps: clamp, filmic)"
+    );
+    assert_eq!(super::unknown("definition", "a", &[]), "unknown definition \"a\" (definitions: none defined)");
+    assert_eq!(super::unknown_among("mesh", "bunni", &["bunny"], "meshes"), "unknown mesh \"bunni\" (did you mean 'bunny'? meshes: bunny)");
+}

@@ -84,3 +84,10 @@ pub fn find(name: &str) -> Option<&'static Builtin> {
 pub fn names() -> String {
     BUILTINS.iter().map(|b| b.name).collect::<Vec<_>>().join(", ")
 }
+
+/// The message for `name`, which is no built-in scene:
+/// `unknown scene "sphere" (did you mean 'spheres'? built-in scenes: ...)`.
+pub fn unknown(name: &str) -> String {
+    let names: Vec<&str> = BUILTINS.iter().map(|b| b.name).collect();
+    lamplight_core::params::unknown_among("scene", name, &names, "built-in scenes")
+}

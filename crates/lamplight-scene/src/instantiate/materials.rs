@@ -68,7 +68,7 @@ impl Components for Scope<'_> {
             Some(Item { value: Value::String(name), .. }) => {
                 let Some(named) = self.desc.material(name) else {
                     let known: Vec<&str> = self.desc.materials.iter().map(|m| m.name.as_str()).collect();
-                    return Err(p.key_error(key, format!("unknown material \"{name}\" (materials: {})", known.join(", "))));
+                    return Err(p.key_error(key, lamplight_core::params::unknown("material", name, &known)));
                 };
                 let open = self.open.borrow();
                 if open.iter().any(|o| o.as_deref() == Some(name.as_str())) {

@@ -264,9 +264,7 @@ pub fn settings(desc: &SceneDescription, source: &Source) -> Result<Settings, Lo
         let seed = whole(p, "seed", i64::MAX as u64, 0)?;
         let integrator = match p.string("integrator")? {
             None => integrators::default_integrator(),
-            Some(name) => integrators::find(name).ok_or_else(|| {
-                p.key_error("integrator", format!("unknown integrator \"{name}\", expected {}", integrators::quoted_names()))
-            })?,
+            Some(name) => name.parse::<&integrators::IntegratorEntry>().map_err(|message| p.key_error("integrator", message))?,
         };
         let transfer = match p.choice("transfer", &["srgb", "linear"])? {
             "linear" => crate::image_io::Transfer::Linear,

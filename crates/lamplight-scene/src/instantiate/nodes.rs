@@ -16,7 +16,7 @@ use std::sync::Arc;
 use lamplight_core::lights::LightContext;
 use lamplight_core::materials::{Material, Textures};
 use lamplight_core::math::Mat4;
-use lamplight_core::params::{Kind, ParamError, ParamResult, Params};
+use lamplight_core::params::{unknown, unknown_among, Kind, ParamError, ParamResult, Params};
 use lamplight_core::shapes::{placed, Shape, TriangleMesh};
 use lamplight_core::SceneBuilder;
 
@@ -152,7 +152,7 @@ impl<'a> Ctx<'a> {
                 let of = p.required_string("of").map_err(|e| self.fail(e))?;
                 let Some(def) = self.desc.definition(of) else {
                     let known: Vec<_> = self.desc.definitions.iter().map(|d| d.name.as_str()).collect();
-                    return Err(self.fail(p.key_error("of", format!("unknown definition \"{of}\" (definitions: {})", list(&known)))));
+                    return Err(self.fail(p.key_error("of", unknown("definition", of, &known))));
                 };
                 if self.stack.iter().any(|s| s == of) {
                     let chain: Vec<_> = self.stack.iter().map(String::as_str).chain([of]).collect();
@@ -217,7 +217,7 @@ impl<'a> Ctx<'a> {
     fn material(&self, name: &str) -> Result<usize, String> {
         self.materials.get(name).copied().ok_or_else(|| {
             let known: Vec<_> = self.materials.keys().map(String::as_str).collect();
-            format!("unknown material \"{name}\" (materials: {})", list(&known))
+            unknown("material", name, &known)
         })
     }
 
@@ -238,7 +238,7 @@ impl<'a> Ctx<'a> {
         }
         let Some(desc) = self.desc.mesh(name) else {
             let known: Vec<_> = self.desc.meshes.iter().map(|m| m.name.as_str()).collect();
-            return Err(Ok(format!("unknown mesh \"{name}\" (meshes: {})", list(&known))));
+            return Err(Ok(unknown_among("mesh", name, &known, "meshes")));
         };
         let label = format!("mesh \"{name}\"");
         let mut p = Params::new(label, &desc.value);
@@ -455,12 +455,4 @@ fn unknown_type(n: &Node) -> ParamError {
         None => format!("node types: {}", types.join(", ")),
     };
     ParamError { loc: n.kind_loc.clone(), message: format!("{}: unknown node type ({hint})", n.kind) }
-}
-
-fn list(names: &[&str]) -> String {
-    if names.is_empty() {
-        "none defined".to_string()
-    } else {
-        names.join(", ")
-    }
 }

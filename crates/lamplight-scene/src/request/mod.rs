@@ -163,7 +163,7 @@ impl SceneRequest {
         let has_separator = arg.contains('/') || arg.contains(std::path::MAIN_SEPARATOR);
         let extension = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
         if !has_separator && extension.is_none() {
-            let b = builtin::find(arg).ok_or_else(|| bad(format!("unknown scene '{arg}' (built-in scenes: {})", builtin::names())))?;
+            let b = builtin::find(arg).ok_or_else(|| bad(builtin::unknown(arg)))?;
             return Ok(SceneRequest::builtin(b));
         }
         let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "scene".into());
@@ -244,13 +244,23 @@ pub enum Layer {
     Samples,
 }
 
+impl Layer {
+    /// The layers' names, as `--exr-layers` and Python take them.
+    pub const NAMES: [&'static str; 2] = ["variance", "samples"];
+
+    /// The message for a layer name that is none of [`Layer::NAMES`].
+    pub fn unknown(name: &str) -> String {
+        lamplight_core::params::unknown("layer", name, &Layer::NAMES)
+    }
+}
+
 impl std::str::FromStr for Layer {
     type Err = String;
     fn from_str(s: &str) -> Result<Layer, String> {
         match s {
             "variance" => Ok(Layer::Variance),
             "samples" => Ok(Layer::Samples),
-            _ => Err(format!("unknown layer '{s}' (variance, samples)")),
+            _ => Err(Layer::unknown(s)),
         }
     }
 }
@@ -440,6 +450,16 @@ mod tests {
 
     fn luxo() -> SceneRequest {
         SceneRequest::resolve("luxo").unwrap()
+    }
+
+    #[test]
+    fn a_misspelt_scene_or_layer_names_the_nearest() {
+        let err = SceneRequest::resolve("sphere").unwrap_err().0;
+        assert!(err.starts_with("unknown scene \"sphere\" (did you mean 'spheres'? built-in scenes: luxo, "), "{err}");
+        assert_eq!(
+            "varience".parse::<Layer>().unwrap_err(),
+            "unknown layer \"varience\" (did you mean 'variance'? layers: variance, samples)"
+        );
     }
 
     #[test]

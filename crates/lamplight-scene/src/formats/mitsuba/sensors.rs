@@ -125,7 +125,15 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<(), ParamError> {
         other => {
             return Err(err(
                 &p.el.require("type")?.loc,
-                format!("sensor: unknown sensor type \"{other}\" (lamplight reads perspective, thinlens, orthographic)"),
+                format!(
+                    "sensor: {}",
+                    lamplight_core::params::unknown_among(
+                        "sensor type",
+                        other,
+                        &["perspective", "thinlens", "orthographic"],
+                        "lamplight reads"
+                    )
+                ),
             ))
         }
     };

@@ -88,7 +88,10 @@ fn operation(op: &El) -> Result<Mat4, ParamError> {
             let up = if op.get("up").is_some() { point("up")? } else { Vec3::Y };
             look_at(origin, target, up).ok_or_else(|| err(&op.loc, "lookat: target equals origin, or up is parallel to the view direction"))
         }
-        other => Err(err(&op.loc, format!("<{other}>: unknown transform operation (expected translate, rotate, scale, matrix or lookat)"))),
+        other => Err(err(
+            &op.loc,
+            lamplight_core::params::unknown("transform operation", other, &["translate", "rotate", "scale", "matrix", "lookat"]),
+        )),
     }
 }
 
