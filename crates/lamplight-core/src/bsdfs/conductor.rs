@@ -5,7 +5,7 @@
 //! weight `f cos / pdf` is the reflectance itself, which never exceeds 1 for a
 //! conductor (Fresnel reflectance lies in `[0, 1]`).
 
-use crate::materials::{fresnel_conductor, fresnel_dielectric};
+use super::fresnel::{fresnel_conductor, fresnel_dielectric};
 use crate::math::Rgb;
 
 /// Where a mirror's reflectance comes from.
@@ -54,7 +54,7 @@ impl MirrorFresnel {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::materials::Metal;
+    use crate::bsdfs::Metal;
 
     #[test]
     fn conductor_reflectance_stays_in_unit_range_and_rises_to_one_at_grazing() {

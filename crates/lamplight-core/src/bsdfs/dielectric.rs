@@ -8,7 +8,7 @@
 //! is 1 for reflection and `1 / eta^2` for refraction: no light is made or lost
 //! at the boundary, which the white furnace test checks.
 
-use crate::materials::fresnel_dielectric;
+use super::fresnel::fresnel_dielectric;
 use crate::math::Vec3;
 
 /// One sampled direction of a smooth boundary.

@@ -14,9 +14,11 @@
 pub mod conductor;
 pub mod dielectric;
 pub mod distribution;
+mod fresnel;
 pub mod lambertian;
 pub mod mapping;
 pub mod metallic_roughness;
+mod metals;
 pub mod microfacet;
 pub mod plastic;
 pub mod principled;
@@ -30,7 +32,9 @@ pub mod thin_dielectric;
 
 pub use conductor::MirrorFresnel;
 pub use distribution::{Distribution, Microfacet};
+pub use fresnel::{fresnel_conductor, fresnel_conductor_channel, fresnel_dielectric};
 pub use mapping::bsdf_for;
+pub use metals::Metal;
 
 use crate::math::{orthonormal_basis, Rgb, Vec3};
 
@@ -383,7 +387,7 @@ impl Bsdf {
             }
             Lobe::Refract { eta, weight } => {
                 let wi = dielectric::refract_local(wo, eta)?;
-                let w = weight.unwrap_or_else(|| Rgb::splat(1.0 - crate::materials::fresnel_dielectric(wo.z, eta)));
+                let w = weight.unwrap_or_else(|| Rgb::splat(1.0 - fresnel::fresnel_dielectric(wo.z, eta)));
                 return delta(wi, w / (eta * eta), eta);
             }
         };

@@ -20,8 +20,8 @@
 
 use std::f64::consts::FRAC_1_PI;
 
+use super::fresnel::fresnel_dielectric;
 use super::{dielectric::reflect_local, lambertian};
-use crate::materials::fresnel_dielectric;
 use crate::math::{Rgb, Vec3};
 
 /// The coating of a plastic, smooth ([`Plastic`]) or rough ([`super::rough_plastic`]).

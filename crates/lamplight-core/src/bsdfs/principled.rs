@@ -42,8 +42,8 @@
 
 use std::f64::consts::{FRAC_1_PI, PI};
 
+use super::fresnel::fresnel_dielectric;
 use super::{lambertian, microfacet};
-use crate::materials::fresnel_dielectric;
 use crate::math::{Rgb, Vec3};
 
 /// The parameters of a principled surface besides its base colour.

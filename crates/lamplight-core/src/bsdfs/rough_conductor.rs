@@ -7,7 +7,7 @@
 //! the roughness as for [`super::rough_dielectric`].
 
 use super::distribution::Microfacet;
-use crate::materials::fresnel_conductor;
+use super::fresnel::fresnel_conductor;
 use crate::math::{Rgb, Vec3};
 
 /// The BRDF value for `wo`, `wi` above the surface.
@@ -23,7 +23,7 @@ pub fn f(eta: Rgb, k: Rgb, m: Microfacet, wo: Vec3, wi: Vec3) -> Rgb {
 mod tests {
     use super::*;
     use crate::bsdfs::microfacet;
-    use crate::materials::Metal;
+    use crate::bsdfs::Metal;
 
     /// Albedo `E[f cos / pdf]` under visible-normal sampling.
     fn albedo(eta: Rgb, k: Rgb, alpha: f64, wo: Vec3) -> Rgb {

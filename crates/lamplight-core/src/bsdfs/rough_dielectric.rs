@@ -26,7 +26,7 @@
 //! lobe's albedo is below 1 and falls with the roughness.
 
 use super::distribution::Microfacet;
-use crate::materials::fresnel_dielectric;
+use super::fresnel::fresnel_dielectric;
 use crate::math::Vec3;
 
 /// The microfacet normal of the pair `(wo, wi)` (turned to `+z`) and whether it is a

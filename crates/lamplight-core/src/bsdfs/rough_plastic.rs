@@ -27,10 +27,10 @@ use std::f64::consts::FRAC_1_PI;
 use std::sync::Mutex;
 
 use super::distribution::{Distribution, Microfacet};
+use super::fresnel::fresnel_dielectric;
 use super::lambertian;
 use super::plastic::{internal_scattering, specular_probability, Coating};
 use super::rough_dielectric::refract;
-use crate::materials::fresnel_dielectric;
 use crate::math::{Rgb, Vec3};
 
 /// Cosines at which the transmittance is tabulated (Mitsuba's `MI_ROUGH_TRANSMITTANCE_RES`).

@@ -9,7 +9,7 @@
 //! Sampling reflects with probability `R'`: each branch's weight is 1 (times a tint).
 
 use super::dielectric::reflect_local;
-use crate::materials::fresnel_dielectric;
+use super::fresnel::fresnel_dielectric;
 use crate::math::Vec3;
 
 /// `R'`, the sheet's reflectance at `cos_o` (1 under total internal reflection).

@@ -33,9 +33,7 @@ pub mod alpha;
 pub mod blend;
 pub mod bump;
 pub mod combine;
-mod fresnel;
 pub mod image;
-mod metals;
 pub mod normal_map;
 pub mod pbr;
 pub mod phong;
@@ -52,9 +50,10 @@ pub mod uv_transform;
 
 pub use blend::Blend;
 pub use bump::BumpMap;
-pub use fresnel::{fresnel_conductor, fresnel_conductor_channel, fresnel_dielectric};
+// Fresnel and the metals' indices are the lobes' physics; the lecture's model
+// and the Whitted integrator read them from here too.
+pub use crate::bsdfs::{fresnel_conductor, fresnel_conductor_channel, fresnel_dielectric, Metal};
 pub use image::{ImageData, ImageLoader, ImageTexture};
-pub use metals::Metal;
 pub use normal_map::NormalMap;
 pub use pbr::Pbr;
 pub use texture::{ShadingPoint, Texture, TextureKind, Textures};

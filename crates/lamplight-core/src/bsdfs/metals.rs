@@ -1,4 +1,7 @@
 //! Measured complex indices of refraction of common metals, reduced to RGB.
+//!
+//! They are the conductor Fresnel's input, so the conductor lobes' tests use
+//! them without reaching up into the materials.
 
 use crate::math::Rgb;
 
@@ -42,7 +45,7 @@ impl Metal {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::materials::fresnel_conductor;
+    use crate::bsdfs::fresnel::fresnel_conductor;
 
     #[test]
     fn gold_is_yellow_and_silver_is_bright_at_normal_incidence() {

@@ -1,4 +1,8 @@
 //! Fresnel reflectance of smooth dielectrics and conductors, unpolarized light.
+//!
+//! It lives with the lobes because every smooth and microfacet lobe is built on
+//! it; the materials and the Whitted integrator, which sit above the lobes, read
+//! it from here.
 
 use crate::math::Rgb;
 
