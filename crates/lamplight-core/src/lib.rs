@@ -29,6 +29,8 @@
 #![deny(missing_docs)]
 
 pub mod accel;
+#[cfg(test)]
+mod architecture_tests;
 pub mod batch;
 pub mod bsdfs;
 pub mod camera;

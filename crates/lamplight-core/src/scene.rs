@@ -7,10 +7,10 @@ use std::borrow::Cow;
 use std::sync::Arc;
 
 use crate::accel::{Aabb, Bvh, Costs};
-use crate::bsdfs::{bsdf_for, Bsdf};
+use crate::bsdfs::Bsdf;
 use crate::camera::Camera;
 use crate::lights::Light;
-use crate::materials::Material;
+use crate::materials::{bsdf_for, Material};
 use crate::math::{max_abs, Rgb, Vec3};
 use crate::ray::{Ray, OFFSET_SCALE};
 use crate::shapes::Shape;

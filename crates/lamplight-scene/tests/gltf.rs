@@ -408,7 +408,7 @@ fn a_transmission_texture_drives_transmission() {
     // The path tracer's BSDF transmits only where the texture says.
     let below = Vec3::new(0.1, 0.0, -1.0).normalize();
     let wo = Vec3::new(0.0, 0.1, 1.0).normalize();
-    let f = |m: &lamplight_core::materials::Material| lamplight_core::bsdfs::bsdf_for(m, Vec3::ZERO, true).f(wo, below);
+    let f = |m: &lamplight_core::materials::Material| lamplight_core::materials::bsdf_for(m, Vec3::ZERO, true).f(wo, below);
     assert_eq!(f(&opaque), Rgb::ZERO);
     assert!(f(&clear).min_element() > 0.0, "{}", f(&clear));
 }

@@ -4,8 +4,8 @@
 
 use std::path::Path;
 
-use lamplight_core::bsdfs::{bsdf_for, Distribution, Lobe};
-use lamplight_core::materials::Model;
+use lamplight_core::bsdfs::{Distribution, Lobe};
+use lamplight_core::materials::{bsdf_for, Model};
 use lamplight_core::math::Vec3;
 use lamplight_core::Scene;
 use lamplight_scene::formats::mitsuba;

@@ -3,8 +3,8 @@
 //! gets, and the exact errors of bad input.
 
 use lamplight_core::bsdfs::principled::{eta_from_specular, PrincipledParams};
-use lamplight_core::bsdfs::{bsdf_for, Lobe};
-use lamplight_core::materials::{Model, Texture};
+use lamplight_core::bsdfs::Lobe;
+use lamplight_core::materials::{bsdf_for, Model, Texture};
 use lamplight_core::math::{Rgb, Vec3};
 use lamplight_core::Scene;
 use lamplight_scene::formats::mitsuba;

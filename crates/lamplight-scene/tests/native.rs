@@ -177,13 +177,14 @@ fn roughness_reaches_the_material() {
     );
     let m = &s.materials[s.objects[0].material];
     assert_eq!(m.roughness, 0.3);
-    let bsdf = lamplight_core::bsdfs::bsdf_for(m, lamplight_core::math::Vec3::ZERO, true);
+    let bsdf = lamplight_core::materials::bsdf_for(m, lamplight_core::math::Vec3::ZERO, true);
     assert!(matches!(bsdf.lobes(), [lamplight_core::bsdfs::Lobe::RoughGlass { alpha, .. }] if *alpha == 0.3), "{:?}", bsdf.lobes());
 }
 
 #[test]
 fn frosted_example_has_rough_lobes_and_a_mesh_light() {
-    use lamplight_core::bsdfs::{bsdf_for, Lobe};
+    use lamplight_core::bsdfs::Lobe;
+    use lamplight_core::materials::bsdf_for;
     let path = example("frosted");
     let file = SceneFile::parse(&path, &std::fs::read_to_string(&path).unwrap()).unwrap_or_else(|e| panic!("{e}"));
     let s = file.build().unwrap_or_else(|e| panic!("{e}"));

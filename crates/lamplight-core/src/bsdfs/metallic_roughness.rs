@@ -275,7 +275,7 @@ mod tests {
         for _ in 0..n {
             if let Some(wi) = lobe.sample(wo, rng.uniform(), (rng.uniform(), rng.uniform())) {
                 let i = (((1.0 - wi.z) * nt as f64) as usize).min(nt - 1);
-                let phi = super::super::super::shapes::surface::azimuth(wi.x, wi.y);
+                let phi = wi.y.atan2(wi.x).rem_euclid(std::f64::consts::TAU);
                 let j = ((phi / std::f64::consts::TAU * np as f64) as usize).min(np - 1);
                 counts[i * np + j] += 1.0;
             }

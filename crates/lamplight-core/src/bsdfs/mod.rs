@@ -7,16 +7,18 @@
 //! probability proportional to its reflectance bound; for a non-delta lobe the
 //! returned weight uses the mixture value and density of all non-delta lobes
 //! (`f cos / sum_j p_j pdf_j`), which is what multiple importance sampling with
-//! light samples needs. [`mapping`] builds a `Bsdf` from the lecture's
-//! [`crate::materials::Material`] and scales the lobes so that their reflectance
+//! light samples needs. [`Bsdf::new`] scales the lobes so that their reflectance
 //! bounds sum to at most 1 per channel: no material reflects more than it receives.
+//!
+//! The lobes are physics only: they import math and sampling, never the materials
+//! or the scene above them. Which lobes a material is, is decided by the material
+//! kinds, each in its own file.
 
 pub mod conductor;
 pub mod dielectric;
 pub mod distribution;
 mod fresnel;
 pub mod lambertian;
-pub mod mapping;
 pub mod metallic_roughness;
 mod metals;
 pub mod microfacet;
@@ -27,13 +29,12 @@ pub mod rough_conductor;
 pub mod rough_dielectric;
 pub mod rough_plastic;
 #[cfg(test)]
-mod test_support;
+pub(crate) mod test_support;
 pub mod thin_dielectric;
 
 pub use conductor::MirrorFresnel;
 pub use distribution::{Distribution, Microfacet};
 pub use fresnel::{fresnel_conductor, fresnel_conductor_channel, fresnel_dielectric};
-pub use mapping::bsdf_for;
 pub use metals::Metal;
 
 use crate::math::{orthonormal_basis, Rgb, Vec3};
@@ -192,7 +193,7 @@ impl Lobe {
             Lobe::RoughConductor { alpha, .. } if s != Rgb::ONE => Lobe::Glossy { ks: s, alpha },
             Lobe::RoughConductor { .. } => self,
             Lobe::Refract { eta, weight } => Lobe::Refract { eta, weight: Some(weight.unwrap_or(Rgb::ONE) * s) },
-            // Their bounds are at most 1 and the mapping uses them alone: never scaled.
+            // Their bounds are at most 1 and their materials use them alone: never scaled.
             Lobe::MetallicRoughness(_) | Lobe::Plastic(_) | Lobe::RoughPlastic(_) | Lobe::Principled(_) | Lobe::PrincipledThin(_) => self,
         }
     }

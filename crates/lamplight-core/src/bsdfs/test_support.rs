@@ -1,10 +1,29 @@
-//! Checks shared by the lobes' tests: the white furnace (stratified albedo), a
+//! Checks shared by the lobes' and the materials' tests: the white furnace
+//! (stratified albedo, of one lobe or of a whole BSDF), a
 //! chi-square test of sampled directions against the stated pdf, and reciprocity.
 
 use std::f64::consts::PI;
 
-use crate::math::Vec3;
+use super::Bsdf;
+use crate::math::{Rgb, Vec3};
 use crate::sampling::Rng;
+
+/// Directional albedo (reflected and transmitted power over incident power,
+/// `E[weight * eta^2]`) of `bsdf` for `wo`, estimated with stratified samples.
+pub fn albedo(bsdf: &Bsdf, wo: Vec3) -> Rgb {
+    let n = 128;
+    let mut sum = Rgb::ZERO;
+    for i in 0..n {
+        for j in 0..n {
+            let u = ((i as f64 + 0.5) / n as f64, (j as f64 + 0.5) / n as f64);
+            let u_lobe = ((i * n + j) as f64 * 0.618_033_988_749_895).fract();
+            if let Some(s) = bsdf.sample(wo, u_lobe, u) {
+                sum += s.weight * (s.eta * s.eta);
+            }
+        }
+    }
+    sum / (n * n) as f64
+}
 
 /// One sample of a lobe, in one channel: direction and weight `f |cos| / pdf`
 /// (for a delta branch, the branch's weight over its probability).

@@ -34,6 +34,7 @@ pub mod blend;
 pub mod bump;
 pub mod combine;
 pub mod image;
+pub mod lobes;
 pub mod normal_map;
 pub mod pbr;
 pub mod phong;
@@ -54,6 +55,7 @@ pub use bump::BumpMap;
 // and the Whitted integrator read them from here too.
 pub use crate::bsdfs::{fresnel_conductor, fresnel_conductor_channel, fresnel_dielectric, Metal};
 pub use image::{ImageData, ImageLoader, ImageTexture};
+pub use lobes::{bsdf_for, ToBsdf};
 pub use normal_map::NormalMap;
 pub use pbr::Pbr;
 pub use texture::{ShadingPoint, Texture, TextureKind, Textures};
@@ -131,22 +133,39 @@ impl Refraction {
     }
 }
 
-/// A scattering model of its own, which then decides the path tracer's BSDF; the
-/// lecture's fields are its Whitted approximation.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Model {
+/// Declares [`Model`] from its registry: one line per model, the variant and the
+/// type that holds its parameters, which maps itself to lobes ([`ToBsdf`], in
+/// the model's kind file). The BSDF's dispatch is generated from the same lines,
+/// so that adding a model cannot forget it.
+macro_rules! models {
+    ($($(#[$doc:meta])* $variant:ident($params:ty),)*) => {
+        /// A scattering model of its own, which then decides the path tracer's BSDF; the
+        /// lecture's fields are its Whitted approximation.
+        #[derive(Clone, Debug, PartialEq)]
+        pub enum Model {
+            $($(#[$doc])* $variant($params),)*
+        }
+
+        impl ToBsdf for Model {
+            #[inline]
+            fn bsdf(&self, material: &Material, color: Rgb, front_face: bool) -> crate::bsdfs::Bsdf {
+                match self {
+                    $(Model::$variant(params) => params.bsdf(material, color, front_face),)*
+                }
+            }
+        }
+    };
+}
+
+models! {
     /// A diffuse base (albedo `color`) under a dielectric coating, smooth or rough
-    /// (Mitsuba's `plastic` and `roughplastic`; [`crate::bsdfs::plastic`]).
+    /// (Mitsuba's `plastic` and `roughplastic`; [`plastic`]).
     Plastic(crate::bsdfs::plastic::Coating),
-    /// A thin dielectric sheet of relative index `eta` (Mitsuba's `thindielectric`;
-    /// [`crate::bsdfs::thin_dielectric`]).
-    ThinDielectric {
-        /// Relative index of the sheet.
-        eta: f64,
-    },
-    /// Mitsuba's principled BSDF of base colour `color` ([`crate::bsdfs::principled`]).
+    /// A thin dielectric sheet (Mitsuba's `thindielectric`; [`thin_dielectric`]).
+    ThinDielectric(thin_dielectric::ThinSheet),
+    /// Mitsuba's principled BSDF of base colour `color` ([`principled`]).
     Principled(crate::bsdfs::principled::PrincipledParams),
-    /// Mitsuba's thin principled BSDF of base colour `color` ([`crate::bsdfs::principled_thin`]).
+    /// Mitsuba's thin principled BSDF of base colour `color` ([`principled_thin`]).
     PrincipledThin(crate::bsdfs::principled_thin::ThinParams),
 }
 
@@ -181,7 +200,7 @@ pub struct Material {
     /// 0 for opaque objects; POV-Ray lets clear glass pass shadow rays (1).
     pub shadow_transmittance: Rgb,
     /// GGX roughness `alpha` of Fresnel glass and of conductor reflection for the path
-    /// tracer (0: smooth; see [`crate::bsdfs::mapping`]); the Whitted tracer ignores it.
+    /// tracer (0: smooth; see [`lobes`]); the Whitted tracer ignores it.
     /// Under [`Material::pbr`], glTF's perceptual roughness `r` (GGX `alpha = r^2`).
     pub roughness: f64,
     /// The microfacet distribution of the rough glass and conductor lobes (GGX by default).

@@ -36,7 +36,9 @@
 use std::sync::Arc;
 
 use super::textured::{scalar_param, Slot};
-use super::{Material, MaterialKind, Reflection, Refraction, Texture, Textures};
+use super::{Material, MaterialKind, Reflection, Refraction, Texture, Textures, ToBsdf};
+use crate::bsdfs::metallic_roughness::MetallicRoughness;
+use crate::bsdfs::{microfacet, Bsdf, Lobe};
 use crate::math::Rgb;
 use crate::params::{Kind, Param, ParamResult, ParamType as T, Params};
 
@@ -204,4 +206,21 @@ fn build(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Material> {
     m.alpha = super::alpha::read(p, textures)?;
     m.validate().map_err(|e| p.core_error(e))?;
     Ok(m)
+}
+
+/// The path tracer sees the glTF BRDF ([`crate::bsdfs::metallic_roughness`]) of base
+/// colour `C`, `metallic` and `alpha = max(roughness^2, 0.001)` as the only lobe.
+impl ToBsdf for Pbr {
+    #[inline]
+    fn bsdf(&self, material: &Material, color: Rgb, _: bool) -> Bsdf {
+        let alpha = (material.roughness * material.roughness).max(microfacet::MIN_ALPHA);
+        let lobe = MetallicRoughness {
+            base: color.min(Rgb::ONE),
+            metallic: self.metallic,
+            spec: self.specular(),
+            alpha,
+            transmission: self.transmission,
+        };
+        Bsdf::new(&[Lobe::MetallicRoughness(lobe)])
+    }
 }

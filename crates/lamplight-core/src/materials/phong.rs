@@ -19,6 +19,8 @@
 use super::normal_map;
 use super::textured::{color_param, scalar_param, Slot};
 use super::{Material, MaterialKind, Metal, Reflection, Refraction};
+use crate::bsdfs::{microfacet, Bsdf, Lobe, MirrorFresnel};
+use crate::math::Rgb;
 use crate::params::{Kind, Param, ParamResult, ParamType as T, Params};
 
 /// `phong`.
@@ -154,4 +156,82 @@ fn refraction(p: &mut Params<'_>) -> ParamResult<Refraction> {
     };
     r.finish()?;
     Ok(out)
+}
+
+/// The lecture's terms as the path tracer's lobes:
+///
+/// | lecture term | path tracer |
+/// |---|---|
+/// | `kd * C` | Lambertian albedo (`f = kd C / pi`) |
+/// | `ks`, `shininess` | GGX reflection of reflectance `ks`, roughness `sqrt(2 / (shine + 2))` |
+/// | `Reflection::Constant(w)` | mirror of weight `w` |
+/// | `Reflection::Dielectric` + `Refraction::Fresnel` of one index, `min 0 max 1` | smooth glass; rough glass (GGX, [`crate::bsdfs::rough_dielectric`]) of `alpha = roughness` when `roughness >= 0.001` |
+/// | `Reflection::Dielectric {min, max}` otherwise | mirror of weight `min + (max - min) F` |
+/// | `Reflection::Conductor {eta, k}` | conductor mirror with complex Fresnel; rough metal (GGX, [`crate::bsdfs::rough_conductor`]) of `alpha = roughness` when `roughness >= 0.001` |
+/// | `Refraction::Fresnel` alone | refraction of weight `1 - F` |
+/// | `Refraction::Constant(w)` | refraction of weight `w` |
+/// | `emission` | area light radiance (see [`crate::lights::area`]) |
+/// | [`Material::distribution`] | the distribution of the rough glass and metal lobes (GGX or Beckmann, [`crate::bsdfs::distribution`]) |
+/// | `ka` | nothing: it stands for the indirect light the path tracer computes (the background is the sky, [`crate::lights::LightSet`]) |
+///
+/// With lights read as [`crate::lights::DELTA_SCALE`] says, the Lambertian lobe
+/// gives exactly the lecture's diffuse term under point, directional and spot
+/// lights; the GGX lobe only approximates the Blinn highlight.
+///
+/// On a conductor or on Fresnel glass the Blinn highlight is dropped: it stands for
+/// the light source's own reflection, which the path tracer computes from the
+/// mirror (a point light's reflection in a perfect mirror is invisible in both).
+/// Then every lobe is scaled per channel so that the reflectance bounds sum to at
+/// most 1 ([`Bsdf::new`]): the lecture lets `kd + ks + kr` exceed 1, physics does not.
+#[inline]
+pub fn lecture_bsdf(material: &Material, color: Rgb, front_face: bool) -> Bsdf {
+    let relative = |ior: f64| if front_face { ior } else { 1.0 / ior };
+    let mut lobes: [Lobe; 4] = [Lobe::Diffuse(Rgb::ZERO); 4];
+    let mut n = 0;
+    let mut push = |lobe: Lobe| {
+        lobes[n] = lobe;
+        n += 1;
+    };
+    if material.kd != Rgb::ZERO {
+        push(Lobe::Diffuse(material.kd * color));
+    }
+    let glass = match (&material.reflection, &material.refraction) {
+        (Reflection::Dielectric { ior, min, max }, Refraction::Fresnel { ior: t }) => *ior == *t && *min == 0.0 && *max == 1.0,
+        _ => false,
+    };
+    let conductor = matches!(material.reflection, Reflection::Conductor { .. });
+    if material.ks != Rgb::ZERO && !glass && !conductor {
+        push(Lobe::Glossy { ks: material.ks, alpha: microfacet::alpha_from_shininess(material.shininess) });
+    }
+    if glass {
+        if let Refraction::Fresnel { ior } = material.refraction {
+            // Below the smallest GGX roughness the lobe is a mirror that f64 cannot sample.
+            if material.roughness >= microfacet::MIN_ALPHA {
+                push(Lobe::RoughGlass {
+                    eta: relative(ior),
+                    alpha: material.roughness,
+                    tint: Rgb::ONE,
+                    distribution: material.distribution,
+                });
+            } else {
+                push(Lobe::Glass { eta: relative(ior), tint: Rgb::ONE });
+            }
+        }
+    } else {
+        match material.reflection {
+            Reflection::None => {}
+            Reflection::Constant(w) => push(Lobe::Mirror(MirrorFresnel::Constant(w))),
+            Reflection::Dielectric { ior, min, max } => push(Lobe::Mirror(MirrorFresnel::Dielectric { eta: relative(ior), min, max })),
+            Reflection::Conductor { eta, k } if material.roughness >= microfacet::MIN_ALPHA => {
+                push(Lobe::RoughConductor { eta, k, alpha: material.roughness, distribution: material.distribution })
+            }
+            Reflection::Conductor { eta, k } => push(Lobe::Mirror(MirrorFresnel::Conductor { eta, k })),
+        }
+        match material.refraction {
+            Refraction::None => {}
+            Refraction::Fresnel { ior } => push(Lobe::Refract { eta: relative(ior), weight: None }),
+            Refraction::Constant { ior, weight } => push(Lobe::Refract { eta: relative(ior), weight: Some(weight) }),
+        }
+    }
+    Bsdf::new(&lobes[..n])
 }

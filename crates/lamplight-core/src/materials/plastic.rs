@@ -19,9 +19,10 @@
 use std::sync::Arc;
 
 use super::textured::Slot;
-use super::{Material, MaterialKind, Model, Reflection, Texture, Textures};
-use crate::bsdfs::plastic::Coating;
-use crate::bsdfs::{rough_plastic, Distribution, Microfacet};
+use super::{Material, MaterialKind, Model, Reflection, Texture, Textures, ToBsdf};
+use crate::bsdfs::plastic::{Coating, Plastic};
+use crate::bsdfs::rough_plastic::{self, RoughPlastic};
+use crate::bsdfs::{Bsdf, Distribution, Lobe, Microfacet};
 use crate::math::Rgb;
 use crate::params::{Kind, Param, ParamResult, ParamType as T, Params};
 
@@ -115,4 +116,19 @@ fn build(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Material> {
     m.alpha = super::alpha::read(p, textures)?;
     m.validate().map_err(|e| p.core_error(e))?;
     Ok(m)
+}
+
+/// The path tracer sees the coating over a diffuse base of albedo `C` (capped at
+/// 1), smooth ([`crate::bsdfs::plastic`]) or rough ([`crate::bsdfs::rough_plastic`]),
+/// as the only lobe: the lecture's terms are the Whitted tracer's alone.
+impl ToBsdf for Coating {
+    #[inline]
+    fn bsdf(&self, _: &Material, color: Rgb, _: bool) -> Bsdf {
+        let base = color.clamp(Rgb::ZERO, Rgb::ONE);
+        let lobe = match self.rough {
+            Some((m, table)) => Lobe::RoughPlastic(RoughPlastic::new(base, self, m, table)),
+            None => Lobe::Plastic(Plastic::new(base, self)),
+        };
+        Bsdf::new(&[lobe])
+    }
 }

@@ -26,9 +26,10 @@
 use std::sync::Arc;
 
 use super::textured::{scalar_param, Slot};
-use super::{Material, MaterialKind, Model, Texture, Textures};
-use crate::bsdfs::principled::{eta_from_specular, PrincipledParams};
+use super::{Material, MaterialKind, Model, Texture, Textures, ToBsdf};
+use crate::bsdfs::principled::{eta_from_specular, Principled, PrincipledParams};
 use crate::bsdfs::principled_thin::ThinParams;
+use crate::bsdfs::{Bsdf, Lobe};
 use crate::math::Rgb;
 use crate::params::{Kind, Param, ParamResult, ParamType as T, Params, Value};
 
@@ -202,4 +203,14 @@ fn build(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Material> {
     m.alpha = super::alpha::read(p, textures)?;
     m.validate().map_err(|e| p.core_error(e))?;
     Ok(m)
+}
+
+/// The path tracer sees Mitsuba's principled BSDF ([`crate::bsdfs::principled`]) of
+/// base colour `C` as the only lobe.
+impl ToBsdf for PrincipledParams {
+    // It tells the two sides apart itself, as Mitsuba's does.
+    #[inline]
+    fn bsdf(&self, _: &Material, color: Rgb, front_face: bool) -> Bsdf {
+        Bsdf::new(&[Lobe::Principled(Principled::new(color.max(Rgb::ZERO), *self, front_face))])
+    }
 }

@@ -24,8 +24,9 @@ use std::sync::Arc;
 
 use super::principled::Scalar;
 use super::textured::{scalar_param, Slot};
-use super::{Material, MaterialKind, Model, Texture, Textures};
-use crate::bsdfs::principled_thin::ThinParams;
+use super::{Material, MaterialKind, Model, Texture, Textures, ToBsdf};
+use crate::bsdfs::principled_thin::{PrincipledThin, ThinParams};
+use crate::bsdfs::{Bsdf, Lobe};
 use crate::math::Rgb;
 use crate::params::{Kind, Param, ParamResult, ParamType as T, Params};
 
@@ -112,4 +113,14 @@ fn build(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Material> {
     m.alpha = super::alpha::read(p, textures)?;
     m.validate().map_err(|e| p.core_error(e))?;
     Ok(m)
+}
+
+/// The path tracer sees Mitsuba's `principledthin` ([`crate::bsdfs::principled_thin`])
+/// of base colour `C` as the only lobe.
+impl ToBsdf for ThinParams {
+    // A sheet has the same medium on both sides: the face does not matter.
+    #[inline]
+    fn bsdf(&self, _: &Material, color: Rgb, _: bool) -> Bsdf {
+        Bsdf::new(&[Lobe::PrincipledThin(PrincipledThin::new(color.max(Rgb::ZERO), *self))])
+    }
 }

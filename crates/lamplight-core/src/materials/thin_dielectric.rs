@@ -14,7 +14,8 @@
 use std::sync::Arc;
 
 use super::plastic::{emission, ior};
-use super::{Material, MaterialKind, Model, Reflection, Refraction, Texture, Textures};
+use super::{Material, MaterialKind, Model, Reflection, Refraction, Texture, Textures, ToBsdf};
+use crate::bsdfs::{Bsdf, Lobe};
 use crate::math::Rgb;
 use crate::params::{Kind, Param, ParamResult, ParamType as T, Params};
 
@@ -44,7 +45,7 @@ fn build(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Material> {
         emission,
         reflection: Reflection::Constant(Rgb::splat(r)),
         refraction: Refraction::Constant { ior: 1.0, weight: Rgb::splat(1.0 - r) },
-        model: Some(Model::ThinDielectric { eta }),
+        model: Some(Model::ThinDielectric(ThinSheet { eta })),
         textures: (!maps.is_empty()).then(|| Arc::from(maps)),
         ..Material::default()
     };
@@ -54,4 +55,20 @@ fn build(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Material> {
     m.alpha = super::alpha::read(p, textures)?;
     m.validate().map_err(|e| p.core_error(e))?;
     Ok(m)
+}
+
+/// The parameters of a thin dielectric sheet.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ThinSheet {
+    /// Relative index of the sheet.
+    pub eta: f64,
+}
+
+/// The path tracer sees the sheet ([`crate::bsdfs::thin_dielectric`]) as the only lobe.
+impl ToBsdf for ThinSheet {
+    // The sheet has the same medium on both sides: the face does not matter.
+    #[inline]
+    fn bsdf(&self, _: &Material, _: Rgb, _: bool) -> Bsdf {
+        Bsdf::new(&[Lobe::ThinGlass { eta: self.eta, tint: Rgb::ONE }])
+    }
 }

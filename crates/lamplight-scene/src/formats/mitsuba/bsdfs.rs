@@ -1,5 +1,5 @@
 //! `<bsdf>` to `[materials]`. lamplight's `phong` material is read by the path
-//! tracer as physically based lobes (`crates/lamplight-core/src/bsdfs/mapping.rs`),
+//! tracer as physically based lobes (`lecture_bsdf` in `crates/lamplight-core/src/materials/phong.rs`),
 //! so each Mitsuba BSDF becomes the `phong` table of the same lobes:
 //!
 //! | Mitsuba | lamplight `phong` |

@@ -1,0 +1,233 @@
+//! The import graph between the crate's folders, read from the sources, so that
+//! a layering once untangled (issue 25, section 1) cannot grow back unnoticed.
+//!
+//! The lobes of `bsdfs/` are physics: they may import math, sampling and each
+//! other, never the materials, scene, integrators, renderer, lights or shapes
+//! above them (the materials map themselves to lobes, not the other way round).
+//!
+//! The check reads every `crate::...` and `super::...` path of a file (in `use`
+//! lines, in code and in doc links), resolves `super` against the file's module
+//! and the inline `mod` blocks around it, and names the top-level module each
+//! path enters. It is a reader of rustfmt-formatted text, not a Rust parser: a
+//! `use` group may span lines, an inline module closes at the `}` of its own
+//! indentation.
+
+use std::path::{Path, PathBuf};
+
+/// A path in a source file that enters a top-level module of the crate.
+#[derive(Debug)]
+struct Reference {
+    /// The file, relative to `src/`.
+    file: String,
+    /// 1-based line of the path's first segment.
+    line: usize,
+    /// The top-level module it enters (`materials`, `scene`, ...).
+    module: String,
+    /// Whether the path lies in a comment (doc or not).
+    in_comment: bool,
+    /// The source line, trimmed, for the message.
+    text: String,
+}
+
+fn src_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("src")
+}
+
+/// Every `.rs` file under `dir`, sorted.
+fn rust_files(dir: &Path) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    let mut entries: Vec<_> =
+        std::fs::read_dir(dir).unwrap_or_else(|e| panic!("{}: {e}", dir.display())).map(|e| e.unwrap().path()).collect();
+    entries.sort();
+    for path in entries {
+        if path.is_dir() {
+            out.extend(rust_files(&path));
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            out.push(path);
+        }
+    }
+    out
+}
+
+/// The module path of the file `rel` (relative to `src/`): `bsdfs/mod.rs` is
+/// `[bsdfs]`, `bsdfs/principled/tests.rs` is `[bsdfs, principled, tests]`,
+/// `lib.rs` is the root `[]`.
+fn module_path(rel: &Path) -> Vec<String> {
+    let mut parts: Vec<String> = rel.iter().map(|p| p.to_string_lossy().into_owned()).collect();
+    let last = parts.pop().unwrap();
+    let stem = last.strip_suffix(".rs").unwrap();
+    if !(stem == "mod" || (parts.is_empty() && (stem == "lib" || stem == "main"))) {
+        parts.push(stem.to_string());
+    }
+    parts
+}
+
+fn is_ident_char(c: u8) -> bool {
+    c.is_ascii_alphanumeric() || c == b'_'
+}
+
+/// The identifier at `bytes[i..]` (empty if none).
+fn ident_at(bytes: &[u8], i: usize) -> &str {
+    let end = (i..bytes.len()).find(|&j| !is_ident_char(bytes[j])).unwrap_or(bytes.len());
+    std::str::from_utf8(&bytes[i..end]).unwrap()
+}
+
+fn skip_space(bytes: &[u8], mut i: usize) -> usize {
+    while i < bytes.len() && bytes[i].is_ascii_whitespace() {
+        i += 1;
+    }
+    i
+}
+
+/// The first segments of the items of the `use` group opening at `bytes[open]`
+/// (`{a::b, c, d::{e, f}}` gives `a`, `c`, `d`), each with its byte offset.
+fn group_heads(bytes: &[u8], open: usize) -> Vec<(usize, String)> {
+    let mut heads = Vec::new();
+    let mut depth = 0;
+    let mut expect_head = true;
+    let mut i = open;
+    while i < bytes.len() {
+        match bytes[i] {
+            b'{' => {
+                depth += 1;
+                if depth == 1 {
+                    expect_head = true;
+                }
+            }
+            b'}' => {
+                depth -= 1;
+                if depth == 0 {
+                    break;
+                }
+            }
+            b',' if depth == 1 => expect_head = true,
+            c if depth == 1 && expect_head && is_ident_char(c) => {
+                heads.push((i, ident_at(bytes, i).to_string()));
+                expect_head = false;
+            }
+            c if depth == 1 && expect_head && c == b'*' => {
+                heads.push((i, "*".to_string()));
+                expect_head = false;
+            }
+            _ => {}
+        }
+        i += 1;
+    }
+    heads
+}
+
+/// For each line, the names of the inline `mod name {` blocks open on it.
+fn inline_modules(lines: &[&str]) -> Vec<Vec<String>> {
+    let mut open: Vec<(String, String)> = Vec::new(); // (name, closing line)
+    let mut out = Vec::with_capacity(lines.len());
+    for line in lines {
+        if open.last().is_some_and(|(_, close)| line.trim_end() == close) {
+            open.pop();
+        }
+        out.push(open.iter().map(|(name, _)| name.clone()).collect());
+        let trimmed = line.trim_start();
+        let indent = &line[..line.len() - trimmed.len()];
+        let decl = trimmed.strip_prefix("pub ").or_else(|| trimmed.strip_prefix("pub(crate) ")).unwrap_or(trimmed);
+        if let Some(rest) = decl.strip_prefix("mod ") {
+            if let Some(name) = rest.trim_end().strip_suffix('{') {
+                open.push((name.trim().to_string(), format!("{indent}}}")));
+            }
+        }
+    }
+    out
+}
+
+/// Every path of the file `rel` that enters a top-level module, resolved.
+fn references(rel: &Path, text: &str) -> Vec<Reference> {
+    let file = rel.to_string_lossy().into_owned();
+    let base = module_path(rel);
+    let lines: Vec<&str> = text.lines().collect();
+    let inline = inline_modules(&lines);
+    let bytes = text.as_bytes();
+    let line_of = |offset: usize| bytes[..offset].iter().filter(|&&b| b == b'\n').count();
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < bytes.len() {
+        let starts = |word: &str| bytes[i..].starts_with(word.as_bytes());
+        let boundary = i == 0 || !(is_ident_char(bytes[i - 1]) || bytes[i - 1] == b':');
+        if !(boundary && (starts("crate::") || starts("super::"))) {
+            i += 1;
+            continue;
+        }
+        let first_line = line_of(i);
+        let mut module: Vec<String> = base.iter().cloned().chain(inline[first_line].iter().cloned()).collect();
+        let mut j = i;
+        if starts("crate::") {
+            module.clear();
+            j += "crate::".len();
+        } else {
+            while bytes[j..].starts_with(b"super::") {
+                module.pop();
+                j += "super::".len();
+            }
+        }
+        let heads = if bytes.get(j) == Some(&b'{') { group_heads(bytes, j) } else { vec![(j, ident_at(bytes, j).to_string())] };
+        for (at, head) in heads {
+            let top = match module.first() {
+                Some(own) => own.clone(),
+                None if head == "self" || head == "*" || head.is_empty() => continue,
+                None => head,
+            };
+            let line = line_of(at);
+            let source = lines[line];
+            let comment_start = source.find("//").map(|c| c + bytes[..at].iter().rposition(|&b| b == b'\n').map_or(0, |n| n + 1));
+            out.push(Reference {
+                file: file.clone(),
+                line: line + 1,
+                module: top,
+                in_comment: comment_start.is_some_and(|c| c <= at),
+                text: source.trim().to_string(),
+            });
+        }
+        i = skip_space(bytes, j).max(i + 1);
+    }
+    out
+}
+
+/// The references of every file under `src/` (its top-level module first).
+fn all_references() -> Vec<(String, Reference)> {
+    let src = src_dir();
+    let mut out = Vec::new();
+    for path in rust_files(&src) {
+        let rel = path.strip_prefix(&src).unwrap().to_path_buf();
+        let own = module_path(&rel).first().cloned().unwrap_or_default();
+        let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        out.extend(references(&rel, &text).into_iter().map(|r| (own.clone(), r)));
+    }
+    out
+}
+
+#[test]
+fn bsdfs_import_only_math_sampling_and_themselves() {
+    const ABOVE: [&str; 6] = ["materials", "scene", "integrators", "render", "lights", "shapes"];
+    let refs = all_references();
+    assert!(refs.iter().any(|(own, r)| own == "bsdfs" && r.module == "math"), "the reader finds the lobes' own imports");
+    let bad: Vec<String> = refs
+        .iter()
+        .filter(|(own, r)| own == "bsdfs" && ABOVE.contains(&r.module.as_str()))
+        .map(|(_, r)| format!("  src/{}:{} refers to `{}`: {}", r.file, r.line, r.module, r.text))
+        .collect();
+    assert!(
+        bad.is_empty(),
+        "bsdfs/ must import only math, sampling and its own files (issue 25, section 1); \
+         the materials map themselves to lobes, not the other way round:\n{}",
+        bad.join("\n")
+    );
+}
+
+#[test]
+fn the_reader_resolves_super_and_groups() {
+    let text = "use super::super::materials::Material;\nuse crate::{lights::Light, math::Vec3};\nuse super::Lobe;\n\
+                mod tests {\n    use super::super::super::shapes;\n}\n// crate::render is named in a comment\n";
+    let refs = references(Path::new("bsdfs/principled.rs"), text);
+    let got: Vec<(usize, &str, bool)> = refs.iter().map(|r| (r.line, r.module.as_str(), r.in_comment)).collect();
+    assert_eq!(
+        got,
+        [(1, "materials", false), (2, "lights", false), (2, "math", false), (3, "bsdfs", false), (5, "shapes", false), (7, "render", true)]
+    );
+}
