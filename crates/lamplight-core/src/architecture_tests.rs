@@ -4,6 +4,7 @@
 //! The lobes of `bsdfs/` are physics: they may import math, sampling and each
 //! other, never the materials, scene, integrators, renderer, lights or shapes
 //! above them (the materials map themselves to lobes, not the other way round).
+//! The renderer runs the integrators, never the other way round.
 //!
 //! The check reads every `crate::...` and `super::...` path of a file (in `use`
 //! lines, in code and in doc links), resolves `super` against the file's module
@@ -217,6 +218,28 @@ fn bsdfs_import_only_math_sampling_and_themselves() {
         "bsdfs/ must import only math, sampling and its own files (issue 25, section 1); \
          the materials map themselves to lobes, not the other way round:\n{}",
         bad.join("\n")
+    );
+}
+
+/// The renderer runs the integrators; an integrator never reaches back into
+/// the renderer (what both need, such as `PixelWindow`, lives below both, in
+/// `film/`). Code only: a doc link to the crate's `render()` is no import.
+#[test]
+fn integrators_and_render_do_not_import_each_other_in_a_circle() {
+    let refs = all_references();
+    let code = |from: &str, to: &str| -> Vec<String> {
+        refs.iter()
+            .filter(|(own, r)| own == from && r.module == to && !r.in_comment)
+            .map(|(_, r)| format!("  src/{}:{} refers to `{}`: {}", r.file, r.line, r.module, r.text))
+            .collect()
+    };
+    assert!(!code("render", "integrators").is_empty(), "the reader finds the renderer's imports of the integrators");
+    let back = code("integrators", "render");
+    assert!(
+        back.is_empty(),
+        "integrators/ must not import render/, which imports it (issue 25, section 1); \
+         move what both need below both:\n{}",
+        back.join("\n")
     );
 }
 

@@ -1,13 +1,16 @@
 //! The film: the per-pixel sums a render accumulates ([`Film`]), the linear-radiance
-//! RGB image developed from them ([`Image`]), and the sRGB encoding used for display formats.
+//! RGB image developed from them ([`Image`]), the sRGB encoding used for display formats,
+//! and the rectangle of its pixels a render covers ([`PixelWindow`]).
 
 mod accumulated;
 mod filter;
 pub mod tonemap;
+mod window;
 
 pub(crate) use accumulated::{variance_of_mean, TileBlock};
 pub use accumulated::{Film, PixelSum, TILE};
 pub use filter::{Filter, FILTER_NAMES};
+pub use window::PixelWindow;
 
 /// Largest sample radiance the film accepts, per channel. A sample beyond it
 /// (or NaN, or infinite) is replaced by black and counted

@@ -106,7 +106,7 @@ impl<'a> View<'a> {
     }
 
     /// The same view with samples drawn only inside `crop` (`None`: the whole image).
-    pub fn with_crop(self, crop: Option<crate::render::PixelWindow>) -> View<'a> {
+    pub fn with_crop(self, crop: Option<crate::film::PixelWindow>) -> View<'a> {
         match crop {
             None => self,
             Some(c) => View { sample_bounds: [c.x0 as f64, c.y0 as f64, (c.x0 + c.width) as f64, (c.y0 + c.height) as f64], ..self },

@@ -23,8 +23,8 @@ use std::time::{Duration, Instant};
 
 use rayon::prelude::*;
 
-use super::{passes, PixelWindow, RenderControl, RenderOptions, RenderStats, Sampled};
-use crate::film::{variance_of_mean, Film, Image, PixelSum};
+use super::{passes, RenderControl, RenderOptions, RenderStats, Sampled};
+use crate::film::{variance_of_mean, Film, Image, PixelSum, PixelWindow};
 use crate::integrators::Integrator;
 use crate::scene::Scene;
 use crate::Error;

@@ -21,7 +21,7 @@ use std::time::{Duration, Instant};
 
 use rayon::prelude::*;
 
-use crate::film::{Film, Filter, Image, PixelSum, TileBlock, TILE};
+use crate::film::{Film, Filter, Image, PixelSum, PixelWindow, TileBlock, TILE};
 use crate::integrators::{self, Integrator, IntegratorEntry, IntegratorSettings, RayCounts, Schedule, View};
 use crate::scene::Scene;
 use crate::Error;
@@ -68,31 +68,6 @@ pub struct RenderOptions {
     /// Extra samples only where pixels need them ([`Adaptive`]); `None` gives
     /// every pixel `spp` samples.
     pub adaptive: Option<Adaptive>,
-}
-
-/// A rectangle of pixels of the full image: columns `x0..x0 + width`, rows `y0..y0 + height`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct PixelWindow {
-    /// First column.
-    pub x0: u32,
-    /// First row.
-    pub y0: u32,
-    /// Columns.
-    pub width: u32,
-    /// Rows.
-    pub height: u32,
-}
-
-impl PixelWindow {
-    /// Whether the window has pixels and all of them lie in `outer`.
-    pub fn is_inside(&self, outer: PixelWindow) -> bool {
-        self.width > 0
-            && self.height > 0
-            && self.x0 >= outer.x0
-            && self.y0 >= outer.y0
-            && self.x0 as u64 + self.width as u64 <= outer.x0 as u64 + outer.width as u64
-            && self.y0 as u64 + self.height as u64 <= outer.y0 as u64 + outer.height as u64
-    }
 }
 
 impl RenderOptions {
