@@ -18,6 +18,8 @@ use std::ops::Range;
 use crate::camera::Camera;
 use crate::film::{Filter, PixelSum};
 use crate::math::Rgb;
+use crate::ray::Ray;
+use crate::sampling::Cone;
 use crate::scene::Scene;
 use crate::Error;
 
@@ -103,6 +105,16 @@ impl<'a> View<'a> {
             clamp: f64::INFINITY,
             sample_bounds: [0.0, 0.0, width as f64, height as f64],
         }
+    }
+
+    /// The ray cone ([`Cone`]) of the camera ray `ray` through film position
+    /// `(fx, fy)` with lens sample `lens`, from the camera's rays one pixel over
+    /// in x and in y.
+    #[inline]
+    pub fn pixel_cone(&self, ray: &Ray, fx: f64, fy: f64, lens: (f64, f64)) -> Cone {
+        let x = self.camera.ray(fx + 1.0, fy, self.width, self.height, lens);
+        let y = self.camera.ray(fx, fy + 1.0, self.width, self.height, lens);
+        Cone::of_neighbours(ray, &x, &y, self.spp)
     }
 
     /// The same view with samples drawn only inside `crop` (`None`: the whole image).

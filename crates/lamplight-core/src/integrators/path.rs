@@ -16,7 +16,6 @@
 //! refracted BSDF paths), so nothing is counted twice.
 
 use super::trace::{NeeMiss, NeeSample, NoTrace, PathEnd, PathTrace, Trace};
-use super::whitted::Cone;
 use super::{Integrator, IntegratorEntry, IntegratorSettings, RayCounts, Schedule, View};
 use crate::bsdfs::{Bsdf, Frame};
 use crate::film::Filter;
@@ -24,7 +23,7 @@ use crate::lights::LightSet;
 use crate::materials::{Reflection, Refraction};
 use crate::math::{Rgb, Vec3};
 use crate::ray::{offset_origin, Ray};
-use crate::sampling::PixelSampler;
+use crate::sampling::{Cone, PixelSampler};
 use crate::scene::{Hit, Scene};
 use crate::Error;
 
@@ -366,7 +365,7 @@ impl PathTracer {
         let lens = if view.lens { sampler.get_2d() } else { (0.5, 0.5) };
         let (fx, fy) = (x as f64 + 0.5 + dx, y as f64 + 0.5 + dy);
         let ray = view.camera.ray(fx, fy, view.width, view.height, lens);
-        let cone = if view.scene.uses_footprints() { Cone::of_pixel(view, &ray, fx, fy, lens) } else { Cone::default() };
+        let cone = if view.scene.uses_footprints() { view.pixel_cone(&ray, fx, fy, lens) } else { Cone::default() };
         let l = self.li_traced(view.scene, &ray, cone, &mut sampler, counts, trace);
         // The box and the tent weigh every sample 1: their radiance is kept as it is.
         if weight == 1.0 {

@@ -24,7 +24,7 @@ use crate::lights::{AreaLight, LightSet};
 use crate::materials::{fresnel_conductor, fresnel_dielectric, Material, Reflection, Refraction};
 use crate::math::{max_component, Rgb, Vec3};
 use crate::ray::{offset_origin, Ray};
-use crate::sampling::{stratified_2d, Rng};
+use crate::sampling::{stratified_2d, Cone, Rng};
 use crate::scene::{Hit, Scene};
 use crate::Error;
 
@@ -75,33 +75,6 @@ struct Pending {
     width: f64,
 }
 
-/// A camera ray's pixel footprint, a cone (ray cones, Akenine-Moeller et al.
-/// 2019): at distance `t` along the path it is `width + spread t` wide. Mirror
-/// and refracted rays continue the cone from the width at their hit (surface
-/// curvature is not followed). Made only for scenes with trilinear textures.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Cone {
-    /// Width at the camera.
-    pub width: f64,
-    /// Growth per unit of distance.
-    pub spread: f64,
-}
-
-impl Cone {
-    /// The footprint of the camera ray through film position `(fx, fy)`: the
-    /// distance to the rays one pixel over in x and y (their larger), narrowed
-    /// by `1 / sqrt(spp)` down to 1/8 for supersampled pixels (pbrt-v4's
-    /// `Approximate_dp_dxy` scaling).
-    pub fn of_pixel(view: &View, ray: &Ray, fx: f64, fy: f64, lens: (f64, f64)) -> Cone {
-        let x = view.camera.ray(fx + 1.0, fy, view.width, view.height, lens);
-        let y = view.camera.ray(fx, fy + 1.0, view.width, view.height, lens);
-        let width = (x.origin - ray.origin).length().max((y.origin - ray.origin).length());
-        let spread = (x.dir - ray.dir).length().max((y.dir - ray.dir).length());
-        let scale = (1.0 / f64::from(view.spp.max(1)).sqrt()).max(0.125);
-        Cone { width: width * scale, spread: spread * scale }
-    }
-}
-
 impl Integrator for Whitted {
     /// One sample: a single sample per pixel sits at the camera's pixel offset;
     /// `n > 1` samples are stratified over the pixel ([`stratified_2d`], strata
@@ -140,7 +113,7 @@ impl Whitted {
         let lens = if view.lens { (uniform(), uniform()) } else { (0.5, 0.5) };
         let (fx, fy) = (x as f64 + dx, y as f64 + dy);
         let ray = view.camera.ray(fx, fy, view.width, view.height, lens);
-        let cone = if view.scene.uses_footprints() { Cone::of_pixel(view, &ray, fx, fy, lens) } else { Cone::default() };
+        let cone = if view.scene.uses_footprints() { view.pixel_cone(&ray, fx, fy, lens) } else { Cone::default() };
         self.trace_traced(view.scene, &ray, cone, &mut uniform, counts, trace)
     }
 

@@ -3,9 +3,11 @@
 //! Every pixel sample draws from its own generator seeded by (seed, pixel, sample
 //! index), so an image does not depend on which thread renders which pixel.
 
+mod cone;
 mod distribution;
 mod sobol;
 
+pub use cone::Cone;
 pub use distribution::{Distribution1d, Distribution2d};
 pub use sobol::{owen_scramble, PixelSampler};
 
