@@ -8,40 +8,8 @@ use lamplight_core::bsdfs::{Distribution, Lobe};
 use lamplight_core::materials::{bsdf_for, Model};
 use lamplight_core::math::Vec3;
 use lamplight_core::Scene;
-use lamplight_scene::formats::mitsuba;
-use lamplight_scene::request::SceneRequest;
 
-/// A scene of a camera and one sphere with the BSDF `bsdf`.
-fn xml(bsdf: &str) -> String {
-    format!(
-        r#"<scene version="3.0.0">
-    <sensor type="perspective"><film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film></sensor>
-    <shape type="sphere">{bsdf}</shape>
-</scene>
-"#
-    )
-}
-
-/// The built scene of `text` (an XML scene) and the reader's warnings.
-fn read(text: &str) -> (Scene, Vec<String>) {
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("s.xml");
-    std::fs::write(&path, text).unwrap();
-    let (_, source) = mitsuba::read(&path, &[]).unwrap_or_else(|e| panic!("{e}"));
-    let scene = SceneRequest::resolve_with(path.to_str().unwrap(), &[]).unwrap().build().unwrap_or_else(|e| panic!("{e}"));
-    let warnings = source.warnings.iter().map(|w| w.replace(&format!("{}/", dir.path().display()), "")).collect();
-    (scene, warnings)
-}
-
-fn error(text: &str) -> String {
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("s.xml");
-    std::fs::write(&path, text).unwrap();
-    match SceneRequest::resolve_with(path.to_str().unwrap(), &[]).and_then(|r| r.build()) {
-        Ok(_) => panic!("read but should fail:\n{text}"),
-        Err(e) => e.to_string().replace(&format!("{}/", dir.path().display()), ""),
-    }
-}
+use crate::common::mitsuba_xml::{error, one_sphere as xml, read};
 
 fn lobes(s: &Scene) -> Vec<Lobe> {
     bsdf_for(&s.materials[s.objects[0].material], Vec3::ZERO, true).lobes().to_vec()

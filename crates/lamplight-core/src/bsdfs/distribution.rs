@@ -194,6 +194,7 @@ impl Microfacet {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::bsdfs::test_support::{hemisphere_quadrature, stratified_mean};
 
     fn beckmann(alpha: f64) -> Microfacet {
         Microfacet::new(Distribution::Beckmann, alpha)
@@ -240,30 +241,12 @@ mod tests {
         for alpha in [0.1, 0.4, 0.9] {
             let m = beckmann(alpha);
             let wo = Vec3::new(0.5, 0.0, 0.75f64.sqrt());
-            let n = 300;
-            let mut albedo = 0.0;
-            for i in 0..n {
-                for j in 0..n {
-                    let u = ((i as f64 + 0.5) / n as f64, (j as f64 + 0.5) / n as f64);
-                    let h = m.sample_normal(wo, u);
-                    assert!((h.length() - 1.0).abs() < 1e-12 && h.z > 0.0);
-                    if let Some(wi) = m.sample(wo, u) {
-                        albedo += m.f(Rgb::ONE, wo, wi).x * wi.z / m.pdf(wo, wi);
-                    }
-                }
-            }
-            albedo /= (n * n) as f64;
-            let (nt, np) = (2000, 400);
-            let mut quadrature = 0.0;
-            for i in 0..nt {
-                let c = (i as f64 + 0.5) / nt as f64;
-                for j in 0..np {
-                    let phi = (j as f64 + 0.5) / np as f64 * 2.0 * PI;
-                    let s = (1.0 - c * c).sqrt();
-                    let wi = Vec3::new(s * phi.cos(), s * phi.sin(), c);
-                    quadrature += m.f(Rgb::ONE, wo, wi).x * c * 2.0 * PI / (nt * np) as f64;
-                }
-            }
+            let albedo = stratified_mean(300, |u| {
+                let h = m.sample_normal(wo, u);
+                assert!((h.length() - 1.0).abs() < 1e-12 && h.z > 0.0);
+                m.sample(wo, u).map_or(0.0, |wi| m.f(Rgb::ONE, wo, wi).x * wi.z / m.pdf(wo, wi))
+            });
+            let quadrature = hemisphere_quadrature(|wi| m.f(Rgb::ONE, wo, wi).x);
             assert!((albedo - quadrature).abs() < 0.01, "alpha {alpha}: sampled {albedo}, quadrature {quadrature}");
             assert!(albedo <= 1.0 + 1e-3, "alpha {alpha}: {albedo}");
         }

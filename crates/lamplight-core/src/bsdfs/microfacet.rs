@@ -106,6 +106,7 @@ pub fn visible_normal(alpha: f64, wo: Vec3, u: (f64, f64)) -> Vec3 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::bsdfs::test_support::{hemisphere_quadrature, stratified_mean};
 
     #[test]
     fn distribution_is_normalized_over_projected_area() {
@@ -129,30 +130,14 @@ mod tests {
         // are both the directional albedo: they agree when the pdf is the samples' density.
         for alpha in [0.1, 0.4, 0.9] {
             let wo = Vec3::new(0.5, 0.0, 0.75f64.sqrt());
-            let n = 200;
-            let mut albedo = 0.0;
-            for i in 0..n {
-                for j in 0..n {
-                    let u = ((i as f64 + 0.5) / n as f64, (j as f64 + 0.5) / n as f64);
-                    if let Some(wi) = sample(alpha, wo, u) {
-                        let p = pdf(alpha, wo, wi);
-                        assert!(p > 0.0);
-                        albedo += f(Rgb::ONE, alpha, wo, wi).x * wi.z / p;
-                    }
-                }
-            }
-            albedo /= (n * n) as f64;
-            let (nt, np) = (2000, 400);
-            let mut quadrature = 0.0;
-            for i in 0..nt {
-                let c = (i as f64 + 0.5) / nt as f64;
-                for j in 0..np {
-                    let phi = (j as f64 + 0.5) / np as f64 * 2.0 * PI;
-                    let s = (1.0 - c * c).sqrt();
-                    let wi = Vec3::new(s * phi.cos(), s * phi.sin(), c);
-                    quadrature += f(Rgb::ONE, alpha, wo, wi).x * c * 2.0 * PI / (nt * np) as f64;
-                }
-            }
+            let albedo = stratified_mean(200, |u| {
+                sample(alpha, wo, u).map_or(0.0, |wi| {
+                    let p = pdf(alpha, wo, wi);
+                    assert!(p > 0.0);
+                    f(Rgb::ONE, alpha, wo, wi).x * wi.z / p
+                })
+            });
+            let quadrature = hemisphere_quadrature(|wi| f(Rgb::ONE, alpha, wo, wi).x);
             assert!((albedo - quadrature).abs() < 0.01, "alpha {alpha}: sampled {albedo}, quadrature {quadrature}");
             assert!(albedo <= 1.0, "alpha {alpha}: albedo {albedo}");
         }

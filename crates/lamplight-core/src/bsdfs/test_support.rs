@@ -100,22 +100,57 @@ pub fn chi_square_z(pdf: impl Fn(Vec3) -> f64, mut sample: impl FnMut(f64, (f64,
             expected[(i / SUB) * NP + j / SUB] += pdf(wi) * d_omega * n as f64;
         }
     }
-    let (mut chi2, mut dof, mut pooled_o, mut pooled_e) = (0.0, 0usize, 0.0, 0.0);
-    for (o, e) in observed.iter().zip(&expected) {
+    let (chi2, dof) = pooled_chi_square(&observed, &expected);
+    let k = dof.saturating_sub(1).max(1) as f64;
+    ((chi2 / k).cbrt() - (1.0 - 2.0 / (9.0 * k))) / (2.0 / (9.0 * k)).sqrt()
+}
+
+/// Pearson's chi-square of `observed` counts against `expected` ones, cell by
+/// cell, the cells expecting fewer than 5 pooled into one: `(chi2, cells)`.
+pub fn pooled_chi_square(observed: &[f64], expected: &[f64]) -> (f64, usize) {
+    let (mut chi2, mut cells, mut pooled_o, mut pooled_e) = (0.0, 0usize, 0.0, 0.0);
+    for (o, e) in observed.iter().zip(expected) {
         if *e < 5.0 {
             pooled_o += o;
             pooled_e += e;
         } else {
             chi2 += (o - e) * (o - e) / e;
-            dof += 1;
+            cells += 1;
         }
     }
     if pooled_e > 5.0 {
         chi2 += (pooled_o - pooled_e) * (pooled_o - pooled_e) / pooled_e;
-        dof += 1;
+        cells += 1;
     }
-    let k = dof.saturating_sub(1).max(1) as f64;
-    ((chi2 / k).cbrt() - (1.0 - 2.0 / (9.0 * k))) / (2.0 / (9.0 * k)).sqrt()
+    (chi2, cells)
+}
+
+/// The mean of `g(u)` over an `n x n` grid of cell centres of the unit square:
+/// a stratified estimate of `E[g]`.
+pub fn stratified_mean(n: usize, mut g: impl FnMut((f64, f64)) -> f64) -> f64 {
+    let mut sum = 0.0;
+    for i in 0..n {
+        for j in 0..n {
+            sum += g(((i as f64 + 0.5) / n as f64, (j as f64 + 0.5) / n as f64));
+        }
+    }
+    sum / (n * n) as f64
+}
+
+/// `integral of f(wi) cos(wi) d(omega)` over the upper hemisphere, by the
+/// midpoint rule in `(cos theta, phi)` on a 2000 x 400 grid.
+pub fn hemisphere_quadrature(f: impl Fn(Vec3) -> f64) -> f64 {
+    let (nt, np) = (2000, 400);
+    let mut sum = 0.0;
+    for i in 0..nt {
+        let c = (i as f64 + 0.5) / nt as f64;
+        for j in 0..np {
+            let phi = (j as f64 + 0.5) / np as f64 * 2.0 * PI;
+            let s = (1.0 - c * c).sqrt();
+            sum += f(Vec3::new(s * phi.cos(), s * phi.sin(), c)) * c * 2.0 * PI / (nt * np) as f64;
+        }
+    }
+    sum
 }
 
 /// Largest `|f(a, b) - f(b, a)| / max(f, 1)` over 500 pairs of upper-hemisphere directions.

@@ -179,12 +179,8 @@ fn build(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Material> {
             return Err(p.key_error("weight", format!("must be between 0 and 1, got {w}")));
         }
     }
-    let mut m = material(weight, a, b).map_err(|(key, message)| p.key_error(key, message))?;
-    m.normal_map = super::normal_map::read(p, textures)?;
-    m.bump = super::bump::read(p, textures)?;
-    m.alpha = super::alpha::read(p, textures)?;
-    m.validate().map_err(|e| p.core_error(e))?;
-    Ok(m)
+    let m = material(weight, a, b).map_err(|(key, message)| p.key_error(key, message))?;
+    super::finish_surface(m, p, textures)
 }
 
 #[cfg(test)]

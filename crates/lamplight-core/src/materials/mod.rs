@@ -29,6 +29,35 @@ macro_rules! surface_params {
 }
 use surface_params;
 
+/// The `emission` row of the kinds that emit as the lecture's material does.
+const EMISSION_PARAM: crate::params::Param =
+    crate::params::Param::new("emission", crate::params::ParamType::Texture, "0", "radiance", "emitted radiance");
+/// The `two_sided` row of every emitting kind.
+const TWO_SIDED_PARAM: crate::params::Param = crate::params::Param::new(
+    "two_sided",
+    crate::params::ParamType::Bool,
+    "false",
+    "",
+    "emit from both sides of the surface, not only the front",
+);
+
+/// The end of every surface kind's build: the rows of [`surface_params`]
+/// (normal map, bump map, alpha), then [`Material::validate`].
+fn finish_surface(mut m: Material, p: &mut crate::params::Params<'_>, textures: &Textures<'_>) -> crate::params::ParamResult<Material> {
+    m.normal_map = normal_map::read(p, textures)?;
+    m.bump = bump::read(p, textures)?;
+    m.alpha = alpha::read(p, textures)?;
+    m.validate().map_err(|e| p.core_error(e))?;
+    Ok(m)
+}
+
+/// [`finish_surface`] for a kind with [`TWO_SIDED_PARAM`] (emission from both
+/// sides, off by default).
+fn finish_emitting(mut m: Material, p: &mut crate::params::Params<'_>, textures: &Textures<'_>) -> crate::params::ParamResult<Material> {
+    m.two_sided = p.boolean("two_sided")?.unwrap_or(false);
+    finish_surface(m, p, textures)
+}
+
 pub mod alpha;
 pub mod blend;
 pub mod bump;

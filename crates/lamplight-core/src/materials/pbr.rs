@@ -150,9 +150,9 @@ pub const KIND: MaterialKind = Kind {
             "0 to 1",
             "share of the dielectric's diffuse base that is thin-walled GGX transmission tinted by the base colour (`KHR_materials_transmission`)",
         ),
-        Param::new("emission", T::Texture, "0", "radiance", "emitted radiance"),
+        super::EMISSION_PARAM,
         Param::new("emission_strength", T::Number, "1", ">= 0", "multiplies `emission` (`KHR_materials_emissive_strength`)"),
-        Param::new("two_sided", T::Bool, "false", "", "emit from both sides of the surface, not only the front"),
+        super::TWO_SIDED_PARAM,
         super::sided::SIDED_PARAM,
     ],
     build,
@@ -199,13 +199,8 @@ fn build(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Material> {
         (pbr.ior, pbr.specular, pbr.specular_color, pbr.transmission) = (ior, specular, specular_color, transmission);
     }
     derive_lecture_terms(&mut m);
-    m.two_sided = p.boolean("two_sided")?.unwrap_or(false);
     m.one_sided = super::sided::read(p)?;
-    m.normal_map = super::normal_map::read(p, textures)?;
-    m.bump = super::bump::read(p, textures)?;
-    m.alpha = super::alpha::read(p, textures)?;
-    m.validate().map_err(|e| p.core_error(e))?;
-    Ok(m)
+    super::finish_emitting(m, p, textures)
 }
 
 /// The path tracer sees the glTF BRDF ([`crate::bsdfs::metallic_roughness`]) of base

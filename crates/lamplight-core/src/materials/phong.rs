@@ -47,7 +47,7 @@ pub const KIND: MaterialKind = Kind {
             "radiance",
             "emitted radiance, from the front side; an emitting shape of constant emission is an area light",
         ),
-        Param::new("two_sided", T::Bool, "false", "", "emit from both sides of the surface, not only the front"),
+        super::TWO_SIDED_PARAM,
         super::sided::SIDED_PARAM,
         Param::new("reflection", T::Table, "none", "", "mirror reflection (see below)"),
         Param::new("refraction", T::Table, "none", "", "refraction (see below)"),

@@ -38,8 +38,8 @@ pub const KIND: MaterialKind = Kind {
         Param::new("nonlinear", T::Bool, "false", "", "let the internal bounces shift the colour (`d / (1 - d F_dr)`)"),
         Param::new("roughness", T::Number, "0", "0 to 1", "microfacet roughness `alpha` of the coating; 0: smooth"),
         Param::new("distribution", T::String, "ggx", "ggx, beckmann", "normal distribution of a rough coating"),
-        Param::new("emission", T::Texture, "0", "radiance", "emitted radiance"),
-        Param::new("two_sided", T::Bool, "false", "", "emit from both sides of the surface, not only the front"),
+        super::EMISSION_PARAM,
+        super::TWO_SIDED_PARAM,
         super::sided::SIDED_PARAM,
     ],
     build,
@@ -109,13 +109,8 @@ fn build(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Material> {
     } else {
         m.reflection = Reflection::Dielectric { ior: eta, min: 0.0, max: specular.max_element() };
     }
-    m.two_sided = p.boolean("two_sided")?.unwrap_or(false);
     m.one_sided = super::sided::read(p)?;
-    m.normal_map = super::normal_map::read(p, textures)?;
-    m.bump = super::bump::read(p, textures)?;
-    m.alpha = super::alpha::read(p, textures)?;
-    m.validate().map_err(|e| p.core_error(e))?;
-    Ok(m)
+    super::finish_emitting(m, p, textures)
 }
 
 /// The path tracer sees the coating over a diffuse base of albedo `C` (capped at

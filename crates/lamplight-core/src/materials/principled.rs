@@ -54,8 +54,8 @@ pub const KIND: MaterialKind = Kind {
         Param::new("diffuse_reflectance_sampling_rate", T::Number, "1", ">= 0", "sampling weight of the diffuse lobe"),
         Param::new("main_specular_sampling_rate", T::Number, "1", ">= 0", "sampling weight of the main specular lobes"),
         Param::new("clearcoat_sampling_rate", T::Number, "1", ">= 0", "sampling weight of the clearcoat"),
-        Param::new("emission", T::Texture, "0", "radiance", "emitted radiance"),
-        Param::new("two_sided", T::Bool, "false", "", "emit from both sides of the surface, not only the front"),
+        super::EMISSION_PARAM,
+        super::TWO_SIDED_PARAM,
     ],
     build,
 };
@@ -186,7 +186,7 @@ fn build(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Material> {
     let emission = super::plastic::emission(p, textures, &mut maps)?;
     let dielectric = (1.0 - params.metallic) * (1.0 - params.spec_trans);
     let f0 = crate::materials::fresnel_dielectric(1.0, params.eta);
-    let mut m = Material {
+    let m = Material {
         color: base,
         ka: Rgb::splat(0.1 * dielectric),
         kd: Rgb::splat(dielectric),
@@ -197,12 +197,7 @@ fn build(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Material> {
         textures: (!maps.is_empty()).then(|| Arc::from(maps)),
         ..Material::default()
     };
-    m.two_sided = p.boolean("two_sided")?.unwrap_or(false);
-    m.normal_map = super::normal_map::read(p, textures)?;
-    m.bump = super::bump::read(p, textures)?;
-    m.alpha = super::alpha::read(p, textures)?;
-    m.validate().map_err(|e| p.core_error(e))?;
-    Ok(m)
+    super::finish_emitting(m, p, textures)
 }
 
 /// The path tracer sees Mitsuba's principled BSDF ([`crate::bsdfs::principled`]) of

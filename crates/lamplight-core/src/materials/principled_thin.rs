@@ -49,8 +49,8 @@ pub const KIND: MaterialKind = Kind {
         Param::new("specular_transmittance_sampling_rate", T::Number, "1", ">= 0", "sampling weight of the glossy transmission"),
         Param::new("diffuse_reflectance_sampling_rate", T::Number, "1", ">= 0", "sampling weight of the diffuse reflection"),
         Param::new("diffuse_transmittance_sampling_rate", T::Number, "1", ">= 0", "sampling weight of the diffuse transmission"),
-        Param::new("emission", T::Texture, "0", "radiance", "emitted radiance"),
-        Param::new("two_sided", T::Bool, "false", "", "emit from both sides of the surface, not only the front"),
+        super::EMISSION_PARAM,
+        super::TWO_SIDED_PARAM,
     ],
     build,
 };
@@ -98,7 +98,7 @@ fn build(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Material> {
     }
     let emission = super::plastic::emission(p, textures, &mut maps)?;
     let diffuse = (1.0 - params.spec_trans) * (1.0 - params.diff_trans);
-    let mut m = Material {
+    let m = Material {
         color: base,
         ka: Rgb::splat(0.1 * diffuse),
         kd: Rgb::splat(diffuse),
@@ -107,12 +107,7 @@ fn build(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Material> {
         textures: (!maps.is_empty()).then(|| Arc::from(maps)),
         ..Material::default()
     };
-    m.two_sided = p.boolean("two_sided")?.unwrap_or(false);
-    m.normal_map = super::normal_map::read(p, textures)?;
-    m.bump = super::bump::read(p, textures)?;
-    m.alpha = super::alpha::read(p, textures)?;
-    m.validate().map_err(|e| p.core_error(e))?;
-    Ok(m)
+    super::finish_emitting(m, p, textures)
 }
 
 /// The path tracer sees Mitsuba's `principledthin` ([`crate::bsdfs::principled_thin`])

@@ -27,8 +27,8 @@ pub const KIND: MaterialKind = Kind {
     params: super::surface_params![
         Param::new("int_ior", T::Number, "1.5046", "> 0", "index of refraction of the sheet"),
         Param::new("ext_ior", T::Number, "1.00028", "> 0", "index of refraction outside"),
-        Param::new("emission", T::Texture, "0", "radiance", "emitted radiance"),
-        Param::new("two_sided", T::Bool, "false", "", "emit from both sides of the surface, not only the front"),
+        super::EMISSION_PARAM,
+        super::TWO_SIDED_PARAM,
     ],
     build,
 };
@@ -38,7 +38,7 @@ fn build(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Material> {
     let mut maps = Vec::new();
     let emission = emission(p, textures, &mut maps)?;
     let r = crate::bsdfs::thin_dielectric::reflectance(1.0, eta);
-    let mut m = Material {
+    let m = Material {
         color: Texture::Constant(Rgb::ONE),
         ka: Rgb::ZERO,
         kd: Rgb::ZERO,
@@ -49,12 +49,7 @@ fn build(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Material> {
         textures: (!maps.is_empty()).then(|| Arc::from(maps)),
         ..Material::default()
     };
-    m.two_sided = p.boolean("two_sided")?.unwrap_or(false);
-    m.normal_map = super::normal_map::read(p, textures)?;
-    m.bump = super::bump::read(p, textures)?;
-    m.alpha = super::alpha::read(p, textures)?;
-    m.validate().map_err(|e| p.core_error(e))?;
-    Ok(m)
+    super::finish_emitting(m, p, textures)
 }
 
 /// The parameters of a thin dielectric sheet.

@@ -1,6 +1,8 @@
 //! Helpers shared by the importer tests.
 #![allow(dead_code)]
 
+pub mod mitsuba_xml;
+
 use std::path::{Path, PathBuf};
 
 use lamplight_scene::import::{self, Imported};

@@ -79,21 +79,8 @@ fn chi_square(alpha: f64, eta: f64, wo: Vec3, n: usize, seed: u64) -> (f64, usiz
         }
     }
     let expected: Vec<f64> = cell_integrals(alpha, eta, wo).iter().map(|p| p * n as f64).collect();
-    let (mut chi2, mut dof, mut pooled_o, mut pooled_e) = (0.0, 0, 0.0, 0.0);
-    for (o, e) in observed.iter().zip(&expected) {
-        if *e < 5.0 {
-            pooled_o += o;
-            pooled_e += e;
-        } else {
-            chi2 += (o - e) * (o - e) / e;
-            dof += 1;
-        }
-    }
-    if pooled_e > 5.0 {
-        chi2 += (pooled_o - pooled_e) * (pooled_o - pooled_e) / pooled_e;
-        dof += 1;
-    }
-    (chi2, dof - 1, kept as f64 / n as f64)
+    let (chi2, cells) = crate::bsdfs::test_support::pooled_chi_square(&observed, &expected);
+    (chi2, cells - 1, kept as f64 / n as f64)
 }
 
 #[test]
