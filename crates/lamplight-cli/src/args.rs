@@ -145,7 +145,7 @@ pub struct SceneArgs {
     /// Scale every sample whose brightest channel exceeds V down to V: removes fireflies, but biased (darker where it acts). Off by default.
     #[arg(long, value_name = "V", allow_negative_numbers = true)]
     pub clamp: Option<f64>,
-    /// Path tracer: pixel reconstruction filter, `box`, `tent` (radius 1) or `gaussian` (sigma 0.5, cut at 2 pixels) [default: the file's, else box].
+    /// Path tracer: pixel reconstruction filter, `box`, `tent` (radius 1), `gaussian` (sigma 0.5, cut at 2 pixels), `mitchell` (`mitchell(B=0.5, C=0.25)`), `catmullrom` or `lanczos` (`lanczos(lobes=2)`) [default: the file's, else box].
     #[arg(long, value_name = "NAME")]
     pub filter: Option<String>,
     /// Set the scene parameter $NAME of a Mitsuba XML scene, as `mitsuba -D`; repeatable.

@@ -88,11 +88,66 @@ fn filters_read_as_lamplights() {
             "tent",
             Some("s.xml:7:148: rfilter \"tent\": radius 2 is read as 1 (lamplight's tent)"),
         ),
-        ("<rfilter type=\"mitchell\"/>", "box", Some("s.xml:7:99: rfilter \"mitchell\": not supported, the box filter is used")),
+        ("<rfilter type=\"mitchell\"/>", "mitchell", None),
+        (
+            "<rfilter type=\"mitchell\"><float name=\"B\" value=\"0.5\"/><float name=\"C\" value=\"0.25\"/></rfilter>",
+            "mitchell(B=0.5, C=0.25)",
+            None,
+        ),
+        ("<rfilter type=\"catmullrom\"/>", "catmullrom", None),
+        ("<rfilter type=\"lanczos\"/>", "lanczos", None),
+        ("<rfilter type=\"lanczos\"><integer name=\"lobes\" value=\"2\"/></rfilter>", "lanczos(lobes=2)", None),
+        ("<rfilter type=\"lanczos\"><integer name=\"lobes\" value=\"3\"/></rfilter>", "lanczos", None),
+        ("<rfilter type=\"sinc\"/>", "box", Some("s.xml:7:99: rfilter \"sinc\": not supported, the box filter is used")),
     ] {
         let (t, warnings) = table(&scene("", rfilter));
         assert_eq!(get(&t, "render", "filter"), &Value::String(expected.into()), "{rfilter}");
         assert_eq!(warnings, warning.map(String::from).into_iter().collect::<Vec<_>>(), "{rfilter}");
+    }
+}
+
+#[test]
+fn bad_filter_parameters_are_errors_at_their_place() {
+    let lanczos = |lobes: &str| scene("", &format!("<rfilter type=\"lanczos\"><integer name=\"lobes\" value=\"{lobes}\"/></rfilter>"));
+    assert_eq!(error("s.xml", &lanczos("0")), "s.xml:7:152: rfilter \"lanczos\": lobes must be between 1 and 32, got 0");
+    assert_eq!(error("s.xml", &lanczos("33")), "s.xml:7:152: rfilter \"lanczos\": lobes must be between 1 and 32, got 33");
+    let mitchell = scene("", "<rfilter type=\"mitchell\"><float name=\"B\" value=\"inf\"/></rfilter>");
+    assert_eq!(error("s.xml", &mitchell), "s.xml:7:147: rfilter \"mitchell\": B: expected a finite number, got \"inf\"");
+    // The same filters named in a request (the CLI's --filter, Python's filter=).
+    let dir = tempfile::tempdir().unwrap();
+    let path = write(dir.path(), "s.xml", &scene("", "<rfilter type=\"box\"/>"));
+    let scene = SceneRequest::resolve(path.to_str().unwrap()).unwrap();
+    let resolve = |name: &str| {
+        let request = Request { filter: Some(name.into()), ..Request::default() };
+        request.resolve(&scene.defaults, Naming::Flags).map(|job| job.options.filter).map_err(|e| e.to_string())
+    };
+    assert_eq!(resolve("lanczos(lobes=2)"), Ok(lamplight_core::film::Filter::Lanczos { lobes: 2 }));
+    assert_eq!(resolve("mitchell"), Ok(lamplight_core::film::Filter::Mitchell { b: 1.0 / 3.0, c: 1.0 / 3.0 }));
+    assert_eq!(
+        resolve("lanczos(lobes=0)"),
+        Err("--filter: filter \"lanczos(lobes=0)\": lobes must be a whole number from 1 to 32, got 0".into())
+    );
+    assert_eq!(
+        resolve("sinc"),
+        Err("--filter must be \"box\", \"tent\", \"gaussian\", \"mitchell\" (B, C), \"catmullrom\" or \"lanczos\" (lobes), got \"sinc\""
+            .into())
+    );
+}
+
+#[test]
+fn signed_filters_render_finite_pixels() {
+    // Mitchell, Catmull-Rom and Lanczos on the lit sphere: every pixel finite,
+    // near the box's on average (the image is smooth but for the sphere's edge).
+    let dir = tempfile::tempdir().unwrap();
+    let (boxed, _) =
+        render(&write(dir.path(), "box.xml", &scene("", "<rfilter type=\"box\"/>")), Request { spp: Some(16), ..Request::default() });
+    let mean = |p: &[[f32; 3]]| p.iter().map(|c| (c[0] + c[1] + c[2]) as f64).sum::<f64>() / p.len() as f64;
+    for rfilter in ["<rfilter type=\"mitchell\"/>", "<rfilter type=\"catmullrom\"/>", "<rfilter type=\"lanczos\"/>"] {
+        let path = write(dir.path(), "s.xml", &scene("", rfilter));
+        let (pixels, width) = render(&path, Request { spp: Some(16), ..Request::default() });
+        assert_eq!((pixels.len(), width), (16 * 12, 16));
+        assert!(pixels.iter().flatten().all(|c| c.is_finite()), "{rfilter}");
+        assert!((mean(&pixels) / mean(&boxed) - 1.0).abs() < 0.05, "{rfilter}: {} vs {}", mean(&pixels), mean(&boxed));
     }
 }
 

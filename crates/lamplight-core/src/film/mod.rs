@@ -9,7 +9,7 @@ mod window;
 
 pub(crate) use accumulated::{variance_of_mean, TileBlock};
 pub use accumulated::{Film, PixelSum, TILE};
-pub use filter::{Filter, FILTER_NAMES};
+pub use filter::{Filter, FilterSampler, FILTER_NAMES, MAX_LOBES};
 pub use window::PixelWindow;
 
 /// Largest sample radiance the film accepts, per channel. A sample beyond it

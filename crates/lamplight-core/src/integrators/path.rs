@@ -18,7 +18,7 @@
 use super::trace::{NeeMiss, NeeSample, NoTrace, PathEnd, PathTrace, Trace};
 use super::{Integrator, IntegratorEntry, IntegratorSettings, RayCounts, Schedule, View};
 use crate::bsdfs::{Bsdf, Frame};
-use crate::film::Filter;
+use crate::film::{Filter, FilterSampler};
 use crate::lights::LightSet;
 use crate::materials::{Reflection, Refraction};
 use crate::math::{Rgb, Vec3};
@@ -50,8 +50,9 @@ pub struct PathTracer {
     lights: LightSet,
     /// Every material stops shadow rays: visibility can use the BVH's any-hit query.
     all_opaque: bool,
-    /// Where in and around its pixel a sample's film position falls.
-    filter: Filter,
+    /// Where in and around its pixel a sample's film position falls (with a
+    /// filter with negative lobes, its table).
+    filter: FilterSampler,
 }
 
 /// The power heuristic with exponent 2 for one sample of each strategy.
@@ -98,12 +99,18 @@ impl PathTracer {
     /// A path tracer for `scene` (its lights are collected here).
     pub fn new(scene: &Scene, max_depth: u32) -> PathTracer {
         let all_opaque = scene.materials.iter().all(|m| m.shadow_transmittance == Rgb::ZERO);
-        PathTracer { max_depth, rr_depth: scene.rr_depth, lights: LightSet::new(scene), all_opaque, filter: Filter::Box }
+        PathTracer {
+            max_depth,
+            rr_depth: scene.rr_depth,
+            lights: LightSet::new(scene),
+            all_opaque,
+            filter: FilterSampler::new(Filter::Box),
+        }
     }
 
     /// The same tracer with film positions drawn from `filter` (default: the box).
     pub fn with_filter(self, filter: Filter) -> PathTracer {
-        PathTracer { filter, ..self }
+        PathTracer { filter: FilterSampler::new(filter), ..self }
     }
 
     /// The lights it samples.
@@ -367,7 +374,8 @@ impl PathTracer {
         let ray = view.camera.ray(fx, fy, view.width, view.height, lens);
         let cone = if view.scene.uses_footprints() { view.pixel_cone(&ray, fx, fy, lens) } else { Cone::default() };
         let l = self.li_traced(view.scene, &ray, cone, &mut sampler, counts, trace);
-        // The box and the tent weigh every sample 1: their radiance is kept as it is.
+        // The box and the tent weigh every sample 1: their radiance is kept as it
+        // is. Filters with negative lobes weigh some samples below 0.
         if weight == 1.0 {
             l
         } else {

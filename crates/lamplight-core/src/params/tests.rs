@@ -82,7 +82,7 @@ fn suggestions_are_only_for_near_misses() {
 fn every_unknown_name_reads_alike_and_suggests_a_near_miss() {
     assert_eq!(
         "gausian".parse::<crate::film::Filter>().unwrap_err(),
-        "unknown filter \"gausian\" (did you mean 'gaussian'? filters: box, tent, gaussian)"
+        "unknown filter \"gausian\" (did you mean 'gaussian'? filters: box, tent, gaussian, mitchell, catmullrom, lanczos)"
     );
     assert_eq!(
         "pth".parse::<&crate::integrators::IntegratorEntry>().unwrap_err(),

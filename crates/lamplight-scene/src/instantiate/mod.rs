@@ -132,7 +132,7 @@ pub const RENDER_PARAMS: &[Param] = &[
         T::String,
         "\"box\"",
         "",
-        "path tracer: pixel filter, `\"box\"`, `\"tent\"` (radius 1 pixel) or `\"gaussian\"` (sigma 0.5 pixel, cut at 2), as Mitsuba's: cut at the image's (or crop's) edge and renormalised (`--filter`)",
+        "path tracer: pixel filter, `\"box\"`, `\"tent\"` (radius 1 pixel), `\"gaussian\"` (sigma 0.5 pixel, cut at 2), `\"mitchell\"` (Mitchell-Netravali, B = C = 1/3, radius 2; `\"mitchell(B=0.5, C=0.25)\"`), `\"catmullrom\"` (radius 2) or `\"lanczos\"` (3 lobes; `\"lanczos(lobes=2)\"`, radius the lobes), as Mitsuba's: cut at the image's (or crop's) edge and renormalised; the last three have negative lobes (`--filter`)",
     ),
     Param::new(
         "crop",
@@ -272,10 +272,14 @@ pub fn settings(desc: &SceneDescription, source: &Source) -> Result<Settings, Lo
         };
         let filter = match p.string("filter")? {
             None => None,
-            Some(name) => Some(
-                name.parse::<lamplight_core::film::Filter>()
-                    .map_err(|_| p.key_error("filter", format!("expected {}, got \"{name}\"", lamplight_core::film::FILTER_NAMES)))?,
-            ),
+            Some(name) => Some(name.parse::<lamplight_core::film::Filter>().map_err(|e| {
+                // A known name with a bad parameter says which; any other, the names.
+                if e.starts_with("unknown filter") {
+                    p.key_error("filter", format!("expected {}, got \"{name}\"", lamplight_core::film::FILTER_NAMES))
+                } else {
+                    p.key_error("filter", e)
+                }
+            })?),
         };
         let crop = crop(p, width, height)?;
         let hide_emitters = p.boolean("hide_emitters")?.unwrap_or(false);

@@ -292,7 +292,7 @@ pub struct Request {
     pub time_limit: Option<f64>,
     /// Largest channel a sample keeps (fireflies; biased), see [`RenderOptions::clamp`].
     pub clamp: Option<f64>,
-    /// Pixel filter name (`box`, `gaussian`).
+    /// Pixel filter name (`box`, `gaussian`, `lanczos(lobes=2)`: [`Filter`]'s `from_str`).
     pub filter: Option<String>,
     /// Render only `(x0, y0, width, height)` of the image.
     pub window: Option<(u32, u32, u32, u32)>,
@@ -344,9 +344,14 @@ impl Request {
         };
         let filter: Filter = match &self.filter {
             None => d.filter.unwrap_or(Filter::Box),
-            Some(name) => {
-                name.parse().map_err(|_| bad(format!("{} must be {}, got {name:?}", n("filter"), lamplight_core::film::FILTER_NAMES)))?
-            }
+            Some(name) => name.parse().map_err(|e: String| {
+                // A known name with a bad parameter says which; any other, the names.
+                if e.starts_with("unknown filter") {
+                    bad(format!("{} must be {}, got {name:?}", n("filter"), lamplight_core::film::FILTER_NAMES))
+                } else {
+                    bad(format!("{}: {e}", n("filter")))
+                }
+            })?,
         };
         let crop = d.crop;
         if let Some(c) = crop {

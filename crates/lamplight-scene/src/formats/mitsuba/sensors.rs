@@ -10,13 +10,14 @@
 //! | `principal_point_offset_x`, `_y` (in film widths and heights, `y` down) | `shift = [x W / L, -y H / L]`, `L = max(W, H)` (the window camera: its `window_center`) |
 //! | `hdrfilm` `width`, `height` (768 x 576) | `width`, `height` |
 //! | `hdrfilm` `crop_offset_x`, `crop_offset_y`, `crop_width`, `crop_height` | `crop = [x, y, width, height]` |
-//! | `rfilter` `box`, `tent`, `gaussian` (stddev 0.5, the default) | `filter` `box`, `tent`, `gaussian` (others: warning, box) |
+//! | `rfilter` `box`, `tent`, `gaussian` (stddev 0.5, the default), `mitchell` `B`, `C`, `catmullrom`, `lanczos` `lobes` (1 to 32) | `filter` `box`, `tent`, `gaussian`, `mitchell(B=b, C=c)`, `catmullrom`, `lanczos(lobes=n)` (others: warning, box) |
 //! | `sampler` `sample_count` (4) | `spp` |
 //!
 //! Mitsuba's camera looks down its local `+z` with `+y` up and `+x` to the
 //! left, so the image's right is `-to_world x`. With `fov_axis = "x"` the
 //! horizontal field of view is kept when the width changes, as in Mitsuba.
 
+use lamplight_core::film::{Filter, MAX_LOBES};
 use lamplight_core::math::{Mat4, Vec3};
 use lamplight_core::params::{Loc, ParamError};
 
@@ -257,15 +258,15 @@ fn film(ctx: &mut Ctx<'_>, sensor: &Plugin<'_>) -> Result<(u32, u32), ParamError
         Some(f) => {
             let f = ctx.deref(f)?;
             let mut fp = Plugin::new(f)?;
-            let name = match fp.kind.as_str() {
-                "box" => "box",
+            let filter = match fp.kind.as_str() {
+                "box" => Filter::Box,
                 "tent" => {
                     if let Some((r, loc)) = fp.number("radius")? {
                         if r != 1.0 {
                             ctx.warn(&loc, format!("rfilter \"tent\": radius {r} is read as 1 (lamplight's tent)"));
                         }
                     }
-                    "tent"
+                    Filter::Tent
                 }
                 "gaussian" => {
                     if let Some((s, loc)) = fp.number("stddev")? {
@@ -273,15 +274,31 @@ fn film(ctx: &mut Ctx<'_>, sensor: &Plugin<'_>) -> Result<(u32, u32), ParamError
                             ctx.warn(&loc, format!("rfilter \"gaussian\": stddev {s} is read as 0.5 (lamplight's gaussian)"));
                         }
                     }
-                    "gaussian"
+                    Filter::Gaussian { sigma: 0.5 }
+                }
+                "mitchell" => {
+                    let b = fp.number("B")?.map_or(1.0 / 3.0, |(b, _)| b);
+                    let c = fp.number("C")?.map_or(1.0 / 3.0, |(c, _)| c);
+                    Filter::Mitchell { b, c }
+                }
+                "catmullrom" => Filter::CatmullRom,
+                "lanczos" => {
+                    let lobes = match fp.integer("lobes")? {
+                        None => 3,
+                        Some((n, loc)) => match u32::try_from(n) {
+                            Ok(n) if (1..=MAX_LOBES).contains(&n) => n,
+                            _ => return Err(err(&loc, format!("rfilter \"lanczos\": lobes must be between 1 and {MAX_LOBES}, got {n}"))),
+                        },
+                    };
+                    Filter::Lanczos { lobes }
                 }
                 other => {
                     ctx.warn(&f.loc, format!("rfilter \"{other}\": not supported, the box filter is used"));
-                    "box"
+                    Filter::Box
                 }
             };
             ctx.finish(fp);
-            name.to_string()
+            filter.to_string()
         }
     };
     ctx.render.push(entry("filter", text(&filter, &el.loc)));
