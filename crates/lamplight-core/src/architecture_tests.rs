@@ -26,6 +26,8 @@ struct Reference {
     module: String,
     /// Whether the path lies in a comment (doc or not).
     in_comment: bool,
+    /// Whether the path lies in test code (a `tests` module or file, or `test_support`).
+    in_test: bool,
     /// The source line, trimmed, for the message.
     text: String,
 }
@@ -182,6 +184,7 @@ fn references(rel: &Path, text: &str) -> Vec<Reference> {
                 line: line + 1,
                 module: top,
                 in_comment: comment_start.is_some_and(|c| c <= at),
+                in_test: base.iter().chain(&inline[first_line]).any(|m| m == "tests" || m == "test_support"),
                 text: source.trim().to_string(),
             });
         }
@@ -241,6 +244,88 @@ fn integrators_and_render_do_not_import_each_other_in_a_circle() {
          move what both need below both:\n{}",
         back.join("\n")
     );
+}
+
+/// The crate root's re-exports (`pub use scene::{Scene, SceneBuilder}` in
+/// `lib.rs`): each name with the top-level module it comes from, so that a
+/// path such as `crate::Scene` counts as entering `scene`.
+fn root_reexports() -> std::collections::HashMap<String, String> {
+    let lib = std::fs::read_to_string(src_dir().join("lib.rs")).unwrap();
+    let mut out = std::collections::HashMap::new();
+    for line in lib.lines().map(str::trim).filter(|l| l.starts_with("pub use ")) {
+        let path = line.trim_start_matches("pub use ").trim_end_matches(';');
+        let Some((module, rest)) = path.split_once("::") else { continue };
+        if module == "crate" {
+            continue; // the prelude's lines re-export what the lines above did
+        }
+        let names = match rest.rsplit_once("::{").map(|(_, g)| g).or_else(|| rest.strip_prefix('{')) {
+            Some(group) => group.trim_end_matches('}').split(',').map(|n| n.trim().to_string()).collect(),
+            None => vec![rest.rsplit("::").next().unwrap().to_string()],
+        };
+        for name in names.into_iter().filter(|n| !n.is_empty()) {
+            out.insert(name, module.to_string());
+        }
+    }
+    out
+}
+
+/// No two top-level modules import each other, directly or around a longer
+/// circle, in code outside tests: each folder can be read knowing only those
+/// below it (issue 25, section 1). Tests may build a scene to test a light.
+#[test]
+fn no_top_level_modules_import_each_other_in_a_circle() {
+    use std::collections::{BTreeMap, BTreeSet};
+    let reexports = root_reexports();
+    assert_eq!(reexports.get("SceneBuilder").map(String::as_str), Some("scene"), "the reader finds the root's re-exports");
+    let modules: BTreeSet<String> = all_references().iter().map(|(own, _)| own.clone()).filter(|o| !o.is_empty()).collect();
+    // For each edge, the first reference that makes it, for the message.
+    let mut edges: BTreeMap<(String, String), String> = BTreeMap::new();
+    for (own, r) in all_references() {
+        if own.is_empty() || r.in_comment || r.in_test {
+            continue;
+        }
+        let target = reexports.get(&r.module).cloned().unwrap_or(r.module.clone());
+        if target != own && modules.contains(&target) {
+            edges.entry((own, target)).or_insert_with(|| format!("src/{}:{}: {}", r.file, r.line, r.text));
+        }
+    }
+    assert!(edges.contains_key(&("scene".to_string(), "lights".to_string())), "the reader finds the scene's imports of the lights");
+    // Depth-first search for a back edge; the circle is the stack from its target.
+    fn visit<'a>(
+        m: &'a str,
+        edges: &'a BTreeMap<(String, String), String>,
+        stack: &mut Vec<&'a str>,
+        done: &mut BTreeSet<&'a str>,
+    ) -> Option<Vec<&'a str>> {
+        if let Some(at) = stack.iter().position(|&s| s == m) {
+            return Some(stack[at..].to_vec());
+        }
+        if !done.insert(m) {
+            return None;
+        }
+        stack.push(m);
+        for ((from, to), _) in edges.range((m.to_string(), String::new())..) {
+            if from != m {
+                break;
+            }
+            if let Some(circle) = visit(to, edges, stack, done) {
+                return Some(circle);
+            }
+        }
+        stack.pop();
+        None
+    }
+    let mut done = BTreeSet::new();
+    for m in &modules {
+        if let Some(circle) = visit(m, &edges, &mut Vec::new(), &mut done) {
+            let mut steps = Vec::new();
+            for (k, from) in circle.iter().enumerate() {
+                let to = circle[(k + 1) % circle.len()];
+                steps.push(format!("  {from} -> {to}: {}", edges[&(from.to_string(), to.to_string())]));
+            }
+            panic!("the top-level modules import each other in a circle (issue 25, section 1):\n{}", steps.join("\n"));
+        }
+    }
 }
 
 #[test]

@@ -18,7 +18,7 @@
 //! let red = builder.material(Material::plastic(Rgb::new(1.0, 0.1, 0.1), 0.1, 0.8, 0.3, 40.0)).unwrap();
 //! builder.object(Sphere::new(Vec3::ZERO, 1.0).unwrap(), red).unwrap();
 //! builder.light(PointLight::new(Vec3::new(5.0, 5.0, 5.0), Rgb::splat(75.0)).unwrap());
-//! builder.ambient = Rgb::splat(1.0);
+//! builder.settings.ambient = Rgb::splat(1.0);
 //! let scene = builder.build().unwrap();
 //! let options = RenderOptions { width: 32, height: 32, ..RenderOptions::default() };
 //! let (image, stats) = render_image(&scene, &options, &RenderControl::default()).unwrap();

@@ -12,8 +12,8 @@ fn render_scaled(scale: f64) -> (Scene, lamplight_core::film::Image) {
     let s = |v: Vec3| v * scale;
     let camera = Perspective::look_at(s(Vec3::new(0.3, 3.0, 6.0)), s(Vec3::new(0.0, 0.0, 0.0)), Vec3::Y, Fov::VerticalDeg(45.0)).unwrap();
     let mut builder = SceneBuilder::new(camera);
-    builder.ambient = Rgb::splat(0.1);
-    builder.background = Rgb::ZERO;
+    builder.settings.ambient = Rgb::splat(0.1);
+    builder.settings.background = Rgb::ZERO;
     let white = builder.material(Material::plastic(Rgb::ONE, 1.0, 0.8, 0.0, 1.0)).unwrap();
     // A slightly tilted floor: its points have rounding errors in every coordinate.
     let edge_u = Vec3::new(0.0, 0.3, 8.0);
@@ -36,7 +36,7 @@ fn no_acne_at_any_scale() {
         let mut checked = 0;
         for y in 0..96 {
             for x in 0..96 {
-                let ray = scene.camera.ray(x as f64 + 0.5, y as f64 + 0.5, 96, 96, (0.5, 0.5));
+                let ray = scene.settings.camera.ray(x as f64 + 0.5, y as f64 + 0.5, 96, 96, (0.5, 0.5));
                 let Some(hit) = scene.first_intersect(&ray, f64::INFINITY) else { continue };
                 // Skip points that the sphere really shadows (the floor behind it).
                 let to_light = lamplight_core::ray::Ray::new(hit.point + hit.geometric_normal * 1e-6 * scale, light_dir);

@@ -24,8 +24,8 @@ fn scene() -> Scene {
     b.object(Sphere::new(Vec3::ZERO, 1.0).unwrap(), red).unwrap();
     b.object(Sphere::new(Vec3::new(0.0, -1001.0, 0.0), 1000.0).unwrap(), grey).unwrap();
     b.light(PointLight::new(Vec3::new(3.0, 4.0, 5.0), Rgb::splat(40.0)).unwrap());
-    b.environment = Some(Arc::new(Environment::Constant(Rgb::splat(0.4))));
-    b.ambient = Rgb::splat(0.1);
+    b.settings.environment = Some(Arc::new(Environment::Constant(Rgb::splat(0.4))));
+    b.settings.ambient = Rgb::splat(0.1);
     b.build().unwrap()
 }
 

@@ -55,8 +55,8 @@ fn scene_with(lights: &[&str], lamp: bool, with_ball: bool) -> Scene {
         let square = Rectangle::new(Vec3::new(-1.0, 2.5, -1.5), Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 1.0)).unwrap();
         b.object(square, emitter).unwrap();
     }
-    b.ambient = Rgb::ZERO;
-    b.background = Rgb::ZERO;
+    b.settings.ambient = Rgb::ZERO;
+    b.settings.background = Rgb::ZERO;
     b.build().unwrap()
 }
 
@@ -175,8 +175,8 @@ fn the_background_is_a_sky_for_every_ray_under_path_tracing() {
     b.object(Sphere::new(Vec3::new(0.0, 1.0, 0.0), 0.5).unwrap(), mirror).unwrap();
     b.object(Rectangle::horizontal(0.0, -50.0, 50.0, -50.0, 50.0).unwrap(), white).unwrap();
     let sky = Rgb::new(0.2, 0.4, 0.8);
-    b.background = sky;
-    b.ambient = Rgb::ZERO;
+    b.settings.background = sky;
+    b.settings.ambient = Rgb::ZERO;
     let scene = b.build().unwrap();
     let (w, h) = (W, H);
     let options = |integrator: &str, spp: u32| RenderOptions {

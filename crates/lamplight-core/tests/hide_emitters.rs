@@ -1,4 +1,4 @@
-//! `Scene::hide_emitters` (Mitsuba's `hide_emitters`): camera rays go through
+//! `SceneSettings::hide_emitters` (Mitsuba's `hide_emitters`): camera rays go through
 //! emitting surfaces and see black sky; the light of both stays in the scene.
 
 use std::sync::Arc;
@@ -21,10 +21,10 @@ fn scene(glow: bool, hide: bool) -> Scene {
         b.object(Disk::new(Vec3::ZERO, Vec3::Z, 0.3).unwrap(), lamp).unwrap();
     }
     b.light(PointLight::new(Vec3::new(2.0, 0.0, 2.0), Rgb::splat(4.0)).unwrap().with_falloff(Falloff::None));
-    b.environment = Some(Arc::new(Environment::Constant(Rgb::splat(0.5))));
-    b.background = Rgb::splat(0.5);
-    b.hide_emitters = hide;
-    b.max_depth = 2;
+    b.settings.environment = Some(Arc::new(Environment::Constant(Rgb::splat(0.5))));
+    b.settings.background = Rgb::splat(0.5);
+    b.settings.hide_emitters = hide;
+    b.settings.max_depth = 2;
     b.build().unwrap()
 }
 

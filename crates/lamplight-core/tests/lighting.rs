@@ -20,7 +20,7 @@ fn centre_radiance(scene: &Scene, max_depth: u32) -> (Rgb, RayCounts) {
 
 fn floor_scene(light: impl Light + 'static, occluder: Option<(Vec3, f64)>) -> Scene {
     let mut b = SceneBuilder::new(top_camera());
-    b.ambient = Rgb::splat(0.5);
+    b.settings.ambient = Rgb::splat(0.5);
     let m = b.material(Material::plastic(Rgb::new(0.5, 0.25, 1.0), 0.2, 0.8, 0.0, 1.0)).unwrap();
     b.object(Rectangle::horizontal(0.0, -10.0, 10.0, -10.0, 10.0).unwrap(), m).unwrap();
     if let Some((c, r)) = occluder {
@@ -85,7 +85,7 @@ fn depth_limit_bounds_the_work_between_parallel_mirrors() {
     // limit D the camera ray causes D - 1 secondary rays and the sum of the geometric
     // series of weights 0.5^k.
     let mut b = SceneBuilder::new(top_camera());
-    b.background = Rgb::ONE;
+    b.settings.background = Rgb::ONE;
     let mirror = b
         .material(Material {
             ka: Rgb::ZERO,

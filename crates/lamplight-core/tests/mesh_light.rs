@@ -5,7 +5,6 @@
 use std::sync::Arc;
 
 use lamplight_core::integrators::{self, PathTracer, RayCounts};
-use lamplight_core::lights::LightSet;
 use lamplight_core::prelude::*;
 use lamplight_core::ray::Ray;
 use lamplight_core::sampling::PixelSampler;
@@ -26,8 +25,8 @@ fn square_mesh(a: f64) -> TriangleMesh {
 
 fn dark_builder(camera: Perspective) -> SceneBuilder {
     let mut b = SceneBuilder::new(camera);
-    b.ambient = Rgb::ZERO;
-    b.background = Rgb::ZERO;
+    b.settings.ambient = Rgb::ZERO;
+    b.settings.background = Rgb::ZERO;
     b
 }
 
@@ -47,7 +46,7 @@ fn irradiance_under_an_emissive_mesh_square_matches_the_form_factor() {
     let placed = Mat4::from_translation(Vec3::new(0.0, h, 0.0)) * Mat4::from_rotation_y(0.5);
     b.shared_object(Arc::new(Instance::new(Arc::new(square_mesh(a)), placed).unwrap()), lamp).unwrap();
     let scene = b.build().unwrap();
-    let lights = LightSet::new(&scene);
+    let lights = scene.light_set();
     assert_eq!(lights.area.len(), 1, "the mesh is an area light");
     assert!((lights.area[0].area() - 4.0 * a * a).abs() < 1e-12);
 
@@ -82,7 +81,7 @@ fn lit_room(mesh_light: bool) -> Scene {
         // Edges +x and +z: normal +x cross +z = -y.
         b.object(Rectangle::new(Vec3::new(-0.5, 2.0, -0.5), Vec3::X, Vec3::Z).unwrap(), lamp).unwrap();
     }
-    b.max_depth = 5;
+    b.settings.max_depth = 5;
     b.build().unwrap()
 }
 

@@ -19,12 +19,12 @@ fn disk_scene(one_sided: bool, side: f64, light_z: Option<f64>) -> Scene {
     b.object(Disk::new(Vec3::ZERO, Vec3::Z, 10.0).unwrap(), m).unwrap();
     if let Some(z) = light_z {
         b.light(PointLight::new(Vec3::new(0.0, 0.0, z), Rgb::splat(4.0)).unwrap().with_falloff(Falloff::None));
-        b.background = Rgb::ZERO;
+        b.settings.background = Rgb::ZERO;
     } else {
-        b.environment = Some(Arc::new(Environment::Constant(Rgb::ONE)));
-        b.ambient = Rgb::ONE;
+        b.settings.environment = Some(Arc::new(Environment::Constant(Rgb::ONE)));
+        b.settings.ambient = Rgb::ONE;
     }
-    b.max_depth = 8;
+    b.settings.max_depth = 8;
     b.build().unwrap()
 }
 

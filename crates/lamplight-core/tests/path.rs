@@ -13,8 +13,8 @@ fn furnace_scene(material: Material) -> Scene {
     let mut b = SceneBuilder::new(camera);
     let m = b.material(material).unwrap();
     b.object(Sphere::new(Vec3::ZERO, 1.0).unwrap(), m).unwrap();
-    b.environment = Some(Arc::new(Environment::Constant(Rgb::ONE)));
-    b.max_depth = 64;
+    b.settings.environment = Some(Arc::new(Environment::Constant(Rgb::ONE)));
+    b.settings.max_depth = 64;
     b.build().unwrap()
 }
 
@@ -115,7 +115,7 @@ fn next_event_estimation_agrees_with_bsdf_sampling_alone() {
     b.object(Sphere::new(Vec3::new(0.5, 2.5, 1.0), 0.3).unwrap(), lamp).unwrap();
     b.object(Sphere::new(Vec3::new(0.0, 0.35, 1.5), 0.35).unwrap(), frosted).unwrap();
     b.object(Sphere::new(Vec3::new(-1.0, 0.3, 1.2), 0.3).unwrap(), brushed).unwrap();
-    b.environment = Some(Arc::new(Environment::Constant(Rgb::splat(0.2))));
+    b.settings.environment = Some(Arc::new(Environment::Constant(Rgb::splat(0.2))));
     let scene = b.build().unwrap();
     let (w, h, spp) = (12u32, 12u32, 256u32);
     let nee = PathTracer::new(&scene, 6);
@@ -130,9 +130,11 @@ fn next_event_estimation_agrees_with_bsdf_sampling_alone() {
                 let mut o = PixelSampler::new(2, pixel, s);
                 let (ax, ay) = a.get_2d();
                 let (ox, oy) = o.get_2d();
-                let la =
-                    nee.li(&scene, &scene.camera.ray(x as f64 + ax, y as f64 + ay, w, h, (0.5, 0.5)), &mut a, &mut counts).dot(Rgb::ONE);
-                let lo = oracle.li(&scene, &scene.camera.ray(x as f64 + ox, y as f64 + oy, w, h, (0.5, 0.5)), &mut o).dot(Rgb::ONE);
+                let la = nee
+                    .li(&scene, &scene.settings.camera.ray(x as f64 + ax, y as f64 + ay, w, h, (0.5, 0.5)), &mut a, &mut counts)
+                    .dot(Rgb::ONE);
+                let lo =
+                    oracle.li(&scene, &scene.settings.camera.ray(x as f64 + ox, y as f64 + oy, w, h, (0.5, 0.5)), &mut o).dot(Rgb::ONE);
                 sum_nee += la;
                 sum_oracle += lo;
                 sq_nee += la * la;
@@ -181,7 +183,7 @@ fn images_do_not_depend_on_threads_and_2n_continues_n() {
     // one by one with the same sampler: the first N samples are reused exactly.
     let (acc4, _) = render(&scene, &opts(2, 4), &RenderControl::default()).unwrap();
     let (acc8, _) = render(&scene, &opts(2, 8), &RenderControl::default()).unwrap();
-    let tracer = PathTracer::new(&scene, scene.max_depth);
+    let tracer = PathTracer::new(&scene, scene.settings.max_depth);
     let mut counts = RayCounts::default();
     for y in 0..20u32 {
         for x in 0..20u32 {
@@ -190,7 +192,7 @@ fn images_do_not_depend_on_threads_and_2n_continues_n() {
             for s in 4..8 {
                 let mut sampler = PixelSampler::new(0, k as u64, s);
                 let ((dx, dy), _) = lamplight_core::film::Filter::Box.sample(sampler.get_2d());
-                let ray = scene.camera.ray(x as f64 + 0.5 + dx, y as f64 + 0.5 + dy, 20, 20, (0.5, 0.5));
+                let ray = scene.settings.camera.ray(x as f64 + 0.5 + dx, y as f64 + 0.5 + dy, 20, 20, (0.5, 0.5));
                 extra += tracer.li(&scene, &ray, &mut sampler, &mut counts);
             }
             assert_eq!(acc8.get(x, y).sum, acc4.get(x, y).sum + extra, "pixel {k}");

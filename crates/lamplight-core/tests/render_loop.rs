@@ -20,8 +20,8 @@ fn ball_scene(camera: impl Camera + 'static, radius: f64) -> Scene {
     let red = b.material(Material::plastic(Rgb::new(0.9, 0.1, 0.1), 0.2, 0.8, 0.3, 20.0)).unwrap();
     b.object(Sphere::new(Vec3::ZERO, radius).unwrap(), red).unwrap();
     b.light(PointLight::new(Vec3::new(3.0, 4.0, 5.0), Rgb::splat(50.0)).unwrap());
-    b.environment = Some(Arc::new(Environment::Constant(Rgb::splat(0.3))));
-    b.ambient = Rgb::splat(0.3);
+    b.settings.environment = Some(Arc::new(Environment::Constant(Rgb::splat(0.3))));
+    b.settings.ambient = Rgb::splat(0.3);
     b.build().unwrap()
 }
 

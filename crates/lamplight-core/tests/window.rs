@@ -18,8 +18,8 @@ fn scene() -> Scene {
     b.object(Sphere::new(Vec3::new(0.8, 0.0, 0.5), 0.6).unwrap(), glass).unwrap();
     b.object(Plane::new(Vec3::new(0.0, -0.7, 0.0), Vec3::Y).unwrap(), red).unwrap();
     b.light(PointLight::new(Vec3::new(3.0, 4.0, 3.0), Rgb::splat(40.0)).unwrap());
-    b.environment = Some(Arc::new(Environment::Constant(Rgb::splat(0.5))));
-    b.ambient = Rgb::splat(0.2);
+    b.settings.environment = Some(Arc::new(Environment::Constant(Rgb::splat(0.5))));
+    b.settings.ambient = Rgb::splat(0.2);
     b.build().unwrap()
 }
 

@@ -135,7 +135,7 @@ impl Scene {
     /// `scene` seen by the camera given with `with_camera`, if one was.
     fn with_own_camera(&self, mut scene: CoreScene, warnings: Vec<String>) -> (CoreScene, Vec<String>) {
         if let Some((_, camera)) = &self.camera {
-            scene.camera = camera.clone();
+            scene.settings.camera = camera.clone();
         }
         (scene, warnings)
     }

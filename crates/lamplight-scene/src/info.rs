@@ -248,8 +248,8 @@ fn describe_scene(name: &str, what: &str, file: Option<&SceneFile>, scene: &Scen
     if emitting > 0 {
         lights.push(plural(emitting, "emitting object (an area light)", "emitting objects (area lights)"));
     }
-    if scene.ambient.max_element() > 0.0 {
-        lights.push(format!("ambient {}", rgb(scene.ambient)));
+    if scene.settings.ambient.max_element() > 0.0 {
+        lights.push(format!("ambient {}", rgb(scene.settings.ambient)));
     }
     let lights = if lights.is_empty() { "none".to_string() } else { lights.join(", ") };
     let rows = [
@@ -258,7 +258,7 @@ fn describe_scene(name: &str, what: &str, file: Option<&SceneFile>, scene: &Scen
         ("materials", materials),
         ("cameras", cameras),
         ("lights", lights),
-        ("background", rgb(scene.background)),
+        ("background", rgb(scene.settings.background)),
     ];
     lines(format!("{name}: {what}"), &rows, warnings)
 }

@@ -59,7 +59,7 @@ fn measure(scene: &Scene, width: u32, height: u32) -> Measured {
     let options = RenderOptions { width, height, ..RenderOptions::default() };
     let (image, stats): (Image, _) = render_image(scene, &options, &RenderControl::default()).unwrap();
     assert_eq!(stats.nonfinite_samples, 0);
-    let background = scene.background;
+    let background = scene.settings.background;
     let object = |p: &[f32; 3]| (0..3).any(|c| (p[c] as f64 - background[c]).abs() > 1e-6);
     let (mut x0, mut x1, mut y0, mut y1, mut count, mut clipped) = (u32::MAX, 0, u32::MAX, 0, 0usize, 0usize);
     for (i, p) in image.pixels.iter().enumerate() {
@@ -89,7 +89,7 @@ fn load(dir: &Path, name: &str, text: &str) -> Scene {
 fn a_bare_sphere_spans_the_fill_of_the_shorter_side_at_any_aspect() {
     let dir = tempfile::tempdir().unwrap();
     let scene = load(dir.path(), "ball.obj", &sphere_obj([3.0, -1.0, 20.0], 0.25, 96, None));
-    assert_eq!(scene.background, Rgb::splat(viewer::SURROUND), "a neutral grey background, not black");
+    assert_eq!(scene.settings.background, Rgb::splat(viewer::SURROUND), "a neutral grey background, not black");
     // Landscape: the height is the shorter side; portrait: the width.
     let landscape = measure(&scene, 320, 180);
     assert!((landscape.rows - viewer::FILL).abs() < 0.02, "spans {:.3} of the height", landscape.rows);

@@ -114,7 +114,7 @@ fn emission_mixes_into_one_area_light() {
         }
     }
     let scene = SceneFile::parse(Path::new("s.toml"), &text).unwrap().build().unwrap();
-    let lights = lamplight_core::lights::LightSet::new(&scene);
+    let lights = scene.light_set();
     assert_eq!(lights.area.len(), 1, "the blend is one area light");
 }
 

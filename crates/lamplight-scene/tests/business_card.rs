@@ -159,7 +159,7 @@ fn glass_in_the_centre_and_ambient_corners() {
     // The centre pixel's ray (0, 1/tan 12.5deg, 0) hits the glass sphere at
     // (0, 6, 0.5), radius 0.9; the render agrees with a direct intersection.
     let scene = (builtin::find("business-card").unwrap().build)().unwrap();
-    let ray = scene.camera.ray(16.0, 16.0, 32, 32, (0.5, 0.5));
+    let ray = scene.settings.camera.ray(16.0, 16.0, 32, 32, (0.5, 0.5));
     let hit = scene.first_intersect(&ray, f64::INFINITY).expect("the centre ray hits");
     assert_eq!(hit.object, 0, "the glass sphere");
     // It is mostly refraction (kt = 0.85) of the two spheres behind and the

@@ -27,7 +27,7 @@ fn bytes(scene: &Scene, width: u32, height: u32) -> Vec<u8> {
 /// The file's scene with its camera replaced by `camera`, built in code.
 fn with(camera: impl Camera + 'static) -> Scene {
     let mut s = scene("eye = [0, 0, 5]\nlook_at = [0, 0, 0]\nvfov = 40");
-    s.camera = std::sync::Arc::new(camera);
+    s.settings.camera = std::sync::Arc::new(camera);
     s
 }
 

@@ -308,8 +308,8 @@ fn orthographic_cameras_see_their_window_at_every_aspect() {
     // xmag and ymag are half-extents; an image of another aspect than 3 : 1.5
     // widens the window along one side, never crops or stretches it.
     for ((w, h), (half_w, half_h)) in [((40, 20), (3.0, 1.5)), ((80, 20), (6.0, 1.5)), ((20, 20), (3.0, 3.0))] {
-        let top_left = scene.camera.ray(0.0, 0.0, w, h, (0.5, 0.5));
-        let bottom_right = scene.camera.ray(w as f64, h as f64, w, h, (0.5, 0.5));
+        let top_left = scene.settings.camera.ray(0.0, 0.0, w, h, (0.5, 0.5));
+        let bottom_right = scene.settings.camera.ray(w as f64, h as f64, w, h, (0.5, 0.5));
         assert_eq!((top_left.dir, bottom_right.dir), (-Vec3::Z, -Vec3::Z), "parallel rays down the node's -z");
         assert!((top_left.origin - (eye + Vec3::new(-half_w, half_h, 0.0))).length() < 1e-12, "{w}x{h}: {}", top_left.origin);
         assert!((bottom_right.origin - (eye + Vec3::new(half_w, -half_h, 0.0))).length() < 1e-12, "{w}x{h}");

@@ -5,7 +5,6 @@
 
 use std::path::Path;
 
-use lamplight_core::lights::LightSet;
 use lamplight_scene::instantiate::{imported, SceneFile};
 
 #[test]
@@ -18,7 +17,7 @@ fn obj_with_an_emissive_mtl_is_an_area_light_and_needs_no_default_light() {
     std::fs::write(&path, obj).unwrap();
     let scene = imported::load(&path).unwrap();
     assert!(scene.lights.is_empty(), "the emitting mesh lights the scene: no default point light");
-    let lights = LightSet::new(&scene);
+    let lights = scene.light_set();
     assert_eq!(lights.area.len(), 1);
     assert!((lights.area[0].area() - 1.0).abs() < 1e-12, "the unit quad");
     // The quad faces -y (counter-clockwise seen from below): a point below receives light.
@@ -34,7 +33,7 @@ fn a_native_mesh_node_with_an_emitting_material_is_an_area_light() {
                 [[objects]]\ntype = \"group\"\nscale = [2, 3, 1]\nchildren = [{ type = \"mesh\", mesh = \"quad\", material = \"lamp\" }]\n";
     let file = SceneFile::parse(Path::new("t.toml"), text).unwrap_or_else(|e| panic!("{e}"));
     let scene = file.build().unwrap_or_else(|e| panic!("{e}"));
-    let lights = LightSet::new(&scene);
+    let lights = scene.light_set();
     assert_eq!(lights.area.len(), 1);
     assert!((lights.area[0].area() - 6.0).abs() < 1e-12, "scaled by 2 x 3");
 }
@@ -61,7 +60,7 @@ fn a_gltf_mesh_with_an_emissive_factor_is_an_area_light() {
     let path = dir.path().join("glow.gltf");
     std::fs::write(&path, json).unwrap();
     let scene = imported::load(&path).unwrap();
-    let lights = LightSet::new(&scene);
+    let lights = scene.light_set();
     assert_eq!(lights.area.len(), 1);
     assert!((lights.area[0].area() - 2.0).abs() < 1e-12, "area 1/2 scaled by 2 x 2");
     assert_eq!(lights.area[0].radiance, lamplight_core::math::Rgb::new(1.0, 0.5, 0.25));

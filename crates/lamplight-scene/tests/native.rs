@@ -25,7 +25,7 @@ fn both(name: &str, width: u32, height: u32) -> (Vec<u8>, Vec<u8>) {
     let built_in = (builtin::find(name).unwrap().build)().unwrap();
     assert_eq!(from_file.objects.len(), built_in.objects.len(), "{name}: object count");
     assert_eq!(from_file.lights.len(), built_in.lights.len(), "{name}: light count");
-    assert_eq!(from_file.max_depth, built_in.max_depth);
+    assert_eq!(from_file.settings.max_depth, built_in.settings.max_depth);
     (image(&from_file, width, height).to_srgb8(), image(&built_in, width, height).to_srgb8())
 }
 
@@ -188,7 +188,7 @@ fn frosted_example_has_rough_lobes_and_a_mesh_light() {
     let path = example("frosted");
     let file = SceneFile::parse(&path, &std::fs::read_to_string(&path).unwrap()).unwrap_or_else(|e| panic!("{e}"));
     let s = file.build().unwrap_or_else(|e| panic!("{e}"));
-    let lights = lamplight_core::lights::LightSet::new(&s);
+    let lights = s.light_set();
     assert_eq!(lights.area.len(), 1, "the lamp mesh");
     assert!((lights.area[0].area() - 1.0).abs() < 1e-12);
     let lobes: Vec<Lobe> = s

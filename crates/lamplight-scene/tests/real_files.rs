@@ -30,7 +30,7 @@ fn every_shared_file_renders_a_sensible_image() {
         let options = RenderOptions { width: 48, height: 48, ..RenderOptions::default() };
         let (image, stats) = render_image(&scene, &options, &RenderControl::default()).unwrap();
         assert_eq!(stats.nonfinite_samples, 0, "{file}: NaN or infinite samples");
-        let background = scene.background.as_vec3().to_array();
+        let background = scene.settings.background.as_vec3().to_array();
         let covered: Vec<[f32; 3]> =
             image.pixels.iter().copied().filter(|p| p.iter().zip(background).any(|(a, b)| (*a - b).abs() > 1e-6)).collect();
         let fraction = covered.len() as f64 / image.pixels.len() as f64;

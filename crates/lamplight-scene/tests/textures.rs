@@ -132,7 +132,7 @@ fn seen_and_texture_means(file: &str) -> Option<([f64; 3], [f64; 3], usize)> {
     let mut n = 0;
     for y in 0..h {
         for x in 0..w {
-            let ray = scene.camera.ray(x as f64, y as f64, w, h, (0.5, 0.5));
+            let ray = scene.settings.camera.ray(x as f64, y as f64, w, h, (0.5, 0.5));
             let Some(hit) = scene.first_intersect(&ray, f64::INFINITY) else { continue };
             let c = scene.material_at(&hit).color.constant().unwrap();
             for k in 0..3 {

@@ -133,14 +133,14 @@ mod tests {
     #[test]
     fn probing_a_perspective_camera_gives_it_back() {
         let scene = lamplight_scene::request::SceneRequest::resolve("luxo").unwrap().build().unwrap();
-        let probed = ViewCamera::probe(&scene, scene.camera.as_ref(), 640, 360);
+        let probed = ViewCamera::probe(&scene, scene.settings.camera.as_ref(), 640, 360);
         // luxo's camera: eye (1.3, 1.6, 3), vfov 40.
         assert!((probed.eye - Vec3::new(1.3, 1.6, 3.0)).length() < 1e-12, "{probed:?}");
         assert!((probed.vfov - 40.0).abs() < 1e-9, "{probed:?}");
         assert_eq!(probed.up, Vec3::Y, "the scene's sky, not the orthonormal up");
         let built = probed.build().unwrap();
         for (x, y) in [(0.5, 0.5), (320.0, 180.0), (639.5, 10.25)] {
-            let a = scene.camera.ray(x, y, 640, 360, (0.5, 0.5));
+            let a = scene.settings.camera.ray(x, y, 640, 360, (0.5, 0.5));
             let b = built.ray(x, y, 640, 360, (0.5, 0.5));
             assert!((a.dir.normalize() - b.dir.normalize()).length() < 1e-9, "ray through ({x}, {y})");
         }
@@ -168,7 +168,7 @@ mod tests {
         assert_eq!(c.to_toml(), "[camera]\neye = [1.3, 1.6, 3]\nlook_at = [-0.2, 0.25, 0.8]\nup = [0, 1, 0]\nvfov = 42\n");
         let c = ViewCamera { eye: Vec3::new(0.3, 1.2e-17, 2.0), look_at: Vec3::new(-0.7173913, 0.0, -1.45217), up: Vec3::Y, vfov: 37.5 };
         let file = lamplight_scene::instantiate::SceneFile::parse(std::path::Path::new("view.toml"), &c.to_toml()).unwrap();
-        let (read, built) = (file.build().unwrap().camera, c.build().unwrap());
+        let (read, built) = (file.build().unwrap().settings.camera, c.build().unwrap());
         for (x, y) in [(0.5, 0.5), (99.5, 40.25)] {
             let (a, b) = (read.ray(x, y, 100, 50, (0.5, 0.5)), built.ray(x, y, 100, 50, (0.5, 0.5)));
             assert!((a.dir.normalize() - b.dir.normalize()).length() < 1e-5, "{a:?} {b:?}");

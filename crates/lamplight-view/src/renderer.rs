@@ -43,7 +43,7 @@ pub struct Loaded {
 impl Loaded {
     /// `scene` with `defaults`.
     pub fn new(scene: Scene, defaults: Defaults, warnings: Vec<String>) -> Loaded {
-        Loaded { scene_camera: scene.camera.clone(), scene: Mutex::new(scene), defaults, warnings }
+        Loaded { scene_camera: scene.settings.camera.clone(), scene: Mutex::new(scene), defaults, warnings }
     }
 
     /// The scene, locked (a panic elsewhere leaves it usable: rendering never mutates it).
@@ -78,7 +78,7 @@ impl Wanted {
     pub fn explain(&self, x: u32, y: u32) -> Result<serde_json::Value, String> {
         let camera = self.camera();
         let mut scene = self.loaded.lock();
-        scene.camera = camera;
+        scene.settings.camera = camera;
         let explained = lamplight_scene::explain::explain(&scene, &self.job, (x, y), None, Naming::Keywords);
         explained.map(|e| e.to_json()).map_err(|e| e.0)
     }
@@ -237,7 +237,7 @@ fn render_loop(shared: &Shared, report: &dyn Fn(Report)) {
             let job = Job { options, ..wanted.job.clone() };
             let rendered = {
                 let mut scene = wanted.loaded.lock();
-                scene.camera = camera.clone();
+                scene.settings.camera = camera.clone();
                 job.run(&scene, &control)
             };
             match rendered {

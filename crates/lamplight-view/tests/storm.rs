@@ -85,7 +85,7 @@ fn a_thousand_camera_changes_keep_memory_flat_and_end_on_the_right_frame() {
     };
     let scene = SceneRequest::resolve("luxo").unwrap();
     let mut built = scene.build().unwrap();
-    built.camera = std::sync::Arc::new(orbit(1049).build().unwrap());
+    built.settings.camera = std::sync::Arc::new(orbit(1049).build().unwrap());
     let job = Request { width: Some(320), ..Request::default() }.resolve(&scene.defaults, Naming::Keywords).unwrap();
     let expected = job.run(&built, &RenderControl::default()).unwrap().image;
     assert_eq!((frame.image.width, frame.image.height), (320, 180));

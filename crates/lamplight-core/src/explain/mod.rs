@@ -213,7 +213,7 @@ pub fn plan(scene: &Scene, options: &RenderOptions, x: u32, y: u32) -> Result<Pi
     if x >= width || y >= height {
         return Err(Error::invalid("pixel", format!("({x}, {y}) is outside the {width}x{height} image")));
     }
-    let camera = scene.camera.for_image(width, height);
+    let camera = scene.settings.camera.for_image(width, height);
     let fixed = RenderOptions { adaptive: None, time_limit: None, window: None, ..options.clone() };
     let mut plan = PixelPlan { integrator, camera, options: fixed, x, y, sampling: Sampling::Fixed, samples: 0, pixel: [0.0; 3] };
     match options.adaptive {
@@ -258,7 +258,7 @@ impl PixelPlan {
         record: Option<Option<u32>>,
         recorded: &mut dyn FnMut(SampleExplanation),
     ) -> ([f32; 3], u32) {
-        let camera = self.camera.as_deref().unwrap_or(scene.camera.as_ref());
+        let camera = self.camera.as_deref().unwrap_or(scene.settings.camera.as_ref());
         let view = crate::render::view_of(scene, camera, options);
         let integrator = self.integrator.as_ref();
         let mut counts = RayCounts::default();
@@ -332,7 +332,7 @@ impl PixelPlan {
             spp: self.samples,
             sampling: self.sampling,
             seed: o.seed,
-            max_depth: o.max_depth.unwrap_or(scene.max_depth),
+            max_depth: o.max_depth.unwrap_or(scene.settings.max_depth),
             samples,
             pixel: self.pixel,
         })

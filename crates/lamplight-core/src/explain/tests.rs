@@ -19,8 +19,8 @@ fn scene() -> Scene {
     b.object(Sphere::new(Vec3::new(0.9, 0.6, -0.5), 0.6).unwrap(), mirror).unwrap();
     b.object(Rectangle::new(Vec3::new(-0.5, 3.0, -0.5), Vec3::new(0.0, 0.0, 1.0), Vec3::new(1.0, 0.0, 0.0)).unwrap(), lamp).unwrap();
     b.light(PointLight::new(Vec3::new(3.0, 4.0, 3.0), Rgb::splat(30.0)).unwrap());
-    b.ambient = Rgb::splat(0.2);
-    b.background = Rgb::new(0.1, 0.2, 0.4);
+    b.settings.ambient = Rgb::splat(0.2);
+    b.settings.background = Rgb::new(0.1, 0.2, 0.4);
     b.build().unwrap()
 }
 

@@ -44,7 +44,7 @@ fn build_path(scene: &Scene, settings: &IntegratorSettings) -> Result<Box<dyn In
 pub struct PathTracer {
     /// Longest path in segments (camera ray = 1).
     pub max_depth: u32,
-    /// Segments before Russian roulette starts: the scene's [`Scene::rr_depth`]
+    /// Segments before Russian roulette starts: the scene's [`crate::scene::SceneSettings::rr_depth`]
     /// (4 unless it says), the same counting as Mitsuba's `rr_depth`.
     pub rr_depth: u32,
     lights: LightSet,
@@ -101,8 +101,8 @@ impl PathTracer {
         let all_opaque = scene.materials.iter().all(|m| m.shadow_transmittance == Rgb::ZERO);
         PathTracer {
             max_depth,
-            rr_depth: scene.rr_depth,
-            lights: LightSet::new(scene),
+            rr_depth: scene.settings.rr_depth,
+            lights: scene.light_set(),
             all_opaque,
             filter: FilterSampler::new(Filter::Box),
         }
@@ -157,7 +157,7 @@ impl PathTracer {
             let (u_light, u_bsdf) = (sampler.peek_2d(1), sampler.peek_2d(3));
             trace.segment(depth, &ray, beta);
             // Mitsuba's `hide_emitters`: the camera sees through emitters, and black sky.
-            let hidden = depth == 1 && scene.hide_emitters;
+            let hidden = depth == 1 && scene.settings.hide_emitters;
             let found = if hidden { scene.first_camera_hit(&ray) } else { scene.first_intersect(&ray, f64::INFINITY) };
             let Some(mut hit) = found else {
                 if let Some(env) = self.lights.environment.as_ref().filter(|_| !hidden) {

@@ -21,7 +21,7 @@ pub struct SimplePath {
 impl SimplePath {
     /// For `scene`.
     pub fn new(scene: &Scene, max_depth: u32) -> SimplePath {
-        SimplePath { max_depth, lights: LightSet::new(scene) }
+        SimplePath { max_depth, lights: scene.light_set() }
     }
 
     /// Radiance along `ray`.

@@ -20,7 +20,7 @@ use std::mem::MaybeUninit;
 
 use super::trace::{LightRef, LightTerm, NoTrace, ReflectionWeight, Trace, Unlit, WhittedTrace};
 use super::{Integrator, IntegratorEntry, IntegratorSettings, RayCounts, Schedule, View};
-use crate::lights::{AreaLight, LightSet};
+use crate::lights::AreaLight;
 use crate::materials::{fresnel_conductor, fresnel_dielectric, Material, Reflection, Refraction};
 use crate::math::{max_component, Rgb, Vec3};
 use crate::ray::{offset_origin, Ray};
@@ -37,7 +37,7 @@ pub const ENTRY: IntegratorEntry = IntegratorEntry {
 };
 
 fn build_whitted(scene: &Scene, settings: &IntegratorSettings) -> Result<Box<dyn Integrator>, Error> {
-    Ok(Box::new(Whitted::new(scene, settings.max_depth, scene.min_weight)))
+    Ok(Box::new(Whitted::new(scene, settings.max_depth, scene.settings.min_weight)))
 }
 
 /// Points taken on each area light at each hit (a 4 x 4 grid, jittered).
@@ -119,7 +119,7 @@ impl Whitted {
 
     /// The tracer for `scene` (its area lights are collected here).
     pub fn new(scene: &Scene, max_depth: u32, min_weight: f64) -> Whitted {
-        Whitted { max_depth, min_weight, area_lights: LightSet::new(scene).area }
+        Whitted { max_depth, min_weight, area_lights: scene.light_set().area }
     }
 
     /// The lecture's `trace`: the radiance arriving along camera ray `ray`.
@@ -171,10 +171,14 @@ impl Whitted {
             let Pending { ray, weight, depth, width } = unsafe { work[pending].assume_init_read() };
             trace.ray(&ray, weight, depth);
             // Mitsuba's `hide_emitters`: the camera sees through emitters, and black sky.
-            let hidden = depth == 1 && scene.hide_emitters;
+            let hidden = depth == 1 && scene.settings.hide_emitters;
             let found = if hidden { scene.first_camera_hit(&ray) } else { scene.first_intersect(&ray, f64::INFINITY) };
             let Some(mut hit) = found else {
-                let sky = if hidden { Rgb::ZERO } else { scene.environment.as_ref().map_or(scene.background, |env| env.radiance(ray.dir)) };
+                let sky = if hidden {
+                    Rgb::ZERO
+                } else {
+                    scene.settings.environment.as_ref().map_or(scene.settings.background, |env| env.radiance(ray.dir))
+                };
                 let contribution = weight * sky;
                 trace.miss(sky, contribution);
                 total += contribution;
@@ -235,7 +239,7 @@ pub fn direct_light<T: WhittedTrace + ?Sized>(
     let emission = if material.emits_towards(hit.front_face) { material.emission } else { Rgb::ZERO };
     // The back of a one-sided surface scatters nothing, not even the ambient light.
     let scatters = material.scatters_at(hit.front_face);
-    let ambient = if scatters { material.ka * color * scene.ambient } else { Rgb::ZERO };
+    let ambient = if scatters { material.ka * color * scene.settings.ambient } else { Rgb::ZERO };
     trace.surface(color, emission, ambient);
     let mut radiance = emission + ambient;
     if !material.is_lit() || !scatters {

@@ -1,7 +1,7 @@
 //! Abstract light sources of the lecture: each lights a point from one direction.
 //!
 //! The ambient light `La` is not a [`Light`]: it is a property of the scene
-//! ([`crate::scene::Scene::ambient`]) that every surface reflects through `ka`.
+//! ([`crate::scene::SceneSettings::ambient`]) that every surface reflects through `ka`.
 //! To add a light: a new file here with `impl Light` and its scene kind (a
 //! [`LightKind`]: name, parameter table, builder), a `mod` line, and one line in
 //! the scene crate's registry.
@@ -17,7 +17,6 @@ pub mod environment;
 pub mod mesh;
 pub mod point;
 pub mod projector;
-pub mod reach;
 mod set;
 pub mod slide;
 pub mod spot;

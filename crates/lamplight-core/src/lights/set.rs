@@ -16,7 +16,7 @@
 use std::sync::Arc;
 
 use super::{AreaLight, Environment, Light};
-use crate::scene::Scene;
+use crate::math::Rgb;
 
 /// The lights of a scene in one list.
 #[derive(Debug)]
@@ -32,31 +32,33 @@ pub struct LightSet {
 }
 
 impl LightSet {
-    /// Collects the lights of `scene`.
-    pub fn new(scene: &Scene) -> LightSet {
-        let mut by_object = vec![None; scene.objects.len()];
-        let mut bulb = vec![false; scene.objects.len()];
-        for own in scene.lights.iter().filter_map(|l| l.own_object()) {
+    /// The set of the delta lights `delta`, the emitting objects' lights
+    /// `area` (each names its object, of `objects` in the scene) and the sky:
+    /// `environment`, or else a non-black `background` as a uniform one. An
+    /// area light whose object is a delta light's own body is dropped (see the
+    /// module doc). [`crate::Scene::light_set`] collects a scene's.
+    pub fn new(
+        delta: Vec<Arc<dyn Light>>,
+        area: Vec<AreaLight>,
+        environment: Option<Arc<Environment>>,
+        background: Rgb,
+        objects: usize,
+    ) -> LightSet {
+        let mut bulb = vec![false; objects];
+        for own in delta.iter().filter_map(|l| l.own_object()) {
             if let Some(b) = bulb.get_mut(own) {
                 *b = true;
             }
         }
-        let mut area = Vec::new();
-        for (i, object) in scene.objects.iter().enumerate() {
-            let material = &scene.materials[object.material];
-            if material.emission.max_element() > 0.0 && !bulb[i] {
-                if let Some(light) = AreaLight::new(i, object.shape.clone(), material.emission) {
-                    let light = light.with_two_sided(material.two_sided).with_reversed(object.reversed);
-                    by_object[i] = Some(area.len() as u32);
-                    area.push(light);
-                }
+        let area: Vec<AreaLight> = area.into_iter().filter(|l| !bulb.get(l.object).copied().unwrap_or(false)).collect();
+        let mut by_object = vec![None; objects];
+        for (i, light) in area.iter().enumerate() {
+            if let Some(slot) = by_object.get_mut(light.object) {
+                *slot = Some(i as u32);
             }
         }
-        let environment = match &scene.environment {
-            Some(env) => Some(env.clone()),
-            None => (scene.background.max_element() > 0.0).then(|| Arc::new(Environment::Constant(scene.background))),
-        };
-        LightSet { delta: scene.lights.clone(), area, environment, by_object, bulb }
+        let environment = environment.or_else(|| (background.max_element() > 0.0).then(|| Arc::new(Environment::Constant(background))));
+        LightSet { delta, area, environment, by_object, bulb }
     }
 
     /// Number of lights.
@@ -105,7 +107,7 @@ mod tests {
     use crate::camera::{Fov, Perspective};
     use crate::lights::{PointLight, SpotLight, SpotProfile};
     use crate::materials::Material;
-    use crate::math::{Rgb, Vec3};
+    use crate::math::Vec3;
     use crate::shapes::Rectangle;
     use crate::SceneBuilder;
 
@@ -121,8 +123,8 @@ mod tests {
         let lamp_object = b.object(square, lamp).unwrap();
         b.light(PointLight::new(Vec3::new(0.0, 3.0, 0.0), Rgb::splat(9.0)).unwrap());
         b.light(SpotLight::new(Vec3::new(0.0, 3.0, 0.0), -Vec3::Y, Rgb::splat(9.0), 10.0, 20.0, SpotProfile::Smoothstep).unwrap());
-        b.environment = Some(Arc::new(Environment::Constant(Rgb::splat(0.5))));
-        let set = LightSet::new(&b.build().unwrap());
+        b.settings.environment = Some(Arc::new(Environment::Constant(Rgb::splat(0.5))));
+        let set = b.build().unwrap().light_set();
         assert_eq!(set.count(), 4);
         let x = Vec3::ZERO;
         let picks: Vec<_> = [0.1, 0.3, 0.6, 0.9].iter().map(|&u| set.pick(u).unwrap().sample_li(x, (0.5, 0.5)).unwrap()).collect();

@@ -179,7 +179,7 @@ fn checked_depth(scene: &Scene, options: &RenderOptions) -> Result<u32, Error> {
             if options.crop.is_some() { format!("crop {crop:?} of the {width}x{height} image") } else { format!("{width}x{height} image") };
         return Err(Error::invalid("window", format!("{w:?} must be non-empty and inside the {of}")));
     }
-    let max_depth = options.max_depth.unwrap_or(scene.max_depth);
+    let max_depth = options.max_depth.unwrap_or(scene.settings.max_depth);
     if max_depth == 0 {
         return Err(Error::invalid("max_depth", "must be at least 1"));
     }
@@ -266,8 +266,8 @@ fn passes(
 ) -> Result<(Film, RenderStats), Error> {
     let window = options.pixel_window();
     // The camera's window for this image size, worked out once rather than per ray.
-    let sized = scene.camera.for_image(options.width, options.height);
-    let camera = sized.as_deref().unwrap_or(scene.camera.as_ref());
+    let sized = scene.settings.camera.for_image(options.width, options.height);
+    let camera = sized.as_deref().unwrap_or(scene.settings.camera.as_ref());
     let view = view_of(scene, camera, options);
     let schedule = integrator.schedule();
     let spp = options.spp;

@@ -54,7 +54,7 @@
 //! (black when `e <= 0`). `trace(3, ...)`: camera rays and two levels of secondary
 //! rays are shaded, deeper ones return black. Mapped onto the core:
 //!
-//! - each sphere: `color = C`, `ka = kd` with `Scene::ambient = 0.02` (so
+//! - each sphere: `color = C`, `ka = kd` with `SceneSettings::ambient = 0.02` (so
 //!   `ka C La = kd C amb`), `kd = kd`, no Blinn highlight (`ks = 0`), `emission = kl C`,
 //!   `Reflection::Constant(ks)`, `Refraction::Constant { ior: ir, weight: kt }`,
 //!   `shadow_transmittance = 0` (every sphere blocks, as `intersect(P,U)==l` demands);
@@ -140,9 +140,9 @@ pub fn camera() -> Result<Perspective, Error> {
 /// Builds the scene.
 pub fn build() -> Result<Scene, Error> {
     let mut scene = SceneBuilder::new(camera()?);
-    scene.ambient = Rgb::splat(AMBIENT);
-    scene.background = Rgb::splat(AMBIENT);
-    scene.max_depth = MAX_DEPTH;
+    scene.settings.ambient = Rgb::splat(AMBIENT);
+    scene.settings.background = Rgb::splat(AMBIENT);
+    scene.settings.max_depth = MAX_DEPTH;
     for s in &SPHERES {
         let color = Rgb::from_array(s.color);
         let material = scene.material(Material {
@@ -209,7 +209,7 @@ mod tests {
         assert_eq!(near.radiance, Rgb::new(0.6, 0.48, 0.6));
         let glass = &scene.materials[scene.objects[0].material];
         assert!(matches!(glass.refraction, Refraction::Constant { ior, .. } if ior == 1.7));
-        assert_eq!(scene.max_depth, 3);
+        assert_eq!(scene.settings.max_depth, 3);
     }
 
     #[test]

@@ -31,7 +31,7 @@ fn diffuse(c: Rgb) -> Material {
 pub fn build() -> Result<lamplight_core::Scene, Error> {
     let camera = Perspective::look_at(Vec3::new(0.0, 0.0, 3.9), Vec3::ZERO, Vec3::Y, Fov::SmallerSideDeg(39.3077))?;
     let mut b = SceneBuilder::new(camera);
-    b.max_depth = 8;
+    b.settings.max_depth = 8;
     let white = b.material(diffuse(Rgb::new(0.885809, 0.698859, 0.666422)))?;
     let green = b.material(diffuse(Rgb::new(0.105421, 0.37798, 0.076425)))?;
     let red = b.material(diffuse(Rgb::new(0.570068, 0.0430135, 0.0443706)))?;

@@ -41,9 +41,9 @@ fn capped_cylinder(scene: &mut SceneBuilder, p0: Vec3, p1: Vec3, radius: f64, ma
 pub fn build() -> Result<Scene, Error> {
     let camera = Perspective::look_at(Vec3::new(1.3, 1.6, 3.0), Vec3::new(-0.15, 0.45, -0.2), Vec3::Y, Fov::VerticalDeg(40.0))?;
     let mut scene = SceneBuilder::new(camera);
-    scene.ambient = Rgb::ONE;
-    scene.background = Rgb::new(0.02, 0.02, 0.03);
-    scene.max_depth = 5;
+    scene.settings.ambient = Rgb::ONE;
+    scene.settings.background = Rgb::new(0.02, 0.02, 0.03);
+    scene.settings.max_depth = 5;
 
     // The table: a 5 x 4 checkered top at y = 0, tiles of 0.5.
     let table = scene.material(Material {
@@ -161,7 +161,7 @@ mod tests {
         let scene = build().unwrap();
         let bulb = scene.lights[0].own_object().expect("the point light owns its bulb");
         assert!(scene.materials[scene.objects[bulb].material].emission.max_element() > 0.0, "object {bulb} is the bulb");
-        let lights = lamplight_core::lights::LightSet::new(&scene);
+        let lights = scene.light_set();
         assert!(lights.area.is_empty(), "the bulb must not be sampled as an area light too");
         assert!(lights.is_bulb(bulb));
     }

@@ -32,9 +32,9 @@ pub(crate) fn pov_mirror() -> Material {
 pub fn build() -> Result<Scene, Error> {
     let camera = Perspective::look_at(Vec3::new(0.0, 6.5, 10.5), Vec3::new(0.0, 0.0, 0.8), Vec3::Y, Fov::VerticalDeg(40.0))?;
     let mut scene = SceneBuilder::new(camera);
-    scene.ambient = Rgb::ONE;
-    scene.background = Rgb::new(0.40, 0.50, 0.65);
-    scene.max_depth = 5;
+    scene.settings.ambient = Rgb::ONE;
+    scene.settings.background = Rgb::new(0.40, 0.50, 0.65);
+    scene.settings.max_depth = 5;
 
     let floor = scene.material(Material {
         color: Texture::Checker { size: 1.0, even: Rgb::splat(0.75), odd: Rgb::splat(0.25), offset: Vec3::new(0.0, 0.5, 0.0) },

@@ -61,7 +61,7 @@ pub fn build(path: &Path, imported: &Imported) -> Result<Scene, LoadError> {
         }
     };
     let mut builder = SceneBuilder::with_camera(camera);
-    builder.ambient = Rgb::splat(AMBIENT);
+    builder.settings.ambient = Rgb::splat(AMBIENT);
     let default_material = builder.material(Material::default()).map_err(fail)?;
     for placed in &imported.instances {
         let material = match &placed.material {
@@ -72,8 +72,8 @@ pub fn build(path: &Path, imported: &Imported) -> Result<Scene, LoadError> {
         builder.shared_object(shape, material).map_err(fail)?;
     }
     if !has_own_lights(imported) {
-        builder.ambient = Rgb::splat(viewer::AMBIENT);
-        builder.background = Rgb::splat(viewer::SURROUND);
+        builder.settings.ambient = Rgb::splat(viewer::AMBIENT);
+        builder.settings.background = Rgb::splat(viewer::SURROUND);
         for light in viewer::lights(eye, target).map_err(fail)? {
             builder.light(light);
         }
@@ -125,8 +125,8 @@ mod tests {
         let scene = build(Path::new("t.obj"), &imported).unwrap();
         assert_eq!(scene.objects.len(), 1);
         assert_eq!(scene.lights.len(), 3, "key, fill and rim");
-        assert_eq!((scene.background, scene.ambient), (Rgb::splat(viewer::SURROUND), Rgb::splat(viewer::AMBIENT)));
-        let ray = scene.camera.ray(0.5, 0.5, 1, 1, (0.5, 0.5));
+        assert_eq!((scene.settings.background, scene.settings.ambient), (Rgb::splat(viewer::SURROUND), Rgb::splat(viewer::AMBIENT)));
+        let ray = scene.settings.camera.ray(0.5, 0.5, 1, 1, (0.5, 0.5));
         let centre = Vec3::new(0.5, 0.5, 1.0);
         assert!((ray.dir - (centre - ray.origin).normalize()).length() < 1e-12, "looks at the centre");
         let empty = Imported::default();

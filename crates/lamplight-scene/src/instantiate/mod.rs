@@ -349,13 +349,13 @@ pub fn build_with_warnings(desc: &SceneDescription, source: &Source) -> Result<B
     let mut builder = SceneBuilder::with_camera(camera);
     let dir = source.path.parent().map(Path::to_path_buf).unwrap_or_default();
     let (ambient, background, environment) = globals(&desc.globals, &dir).map_err(|e| source.param_error(e))?;
-    builder.ambient = ambient;
-    builder.background = background;
-    builder.environment = environment;
-    builder.max_depth = settings.max_depth;
-    builder.hide_emitters = settings.hide_emitters;
-    builder.rr_depth = settings.rr_depth;
-    builder.min_weight = settings.min_weight;
+    builder.settings.ambient = ambient;
+    builder.settings.background = background;
+    builder.settings.environment = environment;
+    builder.settings.max_depth = settings.max_depth;
+    builder.settings.hide_emitters = settings.hide_emitters;
+    builder.settings.rr_depth = settings.rr_depth;
+    builder.settings.min_weight = settings.min_weight;
     // Texture files are found beside the scene file, and decoded once each,
     // whether a material or a light reads them.
     let images = crate::texture_files::ImageFiles::new(&dir);

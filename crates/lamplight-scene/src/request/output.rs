@@ -27,20 +27,20 @@ impl Job {
     pub fn prepare(&self, scene: &mut Scene) -> Result<(), RequestError> {
         let Some(path) = &self.environment else { return Ok(()) };
         let env = crate::env_map::load_map(path).map_err(bad)?;
-        scene.environment = Some(std::sync::Arc::new(lamplight_core::lights::Environment::Map(env)));
+        scene.settings.environment = Some(std::sync::Arc::new(lamplight_core::lights::Environment::Map(env)));
         Ok(())
     }
 
     /// A warning when no light reaches anything the camera sees in `scene`
     /// (prepared), as a probe of camera rays finds
-    /// ([`lamplight_core::lights::reach`]): the image would be black but for
+    /// ([`lamplight_core::scene::reaches_camera_hits`]): the image would be black but for
     /// what emits towards the camera.
     pub fn light_warning(&self, scene: &Scene) -> Option<String> {
         let (w, h) = (self.options.width, self.options.height);
-        if lamplight_core::lights::LightSet::new(scene).count() == 0 && scene.ambient.max_element() <= 0.0 {
+        if scene.light_set().count() == 0 && scene.settings.ambient.max_element() <= 0.0 {
             return Some("the scene has no lights: add a light, an emitting material, a background or an ambient term".to_string());
         }
-        (!lamplight_core::lights::reach::reaches_camera_hits(scene, scene.camera.as_ref(), w, h)).then(|| {
+        (!lamplight_core::scene::reaches_camera_hits(scene, scene.settings.camera.as_ref(), w, h)).then(|| {
             "no light reaches anything the camera sees: emitters send light from their front (outward) side only \
              (set `two_sided = true` on the material to emit from both), and point, spot and directional lights light \
              only the side of a surface that faces them"

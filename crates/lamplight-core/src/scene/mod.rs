@@ -6,17 +6,23 @@
 use std::borrow::Cow;
 use std::sync::Arc;
 
-use crate::accel::{Aabb, Bvh, Costs};
+use crate::accel::{Aabb, Bvh};
 use crate::bsdfs::Bsdf;
-use crate::camera::Camera;
 use crate::lights::Light;
 use crate::materials::{bsdf_for, Material};
 use crate::math::{max_abs, Rgb, Vec3};
 use crate::ray::{Ray, OFFSET_SCALE};
 use crate::shapes::Shape;
-use crate::Error;
 
+mod builder;
+mod light_set;
+mod reach;
+mod settings;
 mod shading;
+
+pub use builder::SceneBuilder;
+pub use reach::reaches_camera_hits;
+pub use settings::SceneSettings;
 
 /// A shape placed in the scene with its material.
 #[derive(Clone, Debug)]
@@ -65,27 +71,9 @@ pub struct Scene {
     pub materials: Vec<Material>,
     /// Light sources (point, directional).
     pub lights: Vec<Arc<dyn Light>>,
-    /// Ambient radiance `La`, reflected by every surface through `ka`.
-    pub ambient: Rgb,
-    /// Radiance of rays that hit nothing.
-    pub background: Rgb,
-    /// Light from everywhere for the path tracer (`None`: the ambient light
-    /// becomes a uniform sky, see [`crate::lights::LightSet`]).
-    pub environment: Option<Arc<crate::lights::Environment>>,
-    /// The camera (shared: a scene seen by another camera shares it).
-    pub camera: Arc<dyn Camera>,
-    /// Default recursion depth limit (camera ray = depth 1).
-    pub max_depth: u32,
-    /// Secondary rays whose weight falls to or below this (every channel) are not
-    /// traced (POV-Ray's `adc_bailout`; 0 traces every ray up to the depth limit).
-    pub min_weight: f64,
-    /// Path segments before the path tracer's Russian roulette starts
-    /// ([`crate::integrators::PathTracer::rr_depth`], camera ray = 1; default 4).
-    pub rr_depth: u32,
-    /// Camera rays go through emitting surfaces and see black where they leave
-    /// to the sky (Mitsuba's `hide_emitters`, [`Scene::first_camera_hit`]);
-    /// the light those give the scene is kept.
-    pub hide_emitters: bool,
+    /// The camera, the ambient and background light, the sky and the
+    /// recursion's limits.
+    pub settings: SceneSettings,
     bvh: Bvh,
     /// Objects in the BVH, in BVH primitive order.
     bounded: Vec<PrimRef>,
@@ -131,194 +119,6 @@ struct PrimRef {
     opaque: bool,
     /// Its material cuts holes ([`crate::materials::alpha`]).
     masked: bool,
-}
-
-/// Collects objects, materials and lights, then builds a [`Scene`].
-#[derive(Debug)]
-pub struct SceneBuilder {
-    objects: Vec<Object>,
-    materials: Vec<Material>,
-    lights: Vec<Arc<dyn Light>>,
-    /// Ambient radiance.
-    pub ambient: Rgb,
-    /// Background radiance.
-    pub background: Rgb,
-    /// Environment light for the path tracer.
-    pub environment: Option<Arc<crate::lights::Environment>>,
-    /// Camera.
-    pub camera: Arc<dyn Camera>,
-    /// Default depth limit, 5.
-    pub max_depth: u32,
-    /// Weight cut-off, 0.
-    pub min_weight: f64,
-    /// [`Scene::rr_depth`], 4.
-    pub rr_depth: u32,
-    /// [`Scene::hide_emitters`], `false`.
-    pub hide_emitters: bool,
-    /// Per material: a blend's components, added as materials of their own.
-    blend_parts: Vec<Option<[usize; 2]>>,
-    names: Names,
-}
-
-impl SceneBuilder {
-    /// An empty scene seen by `camera`.
-    pub fn new(camera: impl Camera + 'static) -> SceneBuilder {
-        SceneBuilder::with_camera(Arc::new(camera))
-    }
-
-    /// An empty scene seen by a camera that may be shared.
-    pub fn with_camera(camera: Arc<dyn Camera>) -> SceneBuilder {
-        SceneBuilder {
-            objects: Vec::new(),
-            materials: Vec::new(),
-            lights: Vec::new(),
-            ambient: Rgb::ZERO,
-            background: Rgb::ZERO,
-            environment: None,
-            camera,
-            max_depth: 5,
-            min_weight: 0.0,
-            rr_depth: 4,
-            hide_emitters: false,
-            blend_parts: Vec::new(),
-            names: Names::default(),
-        }
-    }
-
-    /// Gives object `object` the name `name` (shown by [`crate::explain`]).
-    pub fn name_object(&mut self, object: usize, name: &str) {
-        set_name(&mut self.names.objects, object, name);
-    }
-
-    /// Gives material `material` the name `name` (shown by [`crate::explain`]).
-    pub fn name_material(&mut self, material: usize, name: &str) {
-        set_name(&mut self.names.materials, material, name);
-    }
-
-    /// Adds a material after checking its numbers; returns its index. A
-    /// blend's components are added first, as materials of their own, which
-    /// [`Scene::shade`] picks from per hit.
-    pub fn material(&mut self, material: Material) -> Result<usize, Error> {
-        material.validate()?;
-        let parts = match &material.blend {
-            Some(blend) => {
-                let max = crate::materials::blend::MAX_DEPTH;
-                if blend.depth() > max {
-                    return Err(Error::invalid("blend", format!("blends nested more than {max} deep")));
-                }
-                Some([self.material(blend.a.clone())?, self.material(blend.b.clone())?])
-            }
-            None => None,
-        };
-        self.materials.push(material);
-        self.blend_parts.push(parts);
-        Ok(self.materials.len() - 1)
-    }
-
-    /// Places `shape` with material `material`; returns the object's index.
-    pub fn object(&mut self, shape: impl Shape + 'static, material: usize) -> Result<usize, Error> {
-        self.shared_object(Arc::new(shape), material)
-    }
-
-    /// Places an already shared shape (instancing: the geometry is not copied).
-    pub fn shared_object(&mut self, shape: Arc<dyn Shape>, material: usize) -> Result<usize, Error> {
-        if material >= self.materials.len() {
-            return Err(Error::invalid("material", format!("index {material} does not exist")));
-        }
-        self.objects.push(Object { shape, material, reversed: false });
-        Ok(self.objects.len() - 1)
-    }
-
-    /// Turns object `object`'s outward side inward ([`Object::reversed`]).
-    pub fn reverse_orientation(&mut self, object: usize) {
-        if let Some(o) = self.objects.get_mut(object) {
-            o.reversed = !o.reversed;
-        }
-    }
-
-    /// Adds a light.
-    pub fn light(&mut self, light: impl Light + 'static) {
-        self.lights.push(Arc::new(light));
-    }
-
-    /// Adds an already shared light.
-    pub fn shared_light(&mut self, light: Arc<dyn Light>) {
-        self.lights.push(light);
-    }
-
-    /// Number of objects placed so far (the index the next object gets).
-    pub fn object_count(&self) -> usize {
-        self.objects.len()
-    }
-
-    /// Builds the BVH and returns the finished scene.
-    pub fn build(self) -> Result<Scene, Error> {
-        if self.max_depth == 0 {
-            return Err(Error::invalid("max_depth", "must be at least 1"));
-        }
-        for (name, c) in [("ambient", self.ambient), ("background", self.background)] {
-            if !(c.is_finite() && c.min_element() >= 0.0) {
-                return Err(Error::invalid(name, "must be finite and non-negative"));
-            }
-        }
-        let mut bounded = Vec::new();
-        let mut unbounded = Vec::new();
-        let mut boxes = Vec::new();
-        for (i, object) in self.objects.iter().enumerate() {
-            let b = object.shape.bounds();
-            let material = &self.materials[object.material];
-            let prim = PrimRef { object: i as u32, opaque: material.shadow_transmittance == Rgb::ZERO, masked: material.alpha.is_some() };
-            if b.is_finite() {
-                bounded.push(prim);
-                boxes.push(b);
-            } else if b.is_empty() {
-                continue; // nothing to hit
-            } else {
-                unbounded.push(prim);
-            }
-        }
-        let any_partial_shadow = self.materials.iter().any(|m| m.shadow_transmittance != Rgb::ZERO && m.shadow_transmittance != Rgb::ONE);
-        let bsdfs = self
-            .materials
-            .iter()
-            .map(|m| m.is_constant().then(|| [surface_bsdf(m, Vec3::ZERO, false), surface_bsdf(m, Vec3::ZERO, true)]))
-            .collect();
-        let uses_footprints = self.materials.iter().any(Material::uses_footprint);
-        let plain = self
-            .materials
-            .iter()
-            .map(|m| {
-                m.normal_map.is_none()
-                    && m.bump.is_none()
-                    && m.textures.is_none()
-                    && m.pbr.is_none()
-                    && m.blend.is_none()
-                    && !m.color.needs_coords()
-            })
-            .collect();
-        Ok(Scene {
-            plain,
-            uses_footprints,
-            bsdfs,
-            bvh: Bvh::build_with(&boxes, Costs::OBJECTS),
-            bounded,
-            unbounded,
-            any_partial_shadow,
-            objects: self.objects,
-            materials: self.materials,
-            lights: self.lights,
-            ambient: self.ambient,
-            background: self.background,
-            environment: self.environment,
-            camera: self.camera,
-            max_depth: self.max_depth,
-            min_weight: self.min_weight,
-            rr_depth: self.rr_depth,
-            hide_emitters: self.hide_emitters,
-            blend_parts: self.blend_parts,
-            names: self.names,
-        })
-    }
 }
 
 impl Scene {
@@ -371,7 +171,7 @@ impl Scene {
     }
 
     /// The first hit of a camera ray `ray` (depth 1): [`Scene::first_intersect`],
-    /// or under [`Scene::hide_emitters`] the first hit past every emitting
+    /// or under [`SceneSettings::hide_emitters`] the first hit past every emitting
     /// surface, which a camera ray then goes through as Mitsuba's does (the
     /// surface still casts shadows and is seen by later segments).
     pub fn first_camera_hit(&self, ray: &Ray) -> Option<Hit> {
@@ -379,7 +179,7 @@ impl Scene {
         // Each pass moves past one emitting surface; a bound keeps pathological stacks finite.
         for _ in 0..64 {
             let hit = self.first_intersect(&ray, f64::INFINITY)?;
-            if !self.hide_emitters || self.materials[hit.material].emission == Rgb::ZERO {
+            if !self.settings.hide_emitters || self.materials[hit.material].emission == Rgb::ZERO {
                 return Some(hit);
             }
             ray = Ray { origin: crate::ray::offset_origin(hit.point, hit.geometric_normal, ray.dir, hit.t, hit.error), dir: ray.dir };

@@ -9,11 +9,10 @@
 //! background under path tracing) and an ambient term light every surface, so
 //! with either the answer is yes without probing.
 
-use super::LightSet;
+use super::{Hit, Scene};
 use crate::camera::Camera;
 use crate::math::{Rgb, Vec3};
 use crate::ray::offset_origin;
-use crate::scene::{Hit, Scene};
 
 /// Camera rays per side of the probe grid.
 const GRID: u32 = 16;
@@ -23,8 +22,8 @@ const AREA_POINTS: u32 = 4;
 /// Whether some light reaches some first hit of the camera's rays for a
 /// `width x height` image (see the module doc). `false` also for an empty view.
 pub fn reaches_camera_hits(scene: &Scene, camera: &dyn Camera, width: u32, height: u32) -> bool {
-    let lights = LightSet::new(scene);
-    if lights.environment.is_some() || scene.ambient.max_element() > 0.0 {
+    let lights = scene.light_set();
+    if lights.environment.is_some() || scene.settings.ambient.max_element() > 0.0 {
         return true;
     }
     for j in 0..GRID {
@@ -91,20 +90,20 @@ mod tests {
         if point_below {
             b.light(PointLight::new(Vec3::new(0.0, -1.0, 0.0), Rgb::ONE).unwrap());
         }
-        b.ambient = Rgb::ZERO;
-        b.background = Rgb::ZERO;
+        b.settings.ambient = Rgb::ZERO;
+        b.settings.background = Rgb::ZERO;
         b.build().unwrap()
     }
 
     #[test]
     fn a_lamp_facing_away_lights_nothing_the_camera_sees() {
-        let reach = |s: &Scene| reaches_camera_hits(s, s.camera.as_ref(), 64, 48);
+        let reach = |s: &Scene| reaches_camera_hits(s, s.settings.camera.as_ref(), 64, 48);
         assert!(reach(&scene(true, false, false)), "a lamp facing the floor lights it");
         assert!(!reach(&scene(false, false, false)), "one-sided, facing up: nothing lit");
         assert!(reach(&scene(false, true, false)), "two-sided: lit");
         assert!(!reach(&scene(false, false, true)), "a point light under the floor reaches only its back");
         let mut sky = scene(false, false, false);
-        sky.ambient = Rgb::splat(0.1);
+        sky.settings.ambient = Rgb::splat(0.1);
         assert!(reach(&sky), "an ambient term lights every surface");
     }
 }

@@ -1,0 +1,167 @@
+//! [`SceneBuilder`]: objects, materials and lights collected, checked, and
+//! built into a [`Scene`] with its BVH and the path tracer's prebuilt BSDFs.
+
+use std::sync::Arc;
+
+use super::{set_name, surface_bsdf, Names, Object, PrimRef, Scene, SceneSettings};
+use crate::accel::{Bvh, Costs};
+use crate::camera::Camera;
+use crate::lights::Light;
+use crate::materials::Material;
+use crate::math::{Rgb, Vec3};
+use crate::shapes::Shape;
+use crate::Error;
+
+/// Collects objects, materials and lights, then builds a [`Scene`].
+#[derive(Debug)]
+pub struct SceneBuilder {
+    objects: Vec<Object>,
+    materials: Vec<Material>,
+    lights: Vec<Arc<dyn Light>>,
+    /// The camera, the ambient and background light, the sky and the
+    /// recursion's limits ([`SceneSettings::new`] gives the defaults).
+    pub settings: SceneSettings,
+    /// Per material: a blend's components, added as materials of their own.
+    blend_parts: Vec<Option<[usize; 2]>>,
+    names: Names,
+}
+
+impl SceneBuilder {
+    /// An empty scene seen by `camera`.
+    pub fn new(camera: impl Camera + 'static) -> SceneBuilder {
+        SceneBuilder::with_camera(Arc::new(camera))
+    }
+
+    /// An empty scene seen by a camera that may be shared.
+    pub fn with_camera(camera: Arc<dyn Camera>) -> SceneBuilder {
+        SceneBuilder {
+            objects: Vec::new(),
+            materials: Vec::new(),
+            lights: Vec::new(),
+            settings: SceneSettings::new(camera),
+            blend_parts: Vec::new(),
+            names: Names::default(),
+        }
+    }
+
+    /// Gives object `object` the name `name` (shown by [`crate::explain`]).
+    pub fn name_object(&mut self, object: usize, name: &str) {
+        set_name(&mut self.names.objects, object, name);
+    }
+
+    /// Gives material `material` the name `name` (shown by [`crate::explain`]).
+    pub fn name_material(&mut self, material: usize, name: &str) {
+        set_name(&mut self.names.materials, material, name);
+    }
+
+    /// Adds a material after checking its numbers; returns its index. A
+    /// blend's components are added first, as materials of their own, which
+    /// [`Scene::shade`] picks from per hit.
+    pub fn material(&mut self, material: Material) -> Result<usize, Error> {
+        material.validate()?;
+        let parts = match &material.blend {
+            Some(blend) => {
+                let max = crate::materials::blend::MAX_DEPTH;
+                if blend.depth() > max {
+                    return Err(Error::invalid("blend", format!("blends nested more than {max} deep")));
+                }
+                Some([self.material(blend.a.clone())?, self.material(blend.b.clone())?])
+            }
+            None => None,
+        };
+        self.materials.push(material);
+        self.blend_parts.push(parts);
+        Ok(self.materials.len() - 1)
+    }
+
+    /// Places `shape` with material `material`; returns the object's index.
+    pub fn object(&mut self, shape: impl Shape + 'static, material: usize) -> Result<usize, Error> {
+        self.shared_object(Arc::new(shape), material)
+    }
+
+    /// Places an already shared shape (instancing: the geometry is not copied).
+    pub fn shared_object(&mut self, shape: Arc<dyn Shape>, material: usize) -> Result<usize, Error> {
+        if material >= self.materials.len() {
+            return Err(Error::invalid("material", format!("index {material} does not exist")));
+        }
+        self.objects.push(Object { shape, material, reversed: false });
+        Ok(self.objects.len() - 1)
+    }
+
+    /// Turns object `object`'s outward side inward ([`Object::reversed`]).
+    pub fn reverse_orientation(&mut self, object: usize) {
+        if let Some(o) = self.objects.get_mut(object) {
+            o.reversed = !o.reversed;
+        }
+    }
+
+    /// Adds a light.
+    pub fn light(&mut self, light: impl Light + 'static) {
+        self.lights.push(Arc::new(light));
+    }
+
+    /// Adds an already shared light.
+    pub fn shared_light(&mut self, light: Arc<dyn Light>) {
+        self.lights.push(light);
+    }
+
+    /// Number of objects placed so far (the index the next object gets).
+    pub fn object_count(&self) -> usize {
+        self.objects.len()
+    }
+
+    /// Builds the BVH and returns the finished scene.
+    pub fn build(self) -> Result<Scene, Error> {
+        self.settings.validate()?;
+        let mut bounded = Vec::new();
+        let mut unbounded = Vec::new();
+        let mut boxes = Vec::new();
+        for (i, object) in self.objects.iter().enumerate() {
+            let b = object.shape.bounds();
+            let material = &self.materials[object.material];
+            let prim = PrimRef { object: i as u32, opaque: material.shadow_transmittance == Rgb::ZERO, masked: material.alpha.is_some() };
+            if b.is_finite() {
+                bounded.push(prim);
+                boxes.push(b);
+            } else if b.is_empty() {
+                continue; // nothing to hit
+            } else {
+                unbounded.push(prim);
+            }
+        }
+        let any_partial_shadow = self.materials.iter().any(|m| m.shadow_transmittance != Rgb::ZERO && m.shadow_transmittance != Rgb::ONE);
+        let bsdfs = self
+            .materials
+            .iter()
+            .map(|m| m.is_constant().then(|| [surface_bsdf(m, Vec3::ZERO, false), surface_bsdf(m, Vec3::ZERO, true)]))
+            .collect();
+        let uses_footprints = self.materials.iter().any(Material::uses_footprint);
+        let plain = self
+            .materials
+            .iter()
+            .map(|m| {
+                m.normal_map.is_none()
+                    && m.bump.is_none()
+                    && m.textures.is_none()
+                    && m.pbr.is_none()
+                    && m.blend.is_none()
+                    && !m.color.needs_coords()
+            })
+            .collect();
+        Ok(Scene {
+            plain,
+            uses_footprints,
+            bsdfs,
+            bvh: Bvh::build_with(&boxes, Costs::OBJECTS),
+            bounded,
+            unbounded,
+            any_partial_shadow,
+            objects: self.objects,
+            materials: self.materials,
+            lights: self.lights,
+            settings: self.settings,
+            blend_parts: self.blend_parts,
+            names: self.names,
+        })
+    }
+}

@@ -1,0 +1,66 @@
+//! What a scene is seen and lit with besides its objects and lights: the
+//! camera, the lecture's ambient and background light, the path tracer's sky,
+//! and the recursion's limits. One struct, which the builder fills and the
+//! built scene keeps, so a new setting is one field with its default here.
+
+use std::sync::Arc;
+
+use crate::camera::Camera;
+use crate::lights::Environment;
+use crate::math::Rgb;
+use crate::Error;
+
+/// A scene's settings ([`crate::Scene::settings`], [`crate::SceneBuilder::settings`]).
+#[derive(Clone, Debug)]
+pub struct SceneSettings {
+    /// Ambient radiance `La`, reflected by every surface through `ka`; black by default.
+    pub ambient: Rgb,
+    /// Radiance of rays that hit nothing; black by default.
+    pub background: Rgb,
+    /// Light from everywhere for the path tracer (`None`, the default: the
+    /// background becomes a uniform sky, see [`crate::lights::LightSet`]).
+    pub environment: Option<Arc<Environment>>,
+    /// The camera (shared: a scene seen by another camera shares it).
+    pub camera: Arc<dyn Camera>,
+    /// Default recursion depth limit (camera ray = depth 1); 5 by default.
+    pub max_depth: u32,
+    /// Secondary rays whose weight falls to or below this (every channel) are not
+    /// traced (POV-Ray's `adc_bailout`; 0, the default, traces every ray up to the depth limit).
+    pub min_weight: f64,
+    /// Path segments before the path tracer's Russian roulette starts
+    /// ([`crate::integrators::PathTracer::rr_depth`], camera ray = 1; 4 by default).
+    pub rr_depth: u32,
+    /// Camera rays go through emitting surfaces and see black where they leave
+    /// to the sky (Mitsuba's `hide_emitters`, [`crate::Scene::first_camera_hit`]);
+    /// the light those give the scene is kept. `false` by default.
+    pub hide_emitters: bool,
+}
+
+impl SceneSettings {
+    /// The defaults, seen by `camera`.
+    pub fn new(camera: Arc<dyn Camera>) -> SceneSettings {
+        SceneSettings {
+            ambient: Rgb::ZERO,
+            background: Rgb::ZERO,
+            environment: None,
+            camera,
+            max_depth: 5,
+            min_weight: 0.0,
+            rr_depth: 4,
+            hide_emitters: false,
+        }
+    }
+
+    /// Checks the numbers a scene cannot be built with.
+    pub(super) fn validate(&self) -> Result<(), Error> {
+        if self.max_depth == 0 {
+            return Err(Error::invalid("max_depth", "must be at least 1"));
+        }
+        for (name, c) in [("ambient", self.ambient), ("background", self.background)] {
+            if !(c.is_finite() && c.min_element() >= 0.0) {
+                return Err(Error::invalid(name, "must be finite and non-negative"));
+            }
+        }
+        Ok(())
+    }
+}
