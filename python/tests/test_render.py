@@ -212,6 +212,10 @@ def test_sampling_is_adaptive_unless_spp_says_otherwise():
     )
     counts = noisy.layers["samples"]
     assert counts.min() >= 16 and counts.max() <= 128 and counts.mean() < 128
+    # Without spp anywhere, the path tracer samples to the default noise level (0.05).
+    default = lamplight.render("spheres", width=16, height=9, integrator="path", exr_layers=["samples"], progress=False)
+    assert default.stats["samples_per_pixel"] == 1024 and 16 <= default.layers["samples"].min()
+    assert default.stats["mean_samples_per_pixel"] < 1024
     with pytest.raises(ValueError, match=r"^noise_threshold is for the path tracer \(integrator path\); whitted takes its samples in one pass$"):
         lamplight.render("spheres", width=8, height=8, noise_threshold=0.1, progress=False)
     with pytest.raises(ValueError, match=r"^antialias must be True, False or a threshold >= 0 \(POV-Ray's 0.3\), got -1$"):

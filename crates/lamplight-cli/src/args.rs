@@ -107,7 +107,7 @@ pub struct ExplainArgs {
 /// What `render` and `explain` share: the scene and the settings that decide each pixel's value.
 #[derive(Debug, Args)]
 pub struct SceneArgs {
-    /// Built-in scene (see `lamplight list`), scene file (.toml) or mesh file (.obj, .ply, .gltf, .glb).
+    /// Built-in scene (see `lamplight list`), scene file (.toml, Mitsuba 3 .xml) or mesh file (.obj, .ply, .gltf, .glb).
     #[arg(value_name = "SCENE", default_value = builtin::BUILTINS[0].name)]
     pub scene: String,
     /// Image width in pixels [default: the scene's; with only --height, keeps the scene's aspect].
@@ -117,7 +117,8 @@ pub struct SceneArgs {
     #[arg(long, value_name = "H", allow_negative_numbers = true, value_parser = count::<u32>)]
     pub height: Option<u32>,
     /// Samples per pixel, stratified and jittered when more than one: fixed supersampling
-    /// [default: the file's; else Whitted anti-aliases adaptively and path takes 1].
+    /// [default: the file's; else Whitted anti-aliases adaptively and path samples each pixel
+    /// to noise 0.05, 16 to 1024 samples (see --noise-threshold)].
     #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = count::<u32>)]
     pub spp: Option<u32>,
     /// Whitted: adaptive anti-aliasing (POV-Ray's +A): 16 samples in each pixel whose colour differs
@@ -126,7 +127,8 @@ pub struct SceneArgs {
     #[arg(long, value_name = "T|on|off", allow_negative_numbers = true)]
     pub antialias: Option<AntialiasRequest>,
     /// Path tracer: stop sampling a pixel once its noise (the standard error of its mean over the square root
-    /// of its brightness, Cycles' measure) is below E, e.g. 0.01; --spp is then the most a pixel takes [default: 1024].
+    /// of its brightness, Cycles' measure) is below E, e.g. 0.01; --spp is then the most a pixel takes (1024 if not given)
+    /// [default: 0.05 when neither --spp nor the file's spp is given].
     #[arg(long, value_name = "E", allow_negative_numbers = true)]
     pub noise_threshold: Option<f64>,
     /// Path tracer with --noise-threshold: samples every pixel takes before any stops [default: 16].
@@ -188,6 +190,16 @@ fn pixel(text: &str) -> Result<(u32, u32), String> {
     Ok((whole(x)?, whole(y)?))
 }
 
+/// `--window X,Y,W,H`: four whole numbers.
+fn window(text: &str) -> Result<(u32, u32, u32, u32), String> {
+    let message = || "must be the window's corner and size as X,Y,W,H, four whole numbers such as 0,0,64,32".to_string();
+    let parts: Vec<u32> = text.split(',').map(|s| s.trim().parse::<u32>().map_err(|_| message())).collect::<Result<_, _>>()?;
+    match parts[..] {
+        [x, y, w, h] => Ok((x, y, w, h)),
+        _ => Err(message()),
+    }
+}
+
 /// An explain request, checked and with every default resolved.
 #[derive(Debug)]
 pub struct ExplainJob {
@@ -230,6 +242,10 @@ pub struct RenderArgs {
     /// Path tracer: stop within this many seconds, the last pass shortened to the samples that fit (every pixel gets the same count).
     #[arg(long, value_name = "SECONDS")]
     pub time_limit: Option<f64>,
+    /// Render only the pixels X..X+W, Y..Y+H of the image (from the top-left corner), each exactly as the
+    /// whole render has it; the output is W x H.
+    #[arg(long, value_name = "X,Y,W,H", value_parser = window)]
+    pub window: Option<(u32, u32, u32, u32)>,
     /// Exposure in stops for .png/.ppm output (the image is scaled by 2^EV).
     #[arg(long, value_name = "EV", default_value_t = 0.0, allow_negative_numbers = true)]
     pub exposure: f64,
@@ -251,7 +267,7 @@ pub struct RenderArgs {
 /// `lamplight info` arguments.
 #[derive(Debug, Args)]
 pub struct InfoArgs {
-    /// Scene file (.toml), mesh file (.obj, .ply, .gltf, .glb) or built-in scene name.
+    /// Scene file (.toml, Mitsuba 3 .xml), mesh file (.obj, .ply, .gltf, .glb) or built-in scene name.
     #[arg(value_name = "FILE")]
     pub file: String,
 }
@@ -360,6 +376,7 @@ impl RenderArgs {
         }
         let request = Request {
             time_limit: self.time_limit,
+            window: self.window,
             layers: self
                 .exr_layers
                 .iter()

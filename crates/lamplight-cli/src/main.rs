@@ -76,19 +76,40 @@ fn convert_command(args: &args::ConvertArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// The parsed command line. clap prints help, version and most usage errors
-/// itself (exit code 0 for help, 2 for errors); a flag's value that fails its
-/// check (`--spp -1`) becomes one line naming the flag, like every other bad input.
+/// The parsed command line. clap prints help and version itself (exit code
+/// 0); every usage error becomes one line, like every other bad input (exit
+/// code 2): clap's message, its tips in parentheses (a misspelt flag's nearest
+/// name) and, for a wrong command line rather than a wrong value, the usage.
 fn parse_args() -> anyhow::Result<Cli> {
+    use clap::error::ErrorKind;
     match Cli::try_parse() {
         Ok(cli) => Ok(cli),
-        Err(e) if matches!(e.kind(), clap::error::ErrorKind::ValueValidation | clap::error::ErrorKind::InvalidValue) => {
+        Err(e) if !e.use_stderr() || e.kind() == ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => e.exit(),
+        Err(e) => {
             let text = e.render().to_string();
-            let first = text.lines().next().unwrap_or_default();
-            Err(UsageError(first.strip_prefix("error: ").unwrap_or(first).to_string()).into())
+            Err(UsageError(one_line_usage_error(&text, !matches!(e.kind(), ErrorKind::ValueValidation | ErrorKind::InvalidValue))).into())
         }
-        Err(e) => e.exit(),
     }
+}
+
+/// clap's rendered error `text` (`error: ...`, blank lines, `tip: ...`,
+/// `Usage: ...`, `For more information, try '--help'.`) as one line.
+fn one_line_usage_error(text: &str, with_usage: bool) -> String {
+    let mut lines = text.lines().map(str::trim).filter(|l| !l.is_empty());
+    let first = lines.next().unwrap_or_default();
+    let mut message = first.strip_prefix("error: ").unwrap_or(first).to_string();
+    for line in text.lines().map(str::trim) {
+        // The nearest flag is worth the line; how to pass a dash-value is not.
+        if let Some(tip) = line.strip_prefix("tip: ").filter(|t| !t.starts_with("to pass ")) {
+            message.push_str(&format!(" ({tip})"));
+        }
+    }
+    if with_usage {
+        if let Some(usage) = text.lines().map(str::trim).find_map(|l| l.strip_prefix("Usage: ")) {
+            message.push_str(&format!("; usage: {usage} (more with --help)"));
+        }
+    }
+    message
 }
 
 fn list_command() -> anyhow::Result<()> {

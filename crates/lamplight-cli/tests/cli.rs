@@ -105,6 +105,36 @@ fn defaults_render_the_first_scene_to_its_name() {
 }
 
 #[test]
+fn a_window_renders_exactly_those_pixels_of_the_whole_image() {
+    let dir = tempfile::tempdir().unwrap();
+    ok(dir.path(), &args(&["-o", "full.png"]));
+    ok(dir.path(), &args(&["--window", "8,4,16,8", "-o", "part.png"]));
+    let (w, h, full) = read_png_srgb8(&dir.path().join("full.png")).unwrap();
+    let (pw, ph, part) = read_png_srgb8(&dir.path().join("part.png")).unwrap();
+    assert_eq!((w, h, pw, ph), (64, 36, 16, 8));
+    for y in 0..8usize {
+        let row = |x0: usize, width: usize, stride: usize, y: usize| (y * stride + x0) * 3..(y * stride + x0 + width) * 3;
+        assert_eq!(part[row(0, 16, 16, y)], full[row(8, 16, 64, y + 4)], "row {y}");
+    }
+}
+
+#[test]
+fn the_path_tracer_without_spp_samples_to_a_noise_level_and_the_cornell_box_to_its_own_count() {
+    let dir = tempfile::tempdir().unwrap();
+    // A scene that gives no sample count: 16 to 1024 samples a pixel, to noise 0.05.
+    let err = ok(dir.path(), &["render", "spheres", "--integrator", "path", "--width", "16", "-o", "p.exr"]);
+    assert!(err.contains("rendered spheres 16x9, ") && err.contains(" spp adaptive (at most 1024) in "), "{err}");
+    let mean: f64 = err.split(", ").nth(1).and_then(|s| s.split(' ').next()).and_then(|s| s.parse().ok()).unwrap();
+    assert!((16.0..=1024.0).contains(&mean), "{err}");
+    // The built-in Cornell box and its example file say 128.
+    let err = ok(dir.path(), &["render", "cornell-box", "--width", "8", "-o", "c.exr"]);
+    assert!(err.contains("rendered cornell-box 8x8, 128 spp in "), "{err}");
+    let example = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/cornell-box.toml");
+    let err = ok(dir.path(), &["render", example, "--width", "8", "-o", "e.exr"]);
+    assert!(err.contains("8x8, 128 spp in "), "{err}");
+}
+
+#[test]
 fn piped_stderr_gets_the_summary_and_no_progress_bar() {
     let dir = tempfile::tempdir().unwrap();
     let err = ok(dir.path(), &args(&["--threads", "2"]));
@@ -122,6 +152,33 @@ fn bad_input_exits_with_2() {
     let dir = tempfile::tempdir().unwrap();
     let dir = dir.path();
     fails(dir, &["render", "foo"], 2, "unknown scene \"foo\" (built-in scenes: luxo, business-card, cornell-box, spheres)");
+    // clap's own errors are one line too, with the nearest flag and the usage.
+    fails(
+        dir,
+        &["render", "--bogus"],
+        2,
+        "unexpected argument '--bogus' found; usage: lamplight render [OPTIONS] [SCENE] (more with --help)",
+    );
+    fails(dir, &["render", "--widht", "3"], 2, "unexpected argument '--widht' found (a similar argument exists: '--width'); usage: ");
+    fails(dir, &["frob"], 2, "unrecognized subcommand 'frob'; usage: lamplight <COMMAND> (more with --help)");
+    fails(
+        dir,
+        &["render", "--window", "1,2,3"],
+        2,
+        "invalid value '1,2,3' for '--window <X,Y,W,H>': must be the window's corner and size as X,Y,W,H",
+    );
+    fails(
+        dir,
+        &["render", "spheres", "--width", "64", "--window", "60,0,16,8"],
+        2,
+        "--window (x0=60, y0=0, width=16, height=8) must be non-empty and inside the 64x36 image",
+    );
+    fails(
+        dir,
+        &["render", "spheres", "--filter", "gaussian"],
+        2,
+        "--filter is for the path tracer (--integrator path); whitted averages its samples over the pixel square (a box)",
+    );
     fails(dir, &["render", "--width", "0"], 2, "--width must be at least 1");
     fails(dir, &["render", "--spp", "0"], 2, "--spp must be between 1 and 1048576, got 0");
     fails(dir, &["render", "--spp", "4294967295"], 2, "--spp must be between 1 and 1048576, got 4294967295");

@@ -287,6 +287,10 @@ pub struct IntegratorEntry {
     /// How its integrators schedule their samples ([`Integrator::schedule`]),
     /// known before one is built: which adaptive sampling fits it.
     pub schedule: Schedule,
+    /// Whether it places its samples by [`IntegratorSettings::filter`]; one
+    /// that does not averages them over the pixel square (a box), so asking it
+    /// for another filter is an error, not a silent box.
+    pub filters: bool,
 }
 
 impl fmt::Debug for IntegratorEntry {

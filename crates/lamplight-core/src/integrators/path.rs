@@ -33,6 +33,7 @@ pub const ENTRY: IntegratorEntry = IntegratorEntry {
     summary: "unidirectional path tracing with next-event estimation, MIS and Russian roulette",
     build: build_path,
     schedule: Schedule::Doubling,
+    filters: true,
 };
 
 fn build_path(scene: &Scene, settings: &IntegratorSettings) -> Result<Box<dyn Integrator>, Error> {

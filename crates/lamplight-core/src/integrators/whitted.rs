@@ -34,6 +34,7 @@ pub const ENTRY: IntegratorEntry = IntegratorEntry {
     summary: "recursive (Whitted) ray tracing: the lecture's trace, with shadows, mirror reflection and refraction",
     build: build_whitted,
     schedule: Schedule::OnePass,
+    filters: false,
 };
 
 fn build_whitted(scene: &Scene, settings: &IntegratorSettings) -> Result<Box<dyn Integrator>, Error> {

@@ -61,7 +61,7 @@ pub const BUILTINS: &[Builtin] = &[
         default_size: (512, 512),
         integrator: "path",
         transfer: Transfer::Srgb,
-        spp: None,
+        spp: Some(128),
         build: cornell_box::build,
     },
     Builtin {

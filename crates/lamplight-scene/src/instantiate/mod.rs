@@ -79,7 +79,7 @@ pub const RENDER_PARAMS: &[Param] = &[
         T::Integer,
         "none",
         "1 to 2^20",
-        "samples per pixel, stratified and jittered (`--spp`); without it Whitted anti-aliases adaptively, path takes 1",
+        "samples per pixel, stratified and jittered (`--spp`); without it Whitted anti-aliases adaptively and path samples each pixel to noise 0.05 (16 to 1024 samples)",
     ),
     Param::new(
         "antialias",
@@ -100,9 +100,9 @@ pub const RENDER_PARAMS: &[Param] = &[
         T::Number,
         "none",
         "> 0",
-        "path tracer: a pixel stops once its noise (standard error of its mean over the square root of its brightness) is below this, twice in a row (Cycles' noise threshold) (`--noise-threshold`)",
+        "path tracer: a pixel stops once its noise (standard error of its mean over the square root of its brightness) is below this, twice in a row (Cycles' noise threshold) (`--noise-threshold`); without it and without `spp`, 0.05",
     ),
-    Param::new("min_spp", T::Integer, "16", "1 to spp", "path tracer with `noise_threshold`: samples before any pixel stops (`--min-spp`)"),
+    Param::new("min_spp", T::Integer, "16", "1 to spp", "path tracer with `noise_threshold` (or without `spp`): samples before any pixel stops (`--min-spp`)"),
     Param::new("max_depth", T::Integer, "5", "1 to 64, camera ray = 1", "ray depth limit (`--max-depth`)"),
     Param::new(
         "rr_depth",

@@ -23,7 +23,7 @@ use crate::instantiate::{imported, Built, SceneFile};
 mod output;
 mod sampling;
 pub use output::{write, DisplayTransform, Rendered};
-pub use sampling::{AntialiasRequest, NOISE_DEFAULT_SPP};
+pub use sampling::{AntialiasRequest, NOISE_DEFAULT_SPP, NOISE_DEFAULT_THRESHOLD};
 
 pub mod limits;
 
@@ -353,6 +353,14 @@ impl Request {
                 }
             })?,
         };
+        if self.filter.is_some() && filter != Filter::Box && !integrator.filters {
+            return Err(bad(format!(
+                "{} is for the path tracer ({} path); {} averages its samples over the pixel square (a box)",
+                n("filter"),
+                n("integrator"),
+                integrator.name
+            )));
+        }
         let crop = d.crop;
         if let Some(c) = crop {
             // The crop is in pixels of the scene's film: at another size it would name other pixels.

@@ -21,6 +21,10 @@ fn aa(threshold: f64) -> Option<Adaptive> {
     Some(Adaptive::Antialias(Antialias { threshold, samples: 16 }))
 }
 
+fn noise_at(threshold: f64, min_samples: u32) -> Option<Adaptive> {
+    Some(Adaptive::NoiseThreshold(NoiseThreshold { threshold, min_samples }))
+}
+
 fn on(threshold: f64) -> Option<AntialiasRequest> {
     Some(AntialiasRequest::On { threshold })
 }
@@ -41,10 +45,15 @@ fn whitted_without_spp_anti_aliases_and_spp_is_fixed_supersampling() {
     assert_eq!(resolved(Request::default(), &file_aa), Ok((1, aa(0.05))));
     assert_eq!(resolved(Request { spp: Some(2), ..Request::default() }, &file_aa), Ok((2, None)));
     assert_eq!(resolved(Request::default(), &scene("antialias = false")), Ok((1, None)));
-    // The path tracer takes its spp (1 when none is given).
+    // The path tracer takes its spp; without one, it samples to the default
+    // noise level (0.05, 16 to 1024 samples a pixel).
     let path = Request { integrator: Some("path".into()), ..Request::default() };
-    assert_eq!(resolved(path.clone(), &plain), Ok((1, None)));
-    assert_eq!(resolved(path, &file_aa), Ok((1, None)), "a scene's antialias has nothing to refine under path");
+    let default_noise = Some(Adaptive::NoiseThreshold(NoiseThreshold { threshold: 0.05, min_samples: 16 }));
+    assert_eq!(resolved(path.clone(), &plain), Ok((1024, default_noise)));
+    assert_eq!(resolved(Request { spp: Some(1), ..path.clone() }, &plain), Ok((1, None)));
+    assert_eq!(resolved(Request { min_spp: Some(4), ..path.clone() }, &plain), Ok((1024, noise_at(0.05, 4))));
+    assert_eq!(resolved(path.clone(), &fixed), Ok((4, None)), "the scene's spp is fixed supersampling");
+    assert_eq!(resolved(path, &file_aa), Ok((1024, default_noise)), "a scene's antialias has nothing to refine under path");
 }
 
 #[test]
@@ -91,7 +100,10 @@ fn contradictions_are_refused_with_what_to_do() {
         resolved(Request { noise_threshold: Some(0.01), spp: Some(64), min_spp: Some(128), ..path() }, &plain).unwrap_err(),
         "--min-spp must be between 1 and --spp (64), got 128"
     );
-    assert_eq!(resolved(Request { min_spp: Some(8), ..path() }, &plain).unwrap_err(), "--min-spp takes effect only with --noise-threshold");
+    assert_eq!(
+        resolved(Request { min_spp: Some(8), spp: Some(64), ..path() }, &plain).unwrap_err(),
+        "--min-spp takes effect only with --noise-threshold"
+    );
     // Python spells them as keywords.
     let keywords = Request { spp: Some(4), antialias: on(0.3), ..Request::default() }.resolve(&plain.defaults, Naming::Keywords);
     assert_eq!(
@@ -117,4 +129,19 @@ fn file_settings_are_checked_at_their_keys() {
     assert_eq!(err("noise_threshold = -1"), "s.toml:2:19: render: noise_threshold: must be a positive number, got -1");
     assert_eq!(err("antialias_threshold = -0.5"), "s.toml:2:23: render: antialias_threshold: must be a non-negative number, got -0.5");
     assert!(err("antialias = 0.3").starts_with("s.toml:2:13: render: antialias: expected"), "{}", err("antialias = 0.3"));
+}
+
+#[test]
+fn a_filter_is_refused_by_an_integrator_that_does_not_place_samples_by_it() {
+    let plain = scene("");
+    let filtered = |integrator: &str, filter: &str| {
+        let request = Request { integrator: Some(integrator.into()), filter: Some(filter.into()), spp: Some(4), ..Request::default() };
+        request.resolve(&plain.defaults, Naming::Flags).map(|j| j.options.filter).map_err(|e| e.0)
+    };
+    assert_eq!(
+        filtered("whitted", "gaussian"),
+        Err("--filter is for the path tracer (--integrator path); whitted averages its samples over the pixel square (a box)".into())
+    );
+    assert_eq!(filtered("whitted", "box"), Ok(lamplight_core::film::Filter::Box), "the box is what Whitted does");
+    assert_eq!(filtered("path", "gaussian"), Ok(lamplight_core::film::Filter::Gaussian { sigma: 0.5 }));
 }
