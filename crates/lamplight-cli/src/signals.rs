@@ -6,7 +6,8 @@
 //! with no complete pass writes nothing). Any other signal, a second one or one
 //! outside a render, removes the temporary files of writes in progress
 //! ([`lamplight_scene::atomic::remove_temporaries`]) and exits with code 130 at
-//! once, leaving every output either as it was or whole.
+//! once, leaving every output either as it was or whole. `lamplight view`,
+//! which Ctrl-C is the way to stop, says "stopped" and exits with code 0.
 //!
 //! The handler runs on a thread of its own (the `ctrlc` crate), not inside the
 //! signal handler, so it may take locks and remove files.
@@ -20,6 +21,8 @@ pub const INTERRUPTED: i32 = 130;
 static STOP: AtomicBool = AtomicBool::new(false);
 /// Whether a render that can stop on [`STOP`] is running.
 static GRACEFUL: AtomicBool = AtomicBool::new(false);
+/// Whether the program is a server that Ctrl-C is the way to stop ([`serving`]).
+static SERVING: AtomicBool = AtomicBool::new(false);
 
 /// Installs the handler; a failure to install it (another handler, no signal
 /// support) only loses the clean-up, never the render.
@@ -29,6 +32,11 @@ pub fn install() {
             return;
         }
         lamplight_scene::atomic::remove_temporaries();
+        if SERVING.load(Ordering::SeqCst) {
+            // The documented way to stop the viewer: no error.
+            eprintln!("lamplight view: stopped");
+            std::process::exit(0);
+        }
         eprintln!("lamplight: error: interrupted");
         std::process::exit(INTERRUPTED);
     });
@@ -54,6 +62,12 @@ impl Drop for Graceful {
     fn drop(&mut self) {
         GRACEFUL.store(false, Ordering::SeqCst);
     }
+}
+
+/// From now on a signal stops a server (`lamplight view`) as asked: it says
+/// so and exits with code 0, not as an interrupted render.
+pub fn serving() {
+    SERVING.store(true, Ordering::SeqCst);
 }
 
 /// Whether a signal asked the render to stop.

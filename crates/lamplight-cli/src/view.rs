@@ -14,6 +14,7 @@ pub fn view_command(args: ViewArgs) -> anyhow::Result<()> {
         );
     }
     let viewer = Viewer::start(ViewOptions { scene: args.render.scene.clone(), listen: args.listen, request }).map_err(UsageError)?;
+    crate::signals::serving();
     let url = viewer.url();
     println!("lamplight view: {url}");
     eprintln!("open that URL in a browser (it holds the access token); Ctrl-C stops the viewer");

@@ -54,3 +54,24 @@ fn it_prints_a_loopback_url_with_a_token() {
     assert!(line.starts_with("lamplight view: http://0.0.0.0:"), "{line}");
     assert!(err.starts_with("lamplight: warning: listening on 0.0.0.0:0, not loopback"), "{err}");
 }
+
+#[test]
+fn ctrl_c_stops_the_viewer_without_an_error() {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_lamplight"))
+        .args(["view", "business-card", "--listen", "127.0.0.1:0"])
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Listening once it has printed its URL.
+    let mut line = String::new();
+    BufReader::new(child.stdout.take().unwrap()).read_line(&mut line).unwrap();
+    assert!(line.starts_with("lamplight view: http://127.0.0.1:"), "{line}");
+    Command::new("kill").args(["-INT", &child.id().to_string()]).status().unwrap();
+    let status = child.wait().unwrap();
+    let mut err = String::new();
+    std::io::Read::read_to_string(&mut child.stderr.take().unwrap(), &mut err).unwrap();
+    assert_eq!(status.code(), Some(0), "{err}");
+    assert!(err.ends_with("lamplight view: stopped\n") && !err.contains("error"), "{err}");
+}

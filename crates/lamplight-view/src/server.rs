@@ -1,11 +1,12 @@
 //! The HTTP and WebSocket server (axum): the page, the scene's own files and
 //! one WebSocket per page.
 //!
-//! Every request must carry the token ([`crate::token`]); without it the
-//! answer is `403 Forbidden` and nothing else runs. The routes:
+//! Every request but the favicon's must carry the token ([`crate::token`]);
+//! without it the answer is `403 Forbidden` and nothing else runs. The routes:
 //! - `GET /`, `/app.js`, `/app.css`: the page, built into the binary;
 //! - `GET /files/NAME`: a file of the scene's folder ([`crate::confine`]);
 //!   a built-in scene has none;
+//! - `GET /favicon.ico`, which browsers ask for without the token: `204 No Content`;
 //! - `GET /ws`: the WebSocket. The server sends `state` messages (JSON text)
 //!   when the view changes, and each frame as a `frame` message (JSON text)
 //!   followed at once by its pixels (binary: `width * height * 3` little-endian
@@ -48,6 +49,10 @@ pub fn router(app: Arc<App>) -> Router {
         .route("/files/{*name}", get(scene_file))
         .fallback(|| async { (StatusCode::NOT_FOUND, "not found: the viewer serves its page and the scene's own files only\n") })
         .layer(middleware::from_fn_with_state(app.clone(), require_token))
+        // Browsers ask for it unprompted, without the token: an empty answer
+        // (not a 403 in the console); added after the token layer, which
+        // wraps only the routes above.
+        .route("/favicon.ico", get(|| async { StatusCode::NO_CONTENT }))
         .with_state(app)
 }
 

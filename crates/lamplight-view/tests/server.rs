@@ -63,6 +63,8 @@ fn every_request_needs_the_token() {
     let upgrade =
         "Upgrade: websocket\r\nConnection: Upgrade\r\nSec-WebSocket-Version: 13\r\nSec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\n";
     assert_eq!(get(&viewer, "/ws", upgrade).0, 403, "a WebSocket without the token");
+    // Browsers ask for a favicon without the token: an empty answer, not a 403.
+    assert_eq!(get(&viewer, "/favicon.ico", ""), (204, String::new()));
     assert_eq!(get(&viewer, &format!("/ws?token={token}"), upgrade).0, 101, "a WebSocket with it");
     let (status, page) = get(&viewer, &format!("/?token={token}"), "");
     assert_eq!(status, 200);
