@@ -72,13 +72,33 @@ fn malformed_files_give_one_exact_error() {
             "bad.obj:4:3: face corner `1//1`: normal index 1 out of range (0 normals defined so far)",
         ),
         ("two corners", "v 0 0 0\nf 1 1\n", "bad.obj:2:1: a face needs at least 3 vertices, found 2"),
-        ("missing mtl", "mtllib nothere.mtl\n", "bad.obj:1:8: cannot read material library `nothere.mtl`: file not found"),
+        ("mtl that is a folder", "mtllib sub\n", "bad.obj:1:8: cannot read material library `sub`: is a directory, expected a file"),
         ("bad mtl", "mtllib bad.mtl\n", "bad.mtl:2:8: expected a number (Kd colour), found `x`"),
     ];
+    std::fs::create_dir(dir.path().join("sub")).unwrap();
     for (what, text, expected) in cases {
         let got = error_of(dir.path(), "bad.obj", text.as_bytes());
         assert_eq!(got.replace(&format!("{}/", dir.path().display()), ""), *expected, "case: {what}");
     }
+}
+
+#[test]
+fn a_missing_material_library_is_a_warning_and_the_default_material() {
+    let dir = tempfile::tempdir().unwrap();
+    let obj = "mtllib gone.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n";
+    let imported = write_and_load(dir.path(), "model.obj", obj.as_bytes()).unwrap();
+    assert_eq!(triangles(&imported), 1);
+    assert!(imported.instances.iter().all(|i| i.material.is_none()), "the default material");
+    let obj_path = dir.path().join("model.obj");
+    assert_eq!(
+        imported.warnings,
+        [format!(
+            "{}:1:8: material library `{}` not found: its materials are the default material",
+            obj_path.display(),
+            dir.path().join("gone.mtl").display()
+        )],
+        "one warning, not one per usemtl"
+    );
 }
 
 #[test]

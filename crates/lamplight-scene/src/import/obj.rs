@@ -11,6 +11,9 @@
 //! convention of lamplight's textures). Lines, points,
 //! free-form geometry and unknown statements are reported once each as
 //! warnings; smoothing groups (`s`) only matter with normals and are skipped.
+//! A `mtllib` whose file is missing (downloaded OBJs often come without it) is
+//! a warning, and its materials are the default one; an MTL that is there but
+//! broken is an error at its line.
 //! A file with a single run of faces keeps the file's vertex numbering (see
 //! `keep_file_numbering`); otherwise each mesh holds only the vertices it uses.
 //!
@@ -63,6 +66,8 @@ impl Group {
 pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
     let text = String::from_utf8_lossy(bytes);
     let mut warnings = Warnings::default();
+    // A `mtllib` whose file is missing was warned about once; its `usemtl`s are not.
+    let mut missing_library = false;
     let mut positions: Vec<Vec3> = Vec::new();
     let mut normals: Vec<Vec3> = Vec::new();
     let mut uvs: Vec<[f64; 2]> = Vec::new();
@@ -98,7 +103,7 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
                 let rest = line.trim_start()[keyword.len()..].trim();
                 let (name, material) = match keyword {
                     "usemtl" => {
-                        if !materials.contains_key(rest) {
+                        if !materials.contains_key(rest) && !missing_library {
                             warnings.once(format!("OBJ material `{rest}` is defined by no `mtllib` read so far: no material used"));
                         }
                         (group.name.clone(), Some(rest.to_string()))
@@ -111,6 +116,17 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
             "mtllib" => {
                 for &(column, file) in &w[1..] {
                     let mtl_path = path.parent().unwrap_or(Path::new("")).join(file);
+                    if !mtl_path.exists() && std::fs::symlink_metadata(&mtl_path).is_err() {
+                        // Downloaded OBJs often come without their MTL: render
+                        // with the default material, as a missing map_Kd does.
+                        warnings.once(format!(
+                            "{}:{line_no}:{column}: material library `{}` not found: its materials are the default material",
+                            path.display(),
+                            mtl_path.display()
+                        ));
+                        missing_library = true;
+                        continue;
+                    }
                     let bytes = super::read_file(&mtl_path).map_err(|e| {
                         LoadError::at(
                             path,
