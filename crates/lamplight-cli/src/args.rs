@@ -236,7 +236,8 @@ pub struct RenderArgs {
     /// Worker threads; 0 uses all cores. The image does not depend on it.
     #[arg(long, value_name = "T", default_value_t = 0, allow_negative_numbers = true, value_parser = count::<usize>)]
     pub threads: usize,
-    /// No progress bar and no summary line.
+    /// No progress bar and no summary line. Warnings (a missing texture, a scene no light reaches) and
+    /// errors still print: they say what went wrong.
     #[arg(short, long)]
     pub quiet: bool,
     /// Path tracer: stop within this many seconds, the last pass shortened to the samples that fit (every pixel gets the same count).

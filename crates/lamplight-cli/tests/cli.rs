@@ -398,3 +398,12 @@ fn convert_writes_a_mesh_file_as_toml_and_refuses_in_one_line() {
     fails(dir, &["convert", "t.ply", "-o", "t.obj"], 2, "t.obj: convert writes a lamplight scene file, expected a name ending in .toml");
     assert_eq!(fs::read_to_string(dir.join("t.ply")).unwrap(), ply, "the mesh file is left alone");
 }
+
+#[test]
+fn quiet_drops_the_summary_but_keeps_warnings() {
+    let dir = tempfile::tempdir().unwrap();
+    fs::write(dir.path().join("m.obj"), "mtllib gone.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+    let err = ok(dir.path(), &["render", "m.obj", "--width", "8", "--height", "8", "-q", "-o", "m.png"]);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.starts_with("lamplight: warning: ") && err.contains("material library `") && !err.contains("rendered"), "{err}");
+}
