@@ -68,8 +68,15 @@ pub fn build(path: &Path, imported: &Imported) -> Result<Scene, LoadError> {
             Some(m) => builder.material(m.clone()).map_err(fail)?,
             None => default_material,
         };
+        // The file's names, for `explain` (as a converted scene file keeps them).
+        if let Some(name) = placed.material_name.as_deref().filter(|n| placed.material.is_some() && !n.trim().is_empty()) {
+            builder.name_material(material, name);
+        }
         let shape = lamplight_core::shapes::placed(meshes[placed.mesh].clone(), &placed.transform).map_err(fail)?;
-        builder.shared_object(shape, material).map_err(fail)?;
+        let object = builder.shared_object(shape, material).map_err(fail)?;
+        if let Some(name) = imported.meshes[placed.mesh].name.as_deref().filter(|n| !n.trim().is_empty()) {
+            builder.name_object(object, name);
+        }
     }
     if !has_own_lights(imported) {
         builder.settings.ambient = Rgb::splat(viewer::AMBIENT);
@@ -131,5 +138,28 @@ mod tests {
         assert!((ray.dir - (centre - ray.origin).normalize()).length() < 1e-12, "looks at the centre");
         let empty = Imported::default();
         assert_eq!(build(Path::new("e.obj"), &empty).unwrap_err().to_string(), "e.obj: has no geometry to render");
+    }
+
+    #[test]
+    fn the_files_object_and_material_names_reach_the_scene() {
+        let mesh = |name: Option<&str>| MeshData {
+            name: name.map(str::to_string),
+            positions: vec![Vec3::ZERO, Vec3::X, Vec3::Y],
+            indices: vec![[0, 1, 2]],
+            ..MeshData::default()
+        };
+        let red = Material { kd: Rgb::new(0.8, 0.1, 0.1), ..Material::default() };
+        let imported = Imported {
+            meshes: vec![mesh(Some("lamp")), mesh(None)],
+            instances: vec![
+                ImportedMesh { mesh: 0, transform: Mat4::IDENTITY, material: Some(red), material_name: Some("glass red".into()) },
+                ImportedMesh { mesh: 1, transform: Mat4::IDENTITY, material: None, material_name: None },
+            ],
+            ..Imported::default()
+        };
+        let scene = build(Path::new("t.gltf"), &imported).unwrap();
+        assert_eq!((scene.object_name(0), scene.object_name(1)), (Some("lamp"), None));
+        let materials = (scene.objects[0].material, scene.objects[1].material);
+        assert_eq!((scene.material_name(materials.0), scene.material_name(materials.1)), (Some("glass red"), None));
     }
 }
