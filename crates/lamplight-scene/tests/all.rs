@@ -31,6 +31,7 @@ mod path_footprint;
 mod ply;
 mod real_files;
 mod reference;
+mod scaled;
 mod special_files;
 mod textures;
 mod transmission;

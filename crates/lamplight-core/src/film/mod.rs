@@ -16,9 +16,13 @@ pub use window::PixelWindow;
 /// (or NaN, or infinite) is replaced by black and counted
 /// ([`crate::RenderStats::nonfinite_samples`]), so that every pixel's mean and
 /// variance fit an `f32` (`1e18^2` is far below `f32::MAX`, about `3.4e38`) and no
-/// infinity reaches an image. Scene inputs are bounded well below it
-/// ([`crate::params::MAX_COLOR`]), so only an extreme product of a light and its
-/// geometry comes near.
+/// infinity reaches an image. This is the guard on brightness: scene inputs
+/// are only refused when they do not fit an `f32` on their own
+/// ([`crate::params::MAX_COLOR`]), since a physically consistent scene's
+/// intensities grow as the square of its size while the radiance that reaches
+/// the film does not; radiance is computed in `f64` (products of a few inputs
+/// of `3.4e38` stay finite, and any that overflow become infinite or NaN and
+/// are dropped here).
 pub const MAX_RADIANCE: f64 = 1e18;
 
 /// Whether the film accepts sample radiance `l` (see [`MAX_RADIANCE`]).

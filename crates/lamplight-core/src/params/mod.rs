@@ -24,11 +24,26 @@ mod tests;
 pub use table::{Entry, Item, Loc, Table, Value};
 
 /// Largest magnitude of a colour channel, an emission, a light's intensity or a
-/// scale factor a scene may give (`1e12`). Radiance is a product of a few of
-/// them with geometric factors; bounded so, the products stay far below the
-/// film's [`crate::film::MAX_RADIANCE`] and `f32`'s range, where a pixel would
-/// become infinite.
-pub const MAX_COLOR: f64 = 1e12;
+/// scale factor a scene may give: `f32`'s largest, `3.4028235e38` (a value
+/// that rounds to a finite `f32` is accepted, [`fits_f32`]). This is the one
+/// input bound on brightness, and deliberately loose: a physically consistent
+/// scene needs intensities that grow as the square of its size (a point light
+/// `s` times farther away needs `s^2` times the intensity for the same image,
+/// so a scene scaled by `1e6` needs `1e12` times the intensity), and the
+/// renderer computes radiance in `f64`, where products of a few such values
+/// stay finite. What must stay finite is the pixel, so that is guarded where
+/// radiance reaches the film ([`crate::film::MAX_RADIANCE`]): a sample that is
+/// NaN, infinite or beyond it is replaced by black and counted. Only a value
+/// that cannot be stored in an `f32` at all (`1e39`) is refused here.
+pub const MAX_COLOR: f64 = f32::MAX as f64;
+
+/// Whether `x` rounds to a finite `f32` (`|x| <= MAX_COLOR` up to the half
+/// unit in the last place that rounds down to [`MAX_COLOR`]): the bound every
+/// colour, emission, intensity and scale factor is checked against.
+#[inline]
+pub fn fits_f32(x: f64) -> bool {
+    (x as f32).is_finite()
+}
 
 /// A parameter's type, as the reference documentation names it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -352,14 +367,15 @@ impl<'a> Params<'a> {
     }
 
     /// A colour: a number `v` (`[v, v, v]`) or `[r, g, b]`, finite, each
-    /// channel at most [`MAX_COLOR`] in magnitude (colours, emission, light
-    /// intensities and scale factors all read through here).
+    /// channel at most [`MAX_COLOR`] in magnitude ([`fits_f32`]; colours,
+    /// emission, light intensities and scale factors all read through here).
     pub fn color(&mut self, key: &str) -> ParamResult<Option<Rgb>> {
         let v =
             self.typed(key, "a number or [r, g, b]", |v| as_number(v).map(Rgb::splat).or_else(|| numbers::<3>(v).map(Rgb::from_array)))?;
         match self.finite_vec(key, v)? {
-            Some(c) if c.abs().max_element() > MAX_COLOR => {
-                Err(self.key_error(key, format!("must be at most {MAX_COLOR:e} in magnitude, got {}", show_large(c.to_array()))))
+            Some(c) if !c.to_array().iter().all(|&x| fits_f32(x)) => {
+                let message = format!("must be at most {:e} in magnitude (f32's largest), got {}", f32::MAX, show_large(c.to_array()));
+                Err(self.key_error(key, message))
             }
             v => Ok(v),
         }
