@@ -38,6 +38,7 @@ pub static SHAPES: &[&ShapeKind] = &[
     &shapes::triangle::KIND,
     &shapes::torus::KIND,
     &implicit::KIND,
+    &shapes::sdf_grid::KIND,
 ];
 
 /// Light kinds.

@@ -82,6 +82,11 @@ fn malformed_inputs_give_their_exact_errors() {
         (with_camera("[materials.e]\ncolor = [1, 4e38, 0]\n"), "s.toml:6:9: material \"e\": color: must be at most 3.4028235e38 in magnitude (f32's largest), got [1, 4e38, 0]"),
         (format!("ambient = -1e39\n{CAMERA}"), "s.toml:1:11: scene: ambient: must be at most 3.4028235e38 in magnitude (f32's largest), got [-1e39, -1e39, -1e39]"),
         (with_camera("[[objects]]\ntype = \"group\"\nscale = [1, 1, 1e39]\n"), "s.toml:7:9: group: scale: must be at most 3.4028235e38 in magnitude (f32's largest), got [1, 1, 1e39]"),
+        // Issue 26: a signed-distance grid's size is checked before its values are read.
+        (with_camera("[[objects]]\ntype = \"sdfgrid\"\nresolution = [4096, 4096, 4096]\nvalues = []\n"), "s.toml:7:14: sdfgrid: resolution: 4096 x 4096 x 4096 = 68719476736 samples, expected at most 4194304"),
+        (with_camera("[[objects]]\ntype = \"sdfgrid\"\nresolution = [2, 2, 1]\nvalues = [1, -1]\n"), "s.toml:7:14: sdfgrid: resolution: expected [nx, ny, nz] of whole numbers of at least 2, got an array of 3"),
+        (with_camera("[[objects]]\ntype = \"sdfgrid\"\nresolution = [2, 2, 2]\nvalues = [1, -1]\n"), "s.toml:8:10: sdfgrid: values: has 2 numbers, expected nx ny nz = 8"),
+        (with_camera("[[objects]]\ntype = \"sdfgrid\"\nresolution = [2, 2, 2]\nvalues = [1, -1, 1, 1, 1, 1, 1, 1e39]\n"), "s.toml:8:33: sdfgrid: values[7]: expected a finite number, got 1e39"),
         (format!("ambient = nan\n{CAMERA}"), "s.toml:1:11: scene: ambient: must be finite numbers, got [NaN, NaN, NaN]"),
         (format!("{CAMERA}a{} = 1\n", ".a".repeat(10_000)), "s.toml:5:130: nested more than 64 levels deep (tables, arrays and dotted keys together), expected at most 64"),
         (format!("{CAMERA}x = {}\n", "[".repeat(10_000)), "s.toml:5:69: nested more than 64 levels deep (tables, arrays and dotted keys together), expected at most 64"),

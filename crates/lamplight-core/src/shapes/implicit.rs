@@ -70,6 +70,9 @@ const PROBE_REACH: f64 = 64.0;
 pub struct Implicit {
     f: ImplicitFn,
     gradient: Option<GradientFn>,
+    /// A field whose direction is the shading normal (an SDF grid's smooth
+    /// normals); `None`: the shading normal is the geometric one.
+    shading: Option<GradientFn>,
     /// The user's box, grown by twice the tolerance so a surface touching it is still traced.
     bounds: Aabb,
     lipschitz: f64,
@@ -90,6 +93,7 @@ impl std::fmt::Debug for Implicit {
             .field("lipschitz", &self.lipschitz)
             .field("tolerance", &self.tolerance)
             .field("analytic_gradient", &self.gradient.is_some())
+            .field("shading_normals", &self.shading.is_some())
             .field("max_steps", &self.max_steps)
             .finish()
     }
@@ -113,6 +117,7 @@ impl Implicit {
         let mut implicit = Implicit {
             f,
             gradient: None,
+            shading: None,
             bounds,
             lipschitz,
             tolerance,
@@ -206,6 +211,13 @@ impl Implicit {
         self
     }
 
+    /// The same surface shaded with the normal `shading(p) / |shading(p)|`
+    /// (the geometric normal where that is zero or not finite).
+    pub fn with_shading_normals(mut self, shading: GradientFn) -> Implicit {
+        self.shading = Some(shading);
+        self
+    }
+
     /// The same surface with root tolerance `tolerance` (a distance, positive).
     pub fn with_tolerance(mut self, tolerance: f64) -> Result<Implicit, Error> {
         if !(tolerance > 0.0 && tolerance.is_finite()) {
@@ -276,8 +288,10 @@ impl Implicit {
 
     /// The hit at `t` with the normal from the gradient there.
     fn surface_hit(&self, ray: &Ray, t: f64, error: f64) -> SurfaceHit {
-        let normal = self.gradient(ray.at(t)).try_normalize().unwrap_or(-ray.dir);
-        SurfaceHit { t, normal, shading_normal: normal, error, primitive: None }
+        let p = ray.at(t);
+        let normal = self.gradient(p).try_normalize().unwrap_or(-ray.dir);
+        let shading_normal = self.shading.as_ref().map_or(normal, |s| s(p).try_normalize().unwrap_or(normal));
+        SurfaceHit { t, normal, shading_normal, error, primitive: None }
     }
 
     /// Close to the surface at `t` (value `v`) by the Lipschitz bound and approaching
