@@ -255,6 +255,7 @@ def write_assets(d):
     _scene2.write_assets(d)
     _lights2.write_assets(d)
     _surfaces.write_assets(d)
+    _sdf.write_assets(d)
     with open(os.path.join(d, "included.xml"), "w") as f:
         f.write('<scene version="3.0.0">\n    <default name="inc_r" value="0.7"/>\n'
                 '    <bsdf type="diffuse" id="inc_red"><rgb name="reflectance" value="$inc_r, 0.2, 0.15"/></bsdf>\n</scene>\n')
@@ -282,3 +283,6 @@ CASES += _surfaces.CASES
 
 from mitsuba_xml import cases_sensors3 as _sensors3  # noqa: E402  (film and sensor cases)
 CASES += _sensors3.CASES
+
+from mitsuba_xml import cases_sdf as _sdf  # noqa: E402  (the signed-distance grid shape)
+CASES += _sdf.CASES

@@ -131,6 +131,35 @@ fn a_bad_environment_map_is_bad_input() {
     assert_eq!(entries(d), ["bad.exr", "dir.exr"]);
 }
 
+/// Issue 26: a Mitsuba `sdfgrid` whose grid file is cut short, holds a NaN or
+/// is missing is one line at the `filename` that names it, exit code 2.
+#[test]
+fn a_bad_sdf_grid_is_bad_input() {
+    use lamplight_scene::formats::mitsuba::volume::{write, Grid};
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let grid = write(&Grid { resolution: [2; 3], values: vec![-1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0] });
+    let mut nan = grid.clone();
+    nan[48..52].copy_from_slice(&f32::NAN.to_le_bytes());
+    fs::write(d.join("short.vol"), &grid[..60]).unwrap();
+    fs::write(d.join("nan.vol"), nan).unwrap();
+    for file in ["short", "nan", "missing"] {
+        let xml = format!(
+            "<scene version=\"3.0.0\">\n  <sensor type=\"perspective\"/>\n  <shape type=\"sdfgrid\"><string name=\"filename\" value=\"{file}.vol\"/></shape>\n</scene>\n"
+        );
+        fs::write(d.join(format!("{file}.xml")), xml).unwrap();
+    }
+    let render = |file: &'static str| vec!["render", file, "-q"];
+    let at = "3:56: shape \"sdfgrid\"";
+    let cases = vec![
+        (render("short.xml"), 2, format!("short.xml:{at}: \"short.vol\": 60 bytes, expected 80 for 2 x 2 x 2 samples")),
+        (render("nan.xml"), 2, format!("nan.xml:{at}: \"nan.vol\": sample 0 is NaN, expected a finite number")),
+        (render("missing.xml"), 2, "missing.xml:3:56: no such file \"missing.vol\"".into()),
+    ];
+    check(d, &cases);
+    assert_eq!(entries(d), ["missing.xml", "nan.vol", "nan.xml", "short.vol", "short.xml"], "no image written");
+}
+
 /// 4 KiB of seeded pseudo-random bytes (the renderer's own generator).
 fn random_bytes(seed: u64) -> Vec<u8> {
     let mut rng = lamplight_core::sampling::Rng::for_sample(seed, 0, 0);

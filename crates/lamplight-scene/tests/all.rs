@@ -23,6 +23,7 @@ mod mesh_lights;
 mod mitsuba;
 mod mitsuba_bsdfs;
 mod mitsuba_principled;
+mod mitsuba_sdfgrid;
 mod mitsuba_sensors;
 mod native;
 mod obj;

@@ -42,6 +42,7 @@ pub mod sided;
 pub mod spectra;
 pub mod textures;
 pub mod transforms;
+pub mod volume;
 pub mod xml;
 
 use properties::Plugin;

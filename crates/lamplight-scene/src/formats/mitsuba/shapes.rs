@@ -11,6 +11,7 @@
 //! | `obj`, `ply` `filename` | a `[meshes]` entry and a `mesh` node |
 //! | `serialized` `filename`, `shape_index` ([`super::serialized`]) | an inline `[meshes]` entry |
 //! | `shapegroup` (with an `id`) and `instance` | `[definitions]` and `instance` nodes |
+//! | `sdfgrid` `filename` (a `.vol` grid, [`super::volume`]), `normals` | `sdfgrid` with the grid's `resolution` and `values` |
 //! | a nested `<bsdf>` or `<ref>` | `material` (default: Mitsuba's diffuse 0.5, black on an emitter) |
 //! | a nested `<emitter type="area">` | the material with `emission` |
 //!
@@ -99,6 +100,7 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El, out: &mut Vec<Item>) -> Result<()
             node.push(("type", text("mesh", &loc)));
             node.push(("mesh", text(&name, &floc)));
         }
+        "sdfgrid" => sdf_grid(ctx, &mut p, &mut node)?,
         other => {
             ctx.warn(&p.el.require("type")?.loc, format!("shape \"{other}\": not supported, skipped"));
             return Ok(());
@@ -129,6 +131,29 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El, out: &mut Vec<Item>) -> Result<()
     }
     ctx.finish(p);
     out.push(table_of(node, &loc));
+    Ok(())
+}
+
+/// `sdfgrid`: the grid file's samples as the node's `resolution` and `values`
+/// (errors in them point at `filename`); Mitsuba's `grid` tensor can only be
+/// given from Python, so a scene file names a file.
+fn sdf_grid<'a>(ctx: &mut Ctx<'a>, p: &mut Plugin<'a>, node: &mut Vec<(&str, Item)>) -> Result<(), ParamError> {
+    let (loc, label) = (p.el.loc.clone(), p.label.clone());
+    let needs = || err(&loc, format!("{label}: needs filename (a .vol grid; a `grid` tensor can only be given from Python)"));
+    let (f, floc) = p.string("filename")?.ok_or_else(needs)?;
+    let file = ctx.file(&f, &floc)?;
+    let grid = super::volume::read(&ctx.full_path(&file)).map_err(|m| err(&floc, format!("{label}: \"{f}\": {m}")))?;
+    let at = |value: Value| Item { value, loc: floc.clone() };
+    let resolution = grid.resolution.iter().map(|&n| at(Value::Integer(n as i64))).collect();
+    let values = grid.values.iter().map(|&v| at(Value::Number(f64::from(v)))).collect();
+    node.push(("type", text("sdfgrid", &loc)));
+    node.push(("resolution", at(Value::Array(resolution))));
+    node.push(("values", at(Value::Array(values))));
+    if let Some((normals, nloc)) = p.string("normals")? {
+        node.push(("normals", text(&normals, &nloc)));
+    }
+    // Whether the surface is closed: a hint for Mitsuba's own tracing, none here.
+    let _ = p.boolean("watertight")?;
     Ok(())
 }
 
