@@ -14,8 +14,10 @@ import mitsuba as mi
 import numpy as np
 
 
-def render(opacity, spp):
-    diffuse = {"type": "diffuse", "reflectance": {"type": "rgb", "value": [0.5, 0.5, 0.5]}}
+def square_mean(opacity, reflectance, spp, **others):
+    """The mean of the image's middle 4x4 pixels: a square of `mask` `opacity`
+    over a diffuse BSDF of `reflectance`, seen from 4 away, with `others` in the scene."""
+    diffuse = {"type": "diffuse", "reflectance": {"type": "rgb", "value": [reflectance] * 3}}
     scene = {
         "type": "scene",
         "integrator": {"type": "path", "max_depth": 8},
@@ -26,28 +28,21 @@ def render(opacity, spp):
             "sampler": {"type": "independent", "sample_count": spp},
         },
         "square": {"type": "rectangle", "bsdf": {"type": "mask", "opacity": opacity, "nested": diffuse}},
-        "light": {"type": "point", "position": [0, 0, 3], "intensity": 10},
+        **others,
     }
     return np.array(mi.render(mi.load_dict(scene)))[6:10, 6:10].mean()
+
+
+def render(opacity, spp):
+    """The radiance of a grey masked square lit by a point light."""
+    return square_mean(opacity, 0.5, spp, light={"type": "point", "position": [0, 0, 3], "intensity": 10})
 
 
 def transmission(opacity, spp):
     """The radiance seen through a black square of `opacity` in front of an emitter of radiance 1."""
-    black = {"type": "diffuse", "reflectance": {"type": "rgb", "value": [0.0, 0.0, 0.0]}}
-    scene = {
-        "type": "scene",
-        "integrator": {"type": "path", "max_depth": 8},
-        "sensor": {
-            "type": "perspective", "fov": 30,
-            "to_world": mi.ScalarTransform4f().look_at(origin=[0, 0, 4], target=[0, 0, 0], up=[0, 1, 0]),
-            "film": {"type": "hdrfilm", "width": 16, "height": 16, "rfilter": {"type": "box"}},
-            "sampler": {"type": "independent", "sample_count": spp},
-        },
-        "square": {"type": "rectangle", "bsdf": {"type": "mask", "opacity": opacity, "nested": black}},
-        "back": {"type": "rectangle", "to_world": mi.ScalarTransform4f().translate([0, 0, -1]).scale(5),
-                 "emitter": {"type": "area", "radiance": {"type": "rgb", "value": [1, 1, 1]}}},
-    }
-    return np.array(mi.render(mi.load_dict(scene)))[6:10, 6:10].mean()
+    back = {"type": "rectangle", "to_world": mi.ScalarTransform4f().translate([0, 0, -1]).scale(5),
+            "emitter": {"type": "area", "radiance": {"type": "rgb", "value": [1, 1, 1]}}}
+    return square_mean(opacity, 0.0, spp, back=back)
 
 
 def main():

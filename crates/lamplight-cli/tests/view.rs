@@ -25,8 +25,9 @@ fn bad_input_stops_the_viewer_before_it_listens() {
     );
 }
 
-/// Starts the viewer, returns the first line it prints and its error output so far.
-fn first_line(args: &[&str]) -> (String, String) {
+/// Starts the viewer with its output piped; returns it and the first line it
+/// prints (its URL: it is listening from then on).
+fn started(args: &[&str]) -> (std::process::Child, String) {
     let mut child = Command::new(env!("CARGO_BIN_EXE_lamplight"))
         .args(args)
         .stdin(Stdio::null())
@@ -36,6 +37,12 @@ fn first_line(args: &[&str]) -> (String, String) {
         .unwrap();
     let mut line = String::new();
     BufReader::new(child.stdout.take().unwrap()).read_line(&mut line).unwrap();
+    (child, line)
+}
+
+/// Starts the viewer, returns the first line it prints and its error output so far.
+fn first_line(args: &[&str]) -> (String, String) {
+    let (mut child, line) = started(args);
     let mut err = String::new();
     BufReader::new(child.stderr.take().unwrap()).read_line(&mut err).unwrap();
     child.kill().unwrap();
@@ -57,16 +64,7 @@ fn it_prints_a_loopback_url_with_a_token() {
 
 #[test]
 fn ctrl_c_stops_the_viewer_without_an_error() {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_lamplight"))
-        .args(["view", "business-card", "--listen", "127.0.0.1:0"])
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    // Listening once it has printed its URL.
-    let mut line = String::new();
-    BufReader::new(child.stdout.take().unwrap()).read_line(&mut line).unwrap();
+    let (mut child, line) = started(&["view", "business-card", "--listen", "127.0.0.1:0"]);
     assert!(line.starts_with("lamplight view: http://127.0.0.1:"), "{line}");
     Command::new("kill").args(["-INT", &child.id().to_string()]).status().unwrap();
     let status = child.wait().unwrap();

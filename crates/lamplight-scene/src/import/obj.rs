@@ -116,7 +116,7 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
             "mtllib" => {
                 for &(column, file) in &w[1..] {
                     let mtl_path = path.parent().unwrap_or(Path::new("")).join(file);
-                    if !mtl_path.exists() && std::fs::symlink_metadata(&mtl_path).is_err() {
+                    if matches!(std::fs::symlink_metadata(&mtl_path), Err(e) if e.kind() == std::io::ErrorKind::NotFound) {
                         // Downloaded OBJs often come without their MTL: render
                         // with the default material, as a missing map_Kd does.
                         warnings.once(format!(
