@@ -18,7 +18,7 @@ from __future__ import annotations
 from . import dask, objects
 from ._lamplight import Scene, SceneError, __version__, builtin_names, kinds
 from ._render import as_scene, load, render
-from .image import Image, read_exr, save
+from .image import Image, denoise, read_exr, save
 from .objects import (
     box,
     camera,
@@ -48,6 +48,7 @@ __all__ = [
     "kinds",
     "camera",
     "dask",
+    "denoise",
     "directional_light",
     "disk",
     "group",

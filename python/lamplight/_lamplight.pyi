@@ -226,3 +226,13 @@ def encode_png(array: npt.NDArray[np.float32], exposure: float = 0.0, tonemap: s
 
 def read_exr(path: _Path) -> npt.NDArray[np.float32]:
     """An OpenEXR file's R, G, B as float32 ``(H, W, 3)``."""
+
+def denoise_array(
+    color: npt.NDArray[np.float32],
+    albedo: Optional[npt.NDArray[np.float32]] = None,
+    normal: Optional[npt.NDArray[np.float32]] = None,
+    threads: Optional[int] = None,
+) -> npt.NDArray[np.float32]:
+    """``color`` denoised by Open Image Denoise's HDR ``RT`` filter, guided by
+    ``albedo`` and ``normal`` of the same shape when given; ``ValueError`` when
+    the library is missing."""

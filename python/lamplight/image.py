@@ -95,3 +95,21 @@ def save(path: PathLike, image, exposure: float = 0.0, tonemap: str = "clamp", t
 def read_exr(path: PathLike) -> Image:
     """Reads an OpenEXR file's R, G, B channels as an :class:`Image`."""
     return Image(_lamplight.read_exr(os.fspath(path)))
+
+
+def denoise(image, albedo=None, normal=None, threads: Optional[int] = None) -> Image:
+    """``image`` (an array ``(H, W, 3)`` of linear radiance) denoised by Intel
+    Open Image Denoise's HDR ``RT`` filter, as ``lamplight render --denoise``
+    does, guided by ``albedo`` and ``normal`` arrays of the same shape when
+    given. For an :class:`Image` of a render they default to its
+    ``layers["albedo"]`` and ``layers["normal"]`` (``exr_layers=["albedo",
+    "normal"]``). Needs the library: ``pip install lamplight[denoise]`` (the
+    ``pyoidn`` package) or ``LAMPLIGHT_OIDN`` naming it; ``ValueError`` says so
+    when it is missing."""
+    layers = getattr(image, "layers", {}) or {}
+    albedo = layers.get("albedo") if albedo is None else albedo
+    normal = layers.get("normal") if normal is None else normal
+    aux = [None if a is None else _plain(a) for a in (albedo, normal)]
+    out = Image(_lamplight.denoise_array(_plain(image), aux[0], aux[1], threads))
+    out.stats = dict(getattr(image, "stats", {}) or {})
+    return out

@@ -45,6 +45,25 @@ pub enum Command {
     Convert(ConvertArgs),
     /// Look at a scene live in the browser: progressive rendering, mouse camera, live reload, pixel inspector.
     View(ViewArgs),
+    /// Denoise an .exr image (lamplight's, Mitsuba's, Blender's) with Intel Open Image Denoise, guided by its albedo and normal layers when it has them.
+    Denoise(DenoiseArgs),
+}
+
+/// `lamplight denoise` arguments.
+#[derive(Debug, Args)]
+pub struct DenoiseArgs {
+    /// The noisy image: an .exr file of linear radiance (R, G, B), with `albedo` and `normal` layers if it has them.
+    #[arg(value_name = "IN.exr")]
+    pub input: PathBuf,
+    /// The denoised image; the extension picks the format (.exr keeps linear radiance).
+    #[arg(short, long, value_name = "FILE")]
+    pub output: PathBuf,
+    /// Worker threads of the denoiser; 0 uses all cores.
+    #[arg(long, value_name = "T", default_value_t = 0, allow_negative_numbers = true, value_parser = count::<usize>)]
+    pub threads: usize,
+    /// No summary line.
+    #[arg(short, long)]
+    pub quiet: bool,
 }
 
 /// `lamplight convert` flags.
@@ -178,6 +197,8 @@ impl SceneArgs {
             window: None,
             environment: self.environment.clone(),
             layers: Vec::new(),
+            denoise: None,
+            denoise_library_hints: Vec::new(),
         }
     }
 }
@@ -260,9 +281,14 @@ pub struct RenderArgs {
     #[arg(long, value_name = "FILE")]
     pub variance_output: Option<PathBuf>,
     /// .exr output: extra layers in the same file, comma-separated:
-    /// `variance` (of each pixel's mean: variance.R/G/B), `samples` (per pixel: samples.Y).
+    /// `variance` (of each pixel's mean: variance.R/G/B), `samples` (per pixel: samples.Y),
+    /// `albedo` and `normal` (the denoiser's features: albedo.R/G/B, normal.X/Y/Z), `noisy` (the image before --denoise: noisy.R/G/B).
     #[arg(long, value_name = "LIST", value_delimiter = ',')]
     pub exr_layers: Vec<ExrLayer>,
+    /// Denoise the image with Intel Open Image Denoise (HDR, on linear radiance, guided by albedo and normal layers).
+    /// Needs the library: `pip install pyoidn`, or LAMPLIGHT_OIDN set to it.
+    #[arg(long)]
+    pub denoise: bool,
 }
 
 /// `lamplight info` arguments.
@@ -280,6 +306,12 @@ pub enum ExrLayer {
     Variance,
     /// Samples taken per pixel.
     Samples,
+    /// The denoiser's albedo feature: reflectance at the first non-specular hit.
+    Albedo,
+    /// The denoiser's normal feature: world-space shading normal there.
+    Normal,
+    /// The image before denoising (with --denoise).
+    Noisy,
 }
 
 /// A render request, checked and with every default resolved.
@@ -384,8 +416,12 @@ impl RenderArgs {
                 .map(|l| match l {
                     ExrLayer::Variance => Layer::Variance,
                     ExrLayer::Samples => Layer::Samples,
+                    ExrLayer::Albedo => Layer::Albedo,
+                    ExrLayer::Normal => Layer::Normal,
+                    ExrLayer::Noisy => Layer::Noisy,
                 })
                 .collect(),
+            denoise: self.denoise.then_some(true),
             ..self.scene.request(self.threads)
         };
         let mut job = request.resolve(&scene.defaults, Naming::Flags)?;

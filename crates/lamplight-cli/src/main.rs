@@ -6,6 +6,7 @@
 //! lamplight list
 //! lamplight info FILE
 //! lamplight view [SCENE|FILE] [--listen ADDR] [--open] [render flags]
+//! lamplight denoise IN.exr -o OUT [--threads T]
 //! ```
 //!
 //! The binary is thin: it turns arguments into options ([`args`]), builds the
@@ -16,6 +17,7 @@
 //! or SIGHUP, which leave no temporary file behind ([`signals`]).
 
 mod args;
+mod denoise;
 mod raycast;
 mod signals;
 mod view;
@@ -59,6 +61,7 @@ fn run() -> anyhow::Result<()> {
         Command::Explain(explain_args) => explain_command(explain_args.validate()?),
         Command::Convert(convert_args) => convert_command(&convert_args),
         Command::View(view_args) => view::view_command(view_args),
+        Command::Denoise(denoise_args) => denoise::denoise_command(&denoise_args),
     }
 }
 
@@ -201,6 +204,9 @@ fn render_command(job: RenderJob) -> anyhow::Result<()> {
     };
     if !quiet {
         eprintln!("{} -> {}", summary, output.display());
+        if let Some(t) = rendered.denoise_time {
+            eprintln!("denoised in {:.2} s (Open Image Denoise)", t.as_secs_f64());
+        }
     } else if stats.nonfinite_samples > 0 {
         eprintln!(
             "lamplight: warning: {} samples were NaN, infinite or brighter than {:e} and were replaced by black",

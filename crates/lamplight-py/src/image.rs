@@ -8,6 +8,7 @@ use image::ImageEncoder;
 use lamplight_core::film::tonemap::{self, ToneMap};
 use lamplight_core::film::Image;
 use lamplight_scene::exr_layers::ExtraLayer;
+use lamplight_scene::request::Layer;
 use lamplight_scene::image_io::{self, Format, Transfer};
 use numpy::{PyArray1, PyArray3, PyArrayMethods, PyReadonlyArray3, PyUntypedArrayMethods};
 use pyo3::exceptions::{PyOSError, PyValueError};
@@ -15,7 +16,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyBytes;
 
 /// A core image from a float32 `(H, W, 3)` array (any strides).
-fn to_image(array: &PyReadonlyArray3<'_, f32>) -> PyResult<Image> {
+pub(crate) fn to_image(array: &PyReadonlyArray3<'_, f32>) -> PyResult<Image> {
     let shape = array.shape();
     if shape[2] != 3 || shape[0] == 0 || shape[1] == 0 {
         return Err(PyValueError::new_err(format!("an image must have shape (H, W, 3) with H, W >= 1, got {shape:?}")));
@@ -45,7 +46,7 @@ fn display(image: Image, exposure: f64, tonemap: &str) -> PyResult<Image> {
 /// Writes `array` to `path` by its extension (`.png`, `.ppm`: 8-bit after
 /// `exposure` and `tonemap`, sRGB-encoded or, with `transfer="linear"`, the
 /// values as they are; `.exr`: linear float, unchanged, with the extra
-/// `layers` of a render, `{"variance": (H, W, 3), "samples": (H, W)}`, beside
+/// `layers` of a render, `{"variance": (H, W, 3), "samples": (H, W), "albedo": ...}`, beside
 /// the image as `lamplight render --exr-layers` writes them), atomically.
 #[pyfunction]
 #[pyo3(signature = (path, array, exposure=0.0, tonemap="clamp", layers=None, transfer="srgb"))]
@@ -65,13 +66,12 @@ pub fn write_image(
     let mut extra = Vec::new();
     for (name, value) in layers.iter().flat_map(|d| d.iter()) {
         let name: String = name.extract()?;
-        let layer = match name.as_str() {
-            "variance" => ExtraLayer::rgb("variance", &to_image(&value.extract::<PyReadonlyArray3<'_, f32>>()?)?),
-            "samples" => {
+        let layer = match name.parse::<Layer>().map_err(PyValueError::new_err)? {
+            Layer::Samples => {
                 let samples: numpy::PyReadonlyArray2<'_, f32> = value.extract()?;
                 ExtraLayer::single("samples", samples.as_array().iter().copied().collect())
             }
-            other => return Err(PyValueError::new_err(lamplight_scene::request::Layer::unknown(other))),
+            layer => layer.to_exr(&to_image(&value.extract::<PyReadonlyArray3<'_, f32>>()?)?),
         };
         if layer.channels.iter().any(|(_, v)| v.len() != image.pixels.len()) {
             return Err(PyValueError::new_err(format!("layer '{name}' does not have the image's {}x{} pixels", image.width, image.height)));

@@ -10,6 +10,7 @@
 use pyo3::prelude::*;
 
 pub mod convert;
+pub mod denoise;
 pub mod explain;
 pub mod image;
 pub mod intersect;
@@ -33,6 +34,7 @@ fn _lamplight(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(image::write_image, m)?)?;
     m.add_function(wrap_pyfunction!(image::encode_png, m)?)?;
     m.add_function(wrap_pyfunction!(image::read_exr, m)?)?;
+    m.add_function(wrap_pyfunction!(denoise::denoise_array, m)?)?;
     m.add("SceneError", m.py().get_type::<SceneError>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())

@@ -47,7 +47,10 @@ pub fn render_array<'py>(
     progress: Option<Bound<'py, PyAny>>,
     settings: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<RenderArrays<'py>> {
-    let request = crate::settings::request(settings, "render_array", false)?;
+    let mut request = crate::settings::request(settings, "render_array", false)?;
+    if request.denoise.unwrap_or(scene.settings().denoise) {
+        request.denoise_library_hints = crate::denoise::pyoidn_folders(py);
+    }
     let mut job = request.resolve(scene.settings(), Naming::Keywords).map_err(|e| PyValueError::new_err(e.0))?;
     job.add_scene_layers(scene.settings(), true);
     let core = scene.core_for(py, &job)?;
@@ -135,13 +138,16 @@ pub fn render_array<'py>(
     let layers = PyDict::new(py);
     for (layer, image) in &rendered.layers {
         match layer {
-            Layer::Variance => layers.set_item("variance", to_array(py, image)?)?,
             Layer::Samples => {
                 let (w, h) = (image.width as usize, image.height as usize);
                 let flat: Vec<f32> = image.pixels.iter().map(|p| p[0]).collect();
                 layers.set_item("samples", PyArray1::from_vec(py, flat).reshape([h, w])?)?
             }
+            _ => layers.set_item(layer.name(), to_array(py, image)?)?,
         }
+    }
+    if let Some(t) = rendered.denoise_time {
+        info.set_item("denoise_seconds", t.as_secs_f64())?;
     }
     Ok((array, info, layers))
 }
@@ -180,7 +186,7 @@ pub fn threads_arg(threads: Option<&Bound<'_, PyAny>>) -> PyResult<usize> {
     Ok(setting(&limits::THREADS, threads)?.unwrap_or(0))
 }
 
-fn to_array<'py>(py: Python<'py>, image: &Image) -> PyResult<Bound<'py, PyArray3<f32>>> {
+pub(crate) fn to_array<'py>(py: Python<'py>, image: &Image) -> PyResult<Bound<'py, PyArray3<f32>>> {
     let (w, h) = (image.width as usize, image.height as usize);
     let flat: Vec<f32> = image.pixels.iter().flatten().copied().collect();
     PyArray1::from_vec(py, flat).reshape([h, w, 3])

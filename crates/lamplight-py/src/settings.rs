@@ -18,7 +18,8 @@
 //! | `window` | `(x0, y0, w, h)` | four whole numbers |
 //! | `time_limit`, `clamp`, `noise_threshold` | `float` | a number |
 //! | `environment` | path | an `.exr` or `.hdr` file |
-//! | `exr_layers` | list of `str` | `"variance"`, `"samples"` |
+//! | `exr_layers` | list of `str` | `"variance"`, `"samples"`, `"albedo"`, `"normal"`, `"noisy"` |
+//! | `denoise` | `bool` | Open Image Denoise on the image |
 //! | `antialias` | `bool` or `float` | on, off, or a threshold |
 
 use std::path::PathBuf;
@@ -168,6 +169,15 @@ pub const KEYWORDS: &[Keyword] = &[
         annotation: "Optional[Sequence[str]]",
         takes: Takes::RenderOnly,
         read: |r, v| set(&mut r.layers, layers(v)),
+    },
+    Keyword {
+        name: "denoise",
+        annotation: "Optional[bool]",
+        takes: Takes::RenderOnly,
+        read: |r, v| {
+            let on = v.downcast::<pyo3::types::PyBool>().map_err(|_| PyTypeError::new_err(format!("denoise must be True or False, got {}", type_name(v))))?;
+            set(&mut r.denoise, Ok(Some(on.is_true())))
+        },
     },
     Keyword {
         name: "clamp",

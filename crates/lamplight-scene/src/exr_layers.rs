@@ -1,10 +1,10 @@
-//! OpenEXR output with extra per-pixel layers beside the image: the path tracer's
-//! variance of each pixel's mean and its sample count, in the same file.
+//! OpenEXR output with extra per-pixel layers beside the image: the variance of
+//! each pixel's mean, its sample count and the denoiser's feature layers, in the same file.
 //!
 //! The file is one part whose channels are the image's `R`, `G`, `B` and, per
 //! extra layer, `NAME.CHANNEL` (OpenEXR's naming of layers inside a part, as
 //! Nuke and Blender write and read them): `variance.R`, `variance.G`,
-//! `variance.B` and `samples.Y`, all 32-bit float, ZIP-compressed. Readers that
+//! `variance.B`, `samples.Y`, `albedo.R/G/B` and `normal.X/Y/Z`, all 32-bit float, ZIP-compressed. Readers that
 //! want only the image (`R`, `G`, `B`) see it as before. The write is atomic like
 //! every image write ([`crate::image_io`]).
 
@@ -29,6 +29,12 @@ impl ExtraLayer {
     /// A three-channel layer `NAME.R`, `NAME.G`, `NAME.B` from an image.
     pub fn rgb(name: &str, image: &Image) -> ExtraLayer {
         let channels = (0..3).map(|c| (["R", "G", "B"][c].to_string(), image.pixels.iter().map(|p| p[c]).collect())).collect();
+        ExtraLayer { name: name.to_string(), channels }
+    }
+
+    /// A three-channel layer of a vector, `NAME.X`, `NAME.Y`, `NAME.Z` (a normal pass).
+    pub fn xyz(name: &str, image: &Image) -> ExtraLayer {
+        let channels = (0..3).map(|c| (["X", "Y", "Z"][c].to_string(), image.pixels.iter().map(|p| p[c]).collect())).collect();
         ExtraLayer { name: name.to_string(), channels }
     }
 

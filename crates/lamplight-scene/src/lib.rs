@@ -18,7 +18,7 @@
 //!
 //! Around them: the [`request`] layer shared by the CLI and Python (which scene,
 //! settings precedence, limits), the built-in scenes by name ([`builtin`]), the
-//! image writers ([`image_io`]), what a file holds ([`info`]), NumPy `.npy`
+//! image writers ([`image_io`]), the denoiser ([`denoise`]), what a file holds ([`info`]), NumPy `.npy`
 //! arrays ([`npy`]), the checks every input file passes ([`input`]) and the
 //! atomic writes every written file goes through ([`atomic`]).
 #![deny(missing_docs)]
@@ -26,6 +26,7 @@
 pub mod atomic;
 pub mod builtin;
 pub mod convert;
+pub mod denoise;
 pub mod description;
 pub mod env_map;
 mod error;

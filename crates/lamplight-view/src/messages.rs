@@ -121,7 +121,7 @@ fn save(app: &Arc<App>, message: &Value, answers: mpsc::Sender<String>) -> Resul
         let written = if camera_only {
             lamplight_scene::atomic::write(&path, camera.to_toml().as_bytes()).map_err(|e| format!("cannot write '{name}': {e}"))
         } else {
-            let rendered = Rendered { image: frame.image.clone(), layers: Vec::new(), stats: Default::default() };
+            let rendered = Rendered { image: frame.image.clone(), layers: Vec::new(), stats: Default::default(), denoise_time: None };
             let display = DisplayTransform { exposure, tonemap: Default::default(), transfer };
             request::write(&path, &rendered, display).map_err(|e| e.to_string())
         };

@@ -147,6 +147,17 @@ impl<'a> View<'a> {
     }
 }
 
+/// A pixel sample's camera ray ([`Integrator::camera_sample`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CameraSample {
+    /// The primary ray.
+    pub ray: Ray,
+    /// Its pixel footprint, for texture filtering (zero: point lookups).
+    pub cone: Cone,
+    /// The filter weight its radiance is multiplied by (1 but for filters with negative lobes).
+    pub weight: f64,
+}
+
 /// How the render loop splits a pixel's samples into passes over the image.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Schedule {
@@ -192,6 +203,13 @@ pub trait Integrator: Send + Sync {
         let _ = trace;
         self.sample(view, x, y, index, counts)
     }
+
+    /// The camera ray of sample `index` of pixel `(x, y)`: the ray
+    /// [`Integrator::sample`] traces for the same arguments, with its footprint
+    /// and the filter weight its radiance gets. The feature pass
+    /// ([`crate::render_features`]) follows these rays, so its layers have the
+    /// beauty image's sample positions and anti-aliasing.
+    fn camera_sample(&self, view: &View, x: u32, y: u32, index: u32) -> CameraSample;
 
     /// How the render loop schedules the samples.
     fn schedule(&self) -> Schedule;

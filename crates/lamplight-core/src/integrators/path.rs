@@ -16,7 +16,7 @@
 //! refracted BSDF paths), so nothing is counted twice.
 
 use super::trace::{NeeMiss, NeeSample, NoTrace, PathEnd, PathTrace, Trace};
-use super::{Integrator, IntegratorEntry, IntegratorSettings, RayCounts, Schedule, View};
+use super::{CameraSample, Integrator, IntegratorEntry, IntegratorSettings, RayCounts, Schedule, View};
 use crate::bsdfs::{Bsdf, Frame};
 use crate::film::{Filter, FilterSampler};
 use crate::lights::LightSet;
@@ -358,6 +358,10 @@ impl Integrator for PathTracer {
         self.sample_with(view, x, y, index, counts, trace)
     }
 
+    fn camera_sample(&self, view: &View, x: u32, y: u32, index: u32) -> CameraSample {
+        self.camera_sample_with(view, x, y, index).0
+    }
+
     fn schedule(&self) -> Schedule {
         Schedule::Doubling
     }
@@ -367,6 +371,23 @@ impl PathTracer {
     /// [`Integrator::sample`], telling `trace` what it does.
     #[inline(always)]
     fn sample_with<T: PathTrace + ?Sized>(&self, view: &View, x: u32, y: u32, index: u32, counts: &mut RayCounts, trace: &mut T) -> Rgb {
+        let (camera, mut sampler) = self.camera_sample_with(view, x, y, index);
+        let l = self.li_traced(view.scene, &camera.ray, camera.cone, &mut sampler, counts, trace);
+        // The box and the tent weigh every sample 1: their radiance is kept as it
+        // is. Filters with negative lobes weigh some samples below 0.
+        if camera.weight == 1.0 {
+            l
+        } else {
+            l * camera.weight
+        }
+    }
+
+    /// The camera ray of a sample and the sampler positioned after the values
+    /// it drew (the film position, then the lens): one function for
+    /// [`Integrator::sample`] and [`Integrator::camera_sample`], so the feature
+    /// pass follows exactly the rays the render traced.
+    #[inline(always)]
+    fn camera_sample_with(&self, view: &View, x: u32, y: u32, index: u32) -> (CameraSample, PixelSampler) {
         let mut sampler = PixelSampler::new(view.seed, view.pixel_index(x, y), index);
         let (lo, hi) = view.offset_bounds(x, y);
         let ((dx, dy), weight) = self.filter.sample_in(sampler.get_2d(), lo, hi);
@@ -374,13 +395,6 @@ impl PathTracer {
         let (fx, fy) = (x as f64 + 0.5 + dx, y as f64 + 0.5 + dy);
         let ray = view.camera.ray(fx, fy, view.width, view.height, lens);
         let cone = if view.scene.uses_footprints() { view.pixel_cone(&ray, fx, fy, lens) } else { Cone::default() };
-        let l = self.li_traced(view.scene, &ray, cone, &mut sampler, counts, trace);
-        // The box and the tent weigh every sample 1: their radiance is kept as it
-        // is. Filters with negative lobes weigh some samples below 0.
-        if weight == 1.0 {
-            l
-        } else {
-            l * weight
-        }
+        (CameraSample { ray, cone, weight }, sampler)
     }
 }

@@ -19,7 +19,7 @@
 use std::mem::MaybeUninit;
 
 use super::trace::{LightRef, LightTerm, NoTrace, ReflectionWeight, Trace, Unlit, WhittedTrace};
-use super::{Integrator, IntegratorEntry, IntegratorSettings, RayCounts, Schedule, View};
+use super::{CameraSample, Integrator, IntegratorEntry, IntegratorSettings, RayCounts, Schedule, View};
 use crate::lights::AreaLight;
 use crate::materials::{fresnel_conductor, fresnel_dielectric, Material, Reflection, Refraction};
 use crate::math::{max_component, Rgb, Vec3};
@@ -90,32 +90,49 @@ impl Integrator for Whitted {
         self.sample_with(view, x, y, index, counts, trace)
     }
 
+    fn camera_sample(&self, view: &View, x: u32, y: u32, index: u32) -> CameraSample {
+        let mut rng = None;
+        let mut uniform = || rng.get_or_insert_with(|| Rng::for_sample(view.seed, view.pixel_index(x, y), index as u64)).uniform();
+        camera_sample_from(view, x, y, index, &mut uniform)
+    }
+
     fn schedule(&self) -> Schedule {
         Schedule::OnePass
     }
+}
+
+/// The camera ray of sample `index` of pixel `(x, y)`, its position and lens
+/// point drawn from `uniform` (the sample's generator, which then goes on to
+/// the area lights): one function for [`Integrator::sample`] and
+/// [`Integrator::camera_sample`], so the feature pass follows exactly the rays
+/// the render traced.
+#[inline(always)]
+fn camera_sample_from(view: &View, x: u32, y: u32, index: u32, uniform: &mut impl FnMut() -> f64) -> CameraSample {
+    let offset = view.pixel_offset;
+    let (dx, dy) = if view.spp == 1 {
+        (offset, offset)
+    } else {
+        let jitter = (uniform(), uniform());
+        let (sx, sy) = stratified_2d(index, view.spp, jitter);
+        let shift = offset - 0.5;
+        (sx + shift, sy + shift)
+    };
+    let lens = if view.lens { (uniform(), uniform()) } else { (0.5, 0.5) };
+    let (fx, fy) = (x as f64 + dx, y as f64 + dy);
+    let ray = view.camera.ray(fx, fy, view.width, view.height, lens);
+    let cone = if view.scene.uses_footprints() { view.pixel_cone(&ray, fx, fy, lens) } else { Cone::default() };
+    CameraSample { ray, cone, weight: 1.0 }
 }
 
 impl Whitted {
     /// [`Integrator::sample`], telling `trace` what it does.
     #[inline(always)]
     fn sample_with<T: WhittedTrace + ?Sized>(&self, view: &View, x: u32, y: u32, index: u32, counts: &mut RayCounts, trace: &mut T) -> Rgb {
-        let offset = view.pixel_offset;
         // Made only when a value is drawn: a single pinhole sample needs none.
         let mut rng = None;
         let mut uniform = || rng.get_or_insert_with(|| Rng::for_sample(view.seed, view.pixel_index(x, y), index as u64)).uniform();
-        let (dx, dy) = if view.spp == 1 {
-            (offset, offset)
-        } else {
-            let jitter = (uniform(), uniform());
-            let (sx, sy) = stratified_2d(index, view.spp, jitter);
-            let shift = offset - 0.5;
-            (sx + shift, sy + shift)
-        };
-        let lens = if view.lens { (uniform(), uniform()) } else { (0.5, 0.5) };
-        let (fx, fy) = (x as f64 + dx, y as f64 + dy);
-        let ray = view.camera.ray(fx, fy, view.width, view.height, lens);
-        let cone = if view.scene.uses_footprints() { view.pixel_cone(&ray, fx, fy, lens) } else { Cone::default() };
-        self.trace_traced(view.scene, &ray, cone, &mut uniform, counts, trace)
+        let camera = camera_sample_from(view, x, y, index, &mut uniform);
+        self.trace_traced(view.scene, &camera.ray, camera.cone, &mut uniform, counts, trace)
     }
 
     /// The tracer for `scene` (its area lights are collected here).

@@ -28,6 +28,8 @@ use crate::Error;
 
 pub mod adaptive;
 pub use adaptive::{Adaptive, Antialias, NoiseThreshold};
+mod features;
+pub use features::{render_features, Features};
 
 /// What to render and how.
 #[derive(Clone, Debug, PartialEq)]

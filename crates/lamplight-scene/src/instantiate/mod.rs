@@ -61,6 +61,8 @@ pub struct Settings {
     pub hide_emitters: bool,
     /// An `.exr` output holds the variance layer too (default `false`).
     pub variance: bool,
+    /// The image is denoised (Open Image Denoise, default `false`).
+    pub denoise: bool,
 }
 
 /// Deepest `max_depth` a file may ask for: the renderer's limit (as the command line's `--max-depth`).
@@ -147,6 +149,13 @@ pub const RENDER_PARAMS: &[Param] = &[
         "false",
         "",
         "an `.exr` output (and Python's `image.layers`) also holds the variance of each pixel's mean, as `--exr-layers variance` (Mitsuba's `moment` integrator)",
+    ),
+    Param::new(
+        "denoise",
+        T::Bool,
+        "false",
+        "",
+        "denoise the image with Intel Open Image Denoise, guided by albedo and normal layers (`--denoise`; `pip install pyoidn`, see docs/denoise.md)",
     ),
     Param::new(
         "hide_emitters",
@@ -284,6 +293,7 @@ pub fn settings(desc: &SceneDescription, source: &Source) -> Result<Settings, Lo
         let crop = crop(p, width, height)?;
         let hide_emitters = p.boolean("hide_emitters")?.unwrap_or(false);
         let variance = p.boolean("variance")?.unwrap_or(false);
+        let denoise = p.boolean("denoise")?.unwrap_or(false);
         Ok(Settings {
             width,
             height,
@@ -301,6 +311,7 @@ pub fn settings(desc: &SceneDescription, source: &Source) -> Result<Settings, Lo
             crop,
             hide_emitters,
             variance,
+            denoise,
         })
     };
     let settings = read(&mut p).map_err(|e| source.param_error(e))?;

@@ -20,8 +20,10 @@ use crate::builtin::{self, Builtin};
 use crate::import;
 use crate::instantiate::{imported, Built, SceneFile};
 
+mod layer;
 mod output;
 mod sampling;
+pub use layer::Layer;
 pub use output::{write, DisplayTransform, Rendered};
 pub use sampling::{AntialiasRequest, NOISE_DEFAULT_SPP, NOISE_DEFAULT_THRESHOLD};
 
@@ -99,6 +101,8 @@ pub struct Defaults {
     /// Whether the variance layer is made unasked (`[render] variance`, Mitsuba's
     /// `moment`), where the output can hold it ([`Job::add_scene_layers`]).
     pub variance: bool,
+    /// Whether the image is denoised unasked (`[render] denoise`).
+    pub denoise: bool,
 }
 
 impl Defaults {
@@ -116,6 +120,7 @@ impl Defaults {
             filter: s.filter,
             crop: s.crop,
             variance: s.variance,
+            denoise: s.denoise,
         }
     }
 }
@@ -134,6 +139,7 @@ pub fn program_defaults() -> Defaults {
         filter: None,
         crop: None,
         variance: false,
+        denoise: false,
     }
 }
 
@@ -235,36 +241,6 @@ impl SceneRequest {
     }
 }
 
-/// An extra layer of the `.exr` output.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Layer {
-    /// Variance of each pixel's mean, per channel (`variance.R/G/B`).
-    Variance,
-    /// Samples taken per pixel (`samples.Y`).
-    Samples,
-}
-
-impl Layer {
-    /// The layers' names, as `--exr-layers` and Python take them.
-    pub const NAMES: [&'static str; 2] = ["variance", "samples"];
-
-    /// The message for a layer name that is none of [`Layer::NAMES`].
-    pub fn unknown(name: &str) -> String {
-        lamplight_core::params::unknown("layer", name, &Layer::NAMES)
-    }
-}
-
-impl std::str::FromStr for Layer {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Layer, String> {
-        match s {
-            "variance" => Ok(Layer::Variance),
-            "samples" => Ok(Layer::Samples),
-            _ => Err(Layer::unknown(s)),
-        }
-    }
-}
-
 /// What the user asked for; `None` leaves a setting to the scene or the default.
 #[derive(Clone, Debug, Default)]
 pub struct Request {
@@ -298,8 +274,13 @@ pub struct Request {
     pub window: Option<(u32, u32, u32, u32)>,
     /// An environment map (`.exr`, `.hdr`) lighting the scene.
     pub environment: Option<PathBuf>,
-    /// Extra layers (variance, samples).
+    /// Extra layers (variance, samples, albedo, normal, noisy).
     pub layers: Vec<Layer>,
+    /// Denoise the image with Open Image Denoise ([`crate::denoise`]); `None`: as the scene says.
+    pub denoise: Option<bool>,
+    /// Folders the front end knows to hold the denoiser's library (Python's `pyoidn`), looked in
+    /// before the others ([`crate::denoise::Denoiser::load`]).
+    pub denoise_library_hints: Vec<PathBuf>,
 }
 
 /// A request checked and with every default resolved.
@@ -311,6 +292,9 @@ pub struct Job {
     pub environment: Option<PathBuf>,
     /// Extra layers, each at most once, in the order asked.
     pub layers: Vec<Layer>,
+    /// The denoiser, loaded when the request asks to denoise (so that a
+    /// machine without it fails before rendering).
+    pub denoiser: Option<std::sync::Arc<crate::denoise::Denoiser>>,
 }
 
 impl Request {
@@ -403,6 +387,14 @@ impl Request {
                 layers.push(*layer);
             }
         }
+        let denoise = self.denoise.unwrap_or(d.denoise);
+        if layers.contains(&Layer::Noisy) && !denoise {
+            return Err(bad(format!("the noisy layer is the image before denoising: it needs {}", n("denoise"))));
+        }
+        let denoiser = match denoise {
+            false => None,
+            true => Some(std::sync::Arc::new(crate::denoise::Denoiser::load(&self.denoise_library_hints).map_err(|e| bad(e.0))?)),
+        };
         let (spp, adaptive) = sampling::resolve(self, d, integrator, naming)?;
         let seed = self.seed.unwrap_or(d.seed);
         let options = RenderOptions {
@@ -420,7 +412,7 @@ impl Request {
             clamp: self.clamp,
             adaptive,
         };
-        Ok(Job { options, environment: self.environment.clone(), layers })
+        Ok(Job { options, environment: self.environment.clone(), layers, denoiser })
     }
 }
 
@@ -471,7 +463,7 @@ mod tests {
         assert!(err.starts_with("unknown scene \"sphere\" (did you mean 'spheres'? built-in scenes: luxo, "), "{err}");
         assert_eq!(
             "varience".parse::<Layer>().unwrap_err(),
-            "unknown layer \"varience\" (did you mean 'variance'? layers: variance, samples)"
+            "unknown layer \"varience\" (did you mean 'variance'? layers: variance, samples, albedo, normal, noisy)"
         );
     }
 

@@ -1,6 +1,6 @@
 //! Running a resolved [`Job`] and writing what it rendered: the environment
-//! map, the warning for a scene no light reaches, the mean image and the extra
-//! layers, and the image file with its display transform.
+//! map, the warning for a scene no light reaches, the mean image, the extra
+//! layers and the denoised image, and the image file with its display transform.
 
 use std::path::Path;
 
@@ -20,6 +20,8 @@ pub struct Rendered {
     pub layers: Vec<(Layer, Image)>,
     /// Figures about the render.
     pub stats: RenderStats,
+    /// The time the denoiser took, when the image was denoised.
+    pub denoise_time: Option<std::time::Duration>,
 }
 
 impl Job {
@@ -49,27 +51,52 @@ impl Job {
     }
 
     /// Renders `scene` (prepared) with the job's options: the mean image and the
-    /// layers asked for, from the film's per-pixel sums (any integrator).
+    /// layers asked for, from the film's per-pixel sums (any integrator); the
+    /// feature layers from a pass over the same camera rays; and, with a
+    /// denoiser, the image denoised (linear radiance, before any display
+    /// transform), guided by the features.
     pub fn run(&self, scene: &Scene, control: &RenderControl) -> Result<Rendered, lamplight_core::Error> {
-        if self.layers.is_empty() {
+        if self.layers.is_empty() && self.denoiser.is_none() {
             // The image alone: the renderer need not keep every pixel's sums.
             let (image, stats) = lamplight_core::render_image(scene, &self.options, control)?;
-            return Ok(Rendered { image, layers: Vec::new(), stats });
+            return Ok(Rendered { image, layers: Vec::new(), stats, denoise_time: None });
         }
         let (film, stats) = lamplight_core::render(scene, &self.options, control)?;
+        let mut image = film.mean();
+        let features = match self.denoiser.is_some() || self.layers.iter().any(|l| l.is_feature()) {
+            true => Some(lamplight_core::render_features(scene, &self.options, &film)?),
+            false => None,
+        };
+        let (mut noisy, mut denoise_time) = (None, None);
+        if let Some(denoiser) = &self.denoiser {
+            let start = std::time::Instant::now();
+            let f = features.as_ref().expect("made for the denoiser");
+            let clean = denoiser
+                .denoise(&image, Some(&f.albedo), Some(&f.normal), self.options.threads)
+                .map_err(|e| lamplight_core::Error::Render(e.0))?;
+            denoise_time = Some(start.elapsed());
+            noisy = Some(std::mem::replace(&mut image, clean));
+        }
         let layers = self
             .layers
             .iter()
-            .map(|layer| match layer {
-                Layer::Variance => (Layer::Variance, film.variance()),
-                Layer::Samples => {
-                    let mut image = Image::new(film.width(), film.height());
-                    image.pixels.iter_mut().zip(film.sample_counts()).for_each(|(p, n)| *p = [n; 3]);
-                    (Layer::Samples, image)
-                }
+            .map(|&layer| {
+                let image = match layer {
+                    Layer::Variance => film.variance(),
+                    Layer::Samples => {
+                        let mut image = Image::new(film.width(), film.height());
+                        image.pixels.iter_mut().zip(film.sample_counts()).for_each(|(p, n)| *p = [n; 3]);
+                        image
+                    }
+                    Layer::Albedo => features.as_ref().expect("made for its layer").albedo.clone(),
+                    Layer::Normal => features.as_ref().expect("made for its layer").normal.clone(),
+                    // Asked only with a denoiser (checked when resolved).
+                    Layer::Noisy => noisy.take().unwrap_or_else(|| image.clone()),
+                };
+                (layer, image)
             })
             .collect();
-        Ok(Rendered { image: film.mean(), layers, stats })
+        Ok(Rendered { image, layers, stats, denoise_time })
     }
 }
 
@@ -93,14 +120,7 @@ pub fn write(path: &Path, rendered: &Rendered, display: DisplayTransform) -> Res
         if rendered.layers.is_empty() {
             return crate::image_io::write_image(path, &rendered.image);
         }
-        let layers: Vec<crate::exr_layers::ExtraLayer> = rendered
-            .layers
-            .iter()
-            .map(|(layer, image)| match layer {
-                Layer::Variance => crate::exr_layers::ExtraLayer::rgb("variance", image),
-                Layer::Samples => crate::exr_layers::ExtraLayer::single("samples", image.pixels.iter().map(|p| p[0]).collect()),
-            })
-            .collect();
+        let layers: Vec<crate::exr_layers::ExtraLayer> = rendered.layers.iter().map(|(layer, image)| layer.to_exr(image)).collect();
         return crate::exr_layers::write_exr_with_layers(path, &rendered.image, &layers);
     }
     if display.exposure == 0.0 && display.tonemap == ToneMap::Clamp {

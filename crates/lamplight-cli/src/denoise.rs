@@ -1,0 +1,31 @@
+//! `lamplight denoise IN.exr -o OUT`: an image file through Open Image Denoise
+//! (`lamplight_scene::denoise`), with the feature layers the file holds.
+
+use std::time::Instant;
+
+use lamplight_scene::denoise::{read_denoise_input, Denoiser};
+use lamplight_scene::image_io;
+
+use crate::args::{DenoiseArgs, UsageError};
+
+/// Reads the file (a bad one is told before the library is looked for), loads
+/// the denoiser, denoises and writes, and prints what guided the filter.
+pub fn denoise_command(args: &DenoiseArgs) -> anyhow::Result<()> {
+    image_io::check_writable(&args.output)?;
+    // A file that cannot be read or holds no image, and a missing library, are the user's to fix: exit code 2.
+    let input = read_denoise_input(&args.input).map_err(|e| UsageError(e.0))?;
+    let denoiser = Denoiser::load(&[]).map_err(|e| UsageError(e.0))?;
+    let start = Instant::now();
+    let image = input.denoise(&denoiser, args.threads)?;
+    let seconds = start.elapsed().as_secs_f64();
+    image_io::write_image(&args.output, &image)?;
+    if !args.quiet {
+        let guides: Vec<&str> = [("albedo", input.albedo.is_some()), ("normal", input.normal.is_some())]
+            .iter()
+            .filter_map(|(name, present)| present.then_some(*name))
+            .collect();
+        let with = if guides.is_empty() { "the image alone".to_string() } else { guides.join(" and ") };
+        eprintln!("{}x{} denoised with {with} in {seconds:.2} s -> {}", image.width, image.height, args.output.display());
+    }
+    Ok(())
+}

@@ -1,0 +1,235 @@
+//! The denoiser's feature layers, `albedo` and `normal`, from a pass of their own.
+//!
+//! A denoiser (Open Image Denoise's `RT` filter) keeps edges and textures
+//! sharp when it is given, beside the noisy image, the colour of the surfaces
+//! and their normals. Computing them inside the integrators would add work to
+//! their inner loops, which are the program's speed; this pass is separate and
+//! cheap instead (no light, no shadow rays): for every sample of a finished
+//! render it takes the very camera ray the integrator traced
+//! ([`Integrator::camera_sample`]: same position, lens point, footprint and
+//! filter weight), so the layers are anti-aliased as the image is, and
+//! follows it as Open Image Denoise's documentation recommends ("Albedos",
+//! "Normals" in its API manual):
+//!
+//! - through perfect specular (delta) surfaces, mirrors and smooth glass, to
+//!   the first diffuse or glossy hit, each bounce chosen by the BSDF's own
+//!   sampling and weighted by its reflectance or transmittance, so that the
+//!   average over a pixel's samples is the Fresnel blend of what is seen in
+//!   the reflection and through the glass;
+//! - at that hit, `albedo` is the BSDF's directional-hemispherical reflectance
+//!   `ρ(wo) = ∫ f cos dwi`, exact for a Lambertian surface (its colour) and
+//!   estimated from [`REFLECTANCE_SAMPLES`] stratified BSDF samples otherwise;
+//!   `normal` is the world-space shading normal (normal maps included), on
+//!   the side the ray arrived from;
+//! - a ray that leaves the scene gives albedo 0 and normal 0; a surface that
+//!   only emits gives albedo 0 and its normal; a delta chain that reaches the
+//!   depth limit ends with the last delta surface's reflectance and normal.
+//!
+//! Each pixel averages its samples in index order (the film's count for it:
+//! adaptive renders too) with the filter weight, the samples' random numbers
+//! are seeded by (seed, pixel, sample), so the layers are the same bytes for
+//! any number of threads. Albedo is clamped to `[0, 1]` and the normal to
+//! `[-1, 1]`, the ranges the denoiser takes.
+
+use rayon::prelude::*;
+
+use super::{integrator_for, thread_pool, view_of, RenderOptions};
+use crate::bsdfs::{Bsdf, Frame};
+use crate::film::{Film, Image};
+use crate::integrators::{CameraSample, Integrator, Schedule, View};
+use crate::math::{Rgb, Vec3};
+use crate::ray::{offset_origin, Ray};
+use crate::sampling::Rng;
+use crate::scene::Scene;
+use crate::Error;
+
+/// BSDF samples that estimate the reflectance of a surface that is not one
+/// Lambertian lobe (whose reflectance is its colour, taken as it is).
+pub const REFLECTANCE_SAMPLES: u32 = 8;
+
+/// Mixed into the render seed, so that the feature pass's random numbers are
+/// not those the integrator drew for the same sample.
+const FEATURE_SEED: u64 = 0xA1BE_D0C0_FEA7_0125;
+
+/// The feature layers of a render, of the film's size.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Features {
+    /// Reflectance at the first non-specular hit, each channel in `[0, 1]`.
+    pub albedo: Image,
+    /// World-space shading normal there, averaged (not renormalized), in `[-1, 1]`.
+    pub normal: Image,
+}
+
+/// The feature layers of the render of `scene` with `options` that made
+/// `film`: per pixel, the film's own sample count of the same camera rays.
+/// Errors as [`crate::render()`] does on bad options.
+pub fn render_features(scene: &Scene, options: &RenderOptions, film: &Film) -> Result<Features, Error> {
+    let integrator = integrator_for(scene, options)?;
+    let max_depth = options.max_depth.unwrap_or(scene.settings.max_depth);
+    let window = options.pixel_window();
+    if (film.width(), film.height()) != (window.width, window.height) {
+        return Err(Error::invalid("features", "the film is not of the render's window"));
+    }
+    let sized = scene.settings.camera.for_image(options.width, options.height);
+    let camera = sized.as_deref().unwrap_or(scene.settings.camera.as_ref());
+    let view = view_of(scene, camera, options);
+    let one_pass = integrator.schedule() == Schedule::OnePass;
+    let pixels = window.width as usize * window.height as usize;
+    let mut albedo = Image::new(window.width, window.height);
+    let mut normal = Image::new(window.width, window.height);
+    let pool = thread_pool(options.threads)?;
+    let row = window.width as usize;
+    pool.install(|| {
+        albedo.pixels.par_chunks_mut(row).zip(normal.pixels.par_chunks_mut(row)).enumerate().for_each(|(j, (albedo, normal))| {
+            let fy = j as u32;
+            for (i, (a, n)) in albedo.iter_mut().zip(normal.iter_mut()).enumerate() {
+                let fx = i as u32;
+                let count = film.samples_at(fx, fy);
+                // A one-pass integrator stratifies over the pixel's own count:
+                // adaptive anti-aliasing renders a refined pixel as a render of
+                // that many samples ([`crate::Antialias`]).
+                let view = if one_pass { View { spp: count.max(1), ..view } } else { view };
+                let (x, y) = (window.x0 + fx, window.y0 + fy);
+                let (sum_a, sum_n) = pixel_features(integrator.as_ref(), &view, max_depth, (x, y), count);
+                let inv = if count > 0 { 1.0 / count as f64 } else { 0.0 };
+                *a = (sum_a * inv).clamp(Rgb::ZERO, Rgb::ONE).as_vec3().to_array().map(|c| c as f32);
+                *n = (sum_n * inv).clamp(Vec3::splat(-1.0), Vec3::ONE).to_array().map(|c| c as f32);
+            }
+        });
+    });
+    debug_assert_eq!(albedo.pixels.len(), pixels);
+    Ok(Features { albedo, normal })
+}
+
+/// The sums over samples `0..count` of pixel `(x, y)` of albedo and normal,
+/// each weighted by its sample's filter weight.
+fn pixel_features(integrator: &dyn Integrator, view: &View, max_depth: u32, (x, y): (u32, u32), count: u32) -> (Rgb, Vec3) {
+    let (mut albedo, mut normal) = (Rgb::ZERO, Vec3::ZERO);
+    for index in 0..count {
+        let camera = integrator.camera_sample(view, x, y, index);
+        let mut rng = Rng::for_sample(view.seed ^ FEATURE_SEED, view.pixel_index(x, y), index as u64);
+        let (a, n) = sample_features(view.scene, &camera, max_depth, &mut rng);
+        albedo += a * camera.weight;
+        normal += n * camera.weight;
+    }
+    (albedo, normal)
+}
+
+/// Albedo and normal of one camera sample: delta surfaces followed to the
+/// first diffuse or glossy hit (see the module doc).
+pub fn sample_features(scene: &Scene, camera: &CameraSample, max_depth: u32, rng: &mut Rng) -> (Rgb, Vec3) {
+    let mut ray = camera.ray;
+    let mut throughput = Rgb::ONE;
+    for depth in 1..=max_depth.max(1) {
+        // Mitsuba's `hide_emitters`, as the integrators see it.
+        let hidden = depth == 1 && scene.settings.hide_emitters;
+        let found = if hidden { scene.first_camera_hit(&ray) } else { scene.first_intersect(&ray, f64::INFINITY) };
+        let Some(mut hit) = found else { return (Rgb::ZERO, Vec3::ZERO) };
+        // The footprint the integrators filter textures over (the path tracer's rule).
+        let footprint = if depth == 1 {
+            camera.cone.width + camera.cone.spread * hit.t
+        } else {
+            camera.cone.width + camera.cone.spread * (hit.point - camera.ray.origin).length()
+        };
+        let material = &*scene.shade(&mut hit, -ray.dir, footprint);
+        let bsdf: &Bsdf = &scene.bsdf(&hit, material);
+        if bsdf.is_black() {
+            return (Rgb::ZERO, hit.normal);
+        }
+        let frame = Frame::new(hit.normal);
+        let wo = frame.to_local(-ray.dir);
+        if bsdf.has_smooth_part() || depth == max_depth {
+            return (throughput * reflectance(bsdf, wo, rng), hit.normal);
+        }
+        let Some(s) = bsdf.sample(wo, rng.uniform(), (rng.uniform(), rng.uniform())) else {
+            return (Rgb::ZERO, hit.normal);
+        };
+        // The power the bounce carries: a refraction's weight holds the
+        // radiance factor 1 / eta^2, which is not reflectance.
+        throughput *= s.weight * (s.eta * s.eta);
+        let wi = frame.to_world(s.wi);
+        ray = Ray { origin: offset_origin(hit.point, hit.geometric_normal, wi, hit.t, hit.error), dir: wi };
+    }
+    (Rgb::ZERO, Vec3::ZERO)
+}
+
+/// The directional-hemispherical reflectance of `bsdf` seen from `wo`
+/// (local): the BSDF sample weight `f |cos| / pdf` averaged over
+/// [`REFLECTANCE_SAMPLES`] stratified samples (exactly the colour for one
+/// Lambertian lobe, whose every sample weight is its colour).
+fn reflectance(bsdf: &Bsdf, wo: Vec3, rng: &mut Rng) -> Rgb {
+    if let [crate::bsdfs::Lobe::Diffuse(albedo)] = bsdf.lobes() {
+        return *albedo;
+    }
+    let mut sum = Rgb::ZERO;
+    let n = REFLECTANCE_SAMPLES;
+    for i in 0..n {
+        let u_lobe = (i as f64 + rng.uniform()) / n as f64;
+        if let Some(s) = bsdf.sample(wo, u_lobe, (rng.uniform(), rng.uniform())) {
+            sum += s.weight * (s.eta * s.eta);
+        }
+    }
+    sum / n as f64
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::camera::{Fov, Perspective};
+    use crate::materials::Material;
+    use crate::shapes::Plane;
+    use crate::{RenderControl, SceneBuilder};
+
+    /// A plane `z = 0` of colour `color` filling the view of a camera above it, looking down.
+    fn plane_scene(color: Rgb) -> Scene {
+        let camera = Perspective::look_at(Vec3::new(0.3, -0.2, 4.0), Vec3::ZERO, Vec3::Y, Fov::VerticalDeg(40.0)).unwrap();
+        let mut b = SceneBuilder::new(camera);
+        let m = b.material(Material::plastic(color, 0.0, 1.0, 0.0, 1.0)).unwrap();
+        b.object(Plane::new(Vec3::ZERO, Vec3::Z).unwrap(), m).unwrap();
+        b.build().unwrap()
+    }
+
+    #[test]
+    fn a_diffuse_plane_has_its_colour_as_albedo_and_its_normal() {
+        let color = Rgb::new(0.8, 0.25, 0.05);
+        let scene = plane_scene(color);
+        for integrator in ["whitted", "path"] {
+            let options = RenderOptions { width: 9, height: 7, spp: 4, integrator: integrator.parse().unwrap(), ..Default::default() };
+            let (film, _) = crate::render(&scene, &options, &RenderControl::default()).unwrap();
+            let f = render_features(&scene, &options, &film).unwrap();
+            for (a, n) in f.albedo.pixels.iter().zip(&f.normal.pixels) {
+                let expected = [0.8f32, 0.25, 0.05];
+                for c in 0..3 {
+                    assert!((a[c] - expected[c]).abs() < 1e-6, "{integrator}: albedo {a:?}");
+                }
+                assert_eq!(*n, [0.0, 0.0, 1.0], "{integrator}: normal");
+            }
+        }
+    }
+
+    #[test]
+    fn layers_are_the_same_bytes_for_any_number_of_threads() {
+        // A glossy floor, a glass and a gold sphere: reflectance estimates and delta chains.
+        let camera = Perspective::look_at(Vec3::new(0.0, 1.0, 4.0), Vec3::ZERO, Vec3::Y, Fov::VerticalDeg(50.0)).unwrap();
+        let mut b = SceneBuilder::new(camera);
+        let floor = b.material(Material::plastic(Rgb::new(0.7, 0.6, 0.5), 0.1, 0.7, 0.3, 20.0)).unwrap();
+        b.object(Plane::new(Vec3::new(0.0, -1.0, 0.0), Vec3::Y).unwrap(), floor).unwrap();
+        let glass = b.material(Material::glass(1.5, 0.0, 1.0)).unwrap();
+        b.object(crate::shapes::Sphere::new(Vec3::new(-0.6, 0.0, 0.0), 0.6).unwrap(), glass).unwrap();
+        let gold = b.material(Material::metal(crate::materials::Metal::Gold, 0.0, 1.0)).unwrap();
+        b.object(crate::shapes::Sphere::new(Vec3::new(0.7, -0.3, 0.3), 0.5).unwrap(), gold).unwrap();
+        b.light(crate::lights::PointLight::new(Vec3::new(1.0, 3.0, 2.0), Rgb::splat(10.0)).unwrap());
+        let scene = b.build().unwrap();
+        for integrator in ["whitted", "path"] {
+            let options = RenderOptions { width: 24, height: 20, spp: 3, integrator: integrator.parse().unwrap(), ..Default::default() };
+            let features = |threads: usize| {
+                let options = RenderOptions { threads, ..options.clone() };
+                let (film, _) = crate::render(&scene, &options, &RenderControl::default()).unwrap();
+                render_features(&scene, &options, &film).unwrap()
+            };
+            let one = features(1);
+            assert_eq!(one, features(3), "{integrator}");
+            assert!(one.albedo.pixels.iter().any(|p| p[0] > 0.0), "{integrator}: something is seen");
+        }
+    }
+}
