@@ -12,6 +12,7 @@ mod blend;
 mod business_card;
 mod cameras;
 mod convert;
+mod denoise;
 mod environment;
 mod errors;
 mod explain;

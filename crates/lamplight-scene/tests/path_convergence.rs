@@ -8,6 +8,8 @@ use lamplight_core::film::Image;
 use lamplight_core::{render_image, RenderControl, RenderOptions};
 use lamplight_scene::builtin;
 
+use crate::common::rmse;
+
 fn cornell(size: u32, spp: u32, seed: u64) -> Image {
     let scene = (builtin::find("cornell-box").unwrap().build)().unwrap();
     let options = RenderOptions {
@@ -21,10 +23,6 @@ fn cornell(size: u32, spp: u32, seed: u64) -> Image {
     render_image(&scene, &options, &RenderControl::default()).unwrap().0
 }
 
-fn rmse(a: &Image, b: &Image) -> f64 {
-    let sum: f64 = a.pixels.iter().zip(&b.pixels).flat_map(|(p, q)| (0..3).map(move |c| (p[c] as f64 - q[c] as f64).powi(2))).sum();
-    (sum / (3 * a.pixels.len()) as f64).sqrt()
-}
 
 #[test]
 fn rmse_falls_as_one_over_sqrt_spp() {

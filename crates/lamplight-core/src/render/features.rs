@@ -133,7 +133,10 @@ pub fn sample_features(scene: &Scene, camera: &CameraSample, max_depth: u32, rng
         };
         let material = &*scene.shade(&mut hit, -ray.dir, footprint);
         let bsdf: &Bsdf = &scene.bsdf(&hit, material);
-        if bsdf.is_black() {
+        // An emitter's pixels are its emission, not reflected light: albedo 0
+        // marks them, so the denoiser keeps the edge of a light against a
+        // ceiling of its own colour and normal.
+        if bsdf.is_black() || material.emits_towards(hit.front_face) {
             return (Rgb::ZERO, hit.normal);
         }
         let frame = Frame::new(hit.normal);

@@ -160,6 +160,21 @@ fn python_pyoidn_folders() -> Vec<PathBuf> {
         .collect()
 }
 
+/// The denoiser for the test `test`, which needs it: `None`, after a line
+/// saying that the test is skipped and why, on a machine without the library;
+/// but under CI (`CI` set), where `scripts/test.sh` installs it, a missing
+/// library fails the test instead of skipping it.
+pub fn for_test(test: &str) -> Option<Denoiser> {
+    match Denoiser::load(&[]) {
+        Ok(denoiser) => Some(denoiser),
+        Err(e) if std::env::var_os("CI").is_some() => panic!("{test}: CI must denoise (scripts/test.sh installs pyoidn and sets {ENV_VAR}): {e}"),
+        Err(e) => {
+            eprintln!("{test}: skipped: {e}");
+            None
+        }
+    }
+}
+
 /// The library folder inside the `pyoidn` package folder `package`, for front
 /// ends that find the package themselves (Python).
 pub fn pyoidn_library_folder(package: &Path) -> PathBuf {

@@ -61,3 +61,9 @@ pub fn mutate(base: &[u8], edits: &[(usize, u8)], cut: usize) -> Vec<u8> {
     }
     out
 }
+
+/// Root-mean-square difference of two images of one size, over pixels and channels.
+pub fn rmse(a: &lamplight_core::film::Image, b: &lamplight_core::film::Image) -> f64 {
+    let sum: f64 = a.pixels.iter().zip(&b.pixels).flat_map(|(p, q)| (0..3).map(move |c| (p[c] as f64 - q[c] as f64).powi(2))).sum();
+    (sum / (3 * a.pixels.len()) as f64).sqrt()
+}
