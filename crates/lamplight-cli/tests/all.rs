@@ -5,6 +5,7 @@
 //! more `mod` line here; `cargo test -p lamplight-cli --test all NAME` runs one.
 
 mod cli;
+mod denoise;
 mod explain;
 mod hardening;
 mod info;

@@ -89,6 +89,8 @@ impl Denoiser {
         if let Some(value) = std::env::var_os(ENV_VAR).filter(|v| !v.is_empty()) {
             let given = PathBuf::from(&value);
             let path = if given.is_dir() { given.join(LIBRARY) } else { given };
+            // A path, never a name for the loader to search: `lib.so` means ./lib.so.
+            let path = std::path::absolute(&path).unwrap_or(path);
             return oidn::Oidn::load(&path).map(|oidn| Denoiser { oidn }).map_err(|e| {
                 DenoiseError(format!("{ENV_VAR}={}: cannot load Open Image Denoise: {e}", Path::new(&value).display()))
             });
