@@ -36,7 +36,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from ._lamplight import Scene
+from ._lamplight import Scene, denoise_array
 from ._render import SceneLike, as_scene, progress_reporter, resolve, with_settings
 from .image import Image
 
@@ -176,11 +176,12 @@ def _worker_scene(payload: Union[Scene, _Shipped], digest: str) -> Scene:
     return scene
 
 
-def _render_tile(payload, digest: str, options: Dict[str, Any], window: Tuple[int, int, int, int]) -> np.ndarray:
+def _render_tile(payload, digest: str, options: Dict[str, Any], window: Tuple[int, int, int, int]):
     from ._lamplight import render_array
 
-    array, _, _ = render_array(_worker_scene(payload, digest), window=window, progress=None, **options)
-    return array
+    array, _, layers = render_array(_worker_scene(payload, digest), window=window, progress=None, **options)
+    # With the denoiser's features asked for (a denoised render), they come back too.
+    return (array, layers["albedo"], layers["normal"]) if "albedo" in layers else array
 
 
 def _render_frame(payload, digest: str, camera: Optional[dict], options: Dict[str, Any]) -> np.ndarray:
@@ -254,11 +255,19 @@ def render(
     ``progress`` reports finished tiles as for ``lamplight.render``; ``retries``
     re-runs a task that raised (a worker that died is handled by Dask anyway).
     Every setting of ``lamplight.render`` but ``window``, ``time_limit`` and
-    ``exr_layers`` is here and means the same; adaptive sampling (``antialias``,
+    ``exr_layers`` is here and means the same; ``denoise`` denoises the
+    assembled image here (never tile by tile, whose edges would show), which
+    equals the local denoised render; adaptive sampling (``antialias``,
     ``noise_threshold``, ``min_spp``) decides per pixel from the pixel and its
     neighbours, so the tiles stitch to the local image.
     """
     s = as_scene(scene, base_dir)
+    # Denoised as a whole once assembled, never tile by tile: a tile's edge
+    # would be a seam. The tiles bring back the feature layers for it.
+    denoise = settings.get("denoise")
+    denoise = bool(s.defaults().get("denoise")) if denoise is None else denoise
+    if denoise:
+        settings = dict(settings, denoise=False, exr_layers=["albedo", "normal"])
     options = _options(s, settings)
     if s.defaults().get("crop") is not None:
         # Not yet: tiles of a crop did not reproduce the local render's bytes (unresolved).
@@ -273,10 +282,14 @@ def render(
         for i, w in enumerate(windows)
     ]
     parts = _gather(client, futures, progress, "lamplight (dask)", "tile")
-    out = np.empty((options["height"], options["width"], 3), dtype=np.float32)
+    planes = 3 if denoise else 1
+    out = np.empty((planes, options["height"], options["width"], 3), dtype=np.float32)
     for (x0, y0, w, h), part in zip(windows, parts):
-        out[y0 : y0 + h, x0 : x0 + w] = part
-    image = Image(out)
+        out[:, y0 : y0 + h, x0 : x0 + w] = part
+    image = Image(out[0])
+    if denoise:
+        # Here, with this machine's cores, as the local render does.
+        image = Image(denoise_array(out[0], out[1], out[2], 0))
     image.stats = {"tiles": len(windows)}
     return image
 

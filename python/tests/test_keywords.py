@@ -39,6 +39,7 @@ SAMPLES = {
     "filter": "tent",
     "environment": None,  # a file: given by `environment_file` below
     "exr_layers": ["samples"],
+    "denoise": False,  # True needs the library (test_denoise.py)
     "clamp": 10.0,
     "antialias": False,
     "noise_threshold": 0.5,

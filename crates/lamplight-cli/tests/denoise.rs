@@ -57,7 +57,8 @@ fn denoise_without_the_library_stops_before_rendering_and_says_how_to_get_it() {
     std::fs::write(d.join("notlib.so"), "not a library").unwrap();
     let out = lamplight(d, &big, &[("LAMPLIGHT_OIDN", Some("notlib.so"))]);
     let err = String::from_utf8_lossy(&out.stderr);
-    let expected = format!("lamplight: error: LAMPLIGHT_OIDN=notlib.so: cannot load Open Image Denoise: {}: ", d.join("notlib.so").display());
+    let expected =
+        format!("lamplight: error: LAMPLIGHT_OIDN=notlib.so: cannot load Open Image Denoise: {}: ", d.join("notlib.so").display());
     assert!(err.starts_with(&expected) && err.lines().count() == 1, "{err}");
     assert_eq!(out.status.code(), Some(2));
 }
@@ -101,7 +102,10 @@ fn denoised_renders_keep_their_layers_and_denoise_again_to_the_same_image() {
     render(&["--exr-layers", "albedo,normal", "-o", "noisy.exr"]);
     let (_, _, channels) = read_exr_channels(&d.join("denoised.exr")).unwrap();
     let names: Vec<&str> = channels.iter().map(|(n, _)| n.as_str()).collect();
-    assert_eq!(names, ["B", "G", "R", "albedo.B", "albedo.G", "albedo.R", "noisy.B", "noisy.G", "noisy.R", "normal.X", "normal.Y", "normal.Z"]);
+    assert_eq!(
+        names,
+        ["B", "G", "R", "albedo.B", "albedo.G", "albedo.R", "noisy.B", "noisy.G", "noisy.R", "normal.X", "normal.Y", "normal.Z"]
+    );
     let get = |channels: &[(String, Vec<f32>)], name: &str| channels.iter().find(|(n, _)| n == name).unwrap().1.clone();
     let (_, _, plain) = read_exr_channels(&d.join("noisy.exr")).unwrap();
     for c in ["R", "G", "B"] {

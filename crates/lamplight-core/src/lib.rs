@@ -52,7 +52,10 @@ pub mod shapes;
 pub use error::Error;
 pub use film::PixelWindow;
 pub use render::adaptive;
-pub use render::{render, render_features, render_image, Adaptive, Features, Antialias, NoiseThreshold, RenderControl, RenderOptions, RenderStats, MAX_PIXELS};
+pub use render::{
+    render, render_features, render_image, Adaptive, Antialias, Features, NoiseThreshold, RenderControl, RenderOptions, RenderStats,
+    MAX_PIXELS,
+};
 pub use scene::{Scene, SceneBuilder};
 
 /// The types most programs need.

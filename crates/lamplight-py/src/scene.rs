@@ -325,7 +325,7 @@ impl Scene {
     /// `(x0, y0, width, height)` of the image the scene renders (`None`: all).
     fn defaults<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let d = PyDict::new(py);
-        let Defaults { size: (width, height), spp, seed, integrator, transfer, crop, .. } = self.defaults;
+        let Defaults { size: (width, height), spp, seed, integrator, transfer, crop, denoise, .. } = self.defaults;
         d.set_item("width", width)?;
         d.set_item("height", height)?;
         d.set_item("spp", spp)?;
@@ -333,6 +333,7 @@ impl Scene {
         d.set_item("integrator", integrator.name)?;
         d.set_item("transfer", if transfer == lamplight_scene::image_io::Transfer::Linear { "linear" } else { "srgb" })?;
         d.set_item("crop", crop.map(|c| (c.x0, c.y0, c.width, c.height)))?;
+        d.set_item("denoise", denoise)?;
         Ok(d)
     }
 

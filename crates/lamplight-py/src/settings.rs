@@ -175,7 +175,9 @@ pub const KEYWORDS: &[Keyword] = &[
         annotation: "Optional[bool]",
         takes: Takes::RenderOnly,
         read: |r, v| {
-            let on = v.downcast::<pyo3::types::PyBool>().map_err(|_| PyTypeError::new_err(format!("denoise must be True or False, got {}", type_name(v))))?;
+            let on = v
+                .downcast::<pyo3::types::PyBool>()
+                .map_err(|_| PyTypeError::new_err(format!("denoise must be True or False, got {}", type_name(v))))?;
             set(&mut r.denoise, Ok(Some(on.is_true())))
         },
     },

@@ -23,7 +23,6 @@ fn cornell(size: u32, spp: u32, seed: u64) -> Image {
     render_image(&scene, &options, &RenderControl::default()).unwrap().0
 }
 
-
 #[test]
 fn rmse_falls_as_one_over_sqrt_spp() {
     let size = 12;

@@ -91,9 +91,9 @@ impl Denoiser {
             let path = if given.is_dir() { given.join(LIBRARY) } else { given };
             // A path, never a name for the loader to search: `lib.so` means ./lib.so.
             let path = std::path::absolute(&path).unwrap_or(path);
-            return oidn::Oidn::load(&path).map(|oidn| Denoiser { oidn }).map_err(|e| {
-                DenoiseError(format!("{ENV_VAR}={}: cannot load Open Image Denoise: {e}", Path::new(&value).display()))
-            });
+            return oidn::Oidn::load(&path)
+                .map(|oidn| Denoiser { oidn })
+                .map_err(|e| DenoiseError(format!("{ENV_VAR}={}: cannot load Open Image Denoise: {e}", Path::new(&value).display())));
         }
         let mut folders: Vec<PathBuf> = hints.to_vec();
         folders.extend(python_pyoidn_folders());
@@ -122,10 +122,7 @@ impl Denoiser {
         let size = (color.width, color.height);
         for (name, image) in [("albedo", albedo), ("normal", normal)] {
             if let Some(image) = image.filter(|i| (i.width, i.height) != size) {
-                return Err(DenoiseError(format!(
-                    "the {name} layer is {}x{}, the image {}x{}",
-                    image.width, image.height, size.0, size.1
-                )));
+                return Err(DenoiseError(format!("the {name} layer is {}x{}, the image {}x{}", image.width, image.height, size.0, size.1)));
             }
         }
         let beauty: Vec<f32> = color.pixels.as_flattened().iter().map(|&v| if v.is_finite() && v > 0.0 { v } else { 0.0 }).collect();
@@ -169,7 +166,9 @@ fn python_pyoidn_folders() -> Vec<PathBuf> {
 pub fn for_test(test: &str) -> Option<Denoiser> {
     match Denoiser::load(&[]) {
         Ok(denoiser) => Some(denoiser),
-        Err(e) if std::env::var_os("CI").is_some() => panic!("{test}: CI must denoise (scripts/test.sh installs pyoidn and sets {ENV_VAR}): {e}"),
+        Err(e) if std::env::var_os("CI").is_some() => {
+            panic!("{test}: CI must denoise (scripts/test.sh installs pyoidn and sets {ENV_VAR}): {e}")
+        }
         Err(e) => {
             eprintln!("{test}: skipped: {e}");
             None
