@@ -4,7 +4,7 @@
 //! |---|---|---|
 //! | `camera` | `camera: {eye, look_at, up, vfov}` | looks through that camera |
 //! | `reset` | | back to the scene's own camera |
-//! | `settings` | `integrator`, `spp`, `max_depth` (each a value or `null` for the scene's) | renders with them |
+//! | `settings` | `integrator`, `spp`, `max_depth`, `denoise` (each a value or `null` for the scene's) | renders with them; `denoise: true` denoises every frame (Open Image Denoise) |
 //! | `explain` | `x`, `y` (pixels of the full image) | answers `explain` with the ray tree of `lamplight explain --json` |
 //! | `save` | `name` (`.png`, `.ppm` or `.exr`), `exposure` (stops) | writes the latest frame into the scene's folder |
 //! | `save_camera` | `name` (`.toml`) | writes the camera's `[camera]` table there |
@@ -63,10 +63,16 @@ fn settings(app: &App, message: &Value) -> Result<(), String> {
     let integrator = integrator_name(&message["integrator"])?;
     let spp = optional_count(&message["spp"], "spp")?;
     let max_depth = optional_count(&message["max_depth"], "max_depth")?;
+    let denoise = match &message["denoise"] {
+        Value::Null => None,
+        Value::Bool(on) => Some(*on),
+        _ => return Err("denoise must be true, false or null".to_string()),
+    };
     app.set_request(|r| {
         r.integrator = integrator;
         r.spp = spp;
         r.max_depth = max_depth;
+        r.denoise = denoise;
     })
 }
 

@@ -7,7 +7,8 @@
 //! far), then half the size, then the full image with one sample, then more
 //! samples (4, 16, 64, ... for fixed supersampling), and last the job exactly
 //! as `lamplight render` would run it, so the final frame is that render's
-//! image. Every stage is one call of the ordinary render entry
+//! image. A job that denoises denoises every stage (Cycles' viewport
+//! denoising), each frame reporting the time it added. Every stage is one call of the ordinary render entry
 //! ([`Job::run`]); the viewer adds nothing to the render loop.
 //!
 //! [`Renderer::submit`] replaces the one waiting request (there is never more
@@ -98,6 +99,8 @@ pub struct Frame {
     pub latency: Duration,
     /// The stage is the last: the image is `lamplight render`'s.
     pub last: bool,
+    /// The time the denoiser added to this frame, when the job denoises.
+    pub denoise_time: Option<Duration>,
 }
 
 /// How long the preview that follows a camera change should take to render.
@@ -252,6 +255,7 @@ fn render_loop(shared: &Shared, report: &dyn Fn(Report)) {
                         samples_per_second: r.stats.pixel_samples as f64 / seconds,
                         latency: submitted.elapsed(),
                         last: i + 1 == count,
+                        denoise_time: r.denoise_time,
                         image: r.image,
                     }));
                 }

@@ -125,6 +125,8 @@ fn frame_messages(frame: &Frame) -> (String, Vec<u8>) {
         "last": frame.last,
         "samples_per_second": frame.samples_per_second,
         "latency_ms": frame.latency.as_secs_f64() * 1e3,
+        // What denoising added to this frame (absent when it is not denoised).
+        "denoise_ms": frame.denoise_time.map(|t| t.as_secs_f64() * 1e3),
     });
     let mut bytes = Vec::with_capacity(frame.image.pixels.len() * 12);
     for p in &frame.image.pixels {

@@ -160,6 +160,7 @@ impl App {
                 "integrator": r.integrator,
                 "spp": r.spp,
                 "max_depth": r.max_depth,
+                "denoise": r.denoise,
                 "width": r.width,
                 "height": r.height,
             },

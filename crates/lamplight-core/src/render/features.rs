@@ -92,8 +92,8 @@ pub fn render_features(scene: &Scene, options: &RenderOptions, film: &Film) -> R
                 let (x, y) = (window.x0 + fx, window.y0 + fy);
                 let (sum_a, sum_n) = pixel_features(integrator.as_ref(), &view, max_depth, (x, y), count);
                 let inv = if count > 0 { 1.0 / count as f64 } else { 0.0 };
-                *a = (sum_a * inv).clamp(Rgb::ZERO, Rgb::ONE).as_vec3().to_array().map(|c| c as f32);
-                *n = (sum_n * inv).clamp(Vec3::splat(-1.0), Vec3::ONE).to_array().map(|c| c as f32);
+                *a = (sum_a * inv).clamp(Rgb::ZERO, Rgb::ONE).as_vec3().to_array();
+                *n = (sum_n * inv).clamp(Vec3::splat(-1.0), Vec3::ONE).as_vec3().to_array();
             }
         });
     });

@@ -60,6 +60,7 @@ function applyState(m) {
   sel.value = m.settings.integrator || "";
   if (document.activeElement !== $("spp")) $("spp").value = m.settings.spp ?? "";
   if (document.activeElement !== $("max_depth")) $("max_depth").value = m.settings.max_depth ?? "";
+  $("denoise").checked = !!m.settings.denoise;
   const overlay = $("overlay");
   overlay.hidden = !m.error;
   overlay.textContent = m.error || "";
@@ -98,7 +99,7 @@ function showFrame() {
   ctx.drawImage(scratch, 0, 0, canvas.width, canvas.height);
   const rate = info.samples_per_second >= 1e6 ? (info.samples_per_second / 1e6).toFixed(2) + " M" : (info.samples_per_second / 1e3).toFixed(1) + " k";
   const target = info.adaptive ? "adaptive" : info.target_spp;
-  $("status").textContent = `${info.width}x${info.height} · spp ${info.spp}/${target} · ${rate} samples/s · ${info.latency_ms.toFixed(0)} ms${info.last ? " · done" : ""}`;
+  $("status").textContent = `${info.width}x${info.height} · spp ${info.spp}/${target} · ${rate} samples/s · ${info.latency_ms.toFixed(0)} ms${info.denoise_ms != null ? ` · denoise +${info.denoise_ms.toFixed(0)} ms` : ""}${info.last ? " · done" : ""}`;
   for (const w of waiters.splice(0)) w();
 }
 
@@ -194,9 +195,9 @@ $("copy").onclick = async () => {
 };
 const settings = () => {
   const count = (id) => ($(id).value === "" ? null : Math.max(0, Math.floor(+$(id).value)));
-  send({ type: "settings", integrator: $("integrator").value || null, spp: count("spp"), max_depth: count("max_depth") });
+  send({ type: "settings", integrator: $("integrator").value || null, spp: count("spp"), max_depth: count("max_depth"), denoise: $("denoise").checked || null });
 };
-$("integrator").onchange = settings; $("spp").onchange = settings; $("max_depth").onchange = settings;
+$("integrator").onchange = settings; $("spp").onchange = settings; $("max_depth").onchange = settings; $("denoise").onchange = settings;
 $("exposure").addEventListener("input", (e) => {
   exposure = +e.target.value; $("exposure_value").textContent = exposure;
   if (frame) showFrame();
