@@ -108,3 +108,24 @@ fn settings_out_of_bounds_are_refused_with_the_request_layer_s_words() {
     let err = Viewer::start(ViewOptions { scene: "luxo".into(), listen: Some("127.0.0.1:0".parse().unwrap()), request }).err();
     assert_eq!(err.as_deref(), Some("image 100000x100000 is too large (at most 268435456 pixels)"));
 }
+
+#[test]
+fn the_denoise_switch_denoises_every_frame_and_says_what_it_added() {
+    if lamplight_scene::denoise::for_test("the_denoise_switch_denoises_every_frame_and_says_what_it_added").is_none() {
+        return;
+    }
+    let viewer = start("cornell-box", 32);
+    viewer.app.set_request(|r| r.denoise = Some(true)).unwrap();
+    let start = std::time::Instant::now();
+    loop {
+        if let Some(frame) = viewer.app.latest_frame().filter(|f| f.wanted.job.denoiser.is_some()) {
+            assert!(frame.denoise_time.is_some(), "a denoised frame says what denoising added");
+            if frame.last {
+                break;
+            }
+        }
+        assert!(start.elapsed() < Duration::from_secs(60), "no denoised frame came");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    viewer.app.set_request(|r| r.denoise = None).unwrap();
+}
