@@ -162,7 +162,11 @@ def render(
     (``"box"``, ``"tent"``, ``"gaussian"``), ``environment`` (an ``.exr`` or ``.hdr``
     equirectangular map lighting the scene) and ``exr_layers`` (``"variance"``,
     ``"samples"``: kept in ``image.layers`` and written by ``image.save`` to an
-    ``.exr`` file) concern the path tracer. ``clamp`` scales every sample
+    ``.exr`` file; ``"albedo"`` and ``"normal"``, the denoiser's features, for
+    any integrator) concern the path tracer. ``denoise=True`` denoises the
+    image with Intel Open Image Denoise (``pip install lamplight[denoise]``;
+    ``exr_layers=["noisy"]`` keeps the image before it; see
+    ``docs/denoise.md``). ``clamp`` scales every sample
     whose brightest channel exceeds it down to it: fewer fireflies, but biased
     (off by default, as ``--clamp``).
 

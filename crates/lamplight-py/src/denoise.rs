@@ -4,6 +4,7 @@
 use std::path::PathBuf;
 
 use lamplight_scene::denoise::{pyoidn_library_folder, Denoiser};
+use lamplight_scene::request::{Defaults, Request};
 use numpy::{PyArray3, PyReadonlyArray3};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
@@ -25,6 +26,14 @@ pub fn pyoidn_folders(py: Python<'_>) -> Vec<PathBuf> {
         Ok(first.map(|p| pyoidn_library_folder(&p)))
     };
     found().ok().flatten().into_iter().collect()
+}
+
+/// Tells `request` where this Python's `pyoidn` keeps the library, when it
+/// will denoise (asked, or the scene's `[render] denoise`).
+pub fn add_library_hints(py: Python<'_>, request: &mut Request, defaults: &Defaults) {
+    if request.denoise.unwrap_or(defaults.denoise) {
+        request.denoise_library_hints = pyoidn_folders(py);
+    }
 }
 
 /// `color`, a float32 `(H, W, 3)` array of linear radiance, denoised by Open

@@ -48,9 +48,7 @@ pub fn render_array<'py>(
     settings: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<RenderArrays<'py>> {
     let mut request = crate::settings::request(settings, "render_array", false)?;
-    if request.denoise.unwrap_or(scene.settings().denoise) {
-        request.denoise_library_hints = crate::denoise::pyoidn_folders(py);
-    }
+    crate::denoise::add_library_hints(py, &mut request, scene.settings());
     let mut job = request.resolve(scene.settings(), Naming::Keywords).map_err(|e| PyValueError::new_err(e.0))?;
     job.add_scene_layers(scene.settings(), true);
     let core = scene.core_for(py, &job)?;
@@ -158,8 +156,9 @@ pub fn render_array<'py>(
 /// render makes).
 #[pyfunction]
 #[pyo3(signature = (scene, **settings))]
-pub fn resolve_settings(scene: &Scene, settings: Option<&Bound<'_, PyDict>>) -> PyResult<(u32, u32, u32, &'static str, u64)> {
-    let request = crate::settings::request(settings, "resolve_settings", false)?;
+pub fn resolve_settings(py: Python<'_>, scene: &Scene, settings: Option<&Bound<'_, PyDict>>) -> PyResult<(u32, u32, u32, &'static str, u64)> {
+    let mut request = crate::settings::request(settings, "resolve_settings", false)?;
+    crate::denoise::add_library_hints(py, &mut request, scene.settings());
     let o = request.resolve(scene.settings(), Naming::Keywords).map_err(|e| PyValueError::new_err(e.0))?.options;
     Ok((o.width, o.height, o.spp, o.integrator.name, o.seed))
 }
