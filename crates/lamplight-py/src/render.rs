@@ -156,7 +156,11 @@ pub fn render_array<'py>(
 /// render makes).
 #[pyfunction]
 #[pyo3(signature = (scene, **settings))]
-pub fn resolve_settings(py: Python<'_>, scene: &Scene, settings: Option<&Bound<'_, PyDict>>) -> PyResult<(u32, u32, u32, &'static str, u64)> {
+pub fn resolve_settings(
+    py: Python<'_>,
+    scene: &Scene,
+    settings: Option<&Bound<'_, PyDict>>,
+) -> PyResult<(u32, u32, u32, &'static str, u64)> {
     let mut request = crate::settings::request(settings, "resolve_settings", false)?;
     crate::denoise::add_library_hints(py, &mut request, scene.settings());
     let o = request.resolve(scene.settings(), Naming::Keywords).map_err(|e| PyValueError::new_err(e.0))?.options;

@@ -11,7 +11,7 @@
 //! have. Opening the library (`dlopen`, through `libloading`) only when a
 //! render asks for `--denoise` keeps `cargo install` free of it and lets one
 //! binary denoise wherever the library is present; only OIDN's stable C API is
-//! used ([`oidn`]). Without the library, `--denoise` stops before rendering
+//! used (`denoise/oidn.rs`). Without the library, `--denoise` stops before rendering
 //! with one line saying how to get it ([`Denoiser::load`]).
 //!
 //! **Where the library is looked for**, in order:
@@ -37,13 +37,13 @@ pub use exr_input::{read_denoise_input, DenoiseInput};
 /// The variable naming the library or its folder.
 pub const ENV_VAR: &str = "LAMPLIGHT_OIDN";
 
-/// The library's file name: 2.x, the major version whose API [`oidn`] uses.
+/// The library's file name: 2.x, the major version whose API `denoise/oidn.rs` uses.
 #[cfg(target_os = "macos")]
 pub const LIBRARY: &str = "libOpenImageDenoise.2.dylib";
-/// The library's file name: 2.x, the major version whose API [`oidn`] uses.
+/// The library's file name: 2.x, the major version whose API `denoise/oidn.rs` uses.
 #[cfg(windows)]
 pub const LIBRARY: &str = "OpenImageDenoise.dll";
-/// The library's file name: 2.x, the major version whose API [`oidn`] uses.
+/// The library's file name: 2.x, the major version whose API `denoise/oidn.rs` uses.
 #[cfg(not(any(target_os = "macos", windows)))]
 pub const LIBRARY: &str = "libOpenImageDenoise.so.2";
 
