@@ -95,9 +95,9 @@ impl Denoiser {
                 .map(|oidn| Denoiser { oidn })
                 .map_err(|e| DenoiseError(format!("{ENV_VAR}={}: cannot load Open Image Denoise: {e}", Path::new(&value).display())));
         }
-        let mut folders: Vec<PathBuf> = hints.to_vec();
-        folders.extend(python_pyoidn_folders());
-        for folder in folders {
+        // The Pythons are asked (a process each) only when the hints fail.
+        let asked = std::iter::once(()).flat_map(|()| python_pyoidn_folders());
+        for folder in hints.iter().cloned().chain(asked) {
             let path = folder.join(LIBRARY);
             if path.is_file() {
                 if let Ok(oidn) = oidn::Oidn::load(&path) {
