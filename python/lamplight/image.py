@@ -19,8 +19,9 @@ class Image(np.ndarray):
     In Jupyter it displays itself as an sRGB PNG (clamped); :meth:`save` writes
     ``.png``/``.ppm`` (8-bit sRGB) or ``.exr`` (linear float, exact).
     ``stats`` holds the render's statistics when it came from a render, and
-    ``layers`` the extra layers it asked for (``exr_layers``): ``"variance"``
-    ``(H, W, 3)`` and ``"samples"`` ``(H, W)``, which :meth:`save` writes beside
+    ``layers`` the extra layers it asked for (``exr_layers``): ``"variance"``,
+    ``"albedo"``, ``"normal"`` and ``"noisy"`` ``(H, W, 3)`` and ``"samples"``
+    ``(H, W)``, which :meth:`save` writes beside
     the image into an ``.exr`` file. Slices and views keep both; the result of
     arithmetic (``image * 2``, ``a - b``) is new data and has neither.
     """

@@ -238,5 +238,65 @@ mod tests {
             assert_eq!(one, features(3), "{integrator}");
             assert!(one.albedo.pixels.iter().any(|p| p[0] > 0.0), "{integrator}: something is seen");
         }
+        // Adaptive renders: each pixel averages its own count of samples.
+        let adaptive = [
+            ("whitted", crate::Adaptive::Antialias(crate::Antialias::default()), 1),
+            ("path", crate::Adaptive::NoiseThreshold(crate::NoiseThreshold { threshold: 0.2, min_samples: 4 }), 32),
+        ];
+        for (integrator, adaptive, spp) in adaptive {
+            let options = RenderOptions {
+                width: 24,
+                height: 20,
+                spp,
+                adaptive: Some(adaptive),
+                integrator: integrator.parse().unwrap(),
+                ..Default::default()
+            };
+            let features = |threads: usize| {
+                let options = RenderOptions { threads, ..options.clone() };
+                let (film, _) = crate::render(&scene, &options, &RenderControl::default()).unwrap();
+                assert!(film.is_adaptive(), "{integrator}: pixels took different counts");
+                render_features(&scene, &options, &film).unwrap()
+            };
+            assert_eq!(features(1), features(2), "{integrator}, adaptive");
+        }
+    }
+
+    /// Records the camera ray an integrator traces (the first ray of a sample).
+    #[derive(Default)]
+    struct FirstRay(Option<Ray>);
+
+    impl crate::integrators::trace::WhittedTrace for FirstRay {
+        fn ray(&mut self, ray: &Ray, _weight: Rgb, depth: u32) {
+            if depth == 1 {
+                self.0.get_or_insert(*ray);
+            }
+        }
+    }
+
+    impl crate::integrators::trace::PathTrace for FirstRay {
+        fn segment(&mut self, depth: u32, ray: &Ray, _beta: Rgb) {
+            if depth == 1 {
+                self.0.get_or_insert(*ray);
+            }
+        }
+    }
+
+    #[test]
+    fn the_pass_follows_the_very_rays_the_integrators_trace() {
+        let scene = plane_scene(Rgb::splat(0.5));
+        for (integrator, filter) in [("whitted", crate::film::Filter::Box), ("path", "lanczos".parse::<crate::film::Filter>().unwrap())] {
+            for spp in [1, 5] {
+                let options =
+                    RenderOptions { width: 7, height: 5, spp, filter, integrator: integrator.parse().unwrap(), ..Default::default() };
+                let built = integrator_for(&scene, &options).unwrap();
+                let view = view_of(&scene, scene.settings.camera.as_ref(), &options);
+                for (x, y, index) in [(0, 0, 0), (3, 2, spp - 1), (6, 4, spp / 2)] {
+                    let mut first = FirstRay::default();
+                    built.sample_traced(&view, x, y, index, &mut Default::default(), &mut first);
+                    assert_eq!(Some(built.camera_sample(&view, x, y, index).ray), first.0, "{integrator}, {spp} spp, ({x}, {y}) #{index}");
+                }
+            }
+        }
     }
 }
