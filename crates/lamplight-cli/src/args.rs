@@ -46,24 +46,7 @@ pub enum Command {
     /// Look at a scene live in the browser: progressive rendering, mouse camera, live reload, pixel inspector.
     View(ViewArgs),
     /// Denoise an .exr image (lamplight's, Mitsuba's, Blender's) with Intel Open Image Denoise, guided by its albedo and normal layers when it has them.
-    Denoise(DenoiseArgs),
-}
-
-/// `lamplight denoise` arguments.
-#[derive(Debug, Args)]
-pub struct DenoiseArgs {
-    /// The noisy image: an .exr file of linear radiance (R, G, B), with `albedo` and `normal` layers if it has them.
-    #[arg(value_name = "IN.exr")]
-    pub input: PathBuf,
-    /// The denoised image; the extension picks the format (.exr keeps linear radiance).
-    #[arg(short, long, value_name = "FILE")]
-    pub output: PathBuf,
-    /// Worker threads of the denoiser; 0 uses all cores.
-    #[arg(long, value_name = "T", default_value_t = 0, allow_negative_numbers = true, value_parser = count::<usize>)]
-    pub threads: usize,
-    /// No summary line.
-    #[arg(short, long)]
-    pub quiet: bool,
+    Denoise(crate::denoise::DenoiseArgs),
 }
 
 /// `lamplight convert` flags.

@@ -1,12 +1,32 @@
 //! `lamplight denoise IN.exr -o OUT`: an image file through Open Image Denoise
 //! (`lamplight_scene::denoise`), with the feature layers the file holds.
 
+use std::path::PathBuf;
 use std::time::Instant;
+
+use clap::Args;
 
 use lamplight_scene::denoise::{read_denoise_input, Denoiser};
 use lamplight_scene::image_io;
 
-use crate::args::{DenoiseArgs, UsageError};
+use crate::args::{count, UsageError};
+
+/// `lamplight denoise` arguments.
+#[derive(Debug, Args)]
+pub struct DenoiseArgs {
+    /// The noisy image: an .exr file of linear radiance (R, G, B), with `albedo` and `normal` layers if it has them.
+    #[arg(value_name = "IN.exr")]
+    pub input: PathBuf,
+    /// The denoised image; the extension picks the format (.exr keeps linear radiance).
+    #[arg(short, long, value_name = "FILE")]
+    pub output: PathBuf,
+    /// Worker threads of the denoiser; 0 uses all cores.
+    #[arg(long, value_name = "T", default_value_t = 0, allow_negative_numbers = true, value_parser = count::<usize>)]
+    pub threads: usize,
+    /// No summary line.
+    #[arg(short, long)]
+    pub quiet: bool,
+}
 
 /// Reads the file (a bad one is told before the library is looked for), loads
 /// the denoiser, denoises and writes, and prints what guided the filter.
