@@ -53,6 +53,14 @@ fn denoise_without_the_library_stops_before_rendering_and_says_how_to_get_it() {
     );
     assert!(start.elapsed() < Duration::from_secs(10), "failed before rendering");
     assert!(!d.join("out.exr").exists());
+    // A scene file's `[render] denoise = true` asks the same, and is told the same.
+    let scene =
+        "[render]\nwidth = 2000\nheight = 2000\nspp = 4096\ndenoise = true\n[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\nvfov = 40\n";
+    std::fs::write(d.join("scene.toml"), scene).unwrap();
+    let out = lamplight(d, &["render", "scene.toml", "-o", "out.exr"], &without_oidn(bin.to_str().unwrap()));
+    assert!(String::from_utf8_lossy(&out.stderr)
+        .starts_with("lamplight: error: denoising needs Intel Open Image Denoise 2.x, which was not found"));
+    assert_eq!(out.status.code(), Some(2));
     // A variable naming something that is not the library says so, with the loader's reason.
     std::fs::write(d.join("notlib.so"), "not a library").unwrap();
     let out = lamplight(d, &big, &[("LAMPLIGHT_OIDN", Some("notlib.so"))]);
