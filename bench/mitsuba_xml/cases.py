@@ -256,6 +256,7 @@ def write_assets(d):
     _lights2.write_assets(d)
     _surfaces.write_assets(d)
     _sdf.write_assets(d)
+    _textures3.write_assets(d)
     with open(os.path.join(d, "included.xml"), "w") as f:
         f.write('<scene version="3.0.0">\n    <default name="inc_r" value="0.7"/>\n'
                 '    <bsdf type="diffuse" id="inc_red"><rgb name="reflectance" value="$inc_r, 0.2, 0.15"/></bsdf>\n</scene>\n')
@@ -286,3 +287,5 @@ CASES += _sensors3.CASES
 
 from mitsuba_xml import cases_sdf as _sdf  # noqa: E402  (the signed-distance grid shape)
 CASES += _sdf.CASES
+from mitsuba_xml import cases_textures3 as _textures3  # noqa: E402  (checkerboard phase, bitmap texels, mesh attributes)
+CASES += _textures3.CASES

@@ -26,6 +26,7 @@ mod mitsuba_bsdfs;
 mod mitsuba_principled;
 mod mitsuba_sdfgrid;
 mod mitsuba_sensors;
+mod mitsuba_textures;
 mod native;
 mod obj;
 mod path_convergence;

@@ -7,11 +7,17 @@
 //! `pdf = |x - y|^2 / (|cos(theta_y)| A)`, where `theta_y` is between the light's
 //! normal and the direction back to `x`. Shapes that only know their area as
 //! triangles (meshes, placed meshes) are sampled by a [`TriangleSampler`].
+//!
+//! A textured emission (a Mitsuba `area` emitter whose `radiance` is a
+//! texture) is evaluated at each sampled point, at the shape's surface
+//! coordinates there, so light sampling finds the light a BSDF-sampled ray
+//! would see there; the density stays uniform in area.
 
 use std::sync::Arc;
 
 use super::mesh::TriangleSampler;
 use super::{LiSample, Light, LightSample};
+use crate::materials::{ShadingPoint, Texture};
 use crate::math::{Rgb, Vec3};
 use crate::shapes::Shape;
 
@@ -24,6 +30,9 @@ pub struct AreaLight {
     pub shape: Arc<dyn Shape>,
     /// Emitted radiance on the outward side.
     pub radiance: Rgb,
+    /// The emission's texture, where it varies over the surface (then it, not
+    /// `radiance`, is what a sampled point emits).
+    pub texture: Option<Texture>,
     /// The inward side emits `radiance` too.
     pub two_sided: bool,
     /// The shape's orientation is reversed ([`crate::scene::Object::reversed`]):
@@ -66,6 +75,7 @@ impl AreaLight {
             object,
             shape,
             radiance,
+            texture: None,
             two_sided: false,
             reversed: false,
             area,
@@ -77,6 +87,11 @@ impl AreaLight {
     /// The same light emitting from both sides when `two_sided`.
     pub fn with_two_sided(self, two_sided: bool) -> AreaLight {
         AreaLight { two_sided, ..self }
+    }
+
+    /// The same light emitting `texture`'s value at each point where it is `Some`.
+    pub fn with_texture(self, texture: Option<Texture>) -> AreaLight {
+        AreaLight { texture, ..self }
     }
 
     /// The same light with its shape's orientation reversed when `reversed`.
@@ -91,9 +106,9 @@ impl AreaLight {
 
     /// A light point for receiver `x` from `u`.
     pub fn sample(&self, x: Vec3, u: (f64, f64)) -> Option<AreaSample> {
-        let (y, n) = match &self.triangles {
-            Some(t) => t.sample(u)?,
-            None => self.shape.sample_area(u)?,
+        let (y, n, face) = match &self.triangles {
+            Some(t) => t.sample(u).map(|(y, n, k)| (y, n, Some(k)))?,
+            None => self.shape.sample_area(u).map(|(y, n)| (y, n, None))?,
         };
         let to = y - x;
         let d2 = to.length_squared();
@@ -109,7 +124,11 @@ impl AreaLight {
             return None; // the back side does not emit
         }
         let pdf = d2 / (cos_y * self.area);
-        pdf.is_finite().then_some(AreaSample { wi, distance, radiance: self.radiance, pdf })
+        let radiance = match &self.texture {
+            None => self.radiance,
+            Some(t) => t.evaluate(&ShadingPoint::with_coords(y, &self.shape.surface_coords(y, n, face))),
+        };
+        pdf.is_finite().then_some(AreaSample { wi, distance, radiance, pdf })
     }
 
     /// Solid-angle density with which [`AreaLight::sample`] returns the point at

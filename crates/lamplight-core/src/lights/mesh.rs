@@ -59,8 +59,9 @@ impl TriangleSampler {
         self.triangles.is_empty()
     }
 
-    /// A point uniform in area over all triangles, with its unit outward normal.
-    pub fn sample(&self, u: (f64, f64)) -> Option<(Vec3, Vec3)> {
+    /// A point uniform in area over all triangles, with its unit outward normal
+    /// and the index of its triangle (the shape's face, for its surface coordinates).
+    pub fn sample(&self, u: (f64, f64)) -> Option<(Vec3, Vec3, u32)> {
         let (x, _, k) = self.cdf.sample(u.0);
         // Reuse the position inside the picked cell as a fresh uniform number.
         let n = self.triangles.len() as f64;
@@ -69,7 +70,7 @@ impl TriangleSampler {
         let s = u0.sqrt();
         let (b0, b1) = (1.0 - s, u.1 * s);
         let y = p0 * b0 + p1 * b1 + p2 * (1.0 - b0 - b1);
-        y.is_finite().then_some((y, self.normals[k]))
+        y.is_finite().then_some((y, self.normals[k], k as u32))
     }
 }
 
@@ -90,7 +91,7 @@ mod tests {
         let (mut in_big, mut centroid_big) = (0, Vec3::ZERO);
         for i in 0..n {
             for j in 0..n {
-                let (p, normal) = s.sample(((i as f64 + 0.5) / n as f64, (j as f64 + 0.5) / n as f64)).unwrap();
+                let (p, normal, _) = s.sample(((i as f64 + 0.5) / n as f64, (j as f64 + 0.5) / n as f64)).unwrap();
                 assert_eq!(normal, Vec3::Z);
                 if p.z > 0.5 {
                     in_big += 1;

@@ -374,6 +374,16 @@ impl Material {
         self.emission != Rgb::ZERO && (front_face || self.two_sided)
     }
 
+    /// The texture of `emission`, where a texture drives it.
+    pub fn emission_texture(&self) -> Option<&Texture> {
+        self.textures.as_deref()?.iter().find(|(s, _)| *s == Slot::Emission).map(|(_, t)| t)
+    }
+
+    /// Whether the material emits anywhere: a non-zero `emission` or a texture for it.
+    pub fn emits(&self) -> bool {
+        self.emission != Rgb::ZERO || self.emission_texture().is_some()
+    }
+
     /// Whether the surface scatters light (reflects or transmits) at a hit
     /// on its front face (`front_face`) or its back: always, unless
     /// [`Material::one_sided`] and the back.

@@ -179,7 +179,7 @@ impl Scene {
         // Each pass moves past one emitting surface; a bound keeps pathological stacks finite.
         for _ in 0..64 {
             let hit = self.first_intersect(&ray, f64::INFINITY)?;
-            if !self.settings.hide_emitters || self.materials[hit.material].emission == Rgb::ZERO {
+            if !self.settings.hide_emitters || !self.materials[hit.material].emits() {
                 return Some(hit);
             }
             ray = Ray { origin: crate::ray::offset_origin(hit.point, hit.geometric_normal, ray.dir, hit.t, hit.error), dir: ray.dir };

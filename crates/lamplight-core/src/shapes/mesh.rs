@@ -59,6 +59,10 @@ pub struct VertexAttributes {
     pub uvs1: Option<Vec<[f64; 2]>>,
     /// Linear RGB colours (glTF `COLOR_0`, PLY `red green blue`).
     pub colors: Option<Vec<Rgb>>,
+    /// Colours constant over each face, one per triangle (a PLY face attribute
+    /// that a Mitsuba `mesh_attribute` reads): where present, the mesh's colour
+    /// is its face's, not the interpolated `colors`.
+    pub face_colors: Option<Vec<Rgb>>,
     /// Tangents `(x, y, z, w)`, `w = +-1` the bitangent's sign (glTF `TANGENT`, or MikkTSpace).
     pub tangents: Option<Vec<[f64; 4]>>,
 }
@@ -147,6 +151,14 @@ impl TriangleMesh {
         check("texture coordinates", &attributes.uvs, n, |uv| uv.iter().all(|x| x.is_finite()))?;
         check("second texture coordinates", &attributes.uvs1, n, |uv| uv.iter().all(|x| x.is_finite()))?;
         check("colors", &attributes.colors, n, |c| c.is_finite())?;
+        if let Some(faces) = &attributes.face_colors {
+            if faces.len() != self.indices.len() {
+                return Err(Error::invalid("face colors", format!("{} values for {} faces", faces.len(), self.indices.len())));
+            }
+            if let Some(i) = faces.iter().position(|c| !c.is_finite()) {
+                return Err(Error::invalid("face colors", format!("the value of face {i} is not finite")));
+            }
+        }
         check("tangents", &attributes.tangents, n, |t| t.iter().all(|x| x.is_finite()))?;
         self.attributes = attributes;
         Ok(self)
@@ -279,7 +291,10 @@ impl Shape for TriangleMesh {
             super::surface::SecondUv { uv: c.uv, dpdu: c.dpdu, dpdv: c.dpdv }
         });
         let b = barycentric(p, v[0], v[1], v[2]);
-        coords.color = a.colors.as_ref().map(|c| c[idx[0]] * b[0] + c[idx[1]] * b[1] + c[idx[2]] * b[2]);
+        coords.color = match &a.face_colors {
+            Some(f) => Some(f[face as usize]),
+            None => a.colors.as_ref().map(|c| c[idx[0]] * b[0] + c[idx[1]] * b[1] + c[idx[2]] * b[2]),
+        };
         coords.tangent = a.tangents.as_ref().and_then(|t| {
             let [t0, t1, t2] = idx.map(|i| t[i]);
             let xyz = |t: [f64; 4]| Vec3::new(t[0], t[1], t[2]);

@@ -23,6 +23,7 @@ pub type ShapeBuild = fn(&mut Params<'_>, &Mat4) -> ParamResult<Vec<Arc<dyn Shap
 pub type ShapeKind = Kind<ShapeBuild>;
 
 pub mod cuboid;
+pub mod disk_uv;
 mod implicit;
 mod instance;
 mod mesh;

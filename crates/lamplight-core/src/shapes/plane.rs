@@ -11,11 +11,11 @@
 //! |---|---|---|
 //! | plane | `((p - point).t, (p - point).b)`, scene units, with `(t, b)` the frame [`crate::math::orthonormal_basis`] builds around the normal | `t`, `b` |
 //! | rectangle | `p = corner + u edge_u + v edge_v`, `[0, 1]` over the face | `edge_u`, `edge_v` |
-//! | disk | pbrt-v4's: `u = phi / (2 pi)` with `phi` measured from `t` towards `b` (the normal's frame), `v = 1 - r / R` (1 at the centre, 0 on the rim) | `2 pi (-y t + x b)`, `-R (p - c) / r` |
+//! | disk | pbrt-v4's: `u = phi / (2 pi)` with `phi` measured from `t` towards `b` (the normal's frame), `v = 1 - r / R` (1 at the centre, 0 on the rim); `uv_layout = "radial"`: Mitsuba's ([`super::disk_uv`]) | `2 pi (-y t + x b)`, `-R (p - c) / r` |
 
 use std::sync::Arc;
 
-use super::surface::azimuth;
+use super::disk_uv::DiskUv;
 use super::{placed, Shape, ShapeKind, SurfaceCoords, SurfaceHit};
 use crate::accel::Aabb;
 use crate::math::{similarity_scale, Mat4, Vec3};
@@ -59,13 +59,22 @@ pub const DISK_KIND: ShapeKind = Kind {
         Param::new("center", T::Point, "", "", "centre"),
         Param::new("normal", T::Vector, "", "", "outward normal"),
         Param::new("radius", T::Number, "", "scene units", "radius"),
+        Param::new(
+            "uv_layout",
+            T::String,
+            "\"polar\"",
+            "",
+            "`\"polar\"`: pbrt's `(phi / 2 pi, 1 - r / R)`; `\"radial\"`: Mitsuba's `(r / R, 1 - phi / 2 pi)` in the disk's own frame",
+        ),
     ],
     build: |p, m| {
         let (c, n, r) = (p.required_vec3("center")?, p.required_vec3("normal")?, p.required_number("radius")?);
+        let radial = p.choice("uv_layout", &["polar", "radial"])? == "radial";
+        let local = |d: Disk| if radial { d.with_radial_uv() } else { d };
         let shape: Result<Arc<dyn Shape>, Error> = match (*m == Mat4::IDENTITY, similarity_scale(m)) {
-            (true, _) => Disk::new(c, n, r).map(|d| Arc::new(d) as Arc<dyn Shape>),
-            (false, Some(s)) => Disk::new(m.transform_point3(c), m.transform_vector3(n), r * s).map(|d| Arc::new(d) as Arc<dyn Shape>),
-            (false, None) => Disk::new(c, n, r).and_then(|d| placed(Arc::new(d), m)),
+            (true, _) => Disk::new(c, n, r).map(|d| Arc::new(local(d)) as Arc<dyn Shape>),
+            (false, Some(s)) => Disk::new(c, n, r).and_then(|d| local(d).similar(m, s)).map(|d| Arc::new(d) as Arc<dyn Shape>),
+            (false, None) => Disk::new(c, n, r).and_then(|d| placed(Arc::new(local(d)), m)),
         };
         Ok(vec![shape.map_err(|e| p.core_error(e))?])
     },
@@ -248,6 +257,8 @@ pub struct Disk {
     pub normal: Vec3,
     /// Radius.
     pub radius: f64,
+    /// How its `(u, v)` are laid out.
+    pub uv: DiskUv,
 }
 
 impl Disk {
@@ -259,7 +270,23 @@ impl Disk {
         if !(radius > 0.0 && radius.is_finite()) {
             return Err(Error::invalid("radius", format!("must be a positive number, got {radius}")));
         }
-        Ok(Disk { center, normal: unit_normal(normal)?, radius })
+        Ok(Disk { center, normal: unit_normal(normal)?, radius, uv: DiskUv::Polar })
+    }
+
+    /// This disk with Mitsuba's radial `(u, v)` in the frame around its normal.
+    pub fn with_radial_uv(self) -> Disk {
+        let (x, y) = crate::math::orthonormal_basis(self.normal);
+        Disk { uv: DiskUv::Radial { x, y }, ..self }
+    }
+
+    /// This disk placed by the similarity `m` of scale `s` (its radial frame turns with it).
+    pub fn similar(self, m: &Mat4, s: f64) -> Result<Disk, Error> {
+        let placed = Disk::new(m.transform_point3(self.center), m.transform_vector3(self.normal), self.radius * s)?;
+        let uv = match self.uv {
+            DiskUv::Polar => DiskUv::Polar,
+            DiskUv::Radial { x, y } => DiskUv::Radial { x: m.transform_vector3(x) / s, y: m.transform_vector3(y) / s },
+        };
+        Ok(Disk { uv, ..placed })
     }
 }
 
@@ -295,14 +322,7 @@ impl Shape for Disk {
 
     fn surface_coords(&self, p: Vec3, n: Vec3, _primitive: Option<u32>) -> SurfaceCoords {
         let (t, b) = crate::math::orthonormal_basis(self.normal);
-        let d = p - self.center;
-        let (x, y) = (d.dot(t), d.dot(b));
-        let r = x.hypot(y);
-        if !(r > 0.0) {
-            return SurfaceCoords { uv: [0.0, 1.0], ..SurfaceCoords::unparametrized(n) };
-        }
-        let uv = [azimuth(x, y) / std::f64::consts::TAU, (1.0 - r / self.radius).max(0.0)];
-        SurfaceCoords::new(uv, (b * x - t * y) * std::f64::consts::TAU, (t * x + b * y) * (-self.radius / r))
+        self.uv.coords(p - self.center, self.radius, t, b, n)
     }
 }
 

@@ -284,7 +284,7 @@ impl Reader<'_> {
             };
             let triangles = indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect();
             let attributes_have_colors = attributes.colors.is_some();
-            let mut data = MeshData { name, positions, indices: triangles, normals, attributes };
+            let mut data = MeshData { name, positions, indices: triangles, normals, attributes, named: Vec::new() };
             let material = match p.material().index() {
                 Some(m) => {
                     let key = (m, attributes_have_colors);

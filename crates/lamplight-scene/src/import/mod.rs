@@ -23,7 +23,10 @@ mod gltf_material;
 mod mtl;
 mod obj;
 mod ply;
+mod ply_attributes;
 mod tangents;
+
+pub use ply_attributes::NamedAttribute;
 
 /// Triangle mesh data as read from a file (indices in the file's face order,
 /// polygons triangulated as fans).
@@ -39,6 +42,9 @@ pub struct MeshData {
     pub normals: Option<Vec<Vec3>>,
     /// Texture coordinates, colours and tangents, each if the file has them.
     pub attributes: VertexAttributes,
+    /// A PLY file's other properties as Mitsuba names them (`vertex_color`,
+    /// `face_weight`, ...), for a mesh's `color` ([`ply_attributes`]).
+    pub named: Vec<NamedAttribute>,
 }
 
 /// One mesh placed in the world with a material.

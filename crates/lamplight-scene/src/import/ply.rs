@@ -8,6 +8,9 @@
 //! `cde`, ...: every second triangle swaps its first two corners so that all keep
 //! the strip's winding; degenerate triangles are kept so counts match the file).
 //!
+//! Other scalar properties of vertices and faces are kept as the named
+//! attributes a Mitsuba `mesh_attribute` reads ([`super::ply_attributes`]).
+//!
 //! Face `i` of a file whose faces are all triangles is triangle `i` of the mesh,
 //! and strips unroll in file order. Other elements and properties are read past
 //! and reported as warnings. The `vertex` element must come before the faces
@@ -490,16 +493,26 @@ fn read_vertices(path: &Path, reader: &mut Reader, e: &Element, mesh: &mut MeshD
             slot[i.unwrap_or_default()] = Some(8 + k);
         }
     }
-    let ignored: Vec<&str> = e.props.iter().zip(&slot).filter(|(_, s)| s.is_none()).map(|(p, _)| p.name.as_str()).collect();
+    // The rest, Mitsuba's attributes where they group (their values at slot 11 + property index).
+    let rest: Vec<(usize, &str)> =
+        e.props.iter().enumerate().filter(|(i, p)| slot[*i].is_none() && p.count.is_none()).map(|(i, p)| (i, p.name.as_str())).collect();
+    let (groups, mut ignored) = super::ply_attributes::group("vertex", &rest);
+    for g in &groups {
+        for &i in &g.props {
+            slot[i] = Some(11 + i);
+        }
+    }
+    ignored.extend(e.props.iter().filter(|p| p.count.is_some()).map(|p| p.name.clone()));
     if !ignored.is_empty() {
         warnings.push(format!("PLY vertex properties ignored: {}", ignored.join(", ")));
     }
+    let mut named: Vec<Vec<lamplight_core::math::Rgb>> = vec![Vec::new(); groups.len()];
     mesh.positions.reserve_exact(e.count as usize);
     let mut normals = if has_normals { Vec::with_capacity(e.count as usize) } else { Vec::new() };
     let mut uvs = Vec::new();
     let mut colors = Vec::new();
+    let mut xyz = vec![0.0; 11 + e.props.len()];
     for v in 0..e.count {
-        let mut xyz = [0.0; 11];
         for (p, s) in e.props.iter().zip(&slot) {
             match s {
                 Some(k) => {
@@ -508,7 +521,7 @@ fn read_vertices(path: &Path, reader: &mut Reader, e: &Element, mesh: &mut MeshD
                         return Err(reader.error(path, format!("vertex {v}: `{}` is {value}, expected a finite number", p.name)));
                     }
                     xyz[*k] = match p.item.int_range() {
-                        Some((_, max)) if *k >= 8 => lamplight_core::film::srgb_decode(value / max as f64),
+                        Some((_, max)) if (8..11).contains(k) => lamplight_core::film::srgb_decode(value / max as f64),
                         _ => value,
                     };
                 }
@@ -525,7 +538,11 @@ fn read_vertices(path: &Path, reader: &mut Reader, e: &Element, mesh: &mut MeshD
         if has_colors {
             colors.push(Vec3::new(xyz[8], xyz[9], xyz[10]));
         }
+        for (g, values) in groups.iter().zip(&mut named) {
+            values.push(g.value(&xyz[11..]));
+        }
     }
+    mesh.named.extend(groups.into_iter().zip(named).map(|(g, values)| super::NamedAttribute { name: g.name, values }));
     mesh.normals = has_normals.then_some(normals);
     mesh.attributes.uvs = uv_slots.is_some().then_some(uvs);
     mesh.attributes.colors = has_colors.then_some(colors);
@@ -544,17 +561,32 @@ fn read_faces(
     let Some(list) = e.props.iter().position(|p| (p.name == "vertex_indices" || p.name == "vertex_index") && p.count.is_some()) else {
         return Err(LoadError::at(path, e.line, 1, format!("element `{}` has no list property `vertex_indices`", e.name)));
     };
-    let others: Vec<&str> = e.props.iter().enumerate().filter(|(i, _)| *i != list).map(|(_, p)| p.name.as_str()).collect();
+    let rest: Vec<(usize, &str)> =
+        e.props.iter().enumerate().filter(|(i, p)| *i != list && p.count.is_none()).map(|(i, p)| (i, p.name.as_str())).collect();
+    let (groups, mut others) = super::ply_attributes::group("face", &rest);
+    others.extend(e.props.iter().enumerate().filter(|(i, p)| *i != list && p.count.is_some()).map(|(_, p)| p.name.clone()));
     if !others.is_empty() {
         warnings.push(format!("PLY {} properties ignored: {}", e.name, others.join(", ")));
     }
+    let kept: Vec<bool> = (0..e.props.len()).map(|i| groups.iter().any(|g| g.props.contains(&i))).collect();
+    let mut values = vec![0.0; e.props.len()];
+    let mut named: Vec<Vec<lamplight_core::math::Rgb>> = vec![Vec::new(); groups.len()];
     if !strips {
         mesh.indices.reserve(e.count as usize);
     }
     let mut short_faces = 0u64;
     let mut corners: Vec<u32> = Vec::new();
     for f in 0..e.count {
+        let before = mesh.indices.len();
         for (pi, p) in e.props.iter().enumerate() {
+            if kept[pi] {
+                let value = reader.value(path, p.item, &|| format!("property `{}` of {} {f}", p.name, e.name))?;
+                if !value.is_finite() {
+                    return Err(reader.error(path, format!("{} {f}: `{}` is {value}, expected a finite number", e.name, p.name)));
+                }
+                values[pi] = value;
+                continue;
+            }
             let Some(count) = p.count.filter(|_| pi == list) else {
                 skip_property(reader, path, p, (&e.name, f))?;
                 continue;
@@ -585,7 +617,12 @@ fn read_faces(
                 }
             }
         }
+        // After the whole face: its attributes may follow its index list.
+        for (g, list) in groups.iter().zip(&mut named) {
+            list.extend(std::iter::repeat_n(g.value(&values), mesh.indices.len() - before));
+        }
     }
+    mesh.named.extend(groups.into_iter().zip(named).map(|(g, values)| super::NamedAttribute { name: g.name, values }));
     if short_faces > 0 {
         warnings.push(format!("PLY: {short_faces} faces with fewer than 3 vertices skipped"));
     }

@@ -41,7 +41,7 @@ struct Ctx<'a> {
     materials: BTreeMap<String, usize>,
     default_material: Option<usize>,
     assets: HashMap<String, Asset>,
-    files: HashMap<(PathBuf, Shading), Asset>,
+    files: HashMap<(PathBuf, Shading, Option<String>), Asset>,
     names: HashMap<String, Vec<usize>>,
     lights: Vec<(&'a Node, Mat4)>,
     stack: Vec<String>,
@@ -247,12 +247,13 @@ impl<'a> Ctx<'a> {
         let asset = match (p.has("file"), p.has("positions")) {
             (true, false) if !p.has("indices") && !p.has("normals") => {
                 let shading = Shading::read(&mut p).map_err(|e| Err(self.fail(e)))?;
+                let color = p.string("color").map_err(|e| Err(self.fail(e)))?.map(str::to_string);
                 let file = p.required_string("file").map_err(|e| Err(self.fail(e)))?;
                 // Problems with the file as a whole are reported at the `file` key;
                 // those at a place inside the mesh file, at that place.
                 let file_loc = desc.value.get("file").map(|e| e.item.loc.clone()).unwrap_or_default();
                 let at_file = |m: String| self.source.error(&file_loc, format!("mesh \"{name}\": {m}"));
-                self.file_asset(file, shading).map_err(|e| match e {
+                self.file_asset(file, shading, color).map_err(|e| match e {
                     Ok(m) => Err(at_file(m)),
                     Err(load) if load.location == Location::File => Err(at_file(load.to_string())),
                     Err(load) => Err(load),
@@ -266,7 +267,7 @@ impl<'a> Ctx<'a> {
         Ok(asset)
     }
 
-    fn file_asset(&mut self, file: &str, shading: Shading) -> Result<Asset, Result<String, LoadError>> {
+    fn file_asset(&mut self, file: &str, shading: Shading, color: Option<String>) -> Result<Asset, Result<String, LoadError>> {
         if file.is_empty() {
             return Err(Ok("file: the path is empty, expected a mesh file".to_string()));
         }
@@ -280,7 +281,7 @@ impl<'a> Ctx<'a> {
             // A device or a pipe (/dev/zero) could be read forever.
             return Err(Ok(format!("file \"{file}\" is not a regular file")));
         }
-        let key = (path.canonicalize().unwrap_or(path.clone()), shading);
+        let key = (path.canonicalize().unwrap_or(path.clone()), shading, color.clone());
         if let Some(asset) = self.files.get(&key) {
             return Ok(asset.clone());
         }
@@ -300,8 +301,12 @@ impl<'a> Ctx<'a> {
                 Some(mesh) => mesh.clone(),
                 None => {
                     let normals = shading.normals(&data.positions, &data.indices, data.normals.clone());
+                    let attributes = match &color {
+                        Some(name) => data.with_color_attribute(name).map_err(|m| Ok(format!("file \"{file}\" {m}")))?,
+                        None => data.attributes.clone(),
+                    };
                     let mesh = TriangleMesh::new(data.positions.clone(), data.indices.clone(), normals)
-                        .and_then(|m| m.with_attributes(data.attributes.clone()))
+                        .and_then(|m| m.with_attributes(attributes))
                         .map_err(|e| Err(LoadError { path: path.clone(), location: Location::File, message: e.to_string() }))?;
                     meshes.entry(placed.mesh).or_insert(Arc::new(mesh)).clone()
                 }
@@ -338,6 +343,13 @@ pub const MESH_PARAMS: &[lamplight_core::params::Param] = {
             "\"file\"",
             "",
             "`\"file\"`: the file's normals, flat where it has none; `\"smooth\"`: the file's, else angle-weighted vertex normals (Mitsuba's default, Blender's Shade Smooth); `\"flat\"`: face normals, the file's ignored (Mitsuba's face_normals)",
+        ),
+        Param::new(
+            "color",
+            T::String,
+            "the file's colours",
+            "",
+            "the PLY attribute that is the mesh's colour (its `vertex_color` texture), as Mitsuba names it: `\"vertex_NAME\"` interpolated, `\"face_NAME\"` constant per face (a one-channel attribute is a grey)",
         ),
     ]
 };

@@ -258,3 +258,26 @@ fn attributes_are_interpolated_at_the_hit() {
     let err = bad.with_attributes(VertexAttributes { uvs: Some(vec![[0.0, 0.0]]), ..Default::default() }).unwrap_err();
     assert_eq!(err.to_string(), "invalid texture coordinates: 1 values for 3 vertices");
 }
+
+#[test]
+fn face_colours_are_constant_over_each_face_and_win_over_vertex_colours() {
+    // The quad of the test above, its two triangles coloured 0.25 and 0.75 grey.
+    let positions = vec![Vec3::ZERO, Vec3::new(2.0, 0.0, 0.0), Vec3::new(2.0, 1.0, 0.0), Vec3::new(0.0, 1.0, 0.0)];
+    let attributes = VertexAttributes {
+        colors: Some(vec![Rgb::ONE; 4]),
+        face_colors: Some(vec![Rgb::splat(0.25), Rgb::splat(0.75)]),
+        ..Default::default()
+    };
+    let mesh = TriangleMesh::new(positions, vec![[0, 1, 2], [0, 2, 3]], None).unwrap().with_attributes(attributes).unwrap();
+    // Below the diagonal (face 0) and above it (face 1), near and far from the corners.
+    for (x, y, grey) in [(1.9, 0.05, 0.25), (1.0, 0.4, 0.25), (0.1, 0.9, 0.75), (0.9, 0.6, 0.75)] {
+        let hit = mesh.intersect(&Ray::new(Vec3::new(x, y, 1.0), -Vec3::Z), 0.0, f64::INFINITY).unwrap();
+        let c = mesh.surface_coords(Vec3::new(x, y, 0.0), hit.normal, hit.primitive);
+        assert_eq!(c.color, Some(Rgb::splat(grey)), "({x}, {y})");
+    }
+    let one = TriangleMesh::new(vec![Vec3::ZERO, Vec3::X, Vec3::Y], vec![[0, 1, 2]], None).unwrap();
+    let err = one.clone().with_attributes(VertexAttributes { face_colors: Some(vec![Rgb::ONE; 2]), ..Default::default() }).unwrap_err();
+    assert_eq!(err.to_string(), "invalid face colors: 2 values for 1 faces");
+    let nan = VertexAttributes { face_colors: Some(vec![Rgb::splat(f64::NAN)]), ..Default::default() };
+    assert!(one.with_attributes(nan).unwrap_err().to_string().contains("face 0"));
+}

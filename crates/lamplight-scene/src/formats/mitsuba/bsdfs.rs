@@ -74,6 +74,7 @@ pub fn material_name<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<String, ParamE
             return Ok(name.clone());
         }
     }
+    let reads = ctx.attribute_reads.len();
     let entries = material(ctx, el)?;
     let entries = super::sided::mark(ctx, el, entries)?;
     let name = match el.get("id") {
@@ -84,6 +85,8 @@ pub fn material_name<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<String, ParamE
         ctx.material_ids.insert(id.to_string(), name.clone());
     }
     ctx.materials.push(entry(&name, table(entries, el.loc.clone())));
+    let used = ctx.attribute_reads[reads..].to_vec();
+    ctx.material_attributes.insert(name.clone(), used);
     Ok(name)
 }
 

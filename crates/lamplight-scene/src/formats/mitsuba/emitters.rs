@@ -10,7 +10,7 @@
 //! | `point` `intensity` (W/sr), `position` or `to_world` | `point_light` `intensity / pi` |
 //! | `spot` `intensity`, `cutoff_angle` (20), `beam_width` (3/4 of the cutoff), `to_world` (shines along `+z`) | `spot_light` `intensity / pi`, `outer_angle`, `inner_angle`, `profile = "angle"` (linear in the angle, as Mitsuba's) |
 //! | `directional` `irradiance`, `direction` or `to_world` | `directional_light` `radiance = irradiance / pi` |
-//! | `area` `radiance` (inside a shape) | the shape's material's `emission` |
+//! | `area` `radiance` (inside a shape; a colour or a texture) | the shape's material's `emission` (a texture is found by BSDF sampling only: [`area_radiance`]) |
 //! | `constant` `radiance` | `background` |
 //! | `envmap` `filename`, `scale`, `to_world` (a turn about `+y`) | `environment` `file`, `strength`, `rotate` (Mitsuba's `u` is lamplight's plus one half: a turn of 180 degrees), `filter = "bilinear"` (Mitsuba's lookup) |
 //!
@@ -197,15 +197,31 @@ fn projector_fov(p: &mut Plugin<'_>) -> Result<(f64, &'static str, Loc), ParamEr
 }
 
 /// The emitted radiance of an `area` emitter nested in a shape.
-pub fn area_radiance(ctx: &mut Ctx<'_>, el: &El) -> Result<(Item, Loc), ParamError> {
+pub fn area_radiance<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<(Item, Loc), ParamError> {
     let mut p = Plugin::new(el)?;
     if p.kind != "area" {
         return Err(err(&el.loc, format!("{}: inside a shape only \"area\" emitters are supported", p.label)));
     }
-    let (c, loc) = radiant(&mut p, "radiance", 1.0)?;
+    // A texture is the material's textured `emission`: seen where rays hit the
+    // surface (its value at the hit's uv), but not sampled as a light (lamplight's
+    // area lights have one radiance), so only BSDF sampling finds it: the same
+    // expected image as Mitsuba's, with more noise.
+    let radiance = match p.object("radiance") {
+        Some(o) => {
+            let t = ctx.deref(o)?;
+            if t.tag != "texture" {
+                return Err(err(&o.loc, format!("{}: radiance: expected a colour or a <texture>, got <{}>", p.label, t.tag)));
+            }
+            (textures::texture(ctx, t)?, o.loc.clone())
+        }
+        None => {
+            let (c, loc) = radiant(&mut p, "radiance", 1.0)?;
+            (vec3(c, &loc), loc)
+        }
+    };
     let _ = p.number("sampling_weight")?;
     ctx.finish(p);
-    Ok((vec3(c, &loc), loc))
+    Ok(radiance)
 }
 
 /// The angle in degrees of `m` when it is a turn about `+y` (and a translation, ignored).

@@ -111,6 +111,11 @@ pub struct Ctx<'a> {
     pub render: Vec<Entry>,
     /// `[camera]`.
     pub camera: Option<Item>,
+    /// Every `mesh_attribute` read so far: its `name` and place.
+    pub attribute_reads: Vec<(String, Loc)>,
+    /// The attributes each material reads ([`bsdfs::material_name`]), for the
+    /// meshes it is placed on ([`shapes`]).
+    pub material_attributes: HashMap<String, Vec<(String, Loc)>>,
     counter: usize,
 }
 
@@ -132,6 +137,8 @@ impl<'a> Ctx<'a> {
             globals: Vec::new(),
             render: Vec::new(),
             camera: None,
+            attribute_reads: Vec::new(),
+            material_attributes: HashMap::new(),
             counter: 0,
         }
     }

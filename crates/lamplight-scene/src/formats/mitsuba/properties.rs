@@ -35,7 +35,8 @@ pub enum PropValue {
 }
 
 impl PropValue {
-    fn describe(&self) -> &'static str {
+    /// What the value is, for messages ("a float", ...).
+    pub fn describe(&self) -> &'static str {
         match self {
             PropValue::Float(_) => "a float",
             PropValue::Integer(_) => "an integer",

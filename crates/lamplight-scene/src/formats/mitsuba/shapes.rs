@@ -4,8 +4,8 @@
 //! | Mitsuba | lamplight |
 //! |---|---|
 //! | `sphere` `center` (0), `radius` (1) | `sphere` |
-//! | `rectangle` (`[-1, 1]^2` at `z = 0`, normal `+z`) | `rectangle` corner `[-1, -1, 0]`, edges `[2, 0, 0]`, `[0, 2, 0]` |
-//! | `disk` (radius 1 at `z = 0`, normal `+z`) | `disk` |
+//! | `rectangle` (`[-1, 1]^2` at `z = 0`, normal `+z`) | `rectangle` corner `[-1, 1, 0]`, edges `[2, 0, 0]`, `[0, -2, 0]`, `flip_normals` (see below) |
+//! | `disk` (radius 1 at `z = 0`, normal `+z`) | `disk` with `uv_layout = "radial"` |
 //! | `cube` (`[-1, 1]^3`) | `box` |
 //! | `cylinder` `p0` (0), `p1` (`[0, 0, 1]`), `radius` (1), open | `cylinder` |
 //! | `obj`, `ply` `filename` | a `[meshes]` entry and a `mesh` node |
@@ -14,6 +14,16 @@
 //! | `sdfgrid` `filename` (a `.vol` grid, [`super::volume`]), `normals` | `sdfgrid` with the grid's `resolution` and `values` |
 //! | a nested `<bsdf>` or `<ref>` | `material` (default: Mitsuba's diffuse 0.5, black on an emitter) |
 //! | a nested `<emitter type="area">` | the material with `emission` |
+//!
+//! Texture coordinates follow Mitsuba's with lamplight's `v = 1 - v_mitsuba`
+//! (as [`super::textures`] reads every Mitsuba `v`). Mitsuba's rectangle has
+//! `uv = ((x + 1) / 2, (y + 1) / 2)` (measured with 3.9.1: the point `(0.3, 0.5)`
+//! has `uv = (0.65, 0.75)`), so lamplight's `v` is `(1 - y) / 2`: the edges run
+//! `+x` and `-y` from the corner `(-1, 1)`. Their cross product, lamplight's
+//! outward normal, is then `-z`, so the node is flipped (a Mitsuba
+//! `flip_normals` unflips it) to keep Mitsuba's `+z` side the front. Mitsuba's
+//! disk has `uv = (r, phi / 2 pi)` with `phi` from its local `x` axis: the disk's
+//! `radial` layout.
 //!
 //! `flip_normals` is lamplight's `flip_normals` (one-sided BSDFs and area
 //! emitters act on the other side; ignored with a warning on an instance). A mesh's
@@ -36,6 +46,8 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El, out: &mut Vec<Item>) -> Result<()
     let mut p = Plugin::new(el)?;
     let loc = el.loc.clone();
     let mut node: Vec<(&str, Item)> = Vec::new();
+    // The `[meshes]` entry of a PLY shape, which a mesh_attribute names its colour in.
+    let mut ply_mesh = None;
     match p.kind.as_str() {
         "shapegroup" => return shapegroup(ctx, el, p),
         "instance" => {
@@ -56,15 +68,16 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El, out: &mut Vec<Item>) -> Result<()
         }
         "rectangle" => {
             node.push(("type", text("rectangle", &loc)));
-            node.push(("corner", vec3(Vec3::new(-1.0, -1.0, 0.0), &loc)));
+            node.push(("corner", vec3(Vec3::new(-1.0, 1.0, 0.0), &loc)));
             node.push(("edge_u", vec3(Vec3::new(2.0, 0.0, 0.0), &loc)));
-            node.push(("edge_v", vec3(Vec3::new(0.0, 2.0, 0.0), &loc)));
+            node.push(("edge_v", vec3(Vec3::new(0.0, -2.0, 0.0), &loc)));
         }
         "disk" => {
             node.push(("type", text("disk", &loc)));
             node.push(("center", vec3(Vec3::ZERO, &loc)));
             node.push(("normal", vec3(Vec3::Z, &loc)));
             node.push(("radius", num(1.0, &loc)));
+            node.push(("uv_layout", text("radial", &loc)));
         }
         "cube" => {
             node.push(("type", text("box", &loc)));
@@ -88,6 +101,7 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El, out: &mut Vec<Item>) -> Result<()
             ctx.meshes.push(entry(&name, table_of(vec![("file", text(&file, &floc)), ("shading", shading)], &floc)));
             node.push(("type", text("mesh", &loc)));
             node.push(("mesh", text(&name, &floc)));
+            ply_mesh = (p.kind == "ply").then_some(name);
         }
         "serialized" => {
             let (f, floc) = p.string("filename")?.ok_or_else(|| err(&loc, format!("{}: needs filename", p.label)))?;
@@ -111,17 +125,21 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El, out: &mut Vec<Item>) -> Result<()
             node.push(("matrix", matrix(&m, &mloc)));
         }
     }
-    if let Some((flip, bloc)) = p.boolean("flip_normals")? {
-        if p.kind == "instance" {
+    // The rectangle's edges give lamplight's normal -z (module documentation): flipped once more.
+    let turned = p.kind == "rectangle";
+    match p.boolean("flip_normals")? {
+        Some((_, bloc)) if p.kind == "instance" => {
             ctx.warn(&bloc, format!("{}: flip_normals on an instance is not supported, ignored", p.label));
-        } else if flip {
-            node.push(("flip_normals", Item { value: Value::Bool(true), loc: bloc }));
         }
+        Some((flip, bloc)) if flip != turned => node.push(("flip_normals", Item { value: Value::Bool(true), loc: bloc })),
+        None if turned => node.push(("flip_normals", Item { value: Value::Bool(true), loc: loc.clone() })),
+        _ => {}
     }
     // Read by the meshes above; the other shapes have their own normals.
     let _ = p.boolean("face_normals")?;
     if p.kind != "instance" {
         let material = material(ctx, &p)?;
+        mesh_colour(ctx, &p, &material, ply_mesh.as_deref())?;
         node.push(("material", text(&material, &loc)));
     }
     for o in p.objects.clone() {
@@ -174,6 +192,7 @@ fn material<'a>(ctx: &mut Ctx<'a>, p: &Plugin<'a>) -> Result<String, ParamError>
         None => bsdfs::default_material(ctx, emitter.is_some()),
     };
     let Some(e) = emitter else { return Ok(name) };
+    let reads = ctx.attribute_reads.len();
     let (radiance, rloc) = emitters::area_radiance(ctx, e)?;
     let mut material = ctx.materials.iter().find(|m| m.key == name).map(|m| m.item.clone()).expect("made above");
     if let Value::Table(t) = &mut material.value {
@@ -183,7 +202,36 @@ fn material<'a>(ctx: &mut Ctx<'a>, p: &Plugin<'a>) -> Result<String, ParamError>
     let emitting = ctx.fresh(&format!("{name}_emitting"));
     let _ = rloc;
     ctx.materials.push(entry(&emitting, material));
+    let mut used = ctx.material_attributes.get(&name).cloned().unwrap_or_default();
+    used.extend(ctx.attribute_reads[reads..].iter().cloned());
+    ctx.material_attributes.insert(emitting.clone(), used);
     Ok(emitting)
+}
+
+/// The mesh attribute the textures of `material` read, as the colour of the
+/// PLY mesh entry `ply_mesh` (`[meshes] color`). A mesh has one colour, so a
+/// shape whose textures read two attributes is an error, as are face
+/// attributes on a mesh that is not a PLY file (only PLY files have them).
+fn mesh_colour(ctx: &mut Ctx<'_>, p: &Plugin<'_>, material: &str, ply_mesh: Option<&str>) -> Result<(), ParamError> {
+    let used = ctx.material_attributes.get(material).cloned().unwrap_or_default();
+    let Some((first, first_loc)) = used.first() else { return Ok(()) };
+    if let Some((other, l)) = used.iter().find(|(n, _)| n != first) {
+        return Err(err(l, format!("{}: its textures read the mesh attributes \"{first}\" and \"{other}\"; lamplight reads one per shape", p.label)));
+    }
+    match ply_mesh {
+        Some(mesh) => {
+            let e = ctx.meshes.iter_mut().find(|m| m.key == mesh).expect("pushed above");
+            if let Value::Table(t) = &mut e.item.value {
+                t.entries.push(entry("color", text(first, first_loc)));
+            }
+        }
+        None if first.starts_with("face_") => {
+            return Err(err(first_loc, format!("{}: mesh_attribute \"{first}\": face attributes are read from PLY files only", p.label)));
+        }
+        // A vertex colour elsewhere is the shape's own (an OBJ's none: white).
+        None => {}
+    }
+    Ok(())
 }
 
 /// A mesh's `shading` from `face_normals`: `"flat"` when true; else Mitsuba

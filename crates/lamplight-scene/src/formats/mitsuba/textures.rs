@@ -5,7 +5,8 @@
 //! | `bitmap` `filename`, `filter_type` (`bilinear`, `nearest`), `wrap_mode` (`repeat`, `mirror`, `clamp`), `raw` | `image` `file`, `filter`, `wrap`, `color_space` (`raw = true`: `"linear"`) |
 //! | `to_uv` `(u, v) -> (s_u u + t_u, s_v v + t_v)` | `uv_scale = [s_u, s_v]`, `uv_offset = [t_u, 1 - s_v - t_v]` |
 //! | `checkerboard` `color0` (0.4), `color1` (0.2), `to_uv` | `uv_checker` `even = color0`, `odd = color1`, `uv_scale = [2 s_u, -2 s_v]`, `uv_offset = [2 t_u, 2 (s_v + t_v)]`; where Mitsuba reads one channel (`blendbsdf`'s `weight`) `even = color1`, `odd = color0`, as its `eval_1` does ([`scalar_texture`]) |
-//! | `mesh_attribute` `name = "vertex_color"` | `vertex_color` |
+//! | `mesh_attribute` `name` (`vertex_...`, `face_...`), `scale` | `vertex_color` (times `scale`), the shape's `[meshes]` `color = name` (a PLY attribute as Mitsuba names it; one per shape) |
+//! | `rawconstant` `value` (a float or a 3D vector) | the constant colour (a float as a grey) |
 //!
 //! Mitsuba's `v` is lamplight's `1 - v`: Mitsuba flips a mesh file's `v` and
 //! reads images from the top row, lamplight keeps the file's `v` and reads
@@ -17,7 +18,7 @@
 use lamplight_core::math::{Mat4, Rgb};
 use lamplight_core::params::{Item, Loc, ParamError};
 
-use super::properties::Plugin;
+use super::properties::{Plugin, PropValue};
 use super::xml::El;
 use super::{num, pair, table_of, text, vec3, Ctx};
 
@@ -146,10 +147,14 @@ pub fn texture<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<Item, ParamError> {
             )
         }
         "mesh_attribute" => {
+            // The mesh's colour (lamplight's `vertex_color` texture); the shape
+            // it is placed on takes its values from the attribute `name`
+            // (`[meshes] color`, set by [`super::shapes`]).
             let (name, l) = p.string("name")?.ok_or_else(|| err(&loc, "texture \"mesh_attribute\": needs name"))?;
-            if name != "vertex_color" {
-                return Err(err(&l, format!("texture \"mesh_attribute\": name: only \"vertex_color\" is supported, got \"{name}\"")));
+            if !(name.starts_with("vertex_") || name.starts_with("face_")) {
+                return Err(err(&l, format!("texture \"mesh_attribute\": name: expected \"vertex_...\" or \"face_...\", got \"{name}\"")));
             }
+            ctx.attribute_reads.push((name, l.clone()));
             if let Some((s, sl)) = p.number("scale")? {
                 return Ok(table_of(
                     vec![
@@ -162,10 +167,26 @@ pub fn texture<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<Item, ParamError> {
             }
             table_of(vec![("type", text("vertex_color", &l))], &loc)
         }
+        "rawconstant" => {
+            // Mitsuba's raw value: a float or a 3D vector, used as it is (no
+            // spectral upsampling, which scalar_rgb does not do to an <rgb> either).
+            let value = p.take("value").ok_or_else(|| err(&loc, "texture \"rawconstant\": needs value (a float or a vector)"))?;
+            match value.value {
+                PropValue::Float(v) => vec3(Rgb::splat(v), &value.loc),
+                PropValue::Integer(v) => vec3(Rgb::splat(v as f64), &value.loc),
+                PropValue::Vec3(v) => vec3(v, &value.loc),
+                other => {
+                    return Err(err(
+                        &value.loc,
+                        format!("texture \"rawconstant\": value: expected a float or a 3D vector, got {}", other.describe()),
+                    ))
+                }
+            }
+        }
         other => {
             return Err(err(
                 &p.el.require("type")?.loc,
-                format!("texture \"{other}\": not supported (lamplight reads bitmap, checkerboard, mesh_attribute)"),
+                format!("texture \"{other}\": not supported (lamplight reads bitmap, checkerboard, mesh_attribute, rawconstant)"),
             ))
         }
     };
