@@ -147,7 +147,7 @@ fn bitmap_lookups_are_mitsubas_at_texel_borders_and_centres() {
     same(c(&nearest, -0.5 - 1e-9, -0.5), texel(1, 0));
     same(c(&nearest, -0.6, 0.5), texel(1, 1));
     same(c(&nearest, 0.1, 0.5), texel(0, 1)); // repeat: the second copy
-    // Bilinear: exact at texel centres (s = (i + 0.5) / 4), the mean of two at a border.
+                                              // Bilinear: exact at texel centres (s = (i + 0.5) / 4), the mean of two at a border.
     let bilinear = build(&bitmap("bilinear", "clamp"), &[("t.png", &png)]);
     assert!(near(c(&bilinear, -0.875, -0.5), texel(0, 0)), "{}", c(&bilinear, -0.875, -0.5));
     assert!(near(c(&bilinear, -0.75, -0.5), (texel(0, 0) + texel(1, 0)) * 0.5));
@@ -168,7 +168,9 @@ fn rawconstant_is_its_value_as_it_is() {
     );
     assert_eq!(down(&s, 0.0, 0.0).1, Rgb::new(0.2, 0.5, 0.7));
     let grey = build(
-        &scene(r#"<shape type="rectangle"><bsdf type="diffuse"><texture type="rawconstant" name="reflectance"><float name="value" value="0.4"/></texture></bsdf></shape>"#),
+        &scene(
+            r#"<shape type="rectangle"><bsdf type="diffuse"><texture type="rawconstant" name="reflectance"><float name="value" value="0.4"/></texture></bsdf></shape>"#,
+        ),
         &[],
     );
     assert_eq!(down(&grey, 0.0, 0.0).1, Rgb::splat(0.4));
@@ -185,6 +187,22 @@ fn an_area_emitter_takes_a_texture_as_its_radiance() {
     );
     assert_eq!(down(&s, -0.5, -0.5).2, Rgb::new(1.0, 0.5, 0.25));
     assert_eq!(down(&s, 0.5, -0.5).2, Rgb::new(0.2, 0.4, 0.6));
+    // It is a light, and light sampling sees the same colours: from above, a
+    // sample where x and y have the same sign is color0, else color1.
+    let lights = s.light_set();
+    assert_eq!(lights.area.len(), 1);
+    let from = Vec3::new(0.0, 0.0, 3.0);
+    let mut seen = [false, false];
+    for i in 0..16 {
+        let u = (((i % 4) as f64 + 0.5) / 4.0, ((i / 4) as f64 + 0.5) / 4.0);
+        let sample = lights.area[0].sample(from, u).expect("the front faces +z");
+        let y = from + sample.wi * sample.distance;
+        let same_sign = (y.x > 0.0) == (y.y > 0.0);
+        seen[usize::from(same_sign)] = true;
+        let expected = if same_sign { Rgb::new(1.0, 0.5, 0.25) } else { Rgb::new(0.2, 0.4, 0.6) };
+        assert_eq!(sample.radiance, expected, "sample {u:?} at {y}");
+    }
+    assert_eq!(seen, [true, true]);
 }
 
 /// One quad over [-1, 1]^2 (two triangles by the fan) with per-vertex colours
@@ -252,7 +270,8 @@ fn bad_mesh_attributes_and_rawconstants_are_one_clear_error() {
     );
     let missing = error(&attribute_scene("face_foo"), files);
     assert!(
-        missing == "s.xml:3:50: mesh \"mesh_1\": file \"m.ply\" has no attribute \"face_foo\" (it has: vertex_color, face_weight, face_color)",
+        missing
+            == "s.xml:3:50: mesh \"mesh_1\": file \"m.ply\" has no attribute \"face_foo\" (it has: vertex_color, face_weight, face_color)",
         "{missing}"
     );
     let two = scene(
@@ -268,7 +287,10 @@ fn bad_mesh_attributes_and_rawconstants_are_one_clear_error() {
         r#"<shape type="obj"><string name="filename" value="q.obj"/>
         <bsdf type="diffuse"><texture type="mesh_attribute" name="reflectance"><string name="name" value="face_weight"/></texture></bsdf></shape>"#,
     );
-    assert_eq!(error(&obj, files), "s.xml:4:107: shape \"obj\": mesh_attribute \"face_weight\": face attributes are read from PLY files only");
+    assert_eq!(
+        error(&obj, files),
+        "s.xml:4:107: shape \"obj\": mesh_attribute \"face_weight\": face attributes are read from PLY files only"
+    );
     let raw = scene(
         r#"<shape type="rectangle"><bsdf type="diffuse"><texture type="rawconstant" name="reflectance"><string name="value" value="red"/></texture></bsdf></shape>"#,
     );

@@ -284,6 +284,35 @@ mod tests {
     }
 
     #[test]
+    fn a_textured_light_emits_its_texture_at_each_sampled_point() {
+        // The unit square at z = 0 facing +z, uv = (x, y), a checker of 2 x 2 cells:
+        // light sampling must see the colour of the cell the point lies in, with
+        // the density of the untextured light.
+        use crate::materials::texture::UvChecker;
+        use crate::materials::{ShadingPoint, UvTransform};
+        let square = Arc::new(Rectangle::new(Vec3::ZERO, Vec3::X, Vec3::Y).unwrap());
+        let (even, odd) = (Rgb::new(1.0, 0.5, 0.25), Rgb::new(0.2, 0.4, 0.6));
+        let checker = Texture::UvChecker(Arc::new(UvChecker { transform: UvTransform::new([2.0, 2.0], 0.0, [0.0, 0.0]), even, odd }));
+        let plain = AreaLight::new(0, square, Rgb::splat(7.0)).unwrap();
+        let textured = plain.clone().with_texture(Some(checker.clone()));
+        let x = Vec3::new(0.4, 0.3, 2.0);
+        let mut seen = [0, 0];
+        for i in 0..64 {
+            // Stratum centres, none on a cell border (where the point's rounding would decide).
+            let u = (((i % 8) as f64 + 0.5) / 8.0, ((i / 8) as f64 + 0.5) / 8.0);
+            let (s, p) = (textured.sample(x, u).unwrap(), plain.sample(x, u).unwrap());
+            assert_eq!((s.wi, s.pdf), (p.wi, p.pdf), "the texture leaves the density alone");
+            assert_eq!(p.radiance, Rgb::splat(7.0));
+            let y = x + s.wi * s.distance;
+            let cell = ((2.0 * y.x).floor() + (2.0 * y.y).floor()) as i64 % 2;
+            assert_eq!(s.radiance, if cell == 0 { even } else { odd }, "at {y}");
+            assert_eq!(s.radiance, checker.evaluate(&ShadingPoint { uv: [y.x, y.y], ..ShadingPoint::at(y) }));
+            seen[cell as usize] += 1;
+        }
+        assert!(seen[0] > 10 && seen[1] > 10, "both cells sampled: {seen:?}");
+    }
+
+    #[test]
     fn rectangle_pdf_agrees_with_sample() {
         let rect = Rectangle::new(Vec3::new(-0.5, 2.0, -0.5), Vec3::X, Vec3::Z).unwrap(); // normal X x Z = -Y
         let light = AreaLight::new(3, Arc::new(rect), Rgb::splat(5.0)).unwrap();

@@ -85,7 +85,9 @@ mod tests {
             let c = layout.coords(at(u, v), radius, Vec3::X, Vec3::Y, Vec3::Z);
             assert!((c.uv[0] - u).abs() < 1e-12 && (c.uv[1] - v).abs() < 1e-12, "{:?}", c.uv);
             let h = 1e-6;
-            for (analytic, numeric) in [(c.dpdu, (at(u + h, v) - at(u - h, v)) / (2.0 * h)), (c.dpdv, (at(u, v + h) - at(u, v - h)) / (2.0 * h))] {
+            for (analytic, numeric) in
+                [(c.dpdu, (at(u + h, v) - at(u - h, v)) / (2.0 * h)), (c.dpdv, (at(u, v + h) - at(u, v - h)) / (2.0 * h))]
+            {
                 assert!((analytic - numeric).length() < 1e-6, "{analytic} vs {numeric}");
             }
         }

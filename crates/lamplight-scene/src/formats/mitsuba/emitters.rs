@@ -10,7 +10,7 @@
 //! | `point` `intensity` (W/sr), `position` or `to_world` | `point_light` `intensity / pi` |
 //! | `spot` `intensity`, `cutoff_angle` (20), `beam_width` (3/4 of the cutoff), `to_world` (shines along `+z`) | `spot_light` `intensity / pi`, `outer_angle`, `inner_angle`, `profile = "angle"` (linear in the angle, as Mitsuba's) |
 //! | `directional` `irradiance`, `direction` or `to_world` | `directional_light` `radiance = irradiance / pi` |
-//! | `area` `radiance` (inside a shape; a colour or a texture) | the shape's material's `emission` (a texture is found by BSDF sampling only: [`area_radiance`]) |
+//! | `area` `radiance` (inside a shape; a colour or a texture) | the shape's material's `emission` (a texture: its value at the hit's `uv`, and at each point that light sampling picks: [`area_radiance`]) |
 //! | `constant` `radiance` | `background` |
 //! | `envmap` `filename`, `scale`, `to_world` (a turn about `+y`) | `environment` `file`, `strength`, `rotate` (Mitsuba's `u` is lamplight's plus one half: a turn of 180 degrees), `filter = "bilinear"` (Mitsuba's lookup) |
 //!
@@ -202,10 +202,10 @@ pub fn area_radiance<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<(Item, Loc), P
     if p.kind != "area" {
         return Err(err(&el.loc, format!("{}: inside a shape only \"area\" emitters are supported", p.label)));
     }
-    // A texture is the material's textured `emission`: seen where rays hit the
-    // surface (its value at the hit's uv), but not sampled as a light (lamplight's
-    // area lights have one radiance), so only BSDF sampling finds it: the same
-    // expected image as Mitsuba's, with more noise.
+    // A texture is the material's textured `emission`: its value at the hit's
+    // uv where rays meet the surface, and the area light built from the
+    // material evaluates it at each sampled point (lamplight_core's AreaLight),
+    // so light sampling and BSDF sampling see the same emitter, as in Mitsuba.
     let radiance = match p.object("radiance") {
         Some(o) => {
             let t = ctx.deref(o)?;

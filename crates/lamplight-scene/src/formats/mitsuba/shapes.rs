@@ -216,7 +216,10 @@ fn mesh_colour(ctx: &mut Ctx<'_>, p: &Plugin<'_>, material: &str, ply_mesh: Opti
     let used = ctx.material_attributes.get(material).cloned().unwrap_or_default();
     let Some((first, first_loc)) = used.first() else { return Ok(()) };
     if let Some((other, l)) = used.iter().find(|(n, _)| n != first) {
-        return Err(err(l, format!("{}: its textures read the mesh attributes \"{first}\" and \"{other}\"; lamplight reads one per shape", p.label)));
+        return Err(err(
+            l,
+            format!("{}: its textures read the mesh attributes \"{first}\" and \"{other}\"; lamplight reads one per shape", p.label),
+        ));
     }
     match ply_mesh {
         Some(mesh) => {
