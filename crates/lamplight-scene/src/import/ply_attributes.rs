@@ -10,7 +10,11 @@
 //! or 3; others, and properties without a suffix, are not attributes (Mitsuba
 //! 3.9.1 ignores them with a warning, and so does the reader). Values are read
 //! as they are, integers too: Mitsuba does not scale 8-bit values (measured:
-//! `uchar red = 128` gives 128). The names follow Mitsuba's `write_ply`
+//! `uchar red = 128` gives 128). The one exception is a vertex's `red green
+//! blue`, which the PLY reader takes first as the file's colours (integers as
+//! sRGB fractions of their maximum, lamplight's meaning for every PLY file;
+//! `vertex_color` then falls back to them: [`MeshData::with_color_attribute`]),
+//! since no scene means an albedo of 128. The names follow Mitsuba's `write_ply`
 //! (`color_0 color_1 color_2`, `weight_0`), checked against 3.9.1.
 //!
 //! A face attribute holds one value per triangle (a polygon's value repeated
