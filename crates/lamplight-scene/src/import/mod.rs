@@ -24,6 +24,7 @@ mod mtl;
 mod obj;
 mod ply;
 mod ply_attributes;
+mod ply_header;
 mod tangents;
 
 pub use ply_attributes::NamedAttribute;
