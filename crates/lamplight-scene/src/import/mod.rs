@@ -193,6 +193,13 @@ pub fn load(path: &Path) -> Result<Imported, LoadError> {
 /// are resolved). The fuzz targets and property tests enter here.
 pub fn load_bytes(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
     let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).unwrap_or_default();
+    if ext.is_empty() {
+        // `/etc/passwd` named as a mesh: there is no extension to pick a reader by.
+        return Err(LoadError::file(
+            path,
+            format!("has no file extension, expected a mesh file named for its format (.{})", EXTENSIONS.join(", .")),
+        ));
+    }
     if !EXTENSIONS.contains(&ext.as_str()) {
         return Err(LoadError::file(path, format!("cannot read .{ext} files (supported: {})", EXTENSIONS.join(", "))));
     }
