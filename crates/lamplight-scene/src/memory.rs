@@ -25,7 +25,7 @@ use std::sync::atomic::{AtomicU64, AtomicU8, Ordering};
 use crate::request::Naming;
 
 /// The share of the machine's available memory a render may use by default.
-pub const DEFAULT_FRACTION: f64 = 0.5;
+pub const DEFAULT_FRACTION: f64 = 0.25;
 /// The default budget where the machine's memory cannot be read: 4 GiB.
 pub const FALLBACK_BYTES: u64 = 4 << 30;
 /// The smallest budget one may set: 16 MiB (less could not hold a small film).
@@ -55,8 +55,8 @@ pub struct Exceeded {
 impl std::fmt::Display for Exceeded {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let raise = match self.naming {
-            Naming::Flags => "--memory-budget (or [render] memory_budget in a scene file)",
-            Naming::Keywords => "memory_budget= (or [render] memory_budget in a scene file)",
+            Naming::Flags => "--memory-budget (or [render] memory_budget in a TOML scene)",
+            Naming::Keywords => "memory_budget= (or [render] memory_budget in a TOML scene)",
         };
         write!(f, "{} needs {} of memory", self.what, bytes(self.needed))?;
         if self.used > 0 {
@@ -74,6 +74,13 @@ pub fn begin(limit: Option<u64>, naming: Naming) {
     NAMING.store(matches!(naming, Naming::Keywords) as u8, Ordering::Relaxed);
     USED.store(0, Ordering::Relaxed);
     LIMIT.store(limit.unwrap_or_else(default_limit), Ordering::Relaxed);
+}
+
+/// Counts afresh under the same budget: a scene is being built again (a
+/// viewer's reload, another Python `Scene`), and what the last build took is
+/// its own.
+pub fn restart() {
+    USED.store(0, Ordering::Relaxed);
 }
 
 /// Changes the budget of the load under way (a scene's own setting), keeping
