@@ -308,7 +308,7 @@ pub fn settings(desc: &SceneDescription, source: &Source) -> Result<Settings, Lo
         let denoise = p.boolean("denoise")?.unwrap_or(false);
         let memory_budget = match p.string("memory_budget")? {
             None => None,
-            Some(text) => Some(crate::memory::parse(&text).map_err(|e| p.key_error("memory_budget", e))?),
+            Some(text) => Some(crate::memory::parse(text).map_err(|e| p.key_error("memory_budget", e))?),
         };
         Ok(Settings {
             width,
