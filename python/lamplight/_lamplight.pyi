@@ -91,6 +91,7 @@ class Scene:
         antialias: Optional[Union[bool, float]] = None,
         noise_threshold: Optional[float] = None,
         min_spp: Optional[int] = None,
+        memory_budget: Optional[Union[int, str]] = None,
         # END settings
     ) -> Dict[str, Any]:
         """Why pixel ``(x, y)`` of the render these settings make has its colour.
@@ -178,6 +179,7 @@ def render_array(
     antialias: Optional[Union[bool, float]] = None,
     noise_threshold: Optional[float] = None,
     min_spp: Optional[int] = None,
+    memory_budget: Optional[Union[int, str]] = None,
     # END settings
 ) -> Tuple[npt.NDArray[np.float32], Dict[str, Any], Dict[str, npt.NDArray[np.float32]]]:
     """The render under :func:`lamplight.render`: a float32 array ``(h, w, 3)``,
@@ -206,6 +208,7 @@ def resolve_settings(
     antialias: Optional[Union[bool, float]] = None,
     noise_threshold: Optional[float] = None,
     min_spp: Optional[int] = None,
+    memory_budget: Optional[Union[int, str]] = None,
     # END settings
 ) -> Tuple[int, int, int, str, int]:
     """``(width, height, spp, integrator, seed)`` a render with these settings would

@@ -158,6 +158,9 @@ pub struct SceneArgs {
     /// Path tracer: light the scene with this equirectangular HDR map (.exr or .hdr), importance-sampled.
     #[arg(long, value_name = "FILE")]
     pub environment: Option<PathBuf>,
+    /// The memory meshes, textures, BVHs and the film may take together, such as 4G or 512M [default: the scene's, else half the available memory].
+    #[arg(long, value_name = "SIZE", value_parser = lamplight_scene::memory::parse)]
+    pub memory_budget: Option<u64>,
 }
 
 impl SceneArgs {
@@ -182,7 +185,14 @@ impl SceneArgs {
             layers: Vec::new(),
             denoise: None,
             denoise_library_hints: Vec::new(),
+            memory_budget: self.memory_budget,
         }
+    }
+
+    /// Starts the memory budget ([`lamplight_scene::memory`]) before the scene
+    /// is read: a Mitsuba scene's `.serialized` meshes are read with it.
+    pub fn begin_memory_budget(&self) {
+        lamplight_scene::memory::begin(self.memory_budget, Naming::Flags);
     }
 }
 
@@ -222,6 +232,7 @@ pub struct ExplainJob {
 impl ExplainArgs {
     /// Reads the scene and resolves the render settings as `render` does.
     pub fn validate(self) -> Result<ExplainJob, UsageError> {
+        self.render.begin_memory_budget();
         let scene = SceneRequest::resolve_with(&self.render.scene, &self.render.define)?;
         let job = self.render.request(1).resolve(&scene.defaults, Naming::Flags)?;
         Ok(ExplainJob { scene, job, pixel: self.pixel, sample: self.sample, json: self.json })
@@ -386,6 +397,7 @@ impl RenderArgs {
     /// the scene crate's request layer (shared with Python): flags override the
     /// file's settings, which override the program's defaults.
     pub fn validate(self) -> Result<RenderJob, UsageError> {
+        self.scene.begin_memory_budget();
         let scene = SceneRequest::resolve_with(&self.scene.scene, &self.scene.define)?;
         if !self.exposure.is_finite() {
             return Err(usage("--exposure must be a finite number"));

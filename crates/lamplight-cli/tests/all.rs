@@ -4,6 +4,7 @@
 //! again for each (issue 24, the test suite's time). A new test file is one
 //! more `mod` line here; `cargo test -p lamplight-cli --test all NAME` runs one.
 
+mod budgets;
 mod cli;
 mod denoise;
 mod explain;

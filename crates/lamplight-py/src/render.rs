@@ -52,6 +52,7 @@ pub fn render_array<'py>(
     let mut job = request.resolve(scene.settings(), Naming::Keywords).map_err(|e| PyValueError::new_err(e.0))?;
     job.add_scene_layers(scene.settings(), true);
     let core = scene.core_for(py, &job)?;
+    job.reserve_film().map_err(|e| PyValueError::new_err(e.0))?;
 
     let warnings: Vec<String> = job.light_warning(&core).into_iter().collect();
     let cancel = Arc::new(AtomicBool::new(false));

@@ -21,6 +21,7 @@
 //! | `exr_layers` | list of `str` | `"variance"`, `"samples"`, `"albedo"`, `"normal"`, `"noisy"` |
 //! | `denoise` | `bool` | Open Image Denoise on the image |
 //! | `antialias` | `bool` or `float` | on, off, or a threshold |
+//! | `memory_budget` | `int` or `str` | bytes, or a size such as `"4G"` ([`lamplight_scene::memory`]) |
 
 use std::path::PathBuf;
 
@@ -205,7 +206,24 @@ pub const KEYWORDS: &[Keyword] = &[
         takes: Takes::Both,
         read: |r, v| set(&mut r.min_spp, whole("min_spp", Some(v), 1, limits::MAX_SPP.into(), "")),
     },
+    Keyword {
+        name: "memory_budget",
+        annotation: "Optional[Union[int, str]]",
+        takes: Takes::Both,
+        read: |r, v| set(&mut r.memory_budget, memory_budget(v).map(Some)),
+    },
 ];
+
+/// `memory_budget`: bytes as an `int`, or a size such as `"4G"`.
+fn memory_budget(v: &Bound<'_, PyAny>) -> PyResult<u64> {
+    let text = match v.extract::<u64>() {
+        Ok(n) => n.to_string(),
+        Err(_) => v.extract::<String>().map_err(|_| {
+            PyTypeError::new_err(format!("memory_budget must be a size such as \"4G\" or a number of bytes, got {}", type_name(v)))
+        })?,
+    };
+    lamplight_scene::memory::parse(&text).map_err(|e| PyValueError::new_err(format!("memory_budget {e}")))
+}
 
 /// The request `settings` (keyword arguments; `None` values are "not given")
 /// make for `call`, which names the function in errors. `explain` leaves out the

@@ -35,6 +35,22 @@ pub enum Refusal {
 }
 
 impl Refusal {
+    /// What is wrong, in words, for a file that should be `expected` (`a mesh
+    /// file`): `no such file`, `is a FIFO, not a regular file (expected a mesh
+    /// file)`, `is a directory, expected a mesh file`. Every reader's message
+    /// about a file it could not open comes from here, so a FIFO, a folder and
+    /// `/dev/zero` are each named for what they are.
+    pub fn describe(&self, expected: &str) -> String {
+        match self {
+            Refusal::NotFound => "no such file".to_string(),
+            Refusal::PermissionDenied => "permission denied".to_string(),
+            Refusal::Directory => format!("is a directory, expected {expected}"),
+            Refusal::NotRegular(kind) => format!("is {kind}, not a regular file (expected {expected})"),
+            Refusal::TooLarge { len, max } => format!("is {len} bytes, larger than the {max} bytes {expected} may have"),
+            Refusal::Io(e) => format!("cannot be read: {e}"),
+        }
+    }
+
     fn io(e: &std::io::Error) -> Refusal {
         match e.kind() {
             std::io::ErrorKind::NotFound => Refusal::NotFound,
@@ -47,15 +63,9 @@ impl Refusal {
 /// Opens `path` for reading when it is a regular file of at most `max` bytes;
 /// returns the file and its size.
 pub fn open_regular(path: &Path, max: u64) -> Result<(File, u64), Refusal> {
-    let meta = std::fs::metadata(path).map_err(|e| Refusal::io(&e))?;
-    if meta.is_dir() {
-        return Err(Refusal::Directory);
-    }
-    if !meta.is_file() {
-        return Err(Refusal::NotRegular(kind_of(meta.file_type())));
-    }
-    if meta.len() > max {
-        return Err(Refusal::TooLarge { len: meta.len(), max });
+    let len = check_regular(path)?;
+    if len > max {
+        return Err(Refusal::TooLarge { len, max });
     }
     let file = File::open(path).map_err(|e| Refusal::io(&e))?;
     // The path may have been replaced between the two calls: check what was opened.
@@ -85,10 +95,29 @@ fn kind_of(file_type: std::fs::FileType) -> &'static str {
     "not a regular file"
 }
 
+/// Whether `path` is a regular file one may open (no file is opened: a FIFO
+/// is told apart without blocking); its size.
+pub fn check_regular(path: &Path) -> Result<u64, Refusal> {
+    let meta = std::fs::metadata(path).map_err(|e| Refusal::io(&e))?;
+    if meta.is_dir() {
+        return Err(Refusal::Directory);
+    }
+    if !meta.is_file() {
+        return Err(Refusal::NotRegular(kind_of(meta.file_type())));
+    }
+    Ok(meta.len())
+}
+
 /// The whole of `path` when it is a regular file of at most `max` bytes.
 pub fn read_regular(path: &Path, max: u64) -> Result<Vec<u8>, Refusal> {
     let (file, len) = open_regular(path, max)?;
-    let mut bytes = Vec::with_capacity(len as usize);
+    read_opened(file, len, max)
+}
+
+/// The whole of a file [`open_regular`] opened (`len` bytes when opened), at
+/// most `max` bytes even if it grows.
+pub fn read_opened(file: File, len: u64, max: u64) -> Result<Vec<u8>, Refusal> {
+    let mut bytes = Vec::with_capacity(len.min(max) as usize);
     file.take(max + 1).read_to_end(&mut bytes).map_err(|e| Refusal::io(&e))?;
     if bytes.len() as u64 > max {
         return Err(Refusal::TooLarge { len: bytes.len() as u64, max });
@@ -119,6 +148,7 @@ mod tests {
             if std::process::Command::new("mkfifo").arg(&fifo).status().is_ok_and(|s| s.success()) {
                 // Returns at once: a FIFO is refused before it is opened.
                 assert_eq!(read_regular(&fifo, 1 << 20).unwrap_err(), Refusal::NotRegular("a FIFO"));
+                assert_eq!(Refusal::NotRegular("a FIFO").describe("a mesh file"), "is a FIFO, not a regular file (expected a mesh file)");
             }
         }
     }

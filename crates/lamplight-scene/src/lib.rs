@@ -19,7 +19,7 @@
 //! Around them: the [`request`] layer shared by the CLI and Python (which scene,
 //! settings precedence, limits), the built-in scenes by name ([`builtin`]), the
 //! image writers ([`image_io`]), the denoiser ([`denoise`]), what a file holds ([`info`]), NumPy `.npy`
-//! arrays ([`npy`]), the checks every input file passes ([`input`]) and the
+//! arrays ([`npy`]), the checks every input file passes ([`input`]), the memory budget every reader draws on ([`memory`]) and the
 //! atomic writes every written file goes through ([`atomic`]).
 #![deny(missing_docs)]
 
@@ -39,6 +39,7 @@ pub mod import;
 pub mod info;
 pub mod input;
 pub mod instantiate;
+pub mod memory;
 pub mod npy;
 pub mod registry;
 pub mod request;

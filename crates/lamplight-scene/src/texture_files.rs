@@ -83,9 +83,24 @@ pub fn decode_texture(name: &Path, bytes: &[u8], srgb: bool) -> Result<ImageData
     if probe.format().is_none() {
         return Err(fail(format!("not an image file lamplight reads ({TEXTURE_EXTENSIONS})")));
     }
-    let (width, height) = probe.into_dimensions().map_err(|e| fail(format!("not a valid image: {e}")))?;
+    use image::ImageDecoder;
+    let decoder = probe.into_decoder().map_err(|e| fail(format!("not a valid image: {e}")))?;
+    let (width, height) = decoder.dimensions();
     check_image_size(width.into(), height.into(), bytes.len() as u64).map_err(fail)?;
-    let decoded = reader().map_err(|e| fail(e.to_string()))?.decode().map_err(|e| fail(format!("not a valid image: {e}")))?;
+    // The memory budget's share, from the header, before any pixel is decoded:
+    // the decoded buffer and, for 16-bit and float images, the float copy made
+    // from it (both freed after), and the texels kept (a third more for the
+    // smaller levels).
+    let pixels = u64::from(width) * u64::from(height);
+    let eight_bit_file =
+        decoder.color_type().bytes_per_pixel() <= 4 && !matches!(decoder.color_type(), image::ColorType::La16 | image::ColorType::L16);
+    let kept = if eight_bit_file { pixels * 4 } else { pixels * 16 } * 4 / 3;
+    let transient = decoder.total_bytes() + if eight_bit_file { pixels * 4 } else { pixels * 16 };
+    crate::memory::reserve(kept + transient, || format!("texture '{}' ({width}x{height} pixels)", name.display()))
+        .map_err(|e| e.to_string())?;
+    let decoded = image::DynamicImage::from_decoder(decoder).map_err(|e| fail(format!("not a valid image: {e}")));
+    crate::memory::release(transient);
+    let decoded = decoded?;
     let (w, h) = (decoded.width() as usize, decoded.height() as usize);
     let eight_bit =
         matches!(decoded.color(), image::ColorType::L8 | image::ColorType::La8 | image::ColorType::Rgb8 | image::ColorType::Rgba8);

@@ -22,6 +22,7 @@ mod golden;
 mod lights;
 mod mesh_lights;
 mod mitsuba;
+mod mitsuba_amplification;
 mod mitsuba_bsdfs;
 mod mitsuba_principled;
 mod mitsuba_sdfgrid;

@@ -191,15 +191,35 @@ pub const EXTENSIONS: &[&str] = &["obj", "ply", "gltf", "glb"];
 
 /// Reads `path` with the importer its extension names.
 pub fn load(path: &Path) -> Result<Imported, LoadError> {
+    if let Ok(len) = crate::input::check_regular(path) {
+        // The memory budget's share, before the file is read: what its
+        // readers make of a byte of file at most (a PLY's declared counts are
+        // checked against its size), the file itself included.
+        crate::memory::reserve(len.saturating_mul(MESH_BYTES_PER_FILE_BYTE), || format!("mesh file {} ({len} bytes)", path.display()))
+            .map_err(|e| LoadError::file(path, e.to_string()))?;
+    }
     let bytes = read_file(path)?;
     load_bytes(path, &bytes)
 }
+
+/// The memory a mesh file's readers take per byte of the file, at most: the
+/// file, the mesh's arrays and its BVH (a binary PLY's 12-byte vertex becomes
+/// 24 bytes of positions and normals, a 13-byte face 12 bytes of indices and
+/// about 64 of BVH).
+pub const MESH_BYTES_PER_FILE_BYTE: u64 = 8;
 
 /// Parses `bytes` as the file `path` (whose extension picks the importer, and
 /// against whose folder relative references such as `.mtl` and `.bin` files
 /// are resolved). The fuzz targets and property tests enter here.
 pub fn load_bytes(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
     let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).unwrap_or_default();
+    if ext.is_empty() {
+        // `/etc/passwd` named as a mesh: there is no extension to pick a reader by.
+        return Err(LoadError::file(
+            path,
+            format!("has no file extension, expected a mesh file named for its format (.{})", EXTENSIONS.join(", .")),
+        ));
+    }
     if !EXTENSIONS.contains(&ext.as_str()) {
         return Err(LoadError::file(path, format!("cannot read .{ext} files (supported: {})", EXTENSIONS.join(", "))));
     }

@@ -63,7 +63,12 @@ pub struct Settings {
     pub variance: bool,
     /// The image is denoised (Open Image Denoise, default `false`).
     pub denoise: bool,
+    /// The memory budget in bytes (`memory_budget = "4G"`), when given.
+    pub memory_budget: Option<u64>,
 }
+
+/// Memory the scene's BVH takes per object (nodes and the object's box).
+pub const BVH_BYTES_PER_OBJECT: u64 = 256;
 
 /// Deepest `max_depth` a file may ask for: the renderer's limit (as the command line's `--max-depth`).
 pub use lamplight_core::integrators::MAX_DEPTH_LIMIT;
@@ -156,6 +161,13 @@ pub const RENDER_PARAMS: &[Param] = &[
         "false",
         "",
         "denoise the image with Intel Open Image Denoise, guided by albedo and normal layers (`--denoise`; `pip install pyoidn`, see docs/denoise.md)",
+    ),
+    Param::new(
+        "memory_budget",
+        T::String,
+        "half the available memory",
+        "a size such as \"4G\" or \"512M\" (powers of 1024), at least 16M",
+        "the memory the meshes, textures, acceleration structures and film of this render may take together (`--memory-budget`; see Limits); the scene file's own meshes and textures are counted against it, what a Mitsuba XML reader reads while parsing against `--memory-budget` or the default",
     ),
     Param::new(
         "hide_emitters",
@@ -294,6 +306,10 @@ pub fn settings(desc: &SceneDescription, source: &Source) -> Result<Settings, Lo
         let hide_emitters = p.boolean("hide_emitters")?.unwrap_or(false);
         let variance = p.boolean("variance")?.unwrap_or(false);
         let denoise = p.boolean("denoise")?.unwrap_or(false);
+        let memory_budget = match p.string("memory_budget")? {
+            None => None,
+            Some(text) => Some(crate::memory::parse(text).map_err(|e| p.key_error("memory_budget", e))?),
+        };
         Ok(Settings {
             width,
             height,
@@ -312,6 +328,7 @@ pub fn settings(desc: &SceneDescription, source: &Source) -> Result<Settings, Lo
             hide_emitters,
             variance,
             denoise,
+            memory_budget,
         })
     };
     let settings = read(&mut p).map_err(|e| source.param_error(e))?;
@@ -355,6 +372,9 @@ pub fn build(desc: &SceneDescription, source: &Source) -> Result<Scene, LoadErro
 /// [`build`], keeping the warnings of the mesh files the scene reads.
 pub fn build_with_warnings(desc: &SceneDescription, source: &Source) -> Result<Built, LoadError> {
     let settings = settings(desc, source)?;
+    // Each build counts afresh (a reload, another Python `Scene`); the limit
+    // is the job's ([`crate::request::SceneRequest::instantiate`]).
+    crate::memory::restart();
     let camera_node = desc.camera.as_ref().ok_or_else(|| LoadError::file(&source.path, "has no [camera] table, expected one"))?;
     let camera = camera::camera(camera_node).map_err(|e| source.param_error(e))?;
     let mut builder = SceneBuilder::with_camera(camera);
@@ -377,6 +397,9 @@ pub fn build_with_warnings(desc: &SceneDescription, source: &Source) -> Result<B
     }
     let mut warnings = source.warnings.clone();
     warnings.extend(nodes::add_all(desc, source, &mut builder, materials, &textures)?);
+    let objects = builder.object_count() as u64;
+    crate::memory::reserve(objects * BVH_BYTES_PER_OBJECT, || format!("the scene's BVH over {objects} objects"))
+        .map_err(|e| LoadError::file(&source.path, e.to_string()))?;
     let scene = builder.build().map_err(|e| LoadError::file(&source.path, e.to_string()))?;
     Ok(Built { scene, warnings })
 }

@@ -273,13 +273,11 @@ impl<'a> Ctx<'a> {
         }
         let dir = self.source.path.parent().map(|p| p.to_path_buf()).unwrap_or_default();
         let path = dir.join(file);
-        let meta = std::fs::metadata(&path).map_err(|_| Ok(format!("file \"{file}\" not found (looked for {})", path.display())))?;
-        if meta.is_dir() {
-            return Err(Ok(format!("file \"{file}\" is a directory, expected a mesh file")));
-        }
-        if !meta.is_file() {
-            // A device or a pipe (/dev/zero) could be read forever.
-            return Err(Ok(format!("file \"{file}\" is not a regular file")));
+        match crate::input::check_regular(&path) {
+            Ok(_) => {}
+            Err(crate::input::Refusal::NotFound) => return Err(Ok(format!("file \"{file}\" not found (looked for {})", path.display()))),
+            // A device or a pipe (/dev/zero) could be read forever: named for what it is.
+            Err(r) => return Err(Ok(format!("file \"{file}\" {}", r.describe("a mesh file")))),
         }
         let key = (path.canonicalize().unwrap_or(path.clone()), shading, color.clone());
         if let Some(asset) = self.files.get(&key) {

@@ -29,6 +29,11 @@ pub use sampling::{AntialiasRequest, NOISE_DEFAULT_SPP, NOISE_DEFAULT_THRESHOLD}
 
 pub mod limits;
 
+/// Memory the film takes per pixel: its sums and squares and the image.
+pub const FILM_BYTES_PER_PIXEL: u64 = 96;
+/// Memory each extra layer (variance, albedo, ...) takes per pixel.
+pub const LAYER_BYTES_PER_PIXEL: u64 = 48;
+
 /// How the front end spells its options, for messages.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Naming {
@@ -103,6 +108,8 @@ pub struct Defaults {
     pub variance: bool,
     /// Whether the image is denoised unasked (`[render] denoise`).
     pub denoise: bool,
+    /// The memory budget in bytes, when the scene says (`[render] memory_budget`).
+    pub memory_budget: Option<u64>,
 }
 
 impl Defaults {
@@ -121,6 +128,7 @@ impl Defaults {
             crop: s.crop,
             variance: s.variance,
             denoise: s.denoise,
+            memory_budget: s.memory_budget,
         }
     }
 }
@@ -140,6 +148,7 @@ pub fn program_defaults() -> Defaults {
         crop: None,
         variance: false,
         denoise: false,
+        memory_budget: None,
     }
 }
 
@@ -223,7 +232,9 @@ impl SceneRequest {
     /// front end (the command line's render and explain, the viewer) goes from a
     /// request to a scene that renders.
     pub fn instantiate(&self, job: &Job) -> Result<Built, RequestError> {
+        crate::memory::set_limit(job.memory_budget);
         let mut built = self.build_with_warnings()?;
+        job.reserve_film()?;
         job.prepare(&mut built.scene)?;
         Ok(built)
     }
@@ -231,6 +242,7 @@ impl SceneRequest {
     /// Builds the scene and keeps the warnings of the mesh files it read
     /// (`FILE: what`, each once), for the front end to show.
     pub fn build_with_warnings(&self) -> Result<Built, RequestError> {
+        crate::memory::restart();
         match &self.spec {
             SceneSpec::Builtin(b) => (b.build)()
                 .map(|scene| Built { scene, warnings: Vec::new() })
@@ -281,6 +293,9 @@ pub struct Request {
     /// Folders the front end knows to hold the denoiser's library (Python's `pyoidn`), looked in
     /// before the others ([`crate::denoise::Denoiser::load`]).
     pub denoise_library_hints: Vec<PathBuf>,
+    /// The memory budget in bytes ([`crate::memory`]); `None`: the scene's, else
+    /// the default share of the machine's memory.
+    pub memory_budget: Option<u64>,
 }
 
 /// A request checked and with every default resolved.
@@ -295,6 +310,8 @@ pub struct Job {
     /// The denoiser, loaded when the request asks to denoise (so that a
     /// machine without it fails before rendering).
     pub denoiser: Option<std::sync::Arc<crate::denoise::Denoiser>>,
+    /// The memory budget in bytes that building and rendering draw on.
+    pub memory_budget: u64,
 }
 
 impl Request {
@@ -412,11 +429,26 @@ impl Request {
             clamp: self.clamp,
             adaptive,
         };
-        Ok(Job { options, environment: self.environment.clone(), layers, denoiser })
+        let memory_budget = self.memory_budget.or(d.memory_budget).unwrap_or_else(crate::memory::default_limit);
+        Ok(Job { options, environment: self.environment.clone(), layers, denoiser, memory_budget })
     }
 }
 
 impl Job {
+    /// Applies the job's memory budget and takes the film's share of it
+    /// ([`FILM_BYTES_PER_PIXEL`], [`LAYER_BYTES_PER_PIXEL`] for each extra
+    /// layer), before the film is allocated.
+    pub fn reserve_film(&self) -> Result<(), RequestError> {
+        crate::memory::set_limit(self.memory_budget);
+        let (w, h) = match self.options.window {
+            Some(win) => (win.width, win.height),
+            None => (self.options.width, self.options.height),
+        };
+        let pixels = w as u64 * h as u64;
+        let per_pixel = FILM_BYTES_PER_PIXEL + LAYER_BYTES_PER_PIXEL * self.layers.len() as u64;
+        crate::memory::reserve(pixels * per_pixel, || format!("the film of {w}x{h} pixels")).map_err(|e| bad(e.to_string()))
+    }
+
     /// Adds the layers the scene itself asks for (`[render] variance`) when the
     /// output can hold them (`holds_layers`: an `.exr` file, or Python's dict of
     /// layers; PNG and PPM cannot), after those asked for.

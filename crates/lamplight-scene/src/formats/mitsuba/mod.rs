@@ -234,6 +234,7 @@ impl<'a> Ctx<'a> {
     /// found in the scene's folder or a `<path>` folder.
     pub fn file(&self, name: &str, loc: &Loc) -> Result<String, ParamError> {
         let found = xml::resolve(self.search_paths, name).ok_or_else(|| err(loc, format!("no such file \"{name}\"")))?;
+        crate::input::check_regular(&found).map_err(|r| err(loc, format!("\"{name}\" {}", r.describe("a file"))))?;
         let base = &self.search_paths[0];
         Ok(match found.strip_prefix(base) {
             Ok(rel) if !base.as_os_str().is_empty() || found.is_relative() => rel.to_string_lossy().into_owned(),

@@ -19,6 +19,8 @@ use super::{num, table_of};
 pub const MAX_ELEMENTS: u64 = 1 << 24;
 /// Largest file read, in bytes.
 pub const MAX_FILE_BYTES: u64 = 1 << 30;
+/// Longest shape name (version 4), in bytes.
+pub const MAX_NAME_BYTES: usize = 4096;
 
 /// A mesh read from a `.serialized` file.
 #[derive(Debug, PartialEq)]
@@ -86,14 +88,52 @@ impl Cursor<'_> {
     }
 }
 
-/// Reads shape `index` of the file at `path`.
+/// Reads shape `index` of the file at `path`; its bytes and the mesh are taken
+/// from the memory budget ([`crate::memory`]) before they are allocated.
 pub fn read(path: &Path, index: i64) -> Result<Mesh, String> {
-    let bytes = crate::input::read_regular(path, MAX_FILE_BYTES).map_err(|_| format!("cannot read \"{}\"", path.display()))?;
-    parse(&bytes, index)
+    let name = path.display();
+    let (file, len) =
+        crate::input::open_regular(path, MAX_FILE_BYTES).map_err(|r| format!("\"{name}\" {}", r.describe("a .serialized file")))?;
+    crate::memory::reserve(len, || format!("reading \"{name}\" ({len} bytes)")).map_err(|e| e.to_string())?;
+    let bytes =
+        crate::input::read_opened(file, len, MAX_FILE_BYTES).map_err(|r| format!("\"{name}\" {}", r.describe("a .serialized file")));
+    let mesh = bytes.and_then(|bytes| parse_named(&bytes, index, &name.to_string()));
+    crate::memory::release(len);
+    mesh
 }
 
 /// Shape `index` of a `.serialized` file's bytes.
 pub fn parse(bytes: &[u8], index: i64) -> Result<Mesh, String> {
+    parse_named(bytes, index, "the .serialized file")
+}
+
+/// What the mesh data after the counts holds, in bytes, as the header declares it.
+fn declared_body(flags: u32, vertices: u64, triangles: u64) -> u64 {
+    let real = if flags & 0x2000 != 0 { 8 } else { 4 };
+    let mut per_vertex = 3;
+    for (flag, reals) in [(0x0001, 3), (0x0002, 2), (0x0008, 3)] {
+        if flags & flag != 0 {
+            per_vertex += reals;
+        }
+    }
+    let index = if vertices > u32::MAX as u64 { 8 } else { 4 };
+    vertices * per_vertex * real + triangles * 3 * index
+}
+
+/// The memory a mesh of `vertices` and `triangles` takes once read: its arrays,
+/// the inline table the scene holds it as (one [`Item`] per number and per row),
+/// and the core mesh with its BVH (about 64 bytes a triangle).
+pub fn mesh_bytes(vertices: u64, triangles: u64, normals: bool) -> u64 {
+    let item = std::mem::size_of::<Item>() as u64;
+    let vertex_rows = if normals { 2 } else { 1 };
+    let arrays = vertices * 24 * vertex_rows + triangles * 12;
+    let table = (vertices * vertex_rows + triangles) * 4 * item;
+    let core = vertices * 24 * vertex_rows + triangles * (12 + 64);
+    arrays + table + core
+}
+
+/// [`parse`], `name` naming the file in budget messages.
+fn parse_named(bytes: &[u8], index: i64, name: &str) -> Result<Mesh, String> {
     if bytes.len() < 8 {
         return Err("not a Mitsuba .serialized file (too short)".into());
     }
@@ -115,7 +155,7 @@ pub fn parse(bytes: &[u8], index: i64) -> Result<Mesh, String> {
             u32::from_le_bytes(bytes[at..at + 4].try_into().expect("4 bytes")) as usize
         }
     };
-    let head = bytes.get(start..start + 4).ok_or("a shape offset points past the end")?;
+    let head = start.checked_add(4).and_then(|end| bytes.get(start..end)).ok_or("a shape offset points past the end")?;
     if u16::from_le_bytes([head[0], head[1]]) != 0x041C {
         return Err("not a Mitsuba .serialized file (no 0x041C header)".into());
     }
@@ -123,20 +163,69 @@ pub fn parse(bytes: &[u8], index: i64) -> Result<Mesh, String> {
     if !(3..=4).contains(&version) {
         return Err(format!("unsupported .serialized version {version}, expected 3 or 4"));
     }
-    let mut data = Vec::new();
-    flate2::read::ZlibDecoder::new(&bytes[start + 4..])
-        .take(MAX_ELEMENTS * 8 * 16)
-        .read_to_end(&mut data)
-        .map_err(|e| format!("the compressed mesh data is damaged: {e}"))?;
-    let mut c = Cursor { data: &data, at: 0 };
-    let flags = c.u32()?;
+    let damaged = |e: std::io::Error| format!("the compressed mesh data is damaged: {e}");
+    let mut stream = flate2::read::ZlibDecoder::new(&bytes[start + 4..]);
+    // The header: flags, the name (version 4) and the two counts, read a piece
+    // at a time so that nothing is inflated before the sizes are known.
+    let mut word = [0u8; 8];
+    let exact = |stream: &mut flate2::read::ZlibDecoder<&[u8]>, out: &mut [u8]| {
+        stream.read_exact(out).map_err(|e| {
+            if e.kind() == std::io::ErrorKind::UnexpectedEof {
+                "the mesh data ends early".to_string()
+            } else {
+                damaged(e)
+            }
+        })
+    };
+    exact(&mut stream, &mut word[..4])?;
+    let flags = u32::from_le_bytes(word[..4].try_into().expect("4 bytes"));
     if version == 4 {
-        while c.take(1)?[0] != 0 {}
+        let mut length = 0;
+        loop {
+            exact(&mut stream, &mut word[..1])?;
+            if word[0] == 0 {
+                break;
+            }
+            length += 1;
+            if length > MAX_NAME_BYTES {
+                return Err(format!("the shape's name is longer than {MAX_NAME_BYTES} bytes, expected a NUL-terminated name"));
+            }
+        }
     }
-    let (vertices, triangles) = (c.u64()?, c.u64()?);
+    exact(&mut stream, &mut word)?;
+    let vertices = u64::from_le_bytes(word);
+    exact(&mut stream, &mut word)?;
+    let triangles = u64::from_le_bytes(word);
     if vertices > MAX_ELEMENTS || triangles > MAX_ELEMENTS {
         return Err(format!("{vertices} vertices and {triangles} triangles, expected at most {MAX_ELEMENTS} each"));
     }
+    // Inflate against the declared size: never more than the header says.
+    let body = declared_body(flags, vertices, triangles);
+    let normals_stored = flags & 0x0001 != 0;
+    let needed = body + mesh_bytes(vertices, triangles, normals_stored);
+    crate::memory::reserve(needed, || format!("\"{name}\": a mesh of {vertices} vertices and {triangles} triangles"))
+        .map_err(|e| e.to_string())?;
+    let mut data = Vec::with_capacity(body as usize);
+    let inflated = (&mut stream).take(body + 1).read_to_end(&mut data).map_err(damaged);
+    let data = match inflated {
+        Err(e) => Err(e),
+        Ok(_) if data.len() as u64 > body => Err(format!(
+            "the compressed mesh data holds more than the {body} bytes its header declares ({vertices} vertices, {triangles} triangles)"
+        )),
+        Ok(_) if (data.len() as u64) < body => {
+            Err(format!("the mesh data ends early: {} of the {body} bytes its header declares", data.len()))
+        }
+        Ok(_) => Ok(data),
+    };
+    let mesh = data.and_then(|data| mesh_of(&data, flags, vertices, triangles));
+    // The inflated bytes are freed here; the mesh keeps the rest of its share.
+    crate::memory::release(body);
+    mesh
+}
+
+/// The mesh of the inflated data after the counts.
+fn mesh_of(data: &[u8], flags: u32, vertices: u64, triangles: u64) -> Result<Mesh, String> {
+    let mut c = Cursor { data, at: 0 };
     let double = flags & 0x2000 != 0;
     let vec3s = |c: &mut Cursor<'_>, n: u64| -> Result<Vec<[f64; 3]>, String> {
         (0..n).map(|_| Ok([c.real(double)?, c.real(double)?, c.real(double)?])).collect()

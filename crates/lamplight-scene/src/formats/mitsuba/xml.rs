@@ -20,6 +20,18 @@ pub const MAX_DEPTH: usize = 64;
 pub const MAX_INCLUDE_DEPTH: usize = 16;
 /// Most elements of a scene, includes together.
 pub const MAX_ELEMENTS: usize = 1 << 20;
+/// Most `<include>`s one scene reads, each time a file is included counted
+/// (eleven files each including the next four times would be 4^10).
+pub const MAX_INCLUDES: usize = 1024;
+/// Most bytes of XML one scene reads: the main file and every included file
+/// together, each time it is included (64 MiB: four files at the size cap).
+pub const MAX_XML_BYTES: u64 = 64 << 20;
+/// Longest attribute value after `$name` substitution (1 MiB): a chain of
+/// `<default>`s that each double the last stops here, at its line.
+pub const MAX_VALUE_BYTES: u64 = 1 << 20;
+/// Most bytes the substitutions of one scene make together (16 MiB, a scene
+/// file's size): a long `-D` value named many times stops here.
+pub const MAX_SUBSTITUTED_BYTES: u64 = 16 << 20;
 
 /// One attribute: name, value (substituted) and the value's place.
 #[derive(Clone, Debug)]
@@ -86,15 +98,29 @@ struct Reader {
     params: HashMap<String, String>,
     search_paths: Vec<PathBuf>,
     elements: usize,
-    /// Files being read, outermost first (cycle check).
+    /// Files being read, outermost first (cycle check; includes resolve
+    /// against the folder of the last).
     stack: Vec<PathBuf>,
+    /// `<include>`s read so far.
+    includes: usize,
+    /// Bytes of XML read so far, the main file's included.
+    xml_bytes: u64,
+    /// Bytes the substitutions made so far.
+    substituted: u64,
 }
 
 /// Reads the Mitsuba scene at `path`; `defines` are `-D name=value` pairs
 /// (they win over `<default>`).
 pub fn read(path: &Path, text: String, defines: &[(String, String)]) -> Result<Document, (ParamError, Option<String>)> {
-    let mut reader =
-        Reader { params: defines.iter().cloned().collect(), search_paths: Vec::new(), elements: 0, stack: vec![path.to_path_buf()] };
+    let mut reader = Reader {
+        params: defines.iter().cloned().collect(),
+        search_paths: Vec::new(),
+        elements: 0,
+        stack: vec![path.to_path_buf()],
+        includes: 0,
+        xml_bytes: text.len() as u64,
+        substituted: 0,
+    };
     let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
     reader.search_paths.push(dir);
     match reader.document(&text, None) {
@@ -212,17 +238,40 @@ impl Reader {
         Ok(el)
     }
 
+    /// The file an `<include>` names, found as Mitsuba 3 finds it: beside the
+    /// file that includes it, then in the scene's folder and the `<path>`
+    /// folders (Mitsuba 3.9.1 reads `sub/b.xml` for an `<include
+    /// filename="b.xml"/>` in `sub/a.xml`, even when the scene's folder has a
+    /// `b.xml` too). Each include counts against [`MAX_INCLUDES`] and its bytes
+    /// against [`MAX_XML_BYTES`], checked before the file is read.
     fn include(&mut self, name: &Attr) -> Result<El, ParamError> {
         let err = |message: String| ParamError { loc: name.loc.clone(), message };
-        let path = resolve(&self.search_paths, &name.value).ok_or_else(|| err(format!("include: no such file \"{}\"", name.value)))?;
+        let here = self.stack.last().and_then(|p| p.parent()).map(Path::to_path_buf).unwrap_or_default();
+        let folders: Vec<PathBuf> = std::iter::once(here).chain(self.search_paths.iter().cloned()).collect();
+        let path = resolve(&folders, &name.value).ok_or_else(|| err(format!("include: no such file \"{}\"", name.value)))?;
         if self.stack.len() > MAX_INCLUDE_DEPTH {
             return Err(err(format!("includes nest more than {MAX_INCLUDE_DEPTH} deep")));
         }
         if self.stack.iter().any(|p| same_file(p, &path)) {
             return Err(err(format!("include: \"{}\" includes itself", name.value)));
         }
-        let bytes =
-            crate::input::read_regular(&path, MAX_FILE_BYTES).map_err(|_| err(format!("include: cannot read \"{}\"", path.display())))?;
+        self.includes += 1;
+        if self.includes > MAX_INCLUDES {
+            return Err(err(format!(
+                "include: more than {MAX_INCLUDES} includes in one scene (each time a file is included counts), expected at most {MAX_INCLUDES}"
+            )));
+        }
+        let refused = |r: crate::input::Refusal| err(format!("include: \"{}\" {}", path.display(), r.describe("an XML file")));
+        let (file, len) = crate::input::open_regular(&path, MAX_FILE_BYTES).map_err(refused)?;
+        if self.xml_bytes + len > MAX_XML_BYTES {
+            return Err(err(format!(
+                "include: \"{}\" ({len} bytes) would make the scene read more than {MAX_XML_BYTES} bytes of XML \
+                 (the main file and each included file, each time it is included), expected at most 64 MiB",
+                name.value
+            )));
+        }
+        self.xml_bytes += len;
+        let bytes = crate::input::read_opened(file, len, MAX_FILE_BYTES).map_err(refused)?;
         let text = String::from_utf8(bytes).map_err(|_| err(format!("include: \"{}\" is not UTF-8 text", path.display())))?;
         self.stack.push(path.clone());
         let root = self.document(&text, Some(&path));
@@ -230,23 +279,47 @@ impl Reader {
         root
     }
 
-    /// `value` with every `$name` replaced by its parameter.
-    fn substitute(&self, value: &str, loc: &Loc) -> Result<String, ParamError> {
+    /// `value` with every `$name` replaced by its parameter. The length is
+    /// added up first, so that a value over [`MAX_VALUE_BYTES`], or one that
+    /// takes the scene past [`MAX_SUBSTITUTED_BYTES`], is refused before it is
+    /// allocated.
+    fn substitute(&mut self, value: &str, loc: &Loc) -> Result<String, ParamError> {
         if !value.contains('$') {
             return Ok(value.to_string());
         }
-        let mut out = String::with_capacity(value.len());
+        let pieces = self.pieces(value, loc)?;
+        let length: u64 = pieces.iter().map(|p| p.len() as u64).sum();
+        let fail = |message: String| Err(ParamError { loc: loc.clone(), message });
+        if length > MAX_VALUE_BYTES {
+            return fail(format!(
+                "substituting the $names would make this value {length} bytes long, expected at most {MAX_VALUE_BYTES} (1 MiB)"
+            ));
+        }
+        if self.substituted + length > MAX_SUBSTITUTED_BYTES {
+            return fail(format!(
+                "substituting the $names would make the scene's values more than {MAX_SUBSTITUTED_BYTES} bytes together \
+                 (a long value named many times), expected at most 16 MiB"
+            ));
+        }
+        let out = pieces.concat();
+        self.substituted += length;
+        Ok(out)
+    }
+
+    /// `value` cut into literal text and the parameters its `$name`s name.
+    fn pieces<'v>(&'v self, value: &'v str, loc: &Loc) -> Result<Vec<&'v str>, ParamError> {
+        let mut out = Vec::new();
         let mut rest = value;
         while let Some(i) = rest.find('$') {
-            out.push_str(&rest[..i]);
+            out.push(&rest[..i]);
             let after = &rest[i + 1..];
             let len = after.find(|c: char| !(c.is_ascii_alphanumeric() || c == '_')).unwrap_or(after.len());
             let name = &after[..len];
             if name.is_empty() {
-                out.push('$');
+                out.push("$");
             } else {
                 match self.params.get(name) {
-                    Some(v) => out.push_str(v),
+                    Some(v) => out.push(v.as_str()),
                     None => {
                         return Err(ParamError {
                             loc: loc.clone(),
@@ -259,18 +332,20 @@ impl Reader {
             }
             rest = &after[len..];
         }
-        out.push_str(rest);
+        out.push(rest);
         Ok(out)
     }
 }
 
-/// The file `name` names: absolute, or in the first search folder that has it.
+/// The file `name` names: absolute, or in the first search folder where
+/// something of that name exists (as Mitsuba's file resolver: what it is, a
+/// FIFO, a folder or a device, is for the reader to say, not "no such file").
 pub fn resolve(search_paths: &[PathBuf], name: &str) -> Option<PathBuf> {
     let p = Path::new(name);
     if p.is_absolute() {
-        return p.is_file().then(|| p.to_path_buf());
+        return p.exists().then(|| p.to_path_buf());
     }
-    search_paths.iter().map(|d| d.join(p)).find(|c| c.is_file())
+    search_paths.iter().map(|d| d.join(p)).find(|c| c.exists())
 }
 
 fn same_file(a: &Path, b: &Path) -> bool {
