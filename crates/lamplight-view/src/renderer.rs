@@ -75,12 +75,15 @@ impl Wanted {
         }
     }
 
-    /// Explains pixel `(x, y)` of the final frame: the ray tree of `explain`, as JSON.
-    pub fn explain(&self, x: u32, y: u32) -> Result<serde_json::Value, String> {
+    /// Explains pixel `(x, y)` of the final frame: the ray tree of `explain`,
+    /// as JSON; errs soon after `cancel` is raised.
+    pub fn explain(&self, x: u32, y: u32, cancel: Arc<AtomicBool>) -> Result<serde_json::Value, String> {
         let camera = self.camera();
-        let mut scene = self.loaded.lock();
-        scene.settings.camera = camera;
-        let explained = lamplight_scene::explain::explain(&scene, &self.job, (x, y), None, Naming::Keywords);
+        let explained = {
+            let mut scene = self.loaded.lock();
+            scene.settings.camera = camera;
+            lamplight_scene::explain::explain_cancellable(&scene, &self.job, (x, y), None, Naming::Keywords, Some(cancel))
+        };
         explained.map(|e| e.to_json()).map_err(|e| e.0)
     }
 }
