@@ -123,8 +123,11 @@ fn save(app: &Arc<App>, message: &Value, answers: mpsc::Sender<String>) -> Resul
     let own = app.own_files.lock().unwrap_or_else(|p| p.into_inner()).contains(&path);
     if path.exists() && !own && message["replace"].as_str() != Some(name) {
         let why = format!("'{name}' exists and the viewer did not write it; to replace it, send \"replace\": \"{name}\"");
-        let _ = answers.try_send(json!({ "type": "error", "message": why, "exists": name }).to_string());
-        return Ok(());
+        // With `exists`, for the page to ask; a full queue gets the plain error.
+        return match answers.try_send(json!({ "type": "error", "message": why, "exists": name }).to_string()) {
+            Ok(()) => Ok(()),
+            Err(_) => Err(why),
+        };
     }
     let extension = path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
     let exposure = match &message["exposure"] {

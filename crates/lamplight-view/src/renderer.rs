@@ -18,7 +18,7 @@
 //! flight and the frames published, whatever the rate of requests.
 
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Arc, Condvar, Mutex, MutexGuard};
+use std::sync::{Arc, Condvar, Mutex, MutexGuard, TryLockError};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
@@ -80,7 +80,16 @@ impl Wanted {
     pub fn explain(&self, x: u32, y: u32, cancel: Arc<AtomicBool>) -> Result<serde_json::Value, String> {
         let camera = self.camera();
         let explained = {
-            let mut scene = self.loaded.lock();
+            // The render in flight holds the scene for a stage; a superseded
+            // explanation stops waiting for it, so the page's newest goes next.
+            let mut scene = loop {
+                match self.loaded.scene.try_lock() {
+                    Ok(scene) => break scene,
+                    Err(TryLockError::Poisoned(p)) => break p.into_inner(),
+                    Err(TryLockError::WouldBlock) if cancel.load(Ordering::Relaxed) => return Err("cancelled".into()),
+                    Err(TryLockError::WouldBlock) => std::thread::sleep(Duration::from_millis(5)),
+                }
+            };
             scene.settings.camera = camera;
             lamplight_scene::explain::explain_cancellable(&scene, &self.job, (x, y), None, Naming::Keywords, Some(cancel))
         };
