@@ -18,7 +18,7 @@
 //! flight and the frames published, whatever the rate of requests.
 
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Arc, Condvar, Mutex, MutexGuard, TryLockError};
+use std::sync::{Arc, Condvar, Mutex, MutexGuard};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
@@ -80,16 +80,11 @@ impl Wanted {
     pub fn explain(&self, x: u32, y: u32, cancel: Arc<AtomicBool>) -> Result<serde_json::Value, String> {
         let camera = self.camera();
         let explained = {
-            // The render in flight holds the scene for a stage; a superseded
-            // explanation stops waiting for it, so the page's newest goes next.
-            let mut scene = loop {
-                match self.loaded.scene.try_lock() {
-                    Ok(scene) => break scene,
-                    Err(TryLockError::Poisoned(p)) => break p.into_inner(),
-                    Err(TryLockError::WouldBlock) if cancel.load(Ordering::Relaxed) => return Err("cancelled".into()),
-                    Err(TryLockError::WouldBlock) => std::thread::sleep(Duration::from_millis(5)),
-                }
-            };
+            // A blocking lock, not a try_lock loop: the render thread takes the
+            // scene again at once after each stage, so polling starved the
+            // explanation (30 s for a click at 4096 spp instead of 0.9 s),
+            // while a waiter is handed the lock between stages.
+            let mut scene = self.loaded.lock();
             scene.settings.camera = camera;
             lamplight_scene::explain::explain_cancellable(&scene, &self.job, (x, y), None, Naming::Keywords, Some(cancel))
         };
