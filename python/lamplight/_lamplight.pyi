@@ -96,8 +96,9 @@ class Scene:
     ) -> Dict[str, Any]:
         """Why pixel ``(x, y)`` of the render these settings make has its colour.
 
-        Every sample of the pixel (or only ``sample``, 0 to ``spp - 1``), as the
-        render computes it: for Whitted the ray tree (each ray with its hit,
+        The samples of the pixel (the first 64 in full, the rest summarised in
+        ``unrecorded``; or only ``sample``, 0 to ``spp - 1``), as the
+        render computes them: for Whitted the ray tree (each ray with its hit,
         the lecture's terms, the Fresnel weights and the rays it spawned), for
         the path tracer each path's vertices (BSDF samples, pdfs, throughput,
         light samples with their MIS weights). Plain dicts and lists, the same

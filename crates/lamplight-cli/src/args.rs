@@ -84,6 +84,9 @@ pub struct ViewArgs {
     /// Listen on this address instead of 127.0.0.1:8765 (anything but loopback lets other machines connect, with the token).
     #[arg(long, value_name = "ADDR:PORT")]
     pub listen: Option<std::net::SocketAddr>,
+    /// The one folder the page saves images and cameras into [default: the scene file's folder, or the current folder].
+    #[arg(long, value_name = "DIR")]
+    pub save_dir: Option<std::path::PathBuf>,
     /// Open the viewer's URL in a browser.
     #[arg(long)]
     pub open: bool,

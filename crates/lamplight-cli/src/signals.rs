@@ -10,7 +10,11 @@
 //! which Ctrl-C is the way to stop, says "stopped" and exits with code 0.
 //!
 //! The handler runs on a thread of its own (the `ctrlc` crate), not inside the
-//! signal handler, so it may take locks and remove files.
+//! signal handler, so it may take locks and remove files. It never writes with
+//! `eprintln!`, which panics once stderr is gone (a closed terminal, `| head`):
+//! the panic ended the handler's thread before it exited, and every later
+//! signal was ignored (issue 30). It writes with [`say`], which ignores a
+//! failed write, and exits whatever happens to the words.
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -34,12 +38,18 @@ pub fn install() {
         lamplight_scene::atomic::remove_temporaries();
         if SERVING.load(Ordering::SeqCst) {
             // The documented way to stop the viewer: no error.
-            eprintln!("lamplight view: stopped");
+            say("lamplight view: stopped");
             std::process::exit(0);
         }
-        eprintln!("lamplight: error: interrupted");
+        say("lamplight: error: interrupted");
         std::process::exit(INTERRUPTED);
     });
+}
+
+/// Writes `line` to stderr, ignoring a stream that is gone.
+fn say(line: &str) {
+    use std::io::Write;
+    let _ = writeln!(std::io::stderr(), "{line}");
 }
 
 /// While alive, the first signal stops the render instead of ending the program.

@@ -1,6 +1,8 @@
 //! `lamplight view`: starts the viewer ([`lamplight_view`]), prints its URL and
 //! serves until Ctrl-C.
 
+use std::io::Write;
+
 use lamplight_view::{ViewOptions, Viewer};
 
 use crate::args::{UsageError, ViewArgs};
@@ -13,11 +15,20 @@ pub fn view_command(args: ViewArgs) -> anyhow::Result<()> {
              (each request still needs the token in the URL; the traffic is not encrypted)"
         );
     }
-    let viewer = Viewer::start(ViewOptions { scene: args.render.scene.clone(), listen: args.listen, request }).map_err(UsageError)?;
+    let viewer =
+        Viewer::start(ViewOptions { scene: args.render.scene.clone(), listen: args.listen, request, save_dir: args.save_dir.clone() })
+            .map_err(UsageError)?;
     crate::signals::serving();
     let url = viewer.url();
-    println!("lamplight view: {url}");
-    eprintln!("open that URL in a browser (it holds the access token); Ctrl-C stops the viewer");
+    // A reader that went away (`| head -1`, a closed terminal) must not stop
+    // the server or its Ctrl-C: these writes ignore a closed stream.
+    let _ = writeln!(std::io::stdout(), "lamplight view: {url}");
+    let _ = std::io::stdout().flush();
+    let _ = writeln!(
+        std::io::stderr(),
+        "open that URL in a browser (it holds the access token); saves go into {}; Ctrl-C stops the viewer",
+        viewer.app.save_dir.display()
+    );
     if args.open {
         open_browser(&url);
     }

@@ -94,3 +94,35 @@ fn bad_input_is_one_line_and_exit_code_2() {
     let out = lamplight(dir.path(), &["explain", "nowhere", "--pixel", "1,1"]);
     assert_eq!(out.status.code(), Some(2));
 }
+
+/// See: issue 30: 131,072 samples recorded in full took 3.2 GB and aborted.
+/// The first 64 are recorded and the rest summarised.
+#[test]
+fn a_pixel_of_131072_samples_records_64_and_summarises_the_rest() {
+    let start = std::time::Instant::now();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_lamplight"))
+        .args(["explain", "spheres", "--pixel", "20,10", "--width", "40", "--spp", "131072", "--json"])
+        .output()
+        .unwrap();
+    let elapsed = start.elapsed();
+    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(elapsed < std::time::Duration::from_secs(5), "{elapsed:?}");
+    assert!(out.stdout.len() < 1 << 20, "{} bytes of JSON", out.stdout.len());
+    let tree: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(tree["spp"], 131072);
+    assert_eq!(tree["samples"].as_array().unwrap().len(), 64);
+    let u = &tree["unrecorded"];
+    assert_eq!((u["first"].as_u64(), u["count"].as_u64(), u["dropped"].as_u64()), (Some(64), Some(131008), Some(0)));
+    // The summary is of the render's samples: the recorded ones' film values
+    // and the rest's sum make the pixel (within the f32 it is stored as).
+    let mut sum = [0.0; 3];
+    for s in tree["samples"].as_array().unwrap() {
+        for (k, c) in sum.iter_mut().enumerate() {
+            *c += s["film_value"][k].as_f64().unwrap();
+        }
+    }
+    for (k, c) in sum.iter().enumerate() {
+        let pixel = (c + u["film_sum"][k].as_f64().unwrap()) / 131072.0;
+        assert!((pixel - tree["value"][k].as_f64().unwrap()).abs() < 1e-6, "channel {k}: {pixel}");
+    }
+}

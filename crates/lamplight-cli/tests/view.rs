@@ -73,3 +73,31 @@ fn ctrl_c_stops_the_viewer_without_an_error() {
     assert_eq!(status.code(), Some(0), "{err}");
     assert!(err.ends_with("lamplight view: stopped\n") && !err.contains("error"), "{err}");
 }
+
+/// See: issue 30. With the readers of its stdout and stderr gone (`| head -1`,
+/// a closed terminal), each of SIGTERM, SIGHUP and SIGINT still stops the
+/// viewer, within seconds, with the code of a clean stop.
+#[test]
+fn signals_stop_the_viewer_after_its_readers_are_gone() {
+    for signal in ["-TERM", "-HUP", "-INT"] {
+        let (mut child, line) = started(&["view", "business-card", "--listen", "127.0.0.1:0"]);
+        assert!(line.starts_with("lamplight view: http://127.0.0.1:"), "{line}");
+        drop(child.stderr.take());
+        // The stdout reader went with `started`'s BufReader: both pipes are closed now.
+        std::thread::sleep(std::time::Duration::from_millis(100));
+        Command::new("kill").args([signal, &child.id().to_string()]).status().unwrap();
+        let deadline = std::time::Instant::now() + std::time::Duration::from_secs(5);
+        let status = loop {
+            if let Some(status) = child.try_wait().unwrap() {
+                break status;
+            }
+            if std::time::Instant::now() > deadline {
+                child.kill().unwrap();
+                child.wait().unwrap();
+                panic!("{signal}: the viewer was still running 5 s after the signal");
+            }
+            std::thread::sleep(std::time::Duration::from_millis(20));
+        };
+        assert_eq!(status.code(), Some(0), "{signal}");
+    }
+}

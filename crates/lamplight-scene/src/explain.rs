@@ -3,6 +3,9 @@
 //! them ([`Naming`]), then [`lamplight_core::explain::explain`] records the
 //! pixel with the render's own code.
 
+use std::sync::atomic::AtomicBool;
+use std::sync::Arc;
+
 use lamplight_core::explain::PixelExplanation;
 use lamplight_core::Scene;
 
@@ -12,12 +15,19 @@ use crate::request::{Job, Naming, RequestError};
 /// asks for of `scene` (prepared, as for [`Job::run`]). Sample indices run
 /// below the samples the render takes at that pixel, which adaptive sampling
 /// decides ([`lamplight_core::explain::plan`]).
-pub fn explain(
+pub fn explain(scene: &Scene, job: &Job, pixel: (u32, u32), sample: Option<u32>, naming: Naming) -> Result<PixelExplanation, RequestError> {
+    explain_cancellable(scene, job, pixel, sample, naming, None)
+}
+
+/// [`explain`], which stops with an error soon after `cancel` is raised
+/// ([`lamplight_core::explain::plan_cancellable`]): the viewer's stale explanations.
+pub fn explain_cancellable(
     scene: &Scene,
     job: &Job,
     (x, y): (u32, u32),
     sample: Option<u32>,
     naming: Naming,
+    cancel: Option<Arc<AtomicBool>>,
 ) -> Result<PixelExplanation, RequestError> {
     let o = &job.options;
     let (w, h) = (o.width, o.height);
@@ -28,7 +38,7 @@ pub fn explain(
         };
         return Err(RequestError(format!("{asked} is outside the {w}x{h} image (x from 0 to {}, y from 0 to {})", w - 1, h - 1)));
     }
-    let plan = lamplight_core::explain::plan(scene, o, x, y).map_err(|e| RequestError(e.to_string()))?;
+    let plan = lamplight_core::explain::plan_cancellable(scene, o, x, y, cancel).map_err(|e| RequestError(e.to_string()))?;
     if let Some(k) = sample.filter(|k| *k >= plan.samples) {
         let n = plan.samples;
         return Err(RequestError(format!(

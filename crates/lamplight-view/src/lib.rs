@@ -10,7 +10,9 @@
 //!
 //! It is safe by default: it listens on `127.0.0.1` only, every request must
 //! carry a random token that only the printed URL holds ([`token`]), and it
-//! reads and writes only files inside the scene's folder ([`confine`]).
+//! answers only requests naming it in `Host` and coming from its own page
+//! ([`doors`]), serves only its page, and writes only into one save folder
+//! ([`confine`], [`messages`]). `docs/view.md` states the whole model.
 //! Rendering goes through the request layer (`lamplight_scene::request`), so
 //! every size, sample count and depth has the limits `lamplight render` has.
 
@@ -22,6 +24,8 @@ use lamplight_scene::request::Request;
 
 pub mod camera;
 pub mod confine;
+pub mod doors;
+pub mod explainer;
 pub mod messages;
 pub mod reload;
 pub mod renderer;
@@ -44,6 +48,9 @@ pub struct ViewOptions {
     pub listen: Option<SocketAddr>,
     /// The settings to start with (image size, samples, depth, integrator, threads).
     pub request: Request,
+    /// The one folder the page's saves go into; `None`: the scene file's
+    /// folder, or the current folder for a built-in scene.
+    pub save_dir: Option<PathBuf>,
 }
 
 /// A running viewer.
@@ -62,7 +69,7 @@ impl Viewer {
     /// Errors are bad input (a scene that does not load, settings out of bounds,
     /// an address in use), one line each.
     pub fn start(options: ViewOptions) -> Result<Viewer, String> {
-        let ViewOptions { scene, listen, mut request } = options;
+        let ViewOptions { scene, listen, mut request, save_dir } = options;
         // The viewer's image: the scene's aspect, 640 pixels wide, unless asked.
         if request.width.is_none() && request.height.is_none() {
             request.width = Some(640);
@@ -78,6 +85,11 @@ impl Viewer {
             None => PathBuf::from("."),
         };
         let root = root.canonicalize().map_err(|e| format!("{}: {e}", root.display()))?;
+        let save_dir = match save_dir {
+            Some(d) if !d.is_dir() => return Err(format!("--save-dir {}: not a folder", d.display())),
+            Some(d) => d.canonicalize().map_err(|e| format!("--save-dir {}: {e}", d.display()))?,
+            None => root.clone(),
+        };
         let listener = match listen {
             Some(address) => TcpListener::bind(address).map_err(|e| format!("cannot listen on {address}: {e}"))?,
             None => TcpListener::bind(DEFAULT_ADDRESS)
@@ -87,7 +99,7 @@ impl Viewer {
         let address = listener.local_addr().map_err(|e| e.to_string())?;
         listener.set_nonblocking(true).map_err(|e| e.to_string())?;
         let token = token::new_token()?;
-        let app = App::start(token, root.clone(), scene.clone(), scene_file.clone(), loaded, request);
+        let app = App::start(token, root.clone(), save_dir, scene.clone(), scene_file.clone(), loaded, request);
         let watcher = match &scene_file {
             Some(_) => {
                 let weak = Arc::downgrade(&app);
@@ -106,7 +118,7 @@ impl Viewer {
             .build()
             .map_err(|e| format!("cannot start the server's threads: {e}"))?;
         let (shutdown, stopped) = tokio::sync::oneshot::channel::<()>();
-        let router = server::router(app.clone());
+        let router = server::router(app.clone(), doors::Doors::new(address));
         let listener = {
             let _guard = runtime.enter();
             tokio::net::TcpListener::from_std(listener).map_err(|e| e.to_string())?
@@ -116,7 +128,9 @@ impl Viewer {
                 let _ = stopped.await;
             });
             if let Err(e) = served.await {
-                eprintln!("lamplight: error: the viewer's server stopped: {e}");
+                // Not eprintln!: stderr may be gone (issue 30).
+                let _ =
+                    std::io::Write::write_fmt(&mut std::io::stderr(), format_args!("lamplight: error: the viewer's server stopped: {e}\n"));
             }
         });
         Ok(Viewer { app, address, runtime: Some(runtime), shutdown: Some(shutdown), _watcher: watcher })

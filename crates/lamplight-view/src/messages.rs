@@ -6,13 +6,20 @@
 //! | `reset` | | back to the scene's own camera |
 //! | `settings` | `integrator`, `spp`, `max_depth`, `denoise` (each a value or `null` for the scene's) | renders with them; `denoise: true` denoises every frame (Open Image Denoise) |
 //! | `explain` | `x`, `y` (pixels of the full image) | answers `explain` with the ray tree of `lamplight explain --json` |
-//! | `save` | `name` (`.png`, `.ppm` or `.exr`), `exposure` (stops) | writes the latest frame into the scene's folder |
-//! | `save_camera` | `name` (`.toml`) | writes the camera's `[camera]` table there |
+//! | `save` | `name` (`.png`, `.ppm` or `.exr`), `exposure` (stops), `replace` | writes the latest frame into the save folder |
+//! | `save_camera` | `name` (`.toml`), `replace` | writes the camera's `[camera]` table there |
+//!
+//! Saving takes a file name, not a path, into the one save folder
+//! ([`crate::ViewOptions::save_dir`]); a name starting with `.` is refused, and
+//! so is a file that exists and that this viewer did not write, unless
+//! `replace` names it (the page asks first). That refusal is answered with an
+//! error that also has `exists: name`.
 //!
 //! Every value is checked here or by the request layer's limits
 //! (`lamplight_scene::request::limits`); a refused message is answered with
 //! `{"type": "error", "message": ...}` and changes nothing.
 
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
 use lamplight_scene::image_io::Format;
@@ -21,6 +28,7 @@ use serde_json::{json, Value};
 use tokio::sync::mpsc;
 
 use crate::camera::ViewCamera;
+use crate::explainer::{Explainer, Work};
 use crate::state::{integrator_name, App};
 
 /// Largest exposure the page may ask a saved image for, in stops.
@@ -41,7 +49,7 @@ fn optional_count(value: &Value, key: &str) -> Result<Option<u32>, String> {
 
 /// Handles one message; returns the answer to send now, if any (slow work
 /// answers later through `answers`).
-pub fn handle(app: &Arc<App>, text: &str, answers: &mpsc::Sender<String>) -> Option<String> {
+pub fn handle(app: &Arc<App>, text: &str, answers: &mpsc::Sender<String>, explainer: &Explainer) -> Option<String> {
     let message: Value = match serde_json::from_str(text) {
         Ok(v) => v,
         Err(e) => return Some(error_reply(&format!("the message is not JSON: {e}"))),
@@ -50,7 +58,7 @@ pub fn handle(app: &Arc<App>, text: &str, answers: &mpsc::Sender<String>) -> Opt
         "camera" => ViewCamera::from_json(&message["camera"]).and_then(|c| app.set_camera(Some(c))),
         "reset" => app.set_camera(None),
         "settings" => settings(app, &message),
-        "explain" => explain(app, &message, answers.clone()),
+        "explain" => explain(app, &message, answers.clone(), explainer),
         "save" | "save_camera" => save(app, &message, answers.clone()),
         other => {
             Err(lamplight_core::params::unknown("message type", other, &["camera", "reset", "settings", "explain", "save", "save_camera"]))
@@ -76,32 +84,50 @@ fn settings(app: &App, message: &Value) -> Result<(), String> {
     })
 }
 
-fn explain(app: &Arc<App>, message: &Value, answers: mpsc::Sender<String>) -> Result<(), String> {
+fn explain(app: &Arc<App>, message: &Value, answers: mpsc::Sender<String>, explainer: &Explainer) -> Result<(), String> {
     let x = optional_count(&message["x"], "x")?.ok_or("x must be a whole number")?;
     let y = optional_count(&message["y"], "y")?.ok_or("y must be a whole number")?;
     let frame = app.latest_frame().ok_or("no frame yet")?;
     let wanted = frame.wanted.clone();
     let camera = wanted.camera.unwrap_or(app.lock().probed);
-    tokio::task::spawn_blocking(move || {
-        let reply = match wanted.explain(x, y) {
-            Ok(tree) => json!({
+    let work: Work = Box::new(move |cancel: Arc<AtomicBool>| match wanted.explain(x, y, cancel.clone()) {
+        Ok(tree) => Some(
+            json!({
                 "type": "explain", "x": x, "y": y, "generation": wanted.generation,
                 "camera": camera.to_json(), "tree": tree,
             })
             .to_string(),
-            Err(e) => error_reply(&e),
-        };
+        ),
+        Err(_) if cancel.load(Ordering::Relaxed) => None,
+        Err(e) => Some(error_reply(&e)),
+    });
+    explainer.submit(work, move |reply| {
         let _ = answers.blocking_send(reply);
     });
     Ok(())
 }
 
 fn save(app: &Arc<App>, message: &Value, answers: mpsc::Sender<String>) -> Result<(), String> {
-    let name = message["name"].as_str().ok_or("name must be a file name in the scene's folder")?;
+    let name = message["name"].as_str().ok_or("name must be a file name (saved into the viewer's save folder)")?;
     let camera_only = message["type"] == "save_camera";
-    let path = crate::confine::writable_file(&app.root, name).map_err(|e| e.0)?;
+    if name.contains('/') || name.contains('\\') {
+        return Err(format!("'{name}' is refused: a name, not a path; the viewer saves into {} only", app.save_dir.display()));
+    }
+    if name.starts_with('.') {
+        return Err(format!("'{name}' is refused: names starting with '.' (hidden and configuration files) are not saved"));
+    }
+    let path = crate::confine::writable_file(&app.save_dir, name).map_err(|e| e.0)?;
     if app.scene_file.as_ref().is_some_and(|f| lamplight_scene::atomic::same_file(f, &path)) {
         return Err(format!("'{name}' is the scene file itself; choose another name"));
+    }
+    let own = app.own_files.lock().unwrap_or_else(|p| p.into_inner()).contains(&path);
+    if path.exists() && !own && message["replace"].as_str() != Some(name) {
+        let why = format!("'{name}' exists and the viewer did not write it; to replace it, send \"replace\": \"{name}\"");
+        // With `exists`, for the page to ask; a full queue gets the plain error.
+        return match answers.try_send(json!({ "type": "error", "message": why, "exists": name }).to_string()) {
+            Ok(()) => Ok(()),
+            Err(_) => Err(why),
+        };
     }
     let extension = path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
     let exposure = match &message["exposure"] {

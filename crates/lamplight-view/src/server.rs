@@ -1,24 +1,26 @@
 //! The HTTP and WebSocket server (axum): the page, the scene's own files and
 //! one WebSocket per page.
 //!
-//! Every request but the favicon's must carry the token ([`crate::token`]);
-//! without it the answer is `403 Forbidden` and nothing else runs. The routes:
-//! - `GET /`, `/app.js`, `/app.css`: the page, built into the binary;
-//! - `GET /files/NAME`: a file of the scene's folder ([`crate::confine`]);
-//!   a built-in scene has none;
+//! Every request must name this server in `Host` and, from a browser page,
+//! come from its own page (`Origin`; [`crate::doors`]), and every request but
+//! the favicon's must carry the token ([`crate::token`]); without them the
+//! answer is `403 Forbidden` and nothing else runs. The routes:
+//! - `GET /`, `/app.js`, `/app.css`: the page, built into the binary; it
+//!   fetches nothing else, so no file of the scene's folder is served (the
+//!   renderer reads the scene's meshes and textures; the page needs none);
 //! - `GET /favicon.ico`, which browsers ask for without the token: `204 No Content`;
 //! - `GET /ws`: the WebSocket. The server sends `state` messages (JSON text)
 //!   when the view changes, and each frame as a `frame` message (JSON text)
 //!   followed at once by its pixels (binary: `width * height * 3` little-endian
 //!   `f32`, linear radiance, rows from the top). The page sends `camera`,
 //!   `reset`, `settings`, `explain`, `save` and `save_camera` messages
-//!   ([`crate::messages`]), at most [`MAX_MESSAGE`] bytes each.
+//!   ([`crate::messages`]), at most [`MAX_MESSAGE`] bytes each: a longer one
+//!   closes the WebSocket with code 1009 (message too big).
 
 use std::sync::Arc;
 
-use axum::body::Body;
-use axum::extract::ws::{Message, WebSocket, WebSocketUpgrade};
-use axum::extract::{Path as UrlPath, Request, State};
+use axum::extract::ws::{close_code, CloseFrame, Message, WebSocket, WebSocketUpgrade};
+use axum::extract::{Request, State};
 use axum::http::{header, HeaderValue, StatusCode};
 use axum::middleware::{self, Next};
 use axum::response::{IntoResponse, Response};
@@ -26,34 +28,48 @@ use axum::routing::get;
 use axum::Router;
 use tokio::sync::mpsc;
 
+use crate::doors::Doors;
+use crate::explainer::Explainer;
 use crate::renderer::Frame;
 use crate::state::App;
 
 /// Longest message a page may send (a camera or a setting is some 200 bytes).
 pub const MAX_MESSAGE: usize = 64 * 1024;
 
-/// Largest scene file the server hands to the page.
-pub const MAX_FILE_BYTES: u64 = 64 << 20;
-
 const INDEX_HTML: &str = include_str!("page/index.html");
 const APP_JS: &str = include_str!("page/app.js");
 const APP_CSS: &str = include_str!("page/app.css");
 
-/// The routes, behind the token check.
-pub fn router(app: Arc<App>) -> Router {
+/// The routes, behind the token check, all behind the doors of `doors`.
+pub fn router(app: Arc<App>, doors: Doors) -> Router {
+    let doors = Arc::new(doors);
     Router::new()
         .route("/", get(index))
         .route("/app.js", get(|| async { text(APP_JS, "text/javascript; charset=utf-8") }))
         .route("/app.css", get(|| async { text(APP_CSS, "text/css; charset=utf-8") }))
         .route("/ws", get(websocket))
-        .route("/files/{*name}", get(scene_file))
-        .fallback(|| async { (StatusCode::NOT_FOUND, "not found: the viewer serves its page and the scene's own files only\n") })
+        .fallback(|| async { (StatusCode::NOT_FOUND, "not found: the viewer serves its page only\n") })
         .layer(middleware::from_fn_with_state(app.clone(), require_token))
         // Browsers ask for it unprompted, without the token: an empty answer
         // (not a 403 in the console); added after the token layer, which
         // wraps only the routes above.
         .route("/favicon.ico", get(|| async { StatusCode::NO_CONTENT }))
+        .layer(middleware::from_fn(move |request: Request, next: Next| {
+            let doors = doors.clone();
+            async move { check_doors(&doors, request, next).await }
+        }))
         .with_state(app)
+}
+
+async fn check_doors(doors: &Doors, request: Request, next: Next) -> Response {
+    let verdict = {
+        let header = |name| request.headers().get(name).map(|v| v.to_str().unwrap_or("(not text)"));
+        doors.check(header(header::HOST), header(header::ORIGIN))
+    };
+    match verdict {
+        Ok(()) => next.run(request).await,
+        Err(why) => (StatusCode::FORBIDDEN, why).into_response(),
+    }
 }
 
 fn text(body: &'static str, kind: &'static str) -> Response {
@@ -85,23 +101,6 @@ async fn index(State(app): State<Arc<App>>) -> Response {
         HeaderValue::from_static("default-src 'self'; img-src 'self' data: blob:; connect-src 'self'"),
     );
     response
-}
-
-async fn scene_file(State(app): State<Arc<App>>, UrlPath(name): UrlPath<String>) -> Response {
-    if app.scene_file.is_none() {
-        return (StatusCode::FORBIDDEN, format!("'{name}' is refused: a built-in scene has no files\n")).into_response();
-    }
-    let root = app.root.clone();
-    let read = tokio::task::spawn_blocking(move || -> Result<Vec<u8>, String> {
-        let path = crate::confine::existing_file(&root, &name).map_err(|e| e.0)?;
-        lamplight_scene::input::read_regular(&path, MAX_FILE_BYTES).map_err(|e| format!("'{name}': cannot be read ({e:?})"))
-    })
-    .await;
-    match read {
-        Ok(Ok(bytes)) => ([(header::CONTENT_TYPE, "application/octet-stream")], Body::from(bytes)).into_response(),
-        Ok(Err(why)) => (StatusCode::FORBIDDEN, format!("{why}\n")).into_response(),
-        Err(_) => StatusCode::INTERNAL_SERVER_ERROR.into_response(),
-    }
 }
 
 async fn websocket(State(app): State<Arc<App>>, upgrade: WebSocketUpgrade) -> Response {
@@ -146,11 +145,12 @@ async fn page_session(app: Arc<App>, mut socket: WebSocket) {
     status.mark_changed();
     // Answers of slow requests (explain, save), at most a few waiting.
     let (answers, mut answered) = mpsc::channel::<String>(4);
+    let explainer = Explainer::default();
     loop {
         tokio::select! {
             message = socket.recv() => match message {
                 Some(Ok(Message::Text(text))) => {
-                    if let Some(reply) = crate::messages::handle(&app, text.as_str(), &answers) {
+                    if let Some(reply) = crate::messages::handle(&app, text.as_str(), &answers, &explainer) {
                         if socket.send(Message::Text(reply.into())).await.is_err() {
                             break;
                         }
@@ -163,7 +163,17 @@ async fn page_session(app: Arc<App>, mut socket: WebSocket) {
                     }
                 }
                 Some(Ok(_)) => {}
-                None | Some(Err(_)) => break,
+                Some(Err(e)) => {
+                    // Too long a message (tungstenite's capacity error): say so
+                    // with 1009 rather than drop the connection unexplained.
+                    if e.to_string().contains("Space limit exceeded") {
+                        let reason = format!("a message is at most {MAX_MESSAGE} bytes");
+                        let close = CloseFrame { code: close_code::SIZE, reason: reason.into() };
+                        let _ = socket.send(Message::Close(Some(close))).await;
+                    }
+                    break;
+                }
+                None => break,
             },
             Ok(()) = status.changed() => {
                 let message = status.borrow_and_update().to_string();
@@ -189,4 +199,5 @@ async fn page_session(app: Arc<App>, mut socket: WebSocket) {
             }
         }
     }
+    explainer.close();
 }

@@ -42,6 +42,8 @@ pub struct App {
     pub token: String,
     /// The scene's folder (the working folder for built-in scenes).
     pub root: PathBuf,
+    /// The one folder saves go into.
+    pub save_dir: PathBuf,
     /// The scene as the command line named it.
     pub scene_arg: String,
     /// The scene file, when it is one.
@@ -68,6 +70,7 @@ impl App {
     pub fn start(
         token: String,
         root: PathBuf,
+        save_dir: PathBuf,
         scene_arg: String,
         scene_file: Option<PathBuf>,
         loaded: Loaded,
@@ -79,6 +82,7 @@ impl App {
         let app = Arc::new(App {
             token,
             root,
+            save_dir,
             scene_arg,
             scene_file,
             view: Mutex::new(view),
@@ -149,6 +153,7 @@ impl App {
             "type": "state",
             "generation": view.generation,
             "scene": self.scene_arg,
+            "save_dir": self.save_dir.display().to_string(),
             "scene_file": self.scene_file.as_ref().and_then(|f| f.file_name()).map(|n| n.to_string_lossy()),
             "camera": camera.to_json(),
             "camera_toml": camera.to_toml(),

@@ -4,5 +4,6 @@
 //! again for each (issue 24, the test suite's time). A new test file is one
 //! more `mod` line here; `cargo test -p lamplight-view --test all NAME` runs one.
 
+mod doors;
 mod server;
 mod storm;

@@ -30,7 +30,7 @@ fn a_thousand_camera_changes_keep_memory_flat_and_end_on_the_right_frame() {
         return;
     }
     let request = Request { width: Some(320), ..Request::default() };
-    let options = ViewOptions { scene: "luxo".into(), listen: Some("127.0.0.1:0".parse().unwrap()), request };
+    let options = ViewOptions { scene: "luxo".into(), listen: Some("127.0.0.1:0".parse().unwrap()), request, save_dir: None };
     let viewer = Viewer::start(options).unwrap();
     let app = &viewer.app;
     let mut frames = app.frames.subscribe();

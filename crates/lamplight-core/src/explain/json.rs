@@ -4,7 +4,7 @@
 
 use serde_json::{json, Value};
 
-use super::{HitInfo, NeeRecord, PathRecord, PixelExplanation, Record, SampleExplanation, Sampling};
+use super::{HitInfo, NeeRecord, PathRecord, PixelExplanation, Record, SampleExplanation, SampleSummary, Sampling};
 use super::{LightOutcome, LightRecord, RayKind, RayNode, RayOutcome};
 use crate::integrators::trace::{LightRef, PathEnd, ReflectionWeight, Unlit};
 use crate::math::Vec3;
@@ -26,6 +26,19 @@ pub(super) fn pixel(p: &PixelExplanation) -> Value {
         "value": p.pixel,
         "sampling": sampling(&p.sampling),
         "samples": p.samples.iter().map(sample).collect::<Vec<_>>(),
+        "unrecorded": p.unrecorded.as_ref().map(unrecorded),
+    })
+}
+
+/// The samples past the recorded ones, summarised.
+fn unrecorded(u: &SampleSummary) -> Value {
+    json!({
+        "first": u.first,
+        "count": u.count,
+        "dropped": u.dropped,
+        "film_sum": v(u.film_sum),
+        "mean": v(u.mean),
+        "brightest": u.brightest.map(|(k, l)| json!({ "index": k, "film_value": v(l) })),
     })
 }
 

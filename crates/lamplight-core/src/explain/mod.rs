@@ -14,6 +14,8 @@
 //! [`crate::integrators::trace::NoTrace`] (see [`crate::integrators::trace`]).
 
 use std::fmt;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 
 use crate::film::{self, PixelSum};
 use crate::integrators::RayCounts;
@@ -133,8 +135,12 @@ pub struct PixelExplanation {
     pub seed: u64,
     /// Depth limit in force.
     pub max_depth: u32,
-    /// The samples explained: all of them, or the one asked for.
+    /// The samples recorded in full: the first [`MAX_RECORDED_SAMPLES`] of
+    /// them, or the one asked for.
     pub samples: Vec<SampleExplanation>,
+    /// The samples past the first [`MAX_RECORDED_SAMPLES`], summarised
+    /// (`None`: every sample is recorded, or one was asked for).
+    pub unrecorded: Option<SampleSummary>,
     /// The film's value of the pixel, `sum / n` of its `n` samples summed as
     /// the render sums them (in sample order within a pass, passes added in
     /// order), before any tone map, as the rendered image stores it (`f32`).
@@ -158,6 +164,68 @@ impl fmt::Display for PixelExplanation {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         text::write_pixel(f, self)
     }
+}
+
+/// Samples an explanation of a whole pixel records in full; the rest are
+/// traced as the render traces them but only summarised ([`SampleSummary`]),
+/// and `--sample K` (or `sample=`) records any one of them. 64 covers
+/// Whitted's 16 anti-aliasing samples and the viewer's 64 path-traced ones,
+/// and bounds what an explanation holds: one record is some kilobytes (5 KB
+/// of JSON for a `spheres` tree), so a pixel's explanation stays within some
+/// megabytes at any sample count, where recording every sample of 131,072 took
+/// 3.2 GB (issue 30).
+pub const MAX_RECORDED_SAMPLES: u32 = 64;
+
+/// The samples of a pixel past the first [`MAX_RECORDED_SAMPLES`]: what the
+/// film made of them, without their trees or paths.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SampleSummary {
+    /// Index of the first of them ([`MAX_RECORDED_SAMPLES`]).
+    pub first: u32,
+    /// How many there are.
+    pub count: u32,
+    /// How many of them the film drops as not finite.
+    pub dropped: u32,
+    /// The sum of the film values it keeps of them, in sample order.
+    pub film_sum: Rgb,
+    /// Their mean film value, `film_sum / count`.
+    pub mean: Rgb,
+    /// The brightest of them by luminance (Rec. 709) of its film value: its
+    /// index and that value, the sample to ask for in full when hunting a
+    /// firefly (`None`: the film dropped them all).
+    pub brightest: Option<(u32, Rgb)>,
+}
+
+impl SampleSummary {
+    fn new(first: u32) -> SampleSummary {
+        SampleSummary { first, count: 0, dropped: 0, film_sum: Rgb::ZERO, mean: Rgb::ZERO, brightest: None }
+    }
+
+    fn add(&mut self, k: u32, film_value: Option<Rgb>) {
+        self.count += 1;
+        let Some(l) = film_value else {
+            self.dropped += 1;
+            return;
+        };
+        self.film_sum += l;
+        self.mean = self.film_sum / self.count as f64;
+        if self.brightest.is_none_or(|(_, b)| luminance(l) > luminance(b)) {
+            self.brightest = Some((k, l));
+        }
+    }
+}
+
+/// Rec. 709 luminance.
+fn luminance(c: Rgb) -> f64 {
+    0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
+}
+
+/// What [`PixelPlan::film_value`] records: the samples asked for in full, and
+/// a summary of the others when every sample was asked for.
+#[derive(Default)]
+struct Recorded {
+    samples: Vec<SampleExplanation>,
+    unrecorded: Option<SampleSummary>,
 }
 
 /// How the render chose the pixel's samples.
@@ -191,6 +259,8 @@ pub enum Sampling {
 /// ([`plan`]); [`PixelPlan::explain`] records them.
 pub struct PixelPlan {
     integrator: Box<dyn crate::integrators::Integrator>,
+    /// Raised: the work stops within [`CANCEL_CHECK`] samples and errs.
+    cancel: Option<Arc<AtomicBool>>,
     camera: Option<Box<dyn crate::camera::Camera>>,
     /// The options the pixel's samples are taken with (adaptive sampling resolved).
     options: RenderOptions,
@@ -204,10 +274,26 @@ pub struct PixelPlan {
     pub pixel: [f32; 3],
 }
 
+/// How many samples a cancelled plan or explanation may still take.
+pub const CANCEL_CHECK: u32 = 256;
+
 /// Works out the samples the render of `scene` with `options` takes at pixel
 /// `(x, y)`, as its render loop does (adaptive sampling included). Errors as
 /// [`crate::render()`] does on bad options, and on a pixel outside the image.
 pub fn plan(scene: &Scene, options: &RenderOptions, x: u32, y: u32) -> Result<PixelPlan, Error> {
+    plan_cancellable(scene, options, x, y, None)
+}
+
+/// [`plan`], stopping with an error within [`CANCEL_CHECK`] samples once
+/// `cancel` is raised, and so does [`PixelPlan::explain`] of the plan (a
+/// pixel of a million samples takes seconds; the viewer drops a stale one).
+pub fn plan_cancellable(
+    scene: &Scene,
+    options: &RenderOptions,
+    x: u32,
+    y: u32,
+    cancel: Option<Arc<AtomicBool>>,
+) -> Result<PixelPlan, Error> {
     let integrator = crate::render::integrator_for(scene, options)?;
     let (width, height) = (options.width, options.height);
     if x >= width || y >= height {
@@ -215,7 +301,7 @@ pub fn plan(scene: &Scene, options: &RenderOptions, x: u32, y: u32) -> Result<Pi
     }
     let camera = scene.settings.camera.for_image(width, height);
     let fixed = RenderOptions { adaptive: None, time_limit: None, window: None, ..options.clone() };
-    let mut plan = PixelPlan { integrator, camera, options: fixed, x, y, sampling: Sampling::Fixed, samples: 0, pixel: [0.0; 3] };
+    let mut plan = PixelPlan { integrator, cancel, camera, options: fixed, x, y, sampling: Sampling::Fixed, samples: 0, pixel: [0.0; 3] };
     match options.adaptive {
         None => {}
         Some(crate::Adaptive::Antialias(aa)) => {
@@ -226,7 +312,7 @@ pub fn plan(scene: &Scene, options: &RenderOptions, x: u32, y: u32) -> Result<Pi
             let mut probe = film::Image::new(around.width, around.height);
             for (i, p) in probe.pixels.iter_mut().enumerate() {
                 let (px, py) = (around.x0 + i as u32 % around.width, around.y0 + i as u32 / around.width);
-                *p = plan.film_value(scene, &probe_options, px, py, None, &mut |_| {}).0;
+                *p = plan.film_value(scene, &probe_options, px, py, None, &mut Recorded::default())?.0;
             }
             let refined = crate::render::adaptive::refine_mask(&probe, around, here, aa.threshold)[0];
             plan.options.spp = if refined { aa.samples } else { 1 };
@@ -237,7 +323,7 @@ pub fn plan(scene: &Scene, options: &RenderOptions, x: u32, y: u32) -> Result<Pi
                 Sampling::NoiseThreshold { threshold: noise.threshold, min_samples: noise.min_samples, max_samples: options.spp };
         }
     }
-    let (pixel, samples) = plan.film_value(scene, &plan.options.clone(), x, y, None, &mut |_| {});
+    let (pixel, samples) = plan.film_value(scene, &plan.options.clone(), x, y, None, &mut Recorded::default())?;
     plan.samples = samples;
     plan.pixel = pixel;
     Ok(plan)
@@ -247,8 +333,9 @@ impl PixelPlan {
     /// The film's value of pixel `(px, py)` rendered with `options` (`sum / n`
     /// of its samples summed as the render loop sums them: in sample order within
     /// a pass, passes added in order, stopping where the noise threshold stops)
-    /// and its sample count `n`; `sample(k, radiance)` sees each sample, and
-    /// those `record` names are traced into `recorded`.
+    /// and its sample count `n`. The samples `record` names (`Some(None)`:
+    /// all, of which the first [`MAX_RECORDED_SAMPLES`] in full and the others
+    /// summarised) are traced into `recorded`. Errs once the plan is cancelled.
     fn film_value(
         &self,
         scene: &Scene,
@@ -256,8 +343,8 @@ impl PixelPlan {
         px: u32,
         py: u32,
         record: Option<Option<u32>>,
-        recorded: &mut dyn FnMut(SampleExplanation),
-    ) -> ([f32; 3], u32) {
+        recorded: &mut Recorded,
+    ) -> Result<([f32; 3], u32), Error> {
         let camera = self.camera.as_deref().unwrap_or(scene.settings.camera.as_ref());
         let view = crate::render::view_of(scene, camera, options);
         let integrator = self.integrator.as_ref();
@@ -272,7 +359,14 @@ impl PixelPlan {
             let count = schedule.next_pass(done, spp);
             let mut pass = PixelSum::default();
             for k in done..done + count {
-                let wanted = record.is_some_and(|only| only.is_none_or(|s| s == k));
+                if k % CANCEL_CHECK == 0 && self.cancel.as_ref().is_some_and(|c| c.load(Ordering::Relaxed)) {
+                    return Err(Error::Render("cancelled".into()));
+                }
+                let wanted = match record {
+                    None => false,
+                    Some(None) => k < MAX_RECORDED_SAMPLES,
+                    Some(Some(only)) => only == k,
+                };
                 let radiance = if wanted {
                     let mut recorder = Recorder::default();
                     let radiance = integrator.sample_traced(&view, px, py, k, &mut counts, &mut recorder);
@@ -281,10 +375,15 @@ impl PixelPlan {
                         root.name_lights(scene);
                     }
                     let film_value = film::kept(radiance, view.clamp);
-                    recorded(SampleExplanation { index: k, radiance, film_value, contributions, record });
+                    recorded.samples.push(SampleExplanation { index: k, radiance, film_value, contributions, record });
                     radiance
                 } else {
-                    integrator.sample(&view, px, py, k, &mut counts)
+                    let radiance = integrator.sample(&view, px, py, k, &mut counts);
+                    if record == Some(None) {
+                        let summary = recorded.unrecorded.get_or_insert(SampleSummary::new(MAX_RECORDED_SAMPLES));
+                        summary.add(k, film::kept(radiance, view.clamp));
+                    }
+                    radiance
                 };
                 if let Some(l) = film::kept(radiance, view.clamp) {
                     pass.add(l);
@@ -308,10 +407,12 @@ impl PixelPlan {
             }
         }
         let m = film_sum.sum / done.max(1) as f64;
-        ([m.x as f32, m.y as f32, m.z as f32], done)
+        Ok(([m.x as f32, m.y as f32, m.z as f32], done))
     }
 
-    /// Records every sample of the pixel, or only `sample` (which must be below [`PixelPlan::samples`]).
+    /// Records the pixel's samples (the first [`MAX_RECORDED_SAMPLES`] in
+    /// full, the rest summarised), or only `sample` (which must be below
+    /// [`PixelPlan::samples`]).
     pub fn explain(&self, scene: &Scene, sample: Option<u32>) -> Result<PixelExplanation, Error> {
         if let Some(k) = sample {
             if k >= self.samples {
@@ -319,8 +420,8 @@ impl PixelPlan {
                 return Err(Error::invalid("sample", format!("{k} does not exist: the pixel takes {n} samples (0 to {})", n - 1)));
             }
         }
-        let mut samples = Vec::new();
-        let (_, n) = self.film_value(scene, &self.options, self.x, self.y, Some(sample), &mut |s| samples.push(s));
+        let mut recorded = Recorded::default();
+        let (_, n) = self.film_value(scene, &self.options, self.x, self.y, Some(sample), &mut recorded)?;
         debug_assert_eq!(n, self.samples);
         let o = &self.options;
         Ok(PixelExplanation {
@@ -333,14 +434,16 @@ impl PixelPlan {
             sampling: self.sampling,
             seed: o.seed,
             max_depth: o.max_depth.unwrap_or(scene.settings.max_depth),
-            samples,
+            samples: recorded.samples,
+            unrecorded: recorded.unrecorded,
             pixel: self.pixel,
         })
     }
 }
 
-/// Explains pixel `(x, y)` of the render of `scene` with `options`: every
-/// sample the render takes there, or only sample `sample` ([`plan`], then
+/// Explains pixel `(x, y)` of the render of `scene` with `options`: the
+/// samples the render takes there (the first [`MAX_RECORDED_SAMPLES`] in
+/// full, the rest summarised), or only sample `sample` ([`plan`], then
 /// [`PixelPlan::explain`]).
 pub fn explain(scene: &Scene, options: &RenderOptions, x: u32, y: u32, sample: Option<u32>) -> Result<PixelExplanation, Error> {
     plan(scene, options, x, y)?.explain(scene, sample)

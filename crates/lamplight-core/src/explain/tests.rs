@@ -181,3 +181,59 @@ fn kind_names_come_from_the_debug_text() {
         crate::shapes::placed(std::sync::Arc::new(Sphere::new(Vec3::ZERO, 1.0).unwrap()), &Mat4::from_scale(Vec3::splat(2.0))).unwrap();
     assert_eq!(kind_name(&*placed), "Sphere (instance)");
 }
+
+#[test]
+fn past_the_first_64_samples_are_summarised_not_recorded() {
+    // See: issue 30 (131,072 samples recorded in full took 3.2 GB).
+    let scene = scene();
+    let o = options("path", 200);
+    let e = explain(&scene, &o, 10, 9, None).unwrap();
+    assert_eq!(MAX_RECORDED_SAMPLES, 64);
+    assert_eq!(e.samples.iter().map(|s| s.index).collect::<Vec<_>>(), (0..64).collect::<Vec<_>>());
+    let u = e.unrecorded.unwrap();
+    assert_eq!((u.first, u.count, u.dropped), (64, 136, 0));
+    // The summary is of the render's own samples: each one explained alone.
+    let (mut sum, mut brightest) = (Rgb::ZERO, (0, Rgb::ZERO));
+    for k in 64..200 {
+        let l = explain(&scene, &o, 10, 9, Some(k)).unwrap().samples[0].film_value.unwrap();
+        sum += l;
+        if luminance(l) > luminance(brightest.1) {
+            brightest = (k, l);
+        }
+    }
+    assert_eq!(u.film_sum, sum);
+    assert_eq!(u.mean, sum / 136.0);
+    assert_eq!(u.brightest, Some(brightest));
+    let (image, _) = crate::render_image(&scene, &o, &RenderControl::default()).unwrap();
+    assert_eq!(e.pixel_f32(), image.get(10, 9), "the pixel is still the render's");
+    let text = e.to_string();
+    let (k, l) = brightest;
+    let line = |c: Rgb| format!("({:.4}, {:.4}, {:.4})", c.x, c.y, c.z);
+    let expected = format!(
+        "\nsamples 64 to 199: traced, not recorded (an explanation records the first 64 of a pixel; --sample K shows any one)\n  \
+         136 samples, mean film value {}; the brightest is sample {k}, film value {}\n",
+        line(u.mean),
+        line(l)
+    );
+    assert!(text.contains(&expected), "{text}");
+    assert!(text.ends_with(&format!("pixel = sum of the 200 samples' film values / 200 = {}\n", line(Rgb::from(e.pixel.map(f64::from))))));
+    let json = e.to_json();
+    assert_eq!(json["samples"].as_array().unwrap().len(), 64);
+    assert_eq!(json["unrecorded"]["count"], 136);
+    assert_eq!(json["unrecorded"]["brightest"]["index"], k);
+    // At 64 samples or fewer, every sample is recorded and nothing summarised.
+    assert_eq!(explain(&scene, &options("path", 64), 10, 9, None).unwrap().unrecorded, None);
+    assert_eq!(explain(&scene, &o, 10, 9, Some(150)).unwrap().unrecorded, None, "one sample asked for");
+}
+
+#[test]
+fn a_cancelled_plan_stops() {
+    let scene = scene();
+    let cancel = Arc::new(AtomicBool::new(true));
+    let err = plan_cancellable(&scene, &options("path", 1 << 20), 10, 9, Some(cancel)).err().unwrap();
+    assert_eq!(err.to_string(), Error::Render("cancelled".into()).to_string());
+    let cancel = Arc::new(AtomicBool::new(false));
+    let plan = plan_cancellable(&scene, &options("path", 8), 10, 9, Some(cancel.clone())).unwrap();
+    cancel.store(true, Ordering::Relaxed);
+    assert!(plan.explain(&scene, None).is_err(), "the plan's explanation stops too");
+}

@@ -59,9 +59,27 @@ pub(super) fn write_pixel(f: &mut fmt::Formatter<'_>, p: &PixelExplanation) -> f
             Record::Nothing => writeln!(f, "  (this integrator records nothing)")?,
         }
     }
-    if p.samples.len() > 1 {
+    if let Some(u) = &p.unrecorded {
         writeln!(f)?;
-        writeln!(f, "pixel = sum of the {} samples' film values / {} = {}", p.samples.len(), p.spp, v(pixel))?;
+        let last = u.first + u.count - 1;
+        writeln!(
+            f,
+            "samples {} to {last}: traced, not recorded (an explanation records the first {} of a pixel; --sample K shows any one)",
+            u.first,
+            super::MAX_RECORDED_SAMPLES
+        )?;
+        write!(f, "  {} samples, mean film value {}", u.count, v(u.mean))?;
+        if u.dropped > 0 {
+            write!(f, ", {} dropped by the film (not finite)", u.dropped)?;
+        }
+        match u.brightest {
+            Some((k, l)) => writeln!(f, "; the brightest is sample {k}, film value {}", v(l))?,
+            None => writeln!(f)?,
+        }
+    }
+    if p.samples.len() > 1 || p.unrecorded.is_some() {
+        writeln!(f)?;
+        writeln!(f, "pixel = sum of the {} samples' film values / {} = {}", p.spp, p.spp, v(pixel))?;
     }
     Ok(())
 }

@@ -44,6 +44,7 @@ ws.onmessage = (e) => {
   else if (m.type === "frame") frameInfo = m;
   else if (m.type === "explain") showExplain(m);
   else if (m.type === "saved") { hooks.saved.push(m); say(`saved ${m.name} (${m.spp} spp${m.last ? "" : ", still refining"})`); }
+  else if (m.type === "error" && m.exists && lastSave && lastSave.name === m.exists && window.confirm(`${m.exists} exists and this viewer did not write it. Replace it?`)) send({ ...lastSave, replace: m.exists });
   else if (m.type === "error") { hooks.errors.push(m.message); say(m.message); }
 };
 
@@ -202,8 +203,11 @@ $("exposure").addEventListener("input", (e) => {
   exposure = +e.target.value; $("exposure_value").textContent = exposure;
   if (frame) showFrame();
 });
-$("save").onclick = () => send({ type: "save", name: $("save_name").value, exposure });
-$("save_camera").onclick = () => send({ type: "save_camera", name: $("camera_name").value });
+// The last save asked for: replacing a file the viewer did not write is asked again, naming it.
+let lastSave = null;
+const save = (m) => { lastSave = m; send(m); };
+$("save").onclick = () => save({ type: "save", name: $("save_name").value, exposure });
+$("save_camera").onclick = () => save({ type: "save_camera", name: $("camera_name").value });
 
 // ---- the pixel inspector
 function explainPixel(x, y) {
@@ -226,7 +230,14 @@ function showExplain(m) {
   const sum = [0, 0, 0];
   for (const s of samples) for (const c of s.contributions) for (let k = 0; k < 3; k++) sum[k] += c[k];
   root.append(el("p", "", `pixel (${m.x}, ${m.y}) of ${t.width}x${t.height}, ${t.integrator}, ${t.spp} sample${t.spp === 1 ? "" : "s"}, max depth ${t.max_depth}`));
-  root.append(el("p", "sum", `pixel value ${fmt(t.value)} = mean over ${n} sample${n === 1 ? "" : "s"} of the sum of their contributions ${fmt(sum.map((x) => x / n))}`));
+  const u = t.unrecorded;
+  if (u) {
+    // Past the recorded samples: the film's sum of the others (docs/explain.md).
+    const all = sum.map((x, k) => (x + u.film_sum[k]) / t.spp);
+    root.append(el("p", "sum", `pixel value ${fmt(t.value)} = mean over ${t.spp} samples ${fmt(all)}: the first ${n} shown, the other ${u.count} traced but not recorded (mean ${fmt(u.mean)}${u.brightest ? `, brightest sample ${u.brightest.index}: ${fmt(u.brightest.film_value)}` : ""})`));
+  } else {
+    root.append(el("p", "sum", `pixel value ${fmt(t.value)} = mean over ${n} sample${n === 1 ? "" : "s"} of the sum of their contributions ${fmt(sum.map((x) => x / n))}`));
+  }
   rayId = 0;
   const segments = [];
   for (const s of samples) {
