@@ -79,10 +79,14 @@ fn channel(name: &str) -> Option<(String, usize, bool)> {
     Some((base, order, rgb))
 }
 
+/// A group being collected: its base name, whether its members are colour
+/// channels, and each member's (channel order, property index).
+type PendingGroup = (String, bool, Vec<(usize, usize)>);
+
 /// Groups the scalar properties `props` (index, name) of element `element`;
 /// returns the groups and the names of the properties in none.
 pub(super) fn group(element: &str, props: &[(usize, &str)]) -> (Vec<Group>, Vec<String>) {
-    let mut found: Vec<(String, bool, Vec<(usize, usize)>)> = Vec::new();
+    let mut found: Vec<PendingGroup> = Vec::new();
     let mut ignored = Vec::new();
     for &(i, name) in props {
         match channel(name) {
