@@ -44,6 +44,7 @@ SAMPLES = {
     "antialias": False,
     "noise_threshold": 0.5,
     "min_spp": 4,
+    "memory_budget": "1G",
 }
 
 
