@@ -44,7 +44,7 @@ pub struct MeshData {
     /// Texture coordinates, colours and tangents, each if the file has them.
     pub attributes: VertexAttributes,
     /// A PLY file's other properties as Mitsuba names them (`vertex_color`,
-    /// `face_weight`, ...), for a mesh's `color` ([`ply_attributes`]).
+    /// `face_weight`, ...), for a mesh's `color` (grouped by the `ply_attributes` module).
     pub named: Vec<NamedAttribute>,
 }
 
