@@ -74,6 +74,14 @@ CASES = [
          scene(SKY + rect(bitmap("nearest", "clamp"), to_world=""), **ORTHO)),
     Case("bitmap_bilinear_clamp_slant", "bitmap (bilinear, clamp) at a slant",
          scene(SKY + rect(bitmap("bilinear", "clamp")), to_world=SLANT, size=(64, 64))),
+    # Minified, with Mitsuba's default filter_type (bilinear): about 5 x 4 texels
+    # a pixel near and many more far off, so that a MIP level or a ray-cone
+    # footprint (which Mitsuba does not use) would show as a blur.
+    Case("bitmap_default_minified", "bitmap (default filter_type) minified at a slant",
+         scene(SKY + rect('<bsdf type="diffuse"><texture type="bitmap" name="reflectance">'
+                          '<string name="filename" value="texels.png"/>'
+                          '<transform name="to_uv"><scale x="27" y="23"/></transform></texture></bsdf>'),
+               to_world=SLANT, size=(64, 64))),
     Case("mesh_attribute_vertex", "mesh_attribute vertex_color (PLY color_0..2)",
          scene(SKY + ply("attributes.ply", attribute("vertex_color")), **ORTHO)),
     Case("mesh_attribute_face", "mesh_attribute face_color (PLY face color_0..2)",
