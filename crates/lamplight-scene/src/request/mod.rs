@@ -13,16 +13,18 @@ use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 use lamplight_core::film::Filter;
-use lamplight_core::integrators::{self, IntegratorEntry};
+use lamplight_core::integrators;
 use lamplight_core::{PixelWindow, RenderOptions, Scene};
 
 use crate::builtin::{self, Builtin};
 use crate::import;
 use crate::instantiate::{imported, Built, SceneFile};
 
+mod defaults;
 mod layer;
 mod output;
 mod sampling;
+pub use defaults::{program_defaults, Defaults};
 pub use layer::Layer;
 pub use output::{write, DisplayTransform, Rendered};
 pub use sampling::{AntialiasRequest, NOISE_DEFAULT_SPP, NOISE_DEFAULT_THRESHOLD};
@@ -78,78 +80,6 @@ pub enum SceneSpec {
     File(Box<SceneFile>),
     /// A mesh file for an importer.
     Mesh(PathBuf),
-}
-
-/// What a scene asks for when the request does not say.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Defaults {
-    /// Image size.
-    pub size: (u32, u32),
-    /// Samples per pixel, when the scene says.
-    pub spp: Option<u32>,
-    /// Adaptive anti-aliasing, when the scene says.
-    pub antialias: Option<AntialiasRequest>,
-    /// The path tracer's noise threshold, when the scene gives one.
-    pub noise_threshold: Option<f64>,
-    /// Samples before a noise threshold stops pixels, when the scene says.
-    pub min_spp: Option<u32>,
-    /// Seed.
-    pub seed: u64,
-    /// Integrator.
-    pub integrator: &'static IntegratorEntry,
-    /// How PNG and PPM outputs store the values.
-    pub transfer: crate::image_io::Transfer,
-    /// The pixel filter, when the scene says.
-    pub filter: Option<Filter>,
-    /// The film's crop in pixels of `size`, when the scene has one (`[render] crop`).
-    pub crop: Option<PixelWindow>,
-    /// Whether the variance layer is made unasked (`[render] variance`, Mitsuba's
-    /// `moment`), where the output can hold it ([`Job::add_scene_layers`]).
-    pub variance: bool,
-    /// Whether the image is denoised unasked (`[render] denoise`).
-    pub denoise: bool,
-    /// The memory budget in bytes, when the scene says (`[render] memory_budget`).
-    pub memory_budget: Option<u64>,
-}
-
-impl Defaults {
-    /// The settings of a scene file's `[render]` table.
-    pub fn from_settings(s: &crate::instantiate::Settings) -> Defaults {
-        Defaults {
-            size: (s.width, s.height),
-            spp: s.spp,
-            antialias: s.antialias,
-            noise_threshold: s.noise_threshold,
-            min_spp: s.min_spp,
-            seed: s.seed,
-            integrator: s.integrator,
-            transfer: s.transfer,
-            filter: s.filter,
-            crop: s.crop,
-            variance: s.variance,
-            denoise: s.denoise,
-            memory_budget: s.memory_budget,
-        }
-    }
-}
-
-/// The program's own settings, for scenes without any.
-pub fn program_defaults() -> Defaults {
-    Defaults {
-        size: (640, 360),
-        spp: None,
-        antialias: None,
-        noise_threshold: None,
-        min_spp: None,
-        seed: 0,
-        integrator: integrators::default_integrator(),
-        transfer: Default::default(),
-        filter: None,
-        crop: None,
-        variance: false,
-        denoise: false,
-        memory_budget: None,
-    }
 }
 
 /// A scene named and read, with its own settings.
@@ -482,68 +412,4 @@ pub fn image_size(width: Option<u32>, height: Option<u32>, default: (u32, u32), 
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn luxo() -> SceneRequest {
-        SceneRequest::resolve("luxo").unwrap()
-    }
-
-    #[test]
-    fn a_misspelt_scene_or_layer_names_the_nearest() {
-        let err = SceneRequest::resolve("sphere").unwrap_err().0;
-        assert!(err.starts_with("unknown scene \"sphere\" (did you mean 'spheres'? built-in scenes: luxo, "), "{err}");
-        assert_eq!(
-            "varience".parse::<Layer>().unwrap_err(),
-            "unknown layer \"varience\" (did you mean 'variance'? layers: variance, samples, albedo, normal, noisy)"
-        );
-    }
-
-    #[test]
-    fn one_side_keeps_the_default_aspect() {
-        let n = Naming::Flags;
-        assert_eq!(image_size(Some(640), None, (1280, 720), n).unwrap(), (640, 360));
-        assert_eq!(image_size(None, Some(36), (1280, 720), n).unwrap(), (64, 36));
-        assert_eq!(image_size(Some(1), None, (1280, 720), n).unwrap(), (1, 1), "never rounds to 0");
-        assert_eq!(image_size(Some(7), Some(3), (1280, 720), n).unwrap(), (7, 3));
-    }
-
-    #[test]
-    fn limits_are_the_same_for_every_front_end_and_spelled_its_way() {
-        let r = Request { spp: Some(u32::MAX), ..Request::default() };
-        assert_eq!(r.resolve(&luxo().defaults, Naming::Flags).unwrap_err().0, "--spp must be between 1 and 1048576, got 4294967295");
-        assert_eq!(r.resolve(&luxo().defaults, Naming::Keywords).unwrap_err().0, "spp must be between 1 and 1048576, got 4294967295");
-        let r = Request { threads: Some(100_000), ..Request::default() };
-        assert_eq!(
-            r.resolve(&luxo().defaults, Naming::Keywords).unwrap_err().0,
-            "threads must be at most 1024 (0 uses all cores), got 100000"
-        );
-        let r = Request { max_depth: Some(65), ..Request::default() };
-        assert_eq!(
-            r.resolve(&luxo().defaults, Naming::Flags).unwrap_err().0,
-            "--max-depth must be between 1 and 64 (work grows as 2^depth), got 65"
-        );
-        let r = Request { integrator: Some("photon".into()), ..Request::default() };
-        assert_eq!(
-            r.resolve(&luxo().defaults, Naming::Flags).unwrap_err().0,
-            "--integrator must be \"whitted\" or \"path\", got \"photon\""
-        );
-    }
-
-    #[test]
-    fn the_request_wins_over_the_scene_which_wins_over_the_defaults() {
-        let text = "[render]\nwidth = 100\nheight = 50\nspp = 8\nseed = 3\nintegrator = \"path\"\n[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\nvfov = 40\n";
-        let file = SceneFile::parse(Path::new("s.toml"), text).unwrap();
-        let scene = SceneRequest::file(file, "s".into()).unwrap();
-        let job = Request::default().resolve(&scene.defaults, Naming::Flags).unwrap();
-        let o = &job.options;
-        assert_eq!((o.width, o.height, o.spp, o.seed, o.integrator.name), (100, 50, 8, 3, "path"));
-        let job = Request { width: Some(40), spp: Some(2), integrator: Some("whitted".into()), ..Request::default() }
-            .resolve(&scene.defaults, Naming::Flags)
-            .unwrap();
-        let o = &job.options;
-        assert_eq!((o.width, o.height, o.spp, o.seed, o.integrator.name), (40, 20, 2, 3, "whitted"));
-        let o = Request::default().resolve(&luxo().defaults, Naming::Flags).unwrap().options;
-        assert_eq!((o.width, o.height, o.spp, o.seed, o.integrator.name), (1280, 720, 1, 0, "whitted"));
-    }
-}
+mod tests;
