@@ -4,9 +4,9 @@
 //! Every file is opened through [`crate::input::read_regular`] with the image
 //! size cap, and its stated dimensions are checked
 //! (`image_io::check_image_size`) before any pixel is allocated.
-//! 8-bit images stay 8-bit (decoded through the colour space's table at
-//! lookup); 16-bit and float images become linear floats, 16-bit ones decoded
-//! from sRGB when the texture is a colour.
+//! 8- and 16-bit images keep their depth (decoded through the colour space's
+//! table at lookup, `lamplight_core::materials::image_data`); float images
+//! (HDR, 32-bit) are linear floats.
 //!
 //! [`ImageFiles`] is the scene's [`ImageLoader`]: paths are relative to the
 //! scene file's folder, and a file is decoded once per colour space, keyed by
@@ -68,6 +68,15 @@ pub fn read_texture(path: &Path, srgb: bool) -> Result<ImageData, String> {
     decode_texture(path, &bytes, srgb)
 }
 
+/// A decoder's RGBA buffer as texels: the same allocation when its length and
+/// capacity allow (an RGBA file's buffer), else a copy.
+fn rgba_texels<T: bytemuck::Pod>(raw: Vec<T>) -> Vec<[T; 4]>
+where
+    [T; 4]: bytemuck::Pod,
+{
+    bytemuck::allocation::try_cast_vec(raw).unwrap_or_else(|(_, raw)| raw.chunks_exact(4).map(|c| [c[0], c[1], c[2], c[3]]).collect())
+}
+
 /// Decodes the bytes of an image named `name` (its extension decides EXR;
 /// other formats are recognised by their content).
 pub fn decode_texture(name: &Path, bytes: &[u8], srgb: bool) -> Result<ImageData, String> {
@@ -87,41 +96,33 @@ pub fn decode_texture(name: &Path, bytes: &[u8], srgb: bool) -> Result<ImageData
     let decoder = probe.into_decoder().map_err(|e| fail(format!("not a valid image: {e}")))?;
     let (width, height) = decoder.dimensions();
     check_image_size(width.into(), height.into(), bytes.len() as u64).map_err(fail)?;
-    // The memory budget's share, from the header, before any pixel is decoded:
-    // the decoded buffer and, for 16-bit and float images, the float copy made
-    // from it (both freed after), and the texels kept (a third more for the
-    // smaller levels).
+    // The memory budget's share, from the header, before any pixel is decoded
+    // (lamplight_core::materials::image_data keeps 8- and 16-bit texels as
+    // integers, float ones as f32, RGBA): the texels kept, a third more for the
+    // smaller MIP levels, and while decoding, what the decoder's buffer and the
+    // conversion to RGBA hold beyond them (nothing for an RGBA file, whose
+    // buffer becomes the texels).
     let pixels = u64::from(width) * u64::from(height);
-    let eight_bit_file =
-        decoder.color_type().bytes_per_pixel() <= 4 && !matches!(decoder.color_type(), image::ColorType::La16 | image::ColorType::L16);
-    let kept = if eight_bit_file { pixels * 4 } else { pixels * 16 } * 4 / 3;
-    let transient = decoder.total_bytes() + if eight_bit_file { pixels * 4 } else { pixels * 16 };
+    let color = decoder.color_type();
+    let depth = u64::from(color.bytes_per_pixel() / color.channel_count().max(1)).clamp(1, 4);
+    let stored = pixels * 4 * depth;
+    let converted = if color.has_alpha() && color.channel_count() == 4 { 0 } else { stored };
+    let kept = stored * 4 / 3;
+    let transient = (decoder.total_bytes() + converted).saturating_sub(stored);
     crate::memory::reserve(kept + transient, || format!("texture '{}' ({width}x{height} pixels)", name.display()))
         .map_err(|e| e.to_string())?;
     let decoded = image::DynamicImage::from_decoder(decoder).map_err(|e| fail(format!("not a valid image: {e}")));
+    let data = decoded.map(|decoded| {
+        let (w, h) = (decoded.width() as usize, decoded.height() as usize);
+        match decoded.color().bytes_per_pixel() / decoded.color().channel_count().max(1) {
+            1 => (false, ImageData::new(w, h, Texels::U8(rgba_texels(decoded.into_rgba8().into_raw())), srgb)),
+            2 => (false, ImageData::new(w, h, Texels::U16(rgba_texels(decoded.into_rgba16().into_raw())), srgb)),
+            // Float files are linear whatever the texture's colour space.
+            _ => (true, ImageData::new(w, h, Texels::F32(rgba_texels(decoded.into_rgba32f().into_raw())), false)),
+        }
+    });
     crate::memory::release(transient);
-    let decoded = decoded?;
-    let (w, h) = (decoded.width() as usize, decoded.height() as usize);
-    let eight_bit =
-        matches!(decoded.color(), image::ColorType::L8 | image::ColorType::La8 | image::ColorType::Rgb8 | image::ColorType::Rgba8);
-    let float = matches!(decoded.color(), image::ColorType::Rgb32F | image::ColorType::Rgba32F);
-    let data = if eight_bit {
-        let rgba = decoded.into_rgba8();
-        ImageData::new(w, h, Texels::U8(rgba.pixels().map(|p| p.0).collect()), srgb)
-    } else {
-        // 16-bit and float: linear floats, 16-bit colours decoded from sRGB here.
-        let decode = srgb && !float;
-        let rgba = decoded.into_rgba32f();
-        let texels = rgba
-            .pixels()
-            .map(|p| {
-                let [r, g, b, a] = p.0;
-                let c = |x: f32| if decode { lamplight_core::film::srgb_decode(f64::from(x)) as f32 } else { x };
-                [c(r), c(g), c(b), a]
-            })
-            .collect();
-        ImageData::new(w, h, Texels::F32(texels), false)
-    };
+    let (float, data) = data?;
     let data = data.map_err(|e| fail(e.to_string()))?;
     if float {
         let (w, h) = data.size();

@@ -21,13 +21,14 @@
 //! around `l = log2(width)`, where `width` is the footprint's largest extent
 //! in texels of level 0 (`|ds| w` or `|dt| h`; pbrt-v4's `MIPMap::Filter` with
 //! `FilterFunction::Bilinear`, for images that need not be square). Level `k + 1` is level `k` box-filtered 2x2 (in
-//! linear values).
+//! linear values; [`super::image_data`] keeps the texels and builds the levels).
 //!
 //! A file is decoded once per colour space and shared by every texture that
 //! names it (the loader, [`ImageLoader`], keeps the cache).
 
 use std::sync::Arc;
 
+pub use super::image_data::{ImageData, Texels};
 use super::uv_transform::UvTransform;
 use super::{ShadingPoint, Texture, TextureKind, Textures};
 use crate::math::Rgb;
@@ -39,127 +40,6 @@ pub trait ImageLoader: Sync {
     /// The image `file` decoded (from sRGB when `srgb` and the file is 8- or
     /// 16-bit); the message says what went wrong, naming the file.
     fn load(&self, file: &str, srgb: bool) -> Result<Arc<ImageData>, String>;
-}
-
-/// Texel values of one MIP level, RGBA, rows top to bottom.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Texels {
-    /// 8-bit, decoded through the image's table (sRGB or linear) at lookup.
-    U8(Vec<[u8; 4]>),
-    /// Linear floats (HDR, EXR, 16-bit files).
-    F32(Vec<[f32; 4]>),
-}
-
-/// One MIP level.
-#[derive(Clone, Debug, PartialEq)]
-struct Level {
-    width: usize,
-    height: usize,
-    texels: Texels,
-}
-
-/// A decoded image with its MIP pyramid, shared by textures.
-#[derive(Clone, PartialEq)]
-pub struct ImageData {
-    levels: Vec<Level>,
-    /// `u8` value -> linear value of the colour channels (sRGB decode or `/ 255`).
-    table: Vec<f32>,
-}
-
-impl std::fmt::Debug for ImageData {
-    /// The size, not the texels (a material's debug text stays short).
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let (w, h) = self.size();
-        write!(f, "ImageData({w}x{h}, {} levels)", self.levels.len())
-    }
-}
-
-impl ImageData {
-    /// An image of `width x height` texels (`texels.len() == width * height`,
-    /// rows top to bottom); 8-bit colour channels are sRGB-encoded when `srgb`.
-    pub fn new(width: usize, height: usize, texels: Texels, srgb: bool) -> Result<ImageData, crate::Error> {
-        let len = match &texels {
-            Texels::U8(t) => t.len(),
-            Texels::F32(t) => t.len(),
-        };
-        if width == 0 || height == 0 || width.checked_mul(height) != Some(len) {
-            return Err(crate::Error::invalid("image", format!("{len} texels for {width} x {height}")));
-        }
-        let table = (0..256).map(|v| if srgb { crate::film::srgb_decode(v as f64 / 255.0) as f32 } else { v as f32 / 255.0 }).collect();
-        let mut image = ImageData { levels: vec![Level { width, height, texels }], table };
-        while let Some(next) = image.next_level() {
-            image.levels.push(next);
-        }
-        Ok(image)
-    }
-
-    /// Width and height of level 0.
-    pub fn size(&self) -> (usize, usize) {
-        (self.levels[0].width, self.levels[0].height)
-    }
-
-    /// Number of MIP levels (1 for a 1x1 image).
-    pub fn level_count(&self) -> usize {
-        self.levels.len()
-    }
-
-    /// Texel `(x, y)` of `level` as linear RGBA (`x < width`, `y < height`).
-    #[inline]
-    pub fn texel(&self, level: usize, x: usize, y: usize) -> [f32; 4] {
-        let l = &self.levels[level];
-        match &l.texels {
-            Texels::U8(t) => {
-                let [r, g, b, a] = t[y * l.width + x];
-                [self.table[r as usize], self.table[g as usize], self.table[b as usize], f32::from(a) / 255.0]
-            }
-            Texels::F32(t) => t[y * l.width + x],
-        }
-    }
-
-    /// The level below the last one, box-filtered; `None` at 1x1. Each target
-    /// texel averages the source texels whose index maps into it (2x2, or 3 along
-    /// an odd side's last texel).
-    fn next_level(&self) -> Option<Level> {
-        let last = self.levels.len() - 1;
-        let src = &self.levels[last];
-        if src.width == 1 && src.height == 1 {
-            return None;
-        }
-        let (w, h) = ((src.width / 2).max(1), (src.height / 2).max(1));
-        let mut sums = vec![[0f32; 4]; w * h];
-        let mut counts = vec![0f32; w * h];
-        for y in 0..src.height {
-            let ty = (y * h / src.height).min(h - 1);
-            for x in 0..src.width {
-                let tx = (x * w / src.width).min(w - 1);
-                let t = self.texel(last, x, y);
-                let s = &mut sums[ty * w + tx];
-                for c in 0..4 {
-                    s[c] += t[c];
-                }
-                counts[ty * w + tx] += 1.0;
-            }
-        }
-        let linear: Vec<[f32; 4]> = sums.iter().zip(&counts).map(|(s, n)| s.map(|c| c / n)).collect();
-        let texels = match &src.texels {
-            Texels::F32(_) => Texels::F32(linear),
-            // Re-encode through the table's inverse so that the level stays 8-bit.
-            Texels::U8(_) => Texels::U8(
-                linear.iter().map(|t| [self.encode(t[0]), self.encode(t[1]), self.encode(t[2]), (t[3] * 255.0).round() as u8]).collect(),
-            ),
-        };
-        Some(Level { width: w, height: h, texels })
-    }
-
-    /// The 8-bit value whose table entry is nearest `v`.
-    fn encode(&self, v: f32) -> u8 {
-        let i = self.table.partition_point(|&t| t < v).min(255);
-        if i > 0 && (v - self.table[i - 1]).abs() <= (self.table[i] - v).abs() {
-            (i - 1) as u8
-        } else {
-            i as u8
-        }
-    }
 }
 
 /// What a lookup outside `[0, 1]` reads.
@@ -246,7 +126,7 @@ impl ImageTexture {
     }
 
     fn nearest(&self, level: usize, st: [f64; 2]) -> [f64; 4] {
-        let l = &self.image.levels[level];
+        let l = self.image.level(level);
         let x = (st[0] * l.width as f64).floor();
         let y = ((1.0 - st[1]) * l.height as f64).floor();
         let (x, y) = (self.wrap.index(saturate(x), l.width), self.wrap.index(saturate(y), l.height));
@@ -254,7 +134,7 @@ impl ImageTexture {
     }
 
     fn bilinear(&self, level: usize, st: [f64; 2]) -> [f64; 4] {
-        let l = &self.image.levels[level];
+        let l = self.image.level(level);
         let x = st[0] * l.width as f64 - 0.5;
         let y = (1.0 - st[1]) * l.height as f64 - 0.5;
         let (x0, y0) = (x.floor(), y.floor());
@@ -280,7 +160,7 @@ impl ImageTexture {
         // The footprint in texels of level 0, per axis of the image (it need not be square).
         let texels = |d: [f64; 2]| (d[0] * w as f64).abs().max((d[1] * h as f64).abs());
         let width = texels(dx).max(texels(dy));
-        let levels = self.image.levels.len();
+        let levels = self.image.level_count();
         let level = width.max(1e-30).log2();
         if !(level > 0.0) {
             return self.bilinear(0, st);

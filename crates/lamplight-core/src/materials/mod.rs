@@ -63,6 +63,7 @@ pub mod blend;
 pub mod bump;
 pub mod combine;
 pub mod image;
+pub mod image_data;
 pub mod lobes;
 pub mod normal_map;
 pub mod pbr;
