@@ -11,6 +11,16 @@
 //! root is then polished by solving the same quadratic again around the root
 //! itself, where the constant term is tiny and exact.
 //!
+//! Polishing is two thirds of a quadric test, so a root is polished only when
+//! its polished value can matter ([`Quadric::crossing`]): each unpolished root
+//! comes with a bound `m` on how far polishing can move it (the first-order
+//! error of a root, `(|da| t^2 + 2 |db| |t| + |dc|) / (2 sqrt(b^2 - ac))`, from
+//! the rounding bounds of the coefficients, times a safety factor of 4). A root
+//! whose `[t - m, t + m]` lies outside `(t_min, t_max)` is skipped, and when the
+//! two intervals are apart the near root is tried first and the far one only if
+//! the near one is clipped away. The answer is the one that polishing both
+//! roots gives, bit for bit (a test compares them on rays of every kind).
+//!
 //! Clipping: a quadric shows only the part of its surface inside every one of its
 //! [`Clip`] regions. Both roots are tried in increasing `t`; the first that lies
 //! in `(t_min, t_max)` and survives every clip is the hit. Where the near root is
@@ -39,6 +49,20 @@ use crate::Error;
 use form::{Affine, Form};
 use glam::DMat3;
 use uv::Revolution;
+
+/// The safety factor of the bound on a root's polishing (module doc): the
+/// first-order analysis gives about 64 ulps of `(x1 + 1 + 2 |t|)^2 / slope`.
+const POLISH_BOUND: f64 = 256.0;
+
+/// The roots of the ray equation before polishing ([`Quadric::unpolished`]).
+struct Unpolished {
+    /// The quadratic coefficient (0 in the linear case), which polishing reuses.
+    a: f64,
+    /// The roots, in increasing order.
+    t: [f64; 2],
+    /// How far polishing can move each.
+    m: [f64; 2],
+}
 
 /// A quadric surface with optional clip regions; see the module documentation.
 #[derive(Clone, Debug, PartialEq)]
@@ -133,8 +157,18 @@ impl Quadric {
     }
 
     /// The two roots of the ray equation in increasing order (equal for the
-    /// linear case), or `None`.
+    /// linear case), polished, or `None`.
+    #[cfg(test)]
     fn roots(&self, ray: &Ray) -> Option<(f64, f64)> {
+        let r = self.unpolished(ray)?;
+        let (t0, t1) = (self.polish(ray, r.a, r.t[0]), self.polish(ray, r.a, r.t[1]));
+        Some((t0.min(t1), t0.max(t1)))
+    }
+
+    /// The two roots of the ray equation in increasing order, before polishing,
+    /// with the bound on how far polishing can move each (module doc).
+    #[inline]
+    fn unpolished(&self, ray: &Ray) -> Option<Unpolished> {
         let d = ray.dir;
         let (c, qs) = self.form.eval(ray.origin);
         let quad = DMat3::from_mat4(self.form.q);
@@ -146,16 +180,57 @@ impl Quadric {
         // 0. Treating a as exactly 0 there avoids a spurious root at
         // t ~ sqrt(c / a) ~ 10^8 for a ray inside a tilted cylinder along its axis.
         let d1 = d.abs().element_sum();
+        let x1 = (ray.origin - self.form.origin).abs().element_sum();
         if a.abs() <= 16.0 * f64::EPSILON * d1 * d1 {
             a = 0.0;
-            let x1 = (ray.origin - self.form.origin).abs().element_sum();
             if b_half.abs() <= 16.0 * f64::EPSILON * d1 * (x1 + 1.0) {
                 return None; // parallel to the surface: inside, outside or on it, never crossing
             }
         }
         let (t0, t1) = solve_quadratic(a, b_half, c)?;
-        let (t0, t1) = (self.polish(ray, a, t0), self.polish(ray, a, t1));
-        Some((t0.min(t1), t0.max(t1)))
+        // |2 (a t + b)| at a root, the rate at which f changes along the ray there.
+        let slope = if a == 0.0 { b_half.abs() } else { (b_half * b_half - a * c).max(0.0).sqrt() };
+        // The entries of Q are below 2 and |d| = 1: the rounding of a, b and c (and
+        // of f at the polished point) is below a few ulps of (x1 + 1 + 2 |t|)^2.
+        let s = x1 + 1.0;
+        let bound = |t: f64| {
+            let m = POLISH_BOUND * f64::EPSILON * ((s + 2.0 * t.abs()).powi(2) / slope + t.abs());
+            if m.is_finite() {
+                m
+            } else {
+                f64::INFINITY
+            }
+        };
+        Some(Unpolished { a, t: [t0, t1], m: [bound(t0), bound(t1)] })
+    }
+
+    /// The ray parameter of the first visible crossing in `(t_min, t_max)`: the
+    /// answer of polishing both roots and trying them in increasing order, with
+    /// the roots that cannot be it left unpolished (module doc).
+    #[inline]
+    fn crossing(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<f64> {
+        let r = self.unpolished(ray)?;
+        let [t0, t1] = r.t;
+        let [m0, m1] = r.m;
+        let shows = |t: f64| t > t_min && t < t_max && self.is_visible(ray.at(t));
+        let first = |t: f64| {
+            let p = self.polish(ray, r.a, t);
+            shows(p).then_some(p)
+        };
+        // May polishing move the root into (t_min, t_max)?
+        let may = |t: f64, m: f64| t + m > t_min && t - m < t_max;
+        match (may(t0, m0), may(t1, m1)) {
+            (false, false) => None,
+            (true, false) => first(t0),
+            (false, true) => first(t1),
+            // Apart: the polished roots keep their order.
+            (true, true) if t0 + m0 < t1 - m1 => first(t0).or_else(|| first(t1)),
+            (true, true) => {
+                let (p0, p1) = (self.polish(ray, r.a, t0), self.polish(ray, r.a, t1));
+                let (lo, hi) = (p0.min(p1), p0.max(p1));
+                [lo, hi].into_iter().find(|&t| shows(t))
+            }
+        }
     }
 
     /// One refinement of root `t`: the quadratic re-expanded around `ray.at(t)`,
@@ -191,21 +266,16 @@ impl Shape for Quadric {
     }
 
     fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
-        let (t0, t1) = self.roots(ray)?;
-        for t in [t0, t1] {
-            if !(t > t_min && t < t_max) {
-                continue;
-            }
-            let p = ray.at(t);
-            if !self.is_visible(p) {
-                continue; // clipped away: the farther root may still show (the inside of a cup)
-            }
-            // At a singular point (a cone's apex) the gradient vanishes and no normal
-            // exists; facing the ray keeps the hit usable and free of NaN.
-            let normal = self.form.eval(p).1.truncate().try_normalize().unwrap_or(-ray.dir);
-            return Some(SurfaceHit::new(t, normal));
-        }
-        None
+        let t = self.crossing(ray, t_min, t_max)?;
+        // At a singular point (a cone's apex) the gradient vanishes and no normal
+        // exists; facing the ray keeps the hit usable and free of NaN.
+        let normal = self.form.eval(ray.at(t)).1.truncate().try_normalize().unwrap_or(-ray.dir);
+        Some(SurfaceHit::new(t, normal))
+    }
+
+    /// [`Quadric::crossing`] without the normal.
+    fn intersect_p(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
+        self.crossing(ray, t_min, t_max).is_some()
     }
 
     /// See `quadric/uv.rs`.
