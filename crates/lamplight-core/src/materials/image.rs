@@ -130,7 +130,7 @@ impl ImageTexture {
         let x = (st[0] * l.width as f64).floor();
         let y = ((1.0 - st[1]) * l.height as f64).floor();
         let (x, y) = (self.wrap.index(saturate(x), l.width), self.wrap.index(saturate(y), l.height));
-        self.image.texel(level, x, y).map(f64::from)
+        self.image.read(l, x, y).map(f64::from)
     }
 
     fn bilinear(&self, level: usize, st: [f64; 2]) -> [f64; 4] {
@@ -145,7 +145,7 @@ impl ImageTexture {
         let mut out = [0.0; 4];
         for (j, wy) in [(0, 1.0 - fy), (1, fy)] {
             for (i, wx) in [(0, 1.0 - fx), (1, fx)] {
-                let t = self.image.texel(level, xs[i], ys[j]);
+                let t = self.image.read(l, xs[i], ys[j]);
                 for c in 0..4 {
                     out[c] += wx * wy * f64::from(t[c]);
                 }

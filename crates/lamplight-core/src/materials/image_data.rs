@@ -161,8 +161,11 @@ impl ImageData {
         self.read(self.level(level), x, y)
     }
 
-    #[inline]
-    fn read(&self, l: &Level, x: usize, y: usize) -> [f32; 4] {
+    /// Texel `(x, y)` of level `l` (from [`ImageData::level`]) as linear RGBA:
+    /// a bilinear lookup finds its level once for its four texels. Always
+    /// inlined: a call per texel cost the textured guard case 1 %.
+    #[inline(always)]
+    pub(super) fn read(&self, l: &Level, x: usize, y: usize) -> [f32; 4] {
         let table = &self.table;
         match &l.texels {
             Texels::U8(t) => {
