@@ -221,14 +221,19 @@ pub trait Integrator: Send + Sync {
     /// [`Integrator::sample`] directly rather than through the trait object
     /// (1.5 % of a Whitted render's instructions went to those calls).
     ///
-    /// On CPUs with [`crate::cpu::RENDER_FEATURES`] the loop, with the
-    /// integrator's sample inlined into it, runs compiled for them (the same
-    /// values, see [`crate::cpu`]).
+    /// On CPUs with [`crate::cpu::RENDER_FEATURES`] (or else
+    /// [`crate::cpu::AVX2_FEATURES`]) the loop, with the integrator's sample
+    /// inlined into it, runs compiled for them (the same values, see [`crate::cpu`]).
     fn sample_row(&self, view: &View, row: (u32, u32), samples: Range<u32>, counts: &mut RayCounts, sums: &mut [PixelSum]) -> u64 {
         #[cfg(target_arch = "x86_64")]
         if crate::cpu::render_features() {
             // SAFETY: the CPU has every feature `sample_row_features` is compiled for.
             return unsafe { sample_row_features(self, view, row, samples, counts, sums) };
+        }
+        #[cfg(target_arch = "x86_64")]
+        if crate::cpu::avx2_features() {
+            // SAFETY: the CPU has every feature `sample_row_avx2` is compiled for.
+            return unsafe { sample_row_avx2(self, view, row, samples, counts, sums) };
         }
         sample_row_loop(self, view, row, samples, counts, sums)
     }
@@ -271,6 +276,21 @@ unsafe fn sample_row_features<I: Integrator + ?Sized>(
     sample_row_loop(integrator, view, row, samples, counts, sums)
 }
 
+/// [`sample_row_loop`] compiled for [`crate::cpu::AVX2_FEATURES`] (AVX2
+/// processors without GFNI).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
+unsafe fn sample_row_avx2<I: Integrator + ?Sized>(
+    integrator: &I,
+    view: &View,
+    row: (u32, u32),
+    samples: Range<u32>,
+    counts: &mut RayCounts,
+    sums: &mut [PixelSum],
+) -> u64 {
+    sample_row_loop(integrator, view, row, samples, counts, sums)
+}
+
 #[cfg(all(test, target_arch = "x86_64"))]
 mod feature_tests {
     /// The attribute of `sample_row_features` names [`crate::cpu::RENDER_FEATURES`].
@@ -279,6 +299,8 @@ mod feature_tests {
         let source = include_str!("mod.rs");
         let attribute = format!("#[target_feature(enable = \"{}\")]\nunsafe fn sample_row_features", crate::cpu::RENDER_FEATURES);
         assert!(source.contains(&attribute), "sample_row_features must be compiled for RENDER_FEATURES");
+        let attribute = format!("#[target_feature(enable = \"{}\")]\nunsafe fn sample_row_avx2", crate::cpu::AVX2_FEATURES);
+        assert!(source.contains(&attribute), "sample_row_avx2 must be compiled for AVX2_FEATURES");
     }
 }
 
