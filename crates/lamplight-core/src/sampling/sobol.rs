@@ -236,6 +236,19 @@ mod tests {
     }
 
     #[test]
+    fn a_2d_value_is_both_dimensions_owen_scrambled() {
+        // The definition, with each 32-bit word reversed on its own.
+        for (seed, pixel, index) in [(0, 0, 0), (9, 4321, 37), (1, u64::MAX, u32::MAX), (77, 5, 1 << 20)] {
+            let mut sampler = PixelSampler::new(seed, pixel, index);
+            for dimension in 0..64 {
+                let (i, s0, s1) = sampler.dimension_seeds(dimension);
+                let expected = (to_unit(owen_scramble(sobol0(i), s0)), to_unit(owen_scramble(sobol1(i), s1)));
+                assert_eq!(sampler.get_2d(), expected, "dimension {dimension}");
+            }
+        }
+    }
+
+    #[test]
     fn second_dimension_matches_the_published_sequence() {
         let got: Vec<f64> = (0..4).map(|i| to_unit(sobol1(i))).collect();
         assert_eq!(got, vec![0.0, 0.5, 0.75, 0.25]);
