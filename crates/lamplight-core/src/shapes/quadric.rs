@@ -12,7 +12,7 @@
 //! itself, where the constant term is tiny and exact.
 //!
 //! Polishing is two thirds of a quadric test, so a root is polished only when
-//! its polished value can matter ([`Quadric::crossing`]): each unpolished root
+//! its polished value can matter (`Quadric::crossing`): each unpolished root
 //! comes with a bound `m` on how far polishing can move it (the first-order
 //! error of a root, `(|da| t^2 + 2 |db| |t| + |dc|) / (2 sqrt(b^2 - ac))`, from
 //! the rounding bounds of the coefficients, times a safety factor of 4). A root
@@ -273,7 +273,7 @@ impl Shape for Quadric {
         Some(SurfaceHit::new(t, normal))
     }
 
-    /// [`Quadric::crossing`] without the normal.
+    /// `Quadric::crossing` without the normal.
     fn intersect_p(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
         self.crossing(ray, t_min, t_max).is_some()
     }

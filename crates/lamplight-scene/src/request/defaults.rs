@@ -31,7 +31,7 @@ pub struct Defaults {
     /// The film's crop in pixels of `size`, when the scene has one (`[render] crop`).
     pub crop: Option<PixelWindow>,
     /// Whether the variance layer is made unasked (`[render] variance`, Mitsuba's
-    /// `moment`), where the output can hold it ([`Job::add_scene_layers`]).
+    /// `moment`), where the output can hold it ([`super::Job::add_scene_layers`]).
     pub variance: bool,
     /// Whether the image is denoised unasked (`[render] denoise`).
     pub denoise: bool,
