@@ -202,6 +202,13 @@ fn declared_sizes_are_checked_against_the_memory_budget_before_allocating() {
         "[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\nvfov = 40\n[materials.a]\ncolor = { type = \"image\", file = \"big.png\" }\n\
                    [[objects]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"a\"\n";
     fs::write(d.join("tex.toml"), texture).unwrap();
+    // A 1024x1024 gradient EXR: float texels are counted from its header too.
+    let mut gradient = lamplight_core::film::Image::new(1024, 1024);
+    for (i, p) in gradient.pixels.iter_mut().enumerate() {
+        *p = [(i % 1024) as f32 / 1024.0, (i / 1024) as f32 / 1024.0, 0.5];
+    }
+    lamplight_scene::image_io::write_image_as(&d.join("big.exr"), &gradient, Default::default()).unwrap();
+    fs::write(d.join("exr.toml"), texture.replace("big.png", "big.exr")).unwrap();
     fs::write(d.join("tex-budget.toml"), format!("[render]\nmemory_budget = \"600M\"\n{texture}")).unwrap();
     let budget = |file: &'static str, size: &'static str| [render(file), vec!["--memory-budget", size]].concat();
     let raise = "raise it with --memory-budget (or [render] memory_budget in a TOML scene)";
@@ -226,6 +233,13 @@ fn declared_sizes_are_checked_against_the_memory_budget_before_allocating() {
             (
                 budget("tex.toml", "512M"),
                 format!("tex.toml:6:34: material \"a\": color: file: {big_png}, more than the memory budget of 512.0 MiB; {raise}"),
+            ),
+            (
+                budget("exr.toml", "32M"),
+                format!(
+                    "exr.toml:6:34: material \"a\": color: file: texture 'big.exr' (1024x1024 pixels) needs 33.3 MiB of memory, \
+                     more than the memory budget of 32.0 MiB; {raise}"
+                ),
             ),
             (
                 render("tex-budget.toml"),

@@ -233,15 +233,30 @@ pub(crate) fn check_image_size(width: u64, height: u64, file_len: u64) -> Result
     Ok(())
 }
 
+/// The width and height of the largest layer of the OpenEXR file `bytes`,
+/// from its headers (no pixel is read), each layer checked as
+/// an image's size is checked (its pixel count bounded); `path` is only named in errors.
+pub fn exr_size(path: &Path, bytes: &[u8]) -> Result<(u32, u32), ImageError> {
+    let read_error = |reason: String| ImageError::Read { path: path.to_path_buf(), reason };
+    let meta = exr::meta::MetaData::read_from_buffered(bytes, false).map_err(|e| read_error(e.to_string()))?;
+    let mut largest = (0u32, 0u32);
+    for header in meta.headers.iter() {
+        let size = header.layer_size;
+        check_image_size(size.width() as u64, size.height() as u64, bytes.len() as u64).map_err(read_error)?;
+        // Below MAX_IMAGE_PIXELS, so each side fits a u32.
+        let (w, h) = (size.width() as u32, size.height() as u32);
+        if u64::from(w) * u64::from(h) > u64::from(largest.0) * u64::from(largest.1) {
+            largest = (w, h);
+        }
+    }
+    Ok(largest)
+}
+
 /// Decodes the bytes of an OpenEXR file as [`read_exr`] does; `path` is only named in errors.
 pub fn decode_exr(path: &Path, bytes: &[u8]) -> Result<Image, ImageError> {
     let read_error = |reason: String| ImageError::Read { path: path.to_path_buf(), reason };
     use exr::prelude::{ReadChannels, ReadLayers};
-    let meta = exr::meta::MetaData::read_from_buffered(bytes, false).map_err(|e| read_error(e.to_string()))?;
-    for header in meta.headers.iter() {
-        let size = header.layer_size;
-        check_image_size(size.width() as u64, size.height() as u64, bytes.len() as u64).map_err(read_error)?;
-    }
+    exr_size(path, bytes)?;
     let exr = exr::prelude::read()
         .no_deep_data()
         .largest_resolution_level()

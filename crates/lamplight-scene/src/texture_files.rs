@@ -83,9 +83,21 @@ pub fn decode_texture(name: &Path, bytes: &[u8], srgb: bool) -> Result<ImageData
     let fail = |reason: String| format!("cannot use texture '{}': {reason}", name.display());
     let is_exr = name.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr")) || bytes.starts_with(&[0x76, 0x2f, 0x31, 0x01]);
     if is_exr {
-        let image = crate::image_io::decode_exr(name, bytes).map_err(|e| e.to_string())?;
-        let texels = image.pixels.iter().map(|p| [p[0], p[1], p[2], 1.0]).collect();
-        return ImageData::new(image.width as usize, image.height as usize, Texels::F32(texels), false).map_err(|e| fail(e.to_string()));
+        // The budget's share from the largest layer's header, before any pixel
+        // is read: the float RGBA texels kept (a third more for the smaller MIP
+        // levels) and, while decoding, the RGB image they are made from.
+        let (width, height) = crate::image_io::exr_size(name, bytes).map_err(|e| e.to_string())?;
+        let pixels = u64::from(width) * u64::from(height);
+        let (kept, transient) = (pixels * 16 * 4 / 3, pixels * 12);
+        crate::memory::reserve(kept + transient, || format!("texture '{}' ({width}x{height} pixels)", name.display()))
+            .map_err(|e| e.to_string())?;
+        let image = crate::image_io::decode_exr(name, bytes).map_err(|e| e.to_string());
+        let data = image.and_then(|image| {
+            let texels = image.pixels.iter().map(|p| [p[0], p[1], p[2], 1.0]).collect();
+            ImageData::new(image.width as usize, image.height as usize, Texels::F32(texels), false).map_err(|e| fail(e.to_string()))
+        });
+        crate::memory::release(transient);
+        return data;
     }
     let reader = || image::ImageReader::new(std::io::Cursor::new(bytes)).with_guessed_format();
     let probe = reader().map_err(|e| fail(e.to_string()))?;
