@@ -10,5 +10,6 @@ mod denoise;
 mod explain;
 mod hardening;
 mod info;
+mod lighting;
 mod raycast;
 mod view;
