@@ -158,7 +158,7 @@ pub struct SceneArgs {
     /// Set the scene parameter $NAME of a Mitsuba XML scene, as `mitsuba -D`; repeatable.
     #[arg(short = 'D', value_name = "NAME=VALUE", value_parser = define)]
     pub define: Vec<(String, String)>,
-    /// Path tracer: light the scene with this equirectangular HDR map (.exr or .hdr), importance-sampled.
+    /// Path tracer: light the scene with this equirectangular HDR map (.exr or .hdr), looked up bilinearly, importance-sampled.
     #[arg(long, value_name = "FILE")]
     pub environment: Option<PathBuf>,
     /// The memory meshes, textures, BVHs and the film may take together, such as 4G or 512M [default: the scene's, else half the available memory].

@@ -1,5 +1,6 @@
 //! What `lamplight render` says and does about a scene's lights (issue 27): a
-//! light shut in by geometry is named, with what blocks it.
+//! light shut in by geometry is named, with what blocks it; an environment map
+//! from the command line is interpolated between its pixels.
 
 use std::path::Path;
 use std::process::{Command, Output, Stdio};
@@ -87,4 +88,41 @@ fn a_light_that_reaches_what_the_camera_sees_gets_no_warning() {
     assert_eq!(warnings(dir.path(), "free.toml"), Vec::<String>::new());
     // luxo's light sits in its lamp's shade, with the bulb its own object.
     assert_eq!(warnings(dir.path(), "luxo"), Vec::<String>::new());
+}
+
+/// The radiance `lamplight render` sees straight ahead (along -z, the map's
+/// centre: u = v = 1/2) through `--environment` holding `map` (`width x
+/// height` pixels, rows from the top), with `integrator`.
+fn centre_of_the_sky(map: Vec<[f32; 3]>, width: u32, height: u32, integrator: &str) -> [f32; 3] {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let sky = lamplight_core::film::Image { width, height, pixels: map };
+    lamplight_scene::image_io::write_image(&d.join("sky.exr"), &sky).unwrap();
+    // Nothing in view: the rays leave the scene at once. The path tracer
+    // jitters its one sample within the pixel: a field of view of 1e-4
+    // degrees keeps every ray within 1e-6 radians of -z.
+    std::fs::write(d.join("sky.toml"), "[camera]\neye = [0, 0, 0]\nlook_at = [0, 0, -1]\nup = [0, 1, 0]\nvfov = 1e-4\n").unwrap();
+    let args = ["render", "sky.toml", "--environment", "sky.exr", "--width", "1", "--height", "1", "--antialias", "off"];
+    let out = lamplight(d, &[&args[..], &["--integrator", integrator, "--spp", "1", "-o", "out.exr", "-q"]].concat());
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    lamplight_scene::image_io::read_exr(&d.join("out.exr")).unwrap().pixels[0]
+}
+
+#[test]
+fn an_environment_map_from_the_command_line_is_interpolated_bilinearly() {
+    // 4x2: straight ahead lies midway between columns 1 and 2 (pixel centres at
+    // u = 3/8, 5/8) and midway between the two rows (the zenith's and the
+    // nadir's, as Mitsuba's envmap places them): the mean of those four pixels,
+    // (1 + 3 + 5 + 7) / 4 = 4. The nearest pixel, (2, 1), would give 7; the
+    // other pixels, 100, must not enter at all.
+    let far = [100.0; 3];
+    let map = vec![far, [1.0; 3], [3.0; 3], far, far, [5.0; 3], [7.0; 3], far];
+    for integrator in ["whitted", "path"] {
+        let seen = centre_of_the_sky(map.clone(), 4, 2, integrator);
+        assert!(seen.iter().all(|c| (c - 4.0).abs() < 1e-5), "{integrator}: {seen:?}");
+    }
+    // 2x1, one row: interpolated across, the same in every direction up and down:
+    // midway between pixel centres u = 1/4 and 3/4, (2 + 6) / 2 = 4 (the nearest pixel gives 6).
+    let seen = centre_of_the_sky(vec![[2.0; 3], [6.0; 3]], 2, 1, "whitted");
+    assert!(seen.iter().all(|c| (c - 4.0).abs() < 1e-5), "{seen:?}");
 }

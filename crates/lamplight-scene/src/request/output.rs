@@ -26,10 +26,11 @@ pub struct Rendered {
 }
 
 impl Job {
-    /// Lights `scene` with the job's environment map, if any.
+    /// Lights `scene` with the job's environment map, if any, looked up
+    /// bilinearly ([`crate::env_map::load_bilinear_map`]).
     pub fn prepare(&self, scene: &mut Scene) -> Result<(), RequestError> {
         let Some(path) = &self.environment else { return Ok(()) };
-        let env = crate::env_map::load_map(path).map_err(bad)?;
+        let env = crate::env_map::load_bilinear_map(path).map_err(bad)?;
         scene.settings.environment = Some(std::sync::Arc::new(lamplight_core::lights::Environment::Map(env)));
         Ok(())
     }
