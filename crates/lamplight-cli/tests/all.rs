@@ -11,5 +11,6 @@ mod explain;
 mod hardening;
 mod info;
 mod lighting;
+mod meshes;
 mod raycast;
 mod view;
