@@ -41,3 +41,15 @@ def test_the_quoted_dict_error_is_the_one_the_code_raises():
 def test_every_example_file_is_listed_in_the_docs():
     listed = set(re.findall(r"`examples/([\w-]+\.toml)`", (ROOT / "docs" / "examples.md").read_text()))
     assert listed == {p.name for p in (ROOT / "examples").glob("*.toml")}
+
+
+def test_the_install_instructions_say_what_pip_install_needs_and_how_long_it_takes():
+    # Issue 27: `pip install .` ran silently for about 2 minutes and needed
+    # Rust, and the README said neither.
+    for doc in ["README.md", "docs/python.md"]:
+        text = (ROOT / doc).read_text()
+        at = text.index("pip install -v .")
+        around = text[max(0, at - 300) : at + 900]
+        assert "Rust 1.85 or newer" in around, doc
+        assert "about 2\nminutes" in around or "about 2 minutes" in around, doc
+        assert "`-v`" in around and "progress" in around, doc

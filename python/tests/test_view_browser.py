@@ -162,6 +162,132 @@ def test_a_clicked_pixel_s_tree_adds_up_to_its_value(browser, viewer):
         browser.find_element(By.TAG_NAME, "main").screenshot(SCREENSHOT)
 
 
+# A pixel of luxo on the floor right of the glass sphere: under the path
+# tracer at 8 samples some of its paths leave the image, one of them (sample 2)
+# through its bottom edge, across the controls below, had it not been clipped.
+FLOOR_PIXEL = (500, 300)
+
+
+def click_pixel(driver, x, y):
+    canvas = driver.find_element(By.ID, "image")
+    # Selenium's offsets are from the element's centre.
+    ActionChains(driver).move_to_element_with_offset(canvas, x - 320, y - 180).click().perform()
+
+
+def use_settings(driver, integrator, spp):
+    """Sets the page's integrator and spp fields as a user would ("" for the scene's) and returns the new generation."""
+    generation = hooks(driver, "state.generation")
+    driver.execute_script(
+        "document.getElementById('spp').value = arguments[1];"
+        "const s = document.getElementById('integrator'); s.value = arguments[0]; s.dispatchEvent(new Event('change'));",
+        integrator,
+        spp,
+    )
+    wait_for(driver, lambda d: hooks(d, "state.generation") > generation, what="the new settings")
+    return generation
+
+
+def drawn_lines(driver):
+    """The overlay's lines: (sample, x1, y1, x2, y2) each."""
+    script = """return [...document.querySelectorAll('#rays line')].map((l) =>
+        [l.dataset.sample, ...['x1', 'y1', 'x2', 'y2'].map((k) => +l.getAttribute(k))]);"""
+    return [tuple(line) for line in driver.execute_script(script)]
+
+
+def test_the_overlay_draws_one_sample_s_path_clipped_to_the_image(browser, viewer):
+    open_page(browser, viewer)
+    info = final_frame(browser)
+    try:
+        use_settings(browser, "path", "8")
+        final_frame(browser, info["generation"])
+        # What lies below and beside the image, as drawn before any ray is (the
+        # legend's words: the inspector itself narrows when its scroll bar comes).
+        names = ["#controls", ".hint"] + [f"#legend .k-{k}" for k in ["camera", "reflected", "refracted", "shadow", "blocked"]]
+        around = {name: browser.find_element(By.CSS_SELECTOR, name).screenshot_as_png for name in names}
+        click_pixel(browser, *FLOOR_PIXEL)
+        m = wait_for(browser, lambda d: hooks(d, "explain"), what="the explanation")
+        samples = m["tree"]["samples"]
+        assert len(samples) == 8 and m["tree"]["integrator"] == "path", m["tree"]["integrator"]
+        image = browser.find_element(By.ID, "image").rect
+        for box in ["#stage", "#rays"]:
+            assert browser.find_element(By.CSS_SELECTOR, box).rect == image, f"{box} is the image's box"
+        assert browser.execute_script("return getComputedStyle(document.getElementById('stage')).overflow") == "hidden"
+        seen = {}
+        for k in range(len(samples)):
+            # One sample's path at a time, k clicks on "next" from the first.
+            assert hooks(browser, "sample") == k
+            index = samples[k]["index"]
+            label = browser.find_element(By.ID, "sample_label").text
+            assert label == f"sample {index} drawn ({k + 1} of 8)", label
+            lines = drawn_lines(browser)
+            assert lines and {line[0] for line in lines} == {str(index)}, lines
+            # The path tracer draws a path's vertices, one segment each.
+            assert hooks(browser, "rays") == ["camera"] + ["reflected"] * (len(samples[k]["path"]["vertices"]) - 1)
+            assert len(lines) <= len(samples[k]["path"]["vertices"])
+            for _, *ends in lines:
+                xs, ys = ends[0::2], ends[1::2]
+                assert all(-1e-6 <= x <= 640 + 1e-6 for x in xs) and all(-1e-6 <= y <= 360 + 1e-6 for y in ys), ends
+            seen[k] = sorted(lines)
+            for name, png in around.items():
+                assert browser.find_element(By.CSS_SELECTOR, name).screenshot_as_png == png, f"sample {index}'s rays drawn over {name}"
+            browser.find_element(By.ID, "sample_next").click()
+        assert hooks(browser, "sample") == 0, "next wraps around to the first sample"
+        assert seen[0] != seen[1], "another sample, another path"
+        browser.find_element(By.ID, "sample_prev").click()
+        assert hooks(browser, "sample") == 7, "previous wraps around to the last"
+        # A sample's own line in the tree selects it too.
+        browser.find_element(By.CSS_SELECTOR, "#tree details.sample[data-sample='3'] > summary").click()
+        assert hooks(browser, "sample") == 3 and sorted(drawn_lines(browser)) == seen[3]
+    finally:
+        info = hooks(browser, "info")
+        use_settings(browser, "", "")
+        final_frame(browser, info["generation"])
+
+
+def test_moving_the_camera_marks_the_tree_stale_then_explains_the_pixel_again(browser, viewer):
+    open_page(browser, viewer)
+    info = final_frame(browser)
+    click_pixel(browser, *GLASS_PIXEL)
+    first = wait_for(browser, lambda d: hooks(d, "explain"), what="the explanation")
+    assert first["camera"] == hooks(browser, "state.camera")
+    assert drawn_lines(browser) and not hooks(browser, "stale")
+    canvas = browser.find_element(By.ID, "image")
+    try:
+        # Mid-drag the camera has moved: the tree is marked stale and its rays are gone.
+        drag = ActionChains(browser).move_to_element(canvas).click_and_hold().move_by_offset(30, 0).move_by_offset(30, 5)
+        drag.perform()
+        assert hooks(browser, "stale") is True
+        note = browser.find_element(By.ID, "stale_note")
+        assert note.text == (
+            f"stale: the camera moved; this tree is of the view before. Pixel ({first['x']}, {first['y']}) "
+            "is explained again when the new view's first frame comes."
+        ), note.text
+        assert "stale" in browser.find_element(By.ID, "tree").get_attribute("class")
+        assert drawn_lines(browser) == []
+        browser.execute_script("window.lamplight.selectSample(0);")
+        assert drawn_lines(browser) == [], "choosing a sample of a stale tree draws none of its rays"
+        assert hooks(browser, "explain.generation") == first["generation"], "the old tree stays, marked, until the new one comes"
+        ActionChains(browser).release().perform()
+        again = wait_for(
+            browser, lambda d: hooks(d, "explain.generation") > first["generation"] and hooks(d, "explain"), what="the pixel explained again"
+        )
+        assert (again["x"], again["y"]) == (first["x"], first["y"])
+        camera = hooks(browser, "state.camera")
+        assert again["camera"] == camera and camera["eye"] != first["camera"]["eye"], "explained through the moved camera"
+        assert not hooks(browser, "stale") and not browser.find_elements(By.ID, "stale_note")
+        assert drawn_lines(browser), "the new tree's rays are drawn"
+        final = final_frame(browser, first["generation"])
+        assert final["generation"] == again["generation"]
+        shown = browser.execute_script("return window.lamplight.pixel(arguments[0], arguments[1]);", again["x"], again["y"])
+        assert again["tree"]["value"] == pytest.approx(shown, rel=1e-6, abs=1e-9), "the new tree is the new image's pixel"
+        assert again["tree"]["value"] != pytest.approx(first["tree"]["value"], rel=1e-3), "the moved camera sees something else there"
+    finally:
+        ActionChains(browser).release().perform() if hooks(browser, "stale") else None
+        generation = hooks(browser, "state.generation")
+        browser.find_element(By.ID, "reset").click()
+        final_frame(browser, generation)
+
+
 def test_editing_the_scene_reloads_and_a_broken_file_shows_its_error(browser, viewer):
     open_page(browser, viewer)
     info = final_frame(browser)

@@ -158,12 +158,15 @@ pub struct SceneArgs {
     /// Set the scene parameter $NAME of a Mitsuba XML scene, as `mitsuba -D`; repeatable.
     #[arg(short = 'D', value_name = "NAME=VALUE", value_parser = define)]
     pub define: Vec<(String, String)>,
-    /// Path tracer: light the scene with this equirectangular HDR map (.exr or .hdr), importance-sampled.
+    /// Path tracer: light the scene with this equirectangular HDR map (.exr or .hdr), looked up bilinearly, importance-sampled.
     #[arg(long, value_name = "FILE")]
     pub environment: Option<PathBuf>,
     /// The memory meshes, textures, BVHs and the film may take together, such as 4G or 512M [default: the scene's, else half the available memory].
     #[arg(long, value_name = "SIZE", value_parser = lamplight_scene::memory::parse)]
     pub memory_budget: Option<u64>,
+    /// A mesh file (.obj, .ply, .gltf, .glb): shade its meshes that have no normals smooth (angle-weighted vertex normals, Mitsuba's default) rather than flat (glTF's rule, Blender's import). In a scene file, a mesh's `shading = "smooth"` says it.
+    #[arg(long)]
+    pub smooth: bool,
 }
 
 impl SceneArgs {
@@ -189,6 +192,7 @@ impl SceneArgs {
             denoise: None,
             denoise_library_hints: Vec::new(),
             memory_budget: self.memory_budget,
+            smooth: self.smooth,
         }
     }
 
@@ -236,7 +240,7 @@ impl ExplainArgs {
     /// Reads the scene and resolves the render settings as `render` does.
     pub fn validate(self) -> Result<ExplainJob, UsageError> {
         self.render.begin_memory_budget();
-        let scene = SceneRequest::resolve_with(&self.render.scene, &self.render.define)?;
+        let scene = SceneRequest::resolve_with(&self.render.scene, &self.render.define)?.smoothed(self.render.smooth)?;
         let job = self.render.request(1).resolve(&scene.defaults, Naming::Flags)?;
         Ok(ExplainJob { scene, job, pixel: self.pixel, sample: self.sample, json: self.json })
     }
@@ -401,7 +405,7 @@ impl RenderArgs {
     /// file's settings, which override the program's defaults.
     pub fn validate(self) -> Result<RenderJob, UsageError> {
         self.scene.begin_memory_budget();
-        let scene = SceneRequest::resolve_with(&self.scene.scene, &self.scene.define)?;
+        let scene = SceneRequest::resolve_with(&self.scene.scene, &self.scene.define)?.smoothed(self.scene.smooth)?;
         if !self.exposure.is_finite() {
             return Err(usage("--exposure must be a finite number"));
         }

@@ -146,7 +146,7 @@ fn render_command(job: RenderJob) -> anyhow::Result<()> {
     let built = scene.instantiate(&job).map_err(|e| UsageError(e.0))?;
     print_warnings(&built.warnings);
     let built = built.scene;
-    print_warnings(job.light_warning(&built).as_slice());
+    print_warnings(&job.light_warnings(&built));
     let build_time = build_start.elapsed();
 
     let bar = progress_bar(quiet);

@@ -10,5 +10,7 @@ mod denoise;
 mod explain;
 mod hardening;
 mod info;
+mod lighting;
+mod meshes;
 mod raycast;
 mod view;

@@ -54,7 +54,7 @@ pub fn render_array<'py>(
     let core = scene.core_for(py, &job)?;
     job.reserve_film().map_err(|e| PyValueError::new_err(e.0))?;
 
-    let warnings: Vec<String> = job.light_warning(&core).into_iter().collect();
+    let warnings: Vec<String> = job.light_warnings(&core);
     let cancel = Arc::new(AtomicBool::new(false));
     let done = Arc::new(AtomicU64::new(0));
     let total = Arc::new(AtomicU64::new(0));

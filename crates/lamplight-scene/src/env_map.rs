@@ -23,9 +23,30 @@ pub fn read_environment(path: &Path) -> Result<Image, ImageError> {
 }
 
 /// Reads an environment map file as the renderer's map (linear RGB with its
-/// sampling distribution); the message names the file.
+/// sampling distribution), looked up at the nearest pixel; the message names the file.
 pub fn load_map(path: &Path) -> Result<lamplight_core::lights::EnvMap, String> {
     let map = read_environment(path).map_err(|e| e.to_string())?;
+    env_map(path, &map)
+}
+
+/// Reads an environment map file as [`load_map`] does, looked up bilinearly
+/// between pixel centres as Mitsuba's `envmap` ([`EnvMap::bilinear`]): the
+/// lookup of `--environment` and Python's `environment=`, where the nearest
+/// pixel showed every pixel of a small map as a block (issue 27). A map of one
+/// row, which the bilinear lookup cannot place between zenith and nadir, is
+/// read as that row twice: interpolated across, the same up and down.
+///
+/// [`EnvMap::bilinear`]: lamplight_core::lights::EnvMap::bilinear
+pub fn load_bilinear_map(path: &Path) -> Result<lamplight_core::lights::EnvMap, String> {
+    let mut map = read_environment(path).map_err(|e| e.to_string())?;
+    if map.height == 1 {
+        map.pixels.extend_from_within(..);
+        map.height = 2;
+    }
+    env_map(path, &map)?.bilinear().map_err(|e| format!("cannot use '{}' as an environment map: {e}", path.display()))
+}
+
+fn env_map(path: &Path, map: &Image) -> Result<lamplight_core::lights::EnvMap, String> {
     let pixels = map.pixels.iter().map(|p| lamplight_core::math::Rgb::new(p[0] as f64, p[1] as f64, p[2] as f64)).collect();
     lamplight_core::lights::EnvMap::new(map.width as usize, map.height as usize, pixels)
         .map_err(|e| format!("cannot use '{}' as an environment map: {e}", path.display()))

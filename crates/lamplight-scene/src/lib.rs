@@ -28,6 +28,7 @@ pub mod builtin;
 pub mod convert;
 pub mod denoise;
 pub mod description;
+pub mod enclosed;
 pub mod env_map;
 mod error;
 pub mod explain;

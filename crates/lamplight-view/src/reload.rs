@@ -29,7 +29,7 @@ pub const QUIET: Duration = Duration::from_millis(60);
 /// Reads and builds the scene `arg` names (a built-in, a scene file or a mesh
 /// file), lit by the environment map `request` names, if any.
 pub fn load(arg: &str, request: &Request) -> Result<Loaded, String> {
-    let scene = SceneRequest::resolve(arg).map_err(|e| e.0)?;
+    let scene = SceneRequest::resolve(arg).and_then(|s| s.smoothed(request.smooth)).map_err(|e| e.0)?;
     let job = request.resolve(&scene.defaults, Naming::Flags).map_err(|e| e.0)?;
     let built = scene.instantiate(&job).map_err(|e| e.0)?;
     Ok(Loaded::new(built.scene, scene.defaults, built.warnings))

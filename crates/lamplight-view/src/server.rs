@@ -5,7 +5,7 @@
 //! come from its own page (`Origin`; [`crate::doors`]), and every request but
 //! the favicon's must carry the token ([`crate::token`]); without them the
 //! answer is `403 Forbidden` and nothing else runs. The routes:
-//! - `GET /`, `/app.js`, `/app.css`: the page, built into the binary; it
+//! - `GET /`, `/app.js`, `/inspector.js`, `/app.css`: the page, built into the binary; it
 //!   fetches nothing else, so no file of the scene's folder is served (the
 //!   renderer reads the scene's meshes and textures; the page needs none);
 //! - `GET /favicon.ico`, which browsers ask for without the token: `204 No Content`;
@@ -38,6 +38,7 @@ pub const MAX_MESSAGE: usize = 64 * 1024;
 
 const INDEX_HTML: &str = include_str!("page/index.html");
 const APP_JS: &str = include_str!("page/app.js");
+const INSPECTOR_JS: &str = include_str!("page/inspector.js");
 const APP_CSS: &str = include_str!("page/app.css");
 
 /// The routes, behind the token check, all behind the doors of `doors`.
@@ -46,6 +47,7 @@ pub fn router(app: Arc<App>, doors: Doors) -> Router {
     Router::new()
         .route("/", get(index))
         .route("/app.js", get(|| async { text(APP_JS, "text/javascript; charset=utf-8") }))
+        .route("/inspector.js", get(|| async { text(INSPECTOR_JS, "text/javascript; charset=utf-8") }))
         .route("/app.css", get(|| async { text(APP_CSS, "text/css; charset=utf-8") }))
         .route("/ws", get(websocket))
         .fallback(|| async { (StatusCode::NOT_FOUND, "not found: the viewer serves its page only\n") })

@@ -56,7 +56,7 @@ fn every_request_needs_the_token() {
     let viewer = start("business-card", 32);
     let token = viewer.app.token.clone();
     let refused = "forbidden: this request lacks the viewer's token; open the URL that `lamplight view` printed\n";
-    for target in ["/", "/app.js", "/ws", "/files/x.toml", "/nothing"] {
+    for target in ["/", "/app.js", "/inspector.js", "/ws", "/files/x.toml", "/nothing"] {
         assert_eq!(get(&viewer, target, ""), (403, refused.to_string()), "{target} without a token");
         assert_eq!(get(&viewer, &format!("{target}?token=0123"), "").0, 403, "{target} with a wrong token");
     }
@@ -68,7 +68,10 @@ fn every_request_needs_the_token() {
     assert_eq!(get(&viewer, &format!("/ws?token={token}"), upgrade).0, 101, "a WebSocket with it");
     let (status, page) = get(&viewer, &format!("/?token={token}"), "");
     assert_eq!(status, 200);
-    assert!(page.contains(&format!("app.js?token={token}")), "the page loads its script with the token");
+    for script in ["inspector.js", "app.js"] {
+        assert!(page.contains(&format!("<script src=\"{script}?token={token}\">")), "the page loads {script} with the token");
+        assert_eq!(get(&viewer, &format!("/{script}?token={token}"), "").0, 200, "{script} is served");
+    }
     assert_eq!(get(&viewer, "/app.css", &format!("X-Lamplight-Token: {token}\r\n")).0, 200, "the token as a header");
     assert_eq!(get(&viewer, &format!("/nothing?token={token}"), "").0, 404);
     let not_found = "not found: the viewer serves its page only\n".to_string();

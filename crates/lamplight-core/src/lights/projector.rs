@@ -45,7 +45,7 @@ pub const KIND: LightKind = Kind {
     params: &[
         Param::new("position", T::Point, "[0, 0, 0]", "", "the pinhole"),
         Param::new("direction", T::Vector, "one of direction, look_at", "", "the way it shines"),
-        Param::new("look_at", T::Point, "", "", "a point on its axis"),
+        Param::new("look_at", T::Point, "one of direction, look_at", "", "a point on its axis"),
         Param::new("up", T::Vector, "[0, 1, 0] ([0, 0, 1] for a vertical axis)", "", "the image's up, as seen from the light"),
         Param::new(
             "texture",

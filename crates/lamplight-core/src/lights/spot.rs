@@ -76,7 +76,7 @@ pub const KIND: LightKind = Kind {
     params: &[
         Param::new("position", T::Point, "", "", "where the light is"),
         Param::new("direction", T::Vector, "one of direction, look_at", "", "the axis, the way the light shines"),
-        Param::new("look_at", T::Point, "", "", "a point on the axis"),
+        Param::new("look_at", T::Point, "one of direction, look_at", "", "a point on the axis"),
         Param::new(
             "intensity",
             T::Color,

@@ -49,8 +49,15 @@ pub const KIND: MaterialKind = Kind {
         ),
         super::TWO_SIDED_PARAM,
         super::sided::SIDED_PARAM,
-        Param::new("reflection", T::Table, "none", "", "mirror reflection (see below)"),
-        Param::new("refraction", T::Table, "none", "", "refraction (see below)"),
+        // Said in full: the reference table sits below the forms' own tables (issue 27).
+        Param::new(
+            "reflection",
+            T::Table,
+            "none",
+            "",
+            "mirror reflection: `{ type = \"constant\", weight }`, `{ type = \"dielectric\", ior, min, max }` or `{ type = \"conductor\", metal }` / `{ type = \"conductor\", eta, k }`",
+        ),
+        Param::new("refraction", T::Table, "none", "", "refraction: `{ type = \"fresnel\", ior }` or `{ type = \"constant\", ior, weight }`"),
         Param::new(
             "shadow_transmittance",
             T::Texture,

@@ -253,7 +253,12 @@ pub fn load_mesh(path: &Path) -> Result<MeshData, LoadError> {
 impl MeshData {
     /// The core mesh, with its vertex attributes.
     pub fn to_mesh(&self) -> Result<lamplight_core::shapes::TriangleMesh, lamplight_core::Error> {
-        lamplight_core::shapes::TriangleMesh::new(self.positions.clone(), self.indices.clone(), self.normals.clone())?
+        self.to_mesh_with(self.normals.clone())
+    }
+
+    /// The core mesh with `normals` in place of the file's.
+    pub fn to_mesh_with(&self, normals: Option<Vec<Vec3>>) -> Result<lamplight_core::shapes::TriangleMesh, lamplight_core::Error> {
+        lamplight_core::shapes::TriangleMesh::new(self.positions.clone(), self.indices.clone(), normals)?
             .with_attributes(self.attributes.clone())
     }
 }

@@ -9,7 +9,8 @@
 //!
 //! Under path tracing it lights every surface and is seen by every ray that
 //! leaves the scene, in place of `background`; under Whitted, rays that leave
-//! the scene see it. `--environment FILE` (Python `environment=`) replaces it.
+//! the scene see it. `--environment FILE` (Python `environment=`) replaces it,
+//! looked up bilinearly (`crate::env_map::load_bilinear_map`).
 
 use std::path::Path;
 use std::sync::Arc;
@@ -35,7 +36,7 @@ pub const ENVIRONMENT_PARAMS: &[Param] = &[
         T::String,
         "\"nearest\"",
         "\"nearest\", \"bilinear\"",
-        "how the map is looked up: the nearest pixel, or bilinearly between pixels as Mitsuba's `envmap` (first row at the zenith, last at the nadir)",
+        "how the map is looked up: the nearest pixel, or bilinearly between pixels as Mitsuba's `envmap` (first row at the zenith, last at the nadir); a map given by `--environment` (Python `environment=`) is always looked up bilinearly",
     ),
 ];
 

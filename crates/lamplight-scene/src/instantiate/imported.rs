@@ -27,18 +27,37 @@ pub fn load(path: &Path) -> Result<Scene, LoadError> {
 
 /// [`load`], keeping the importer's warnings, each as `PATH: what`.
 pub fn load_with_warnings(path: &Path) -> Result<Built, LoadError> {
+    load_shaded(path, false)
+}
+
+/// [`load_with_warnings`]; with `smooth`, meshes without normals get
+/// angle-weighted vertex normals (`--smooth`, Mitsuba's default for OBJ and
+/// PLY), else they are flat (glTF's rule, and Blender's import).
+pub fn load_shaded(path: &Path, smooth: bool) -> Result<Built, LoadError> {
     let imported = import::load(path)?;
-    let scene = build(path, &imported)?;
+    let scene = build_shaded(path, &imported, smooth)?;
     Ok(Built { scene, warnings: imported.warnings_of(path) })
 }
 
 /// Builds a scene from what an importer read from `path`.
 pub fn build(path: &Path, imported: &Imported) -> Result<Scene, LoadError> {
+    build_shaded(path, imported, false)
+}
+
+/// [`build`], smoothing meshes without normals when `smooth` ([`load_shaded`]).
+pub fn build_shaded(path: &Path, imported: &Imported, smooth: bool) -> Result<Scene, LoadError> {
     let fail = |e: lamplight_core::Error| LoadError::file(path, e.to_string());
     let mut meshes = Vec::with_capacity(imported.meshes.len());
     for data in &imported.meshes {
-        let mesh = data.to_mesh().map_err(fail)?;
-        meshes.push(Arc::new(mesh));
+        // An index out of range is the mesh's error, reported by `to_mesh`.
+        let in_range = || data.indices.iter().flatten().all(|&i| (i as usize) < data.positions.len());
+        let mesh = if smooth && data.normals.is_none() && in_range() {
+            let normals = lamplight_core::shapes::TriangleMesh::angle_weighted_normals(&data.positions, &data.indices);
+            data.to_mesh_with(Some(normals))
+        } else {
+            data.to_mesh()
+        };
+        meshes.push(Arc::new(mesh.map_err(fail)?));
     }
     for placed in &imported.instances {
         if imported.meshes.get(placed.mesh).is_none() {

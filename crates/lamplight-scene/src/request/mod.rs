@@ -91,6 +91,8 @@ pub struct SceneRequest {
     pub name: String,
     /// Its settings.
     pub defaults: Defaults,
+    /// A mesh file's meshes without normals get smooth ones ([`SceneRequest::smoothed`]).
+    pub smooth: bool,
 }
 
 impl SceneRequest {
@@ -119,7 +121,7 @@ impl SceneRequest {
                 SceneRequest::file(file, stem)
             }
             Some(ext) if import::EXTENSIONS.contains(&ext) => {
-                Ok(SceneRequest { spec: SceneSpec::Mesh(path.to_path_buf()), name: stem, defaults: program_defaults() })
+                Ok(SceneRequest { spec: SceneSpec::Mesh(path.to_path_buf()), name: stem, defaults: program_defaults(), smooth: false })
             }
             _ => Err(bad(format!(
                 "{arg}: unknown scene file type, expected {} or a mesh file ({})",
@@ -142,6 +144,7 @@ impl SceneRequest {
                 spp: b.spp,
                 ..program_defaults()
             },
+            smooth: false,
         }
     }
 
@@ -149,7 +152,24 @@ impl SceneRequest {
     pub fn file(file: SceneFile, name: String) -> Result<SceneRequest, RequestError> {
         let s = file.settings().map_err(|e| bad(e.to_string()))?;
         let defaults = Defaults::from_settings(&s);
-        Ok(SceneRequest { spec: SceneSpec::File(Box::new(file)), name, defaults })
+        Ok(SceneRequest { spec: SceneSpec::File(Box::new(file)), name, defaults, smooth: false })
+    }
+
+    /// With `smooth`, a mesh file rendered directly shades its meshes that have
+    /// no normals with angle-weighted vertex normals (`--smooth`), as Mitsuba
+    /// does; without, they stay flat, as glTF requires and as Blender imports
+    /// them. A scene file says it per mesh (`shading = "smooth"`), so the flag
+    /// is refused there rather than ignored.
+    pub fn smoothed(mut self, smooth: bool) -> Result<SceneRequest, RequestError> {
+        if smooth && !matches!(self.spec, SceneSpec::Mesh(_)) {
+            return Err(bad(format!(
+                "--smooth applies to a mesh file rendered directly ({}); '{}' is not one: in a scene file, give the mesh `shading = \"smooth\"`",
+                import::EXTENSIONS.iter().map(|e| format!(".{e}")).collect::<Vec<_>>().join(", "),
+                self.name
+            )));
+        }
+        self.smooth = smooth;
+        Ok(self)
     }
 
     /// Builds the scene (for any image size: the camera applies the aspect when rendering).
@@ -178,7 +198,7 @@ impl SceneRequest {
                 .map(|scene| Built { scene, warnings: Vec::new() })
                 .map_err(|e| bad(format!("cannot build scene '{}': {e}", b.name))),
             SceneSpec::File(file) => file.build_with_warnings().map_err(|e| bad(e.to_string())),
-            SceneSpec::Mesh(path) => imported::load_with_warnings(path).map_err(|e| bad(e.to_string())),
+            SceneSpec::Mesh(path) => imported::load_shaded(path, self.smooth).map_err(|e| bad(e.to_string())),
         }
     }
 }
@@ -226,6 +246,9 @@ pub struct Request {
     /// The memory budget in bytes ([`crate::memory`]); `None`: the scene's, else
     /// the default share of the machine's memory.
     pub memory_budget: Option<u64>,
+    /// Smooth a mesh file's meshes that have no normals ([`SceneRequest::smoothed`]):
+    /// the viewer builds its scene from the request.
+    pub smooth: bool,
 }
 
 /// A request checked and with every default resolved.

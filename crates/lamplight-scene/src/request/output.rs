@@ -1,6 +1,7 @@
 //! Running a resolved [`Job`] and writing what it rendered: the environment
-//! map, the warning for a scene no light reaches, the mean image, the extra
-//! layers and the denoised image, and the image file with its display transform.
+//! map, the warnings for a scene no light reaches and for lights shut in, the
+//! mean image, the extra layers and the denoised image, and the image file
+//! with its display transform.
 
 use std::path::Path;
 
@@ -25,29 +26,37 @@ pub struct Rendered {
 }
 
 impl Job {
-    /// Lights `scene` with the job's environment map, if any.
+    /// Lights `scene` with the job's environment map, if any, looked up
+    /// bilinearly ([`crate::env_map::load_bilinear_map`]).
     pub fn prepare(&self, scene: &mut Scene) -> Result<(), RequestError> {
         let Some(path) = &self.environment else { return Ok(()) };
-        let env = crate::env_map::load_map(path).map_err(bad)?;
+        let env = crate::env_map::load_bilinear_map(path).map_err(bad)?;
         scene.settings.environment = Some(std::sync::Arc::new(lamplight_core::lights::Environment::Map(env)));
         Ok(())
     }
 
-    /// A warning when no light reaches anything the camera sees in `scene`
-    /// (prepared), as a probe of camera rays finds
-    /// ([`lamplight_core::scene::reaches_camera_hits`]): the image would be black but for
-    /// what emits towards the camera.
-    pub fn light_warning(&self, scene: &Scene) -> Option<String> {
+    /// The warnings about the lights of `scene` (prepared): one when no light
+    /// reaches anything the camera sees, as a probe of camera rays finds
+    /// ([`lamplight_core::scene::reaches_camera_hits`]), so that the image
+    /// would be black but for what emits towards the camera; then one for each
+    /// light that geometry shuts in ([`crate::enclosed`]), naming what blocks it.
+    pub fn light_warnings(&self, scene: &Scene) -> Vec<String> {
         let (w, h) = (self.options.width, self.options.height);
         if scene.light_set().count() == 0 && scene.settings.ambient.max_element() <= 0.0 {
-            return Some("the scene has no lights: add a light, an emitting material, a background or an ambient term".to_string());
+            return vec!["the scene has no lights: add a light, an emitting material, a background or an ambient term".to_string()];
         }
-        (!lamplight_core::scene::reaches_camera_hits(scene, scene.settings.camera.as_ref(), w, h)).then(|| {
-            "no light reaches anything the camera sees: emitters send light from their front (outward) side only \
-             (set `two_sided = true` on the material to emit from both), and point, spot and directional lights light \
-             only the side of a surface that faces them"
-                .to_string()
-        })
+        let camera = scene.settings.camera.as_ref();
+        let mut warnings = Vec::new();
+        if !lamplight_core::scene::reaches_camera_hits(scene, camera, w, h) {
+            warnings.push(
+                "no light reaches anything the camera sees: emitters send light from their front (outward) side only \
+                 (set `two_sided = true` on the material to emit from both), and point, spot and directional lights light \
+                 only the side of a surface that faces them"
+                    .to_string(),
+            );
+        }
+        warnings.extend(crate::enclosed::enclosed_light_warnings(scene, camera, w, h));
+        warnings
     }
 
     /// Renders `scene` (prepared) with the job's options: the mean image and the

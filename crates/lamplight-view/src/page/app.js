@@ -1,6 +1,6 @@
 // lamplight view: the page. It shows the frames the server streams (linear
 // radiance, exposed and sRGB-encoded here), moves the camera with the mouse,
-// and draws the ray tree of a clicked pixel over the image.
+// and draws the ray tree of a clicked pixel over the image (inspector.js).
 "use strict";
 
 const token = new URLSearchParams(location.search).get("token") || "";
@@ -16,7 +16,6 @@ let camera = null;      // the camera shown (ahead of the server while dragging)
 let frameInfo = null;   // the `frame` message the next binary message belongs to
 let frame = null;       // { info, data: Float32Array }
 let exposure = 0;
-let explained = null;   // the latest explanation
 
 // ---- vectors
 const add = (a, b) => [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
@@ -45,7 +44,7 @@ ws.onmessage = (e) => {
   else if (m.type === "explain") showExplain(m);
   else if (m.type === "saved") { hooks.saved.push(m); say(`saved ${m.name} (${m.spp} spp${m.last ? "" : ", still refining"})`); }
   else if (m.type === "error" && m.exists && lastSave && lastSave.name === m.exists && window.confirm(`${m.exists} exists and this viewer did not write it. Replace it?`)) send({ ...lastSave, replace: m.exists });
-  else if (m.type === "error") { hooks.errors.push(m.message); say(m.message); }
+  else if (m.type === "error") { hooks.errors.push(m.message); say(m.message); explainFailed(); }
 };
 
 function say(text) { $("message").textContent = text; }
@@ -68,7 +67,10 @@ function applyState(m) {
   if (canvas.width !== m.settings.width || canvas.height !== m.settings.height) {
     canvas.width = m.settings.width; canvas.height = m.settings.height;
   }
-  svg.setAttribute("width", canvas.width); svg.setAttribute("height", canvas.height);
+  // Drawn in image pixels, shown over the canvas's box and clipped to it (app.css).
+  svg.setAttribute("viewBox", `0 0 ${canvas.width} ${canvas.height}`);
+  const shown = inspector.explained;
+  if (shown && m.generation > shown.generation) markStale("the camera, the settings or the scene changed");
 }
 
 // ---- frames: linear radiance -> exposure -> sRGB bytes (a table of 2^16 steps)
@@ -102,6 +104,7 @@ function showFrame() {
   const target = info.adaptive ? "adaptive" : info.target_spp;
   $("status").textContent = `${info.width}x${info.height} · spp ${info.spp}/${target} · ${rate} samples/s · ${info.latency_ms.toFixed(0)} ms${info.denoise_ms != null ? ` · denoise +${info.denoise_ms.toFixed(0)} ms` : ""}${info.last ? " · done" : ""}`;
   for (const w of waiters.splice(0)) w();
+  reexplainIfStale(info, dragging);
 }
 
 // A checksum of the pixels shown (tests compare images by it).
@@ -168,6 +171,7 @@ window.addEventListener("mousemove", (e) => {
   last = [e.clientX, e.clientY];
   if (Math.abs(e.clientX - dragStart[0]) + Math.abs(e.clientY - dragStart[1]) > 3) moved = true;
   if (!moved) return;
+  markStale("the camera moved");
   if (e.shiftKey || e.buttons === 2) pan(dx, dy); else orbit(dx, dy);
   sendCamera();
 });
@@ -180,6 +184,7 @@ window.addEventListener("mouseup", (e) => {
     const y = Math.floor(((e.clientY - rect.top) * canvas.height) / rect.height);
     explainPixel(x, y);
   }
+  reexplainIfStale(hooks.info, dragging);
 });
 canvas.addEventListener("wheel", (e) => {
   if (!camera) return;
@@ -209,188 +214,9 @@ const save = (m) => { lastSave = m; send(m); };
 $("save").onclick = () => save({ type: "save", name: $("save_name").value, exposure });
 $("save_camera").onclick = () => save({ type: "save_camera", name: $("camera_name").value });
 
-// ---- the pixel inspector
-function explainPixel(x, y) {
-  hooks.explain = null;
-  $("tree").textContent = `explaining pixel (${x}, ${y})...`;
-  send({ type: "explain", x, y });
-}
-hooks.explainPixel = explainPixel;
-
-const fmt = (v) => (Array.isArray(v) ? "(" + v.map((x) => (x === null ? "inf" : (+x).toPrecision(4))).join(", ") + ")" : typeof v === "number" ? (+v).toPrecision(4) : String(v));
-const el = (tag, cls, text) => { const e = document.createElement(tag); if (cls) e.className = cls; if (text !== undefined) e.textContent = text; return e; };
-
-let rayId = 0;
-function showExplain(m) {
-  explained = m; hooks.explain = m;
-  const t = m.tree, root = $("tree");
-  root.textContent = "";
-  const samples = t.samples;
-  const n = samples.length;
-  const sum = [0, 0, 0];
-  for (const s of samples) for (const c of s.contributions) for (let k = 0; k < 3; k++) sum[k] += c[k];
-  root.append(el("p", "", `pixel (${m.x}, ${m.y}) of ${t.width}x${t.height}, ${t.integrator}, ${t.spp} sample${t.spp === 1 ? "" : "s"}, max depth ${t.max_depth}`));
-  const u = t.unrecorded;
-  if (u) {
-    // Past the recorded samples: the film's sum of the others (docs/explain.md).
-    const all = sum.map((x, k) => (x + u.film_sum[k]) / t.spp);
-    root.append(el("p", "sum", `pixel value ${fmt(t.value)} = mean over ${t.spp} samples ${fmt(all)}: the first ${n} shown, the other ${u.count} traced but not recorded (mean ${fmt(u.mean)}${u.brightest ? `, brightest sample ${u.brightest.index}: ${fmt(u.brightest.film_value)}` : ""})`));
-  } else {
-    root.append(el("p", "sum", `pixel value ${fmt(t.value)} = mean over ${n} sample${n === 1 ? "" : "s"} of the sum of their contributions ${fmt(sum.map((x) => x / n))}`));
-  }
-  rayId = 0;
-  const segments = [];
-  for (const s of samples) {
-    const d = el("details"); d.open = n <= 2;
-    d.append(el("summary", "", `sample ${s.index}: radiance ${fmt(s.radiance)} = sum of ${s.contributions.length} contributions`));
-    if (s.ray) d.append(rayNode(s.ray, segments));
-    if (s.path) d.append(pathNode(s.path, segments));
-    root.append(d);
-  }
-  drawRays(segments, m.camera);
-  // The pixel itself: the camera ray runs straight into the screen there.
-  const mark = document.createElementNS("http://www.w3.org/2000/svg", "circle");
-  mark.setAttribute("cx", m.x + 0.5); mark.setAttribute("cy", m.y + 0.5); mark.setAttribute("r", 5);
-  mark.setAttribute("stroke", COLOURS.camera); mark.setAttribute("class", "ray");
-  svg.append(mark);
-}
-
-function segment(segments, kind, from, to, extra) {
-  const id = "ray" + rayId++;
-  segments.push({ id, kind, from, to, ...extra });
-  return id;
-}
-function hover(node, id) {
-  node.dataset.ray = id;
-  node.addEventListener("mouseenter", () => { const p = document.getElementById(id); if (p) p.classList.add("hl"); });
-  node.addEventListener("mouseleave", () => { const p = document.getElementById(id); if (p) p.classList.remove("hl"); });
-}
-function farPoint(origin, direction) {
-  const c = camera || { eye: origin, look_at: origin };
-  return add(origin, mul(norm(direction), 20 * (len(sub(c.look_at, c.eye)) || 1)));
-}
-
-function rayNode(r, segments) {
-  const d = el("details"); d.open = true;
-  const end = r.hit ? r.hit.point : farPoint(r.origin, r.direction);
-  const id = segment(segments, r.kind, r.origin, end, {});
-  const what = r.hit ? `hit ${r.hit.object_name ? "'" + r.hit.object_name + "' " : ""}${r.hit.object_kind} at t = ${fmt(r.hit.t)}` : r.miss ? `miss: sky ${fmt(r.miss.sky)}` : r.dropped || "";
-  const s = el("summary", "k-" + r.kind, `${r.kind} ray, depth ${r.depth}${r.inside ? ", inside" : ""}: ${what}${r.contribution ? " · contribution " + fmt(r.contribution) : ""}`);
-  hover(s, id);
-  d.append(s);
-  const ul = el("ul");
-  const li = (text, cls) => { const e = el("li", cls, text); ul.append(e); return e; };
-  li(`weight ${fmt(r.weight)}, origin ${fmt(r.origin)}, direction ${fmt(r.direction)}`);
-  if (r.hit) {
-    const h = r.hit;
-    li(`material ${h.material_name ? "'" + h.material_name + "'" : h.material}, point ${fmt(h.point)}, normal ${fmt(h.shading_normal)}${h.normal_flipped ? " (flipped: back face)" : ""}`);
-  }
-  if (r.terms) {
-    const t = r.terms;
-    li(`colour C ${fmt(t.color)}, emission ${fmt(t.emission)}, ambient ka*C*La ${fmt(t.ambient)}`);
-    // Point, spot and directional lights one line each; an area light's
-    // samples folded into one entry per emitting object.
-    const groups = new Map();
-    for (const l of t.lights) {
-      const key = l.light !== undefined ? `light ${l.light}` : `area light (object ${l.area_light_object})`;
-      if (!groups.has(key)) groups.set(key, []);
-      groups.get(key).push(l);
-    }
-    for (const [name, records] of groups) {
-      let parent = ul;
-      if (records.length > 1) {
-        const lit = records.filter((l) => !l.unlit).length;
-        const total = records.reduce((s, l) => add(s, l.radiance), [0, 0, 0]);
-        const g = el("details");
-        g.append(el("summary", "k-shadow", `${name} (${records[0].kind}): ${records.length} samples, ${lit} reach the point → ${fmt(total)}`));
-        parent = el("ul");
-        g.append(parent);
-        const item = el("li"); item.append(g); ul.append(item);
-      }
-      for (const l of records) {
-        if (l.unlit) { parent.append(el("li", "", `${name} (${l.kind}): unlit, ${l.unlit}`)); continue; }
-        const sr = l.shadow_ray;
-        const blocked = sr.blocked;
-        const to = sr.length === null ? farPoint(sr.origin, sr.direction) : add(sr.origin, mul(norm(sr.direction), sr.length));
-        const sid = segment(segments, blocked ? "blocked" : "shadow", sr.origin, to, {});
-        const by = sr.blocked_by.map((b) => b.name || `${b.kind} ${b.object}`).join(", ");
-        const e = el("li", blocked ? "light k-blocked" : "light k-shadow",
-          `${name} (${l.kind}): L.N ${fmt(l["L.N"])}, H.N ${fmt(l["H.N"])}, kd C (L.N) ${fmt(l.diffuse)}, ks (H.N)^n ${fmt(l.specular)}; shadow ray ${blocked ? "blocked by " + by : "clear" + (by ? " (dimmed by " + by + ")" : "")} → ${fmt(l.radiance)}`);
-        hover(e, sid);
-        parent.append(e);
-      }
-    }
-    li(`direct light ${fmt(t.direct)}`);
-  }
-  if (r.reflection) li(`reflection: ${r.reflection.how}${r.reflection.F !== undefined ? ", F = " + fmt(r.reflection.F) : ""}, weight ${fmt(r.reflection.weight)}`, "k-reflected");
-  if (r.refraction) li(r.refraction.total_internal_reflection ? "refraction: total internal reflection" : `refraction: 1 - F = ${fmt(r.refraction.one_minus_F)}, weight ${fmt(r.refraction.weight)}`, "k-refracted");
-  if (r.depth_cutoff) li("depth limit reached: the recursion stops here");
-  d.append(ul);
-  for (const c of r.children || []) d.append(rayNode(c, segments));
-  return d;
-}
-
-function pathNode(p, segments) {
-  const d = el("div");
-  for (const v of p.vertices) {
-    const end = v.hit ? v.hit.point : farPoint(v.origin, v.direction);
-    const id = segment(segments, v.depth === 1 ? "camera" : "reflected", v.origin, end, {});
-    const s = el("details"); s.open = true;
-    const sum = el("summary", v.depth === 1 ? "k-camera" : "k-reflected", `vertex ${v.depth}: ${v.hit ? "hit " + (v.hit.object_name || v.hit.object_kind) : "escaped"}, throughput ${fmt(v.throughput)}`);
-    hover(sum, id);
-    s.append(sum);
-    const ul = el("ul");
-    for (const [k, val] of Object.entries(v)) {
-      if (["origin", "direction", "hit", "depth", "throughput"].includes(k)) continue;
-      ul.append(el("li", "", `${k}: ${JSON.stringify(val)}`));
-    }
-    s.append(ul);
-    d.append(s);
-  }
-  if (p.end) d.append(el("p", "", `path ends: ${JSON.stringify(p.end)}`));
-  return d;
-}
-
-// Projects world point p into the image of camera c (the renderer's pinhole
-// camera: window one unit in front of the eye, tan(hfov/2) = aspect tan(vfov/2)).
-function project(c, p) {
-  const { w, r, u } = basis(c);
-  const d = sub(p, c.eye);
-  const z = dot(d, w);
-  const tv = Math.tan((c.vfov * Math.PI) / 360), th = (tv * canvas.width) / canvas.height;
-  const a = dot(d, r) / z / th, b = dot(d, u) / z / tv;
-  return [((a + 1) / 2) * canvas.width, ((1 - b) / 2) * canvas.height];
-}
-// The part of segment a-b in front of the eye (z >= near), projected.
-function clipProject(c, a, b) {
-  const { w } = basis(c);
-  const near = 1e-3 * (len(sub(c.look_at, c.eye)) || 1);
-  const za = dot(sub(a, c.eye), w), zb = dot(sub(b, c.eye), w);
-  if (za < near && zb < near) return null;
-  if (za < near) a = add(a, mul(sub(b, a), (near - za) / (zb - za)));
-  if (zb < near) b = add(b, mul(sub(a, b), (near - zb) / (za - zb)));
-  return [project(c, a), project(c, b)];
-}
-const COLOURS = { camera: "#ffd400", reflected: "#00c8ff", refracted: "#ff4fd8", shadow: "#7cfc00", blocked: "#ff4040" };
-function drawRays(segments, c) {
-  svg.textContent = "";
-  for (const s of segments) {
-    const pts = clipProject(c, s.from, s.to);
-    if (!pts) continue;
-    const line = document.createElementNS("http://www.w3.org/2000/svg", "line");
-    line.setAttribute("x1", pts[0][0]); line.setAttribute("y1", pts[0][1]);
-    line.setAttribute("x2", pts[1][0]); line.setAttribute("y2", pts[1][1]);
-    line.setAttribute("stroke", COLOURS[s.kind]);
-    line.setAttribute("class", "ray");
-    line.id = s.id;
-    if (s.kind === "blocked") line.setAttribute("stroke-dasharray", "5 3");
-    svg.append(line);
-  }
-  hooks.rays = segments.map((s) => s.kind);
-}
-// The rays belong to the camera they were traced with: moving clears them.
-const clearRays = () => { if (explained && dragging && moved) { svg.textContent = ""; explained = null; } };
-window.addEventListener("mousemove", clearRays);
+// ---- the pixel inspector (inspector.js)
+hooks.explainPixel = (x, y) => explainPixel(x, y);
+hooks.selectSample = (i) => selectSample(i, "button");
 
 // ---- for tests and benchmarks: resolves when the next frame arrives.
 const waiters = [];

@@ -14,7 +14,15 @@ use crate::math::{similarity_scale, Mat4, Vec3};
 use crate::params::{Kind, Param, ParamResult, ParamType as T, Params};
 use crate::shapes::{Disk, Shape, ShapeKind};
 
-const CLIP: Param = Param::new("clip", T::Array, "none", "", "regions the surface is clipped to (see below)");
+// Said in full here: the text is also Python's `kinds()` and the reference
+// table, which sits below the section that explains `clip` (issue 27).
+const CLIP: Param = Param::new(
+    "clip",
+    T::Array,
+    "none",
+    "",
+    "regions the visible surface must lie in, all of them: `{ type = \"half_space\", point, normal }` keeps `normal.(p - point) <= 0`, `{ type = \"inside\", coefficients }` (a 4x4 quadric `G`) keeps `[p, 1] G [p, 1]^T <= 0`",
+);
 
 /// `ellipsoid`.
 pub const ELLIPSOID: ShapeKind = Kind {
