@@ -24,6 +24,7 @@ mod mesh_lights;
 mod mitsuba;
 mod mitsuba_amplification;
 mod mitsuba_bsdfs;
+mod mitsuba_plugins;
 mod mitsuba_principled;
 mod mitsuba_sdfgrid;
 mod mitsuba_sensors;

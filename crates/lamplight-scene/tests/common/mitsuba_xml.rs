@@ -38,3 +38,22 @@ pub fn error(text: &str) -> String {
         Err(e) => e.to_string().replace(&format!("{}/", dir.path().display()), ""),
     }
 }
+
+/// What reading and building `text` as `s.xml` gives, with `files` (name,
+/// bytes) written beside it: the reader's warnings, or the error; the folder
+/// left out of both.
+pub fn outcome(text: &str, files: &[(&str, Vec<u8>)]) -> Result<Vec<String>, String> {
+    let dir = tempfile::tempdir().unwrap();
+    for (name, bytes) in files {
+        std::fs::write(dir.path().join(name), bytes).unwrap();
+    }
+    let path = dir.path().join("s.xml");
+    std::fs::write(&path, text).unwrap();
+    let strip = |s: &str| s.replace(&format!("{}/", dir.path().display()), "");
+    let built = SceneRequest::resolve_with(path.to_str().unwrap(), &[]).and_then(|r| r.build());
+    match (built, mitsuba::read(&path, &[])) {
+        (Ok(_), Ok((_, source))) => Ok(source.warnings.iter().map(|w| strip(w)).collect()),
+        (Err(e), _) => Err(strip(&e.to_string())),
+        (Ok(_), Err(e)) => Err(strip(&e.to_string())),
+    }
+}

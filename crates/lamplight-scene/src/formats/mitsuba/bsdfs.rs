@@ -18,8 +18,8 @@
 //! | `mask` `opacity` | the nested BSDF with `alpha = opacity`, `alpha_mode = "blend"` (there with probability `opacity`, as Mitsuba) |
 //! | `normalmap` `normalmap` (a bitmap) | the nested BSDF with `normal_map` |
 //! | `bumpmap` (`scale`, one nested height `<texture>`) | the nested BSDF with `bump`, `bump_scale` |
-//! | `principled` (every parameter; `anisotropic` only 0) | `principled` of the same parameters (Mitsuba's own BSDF, `crates/lamplight-core/src/bsdfs/principled.rs`) |
-//! | `principledthin` (every parameter; `anisotropic` only 0) | `principled_thin` of the same parameters (`crates/lamplight-core/src/bsdfs/principled_thin.rs`) |
+//! | `principled` (every parameter; `anisotropic` only 0; `eta`, `specular` numbers: a texture there is ignored) | `principled` of the same parameters (Mitsuba's own BSDF, `crates/lamplight-core/src/bsdfs/principled.rs`) |
+//! | `principledthin` (every parameter; `anisotropic` only 0; `eta` a number: a texture there is ignored) | `principled_thin` of the same parameters (`crates/lamplight-core/src/bsdfs/principled_thin.rs`) |
 //!
 //! | `blendbsdf` `weight` (0.5, number or texture), two nested BSDFs | `blend` with `a`, `b` the nested BSDFs as material tables, each one-sided as Mitsuba's (both sides inside a `twosided`) |
 

@@ -9,7 +9,7 @@
 //! |---|---|
 //! | `<sensor>` `perspective`, `thinlens`, `orthographic` ([`sensors`]) | `[camera]` `perspective` (or `window` when mirrored), `thin_lens`, `orthographic` |
 //! | `<film>` `hdrfilm` width, height; `<rfilter>`; `<sampler>` `sample_count` | `[render]` width, height, `filter`, spp |
-//! | `<integrator>` `path`, `direct`, `ptracer`, `volpath` ([`integrators`]) | `integrator = "path"`, `max_depth` (same counting) |
+//! | `<integrator>` `path`, `direct`, `ptracer`, `volpath`, `volpathmis`, `moment` ([`integrators`]) | `integrator = "path"`, `max_depth` (same counting) |
 //! | `<shape>` ([`shapes`]) | shape nodes, `[meshes]`, `[definitions]` |
 //! | `<bsdf>` ([`bsdfs`]) | `[materials]` (`phong` read by the path tracer, `pbr`) |
 //! | `<emitter>` ([`emitters`]) | lights, emission, `background`, `environment` |
@@ -18,6 +18,10 @@
 //!
 //! What cannot be read the same is a warning at its place (then skipped) when
 //! the rest of the image keeps its meaning, else an error.
+//!
+//! `docs/mitsuba.md` lists every plugin Mitsuba 3.9.1 ships with what this
+//! reader does with it (read, read with a difference, skipped or refused);
+//! the test `mitsuba_plugins` reads that list and holds the reader to it.
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
