@@ -348,6 +348,18 @@ impl Bvh {
                     leaf_count = node.count[slot];
                     continue;
                 }
+                let second = mask & mask.wrapping_sub(1);
+                if mask != 0 && second & (second - 1) == 0 {
+                    // Two children entered: push the farther, continue with the nearer
+                    // (farthest_first's order, ties to the higher slot, without its loop).
+                    let (a, b) = (mask.trailing_zeros() as usize, second.trailing_zeros() as usize);
+                    let (far, near) = if enter[a] < enter[b] { (b, a) } else { (a, b) };
+                    stack[top].write((node.child[far], enter[far], node.count[far]));
+                    top += 1;
+                    current = node.child[near];
+                    leaf_count = node.count[near];
+                    continue;
+                }
                 if mask != 0 {
                     // Push the entered children farthest first, then continue with the nearest.
                     let (order, n) = farthest_first(&enter, mask);
