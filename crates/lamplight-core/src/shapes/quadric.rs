@@ -11,7 +11,7 @@
 //! root is then polished by solving the same quadratic again around the root
 //! itself, where the constant term is tiny and exact.
 //!
-//! Polishing is two thirds of a quadric test, so a root is polished only when
+//! Polishing was half of a quadric test's instructions, so a root is polished only when
 //! its polished value can matter (`Quadric::crossing`): each unpolished root
 //! comes with a bound `m` on how far polishing can move it (the first-order
 //! error of a root, `(|da| t^2 + 2 |db| |t| + |dc|) / (2 sqrt(b^2 - ac))`, from
