@@ -28,6 +28,12 @@ import time
 
 import numpy as np
 
+# The llvm variants (the cases of the differentiable integrators) abort with
+# this machine's LLVM 15; LLVM 19 comes from `apt-get install libllvm19`.
+LLVM19 = "/usr/lib/x86_64-linux-gnu/libLLVM.so.19.1"
+if os.path.exists(LLVM19):
+    os.environ.setdefault("DRJIT_LIBLLVM_PATH", LLVM19)
+
 try:
     import mitsuba as mi
 except ImportError:
@@ -103,6 +109,7 @@ def main():
                 f.write(case.xml)
             t0 = time.perf_counter()
             try:
+                mi.set_variant(case.variant)
                 mref, mvar = render_mitsuba(path, args.spp, args.seeds)
             except Exception as e:  # noqa: BLE001
                 rows.append((case, "mitsuba error", str(e).splitlines()[0][:120], ""))

@@ -8,7 +8,9 @@ from collections import namedtuple
 
 import numpy as np
 
-Case = namedtuple("Case", "name plugins xml")
+# `variant`: Mitsuba's variant that renders the case (the differentiable
+# integrators run only in the JIT ones).
+Case = namedtuple("Case", "name plugins xml variant", defaults=("scalar_rgb",))
 
 PATH = '<integrator type="path"><integer name="max_depth" value="6"/></integrator>'
 

@@ -15,7 +15,26 @@ GLOW = """    <shape type="sphere"><point name="center" value="0.9, 0.25, 0.7"/>
 MOMENT = ('<integrator type="moment"><integrator type="path"><integer name="max_depth" value="6"/></integrator>'
           '</integrator>')
 
+# merge: a mesh, a sphere and a rectangle joined; Mitsuba merges the meshes.
+MERGED = """    <shape type="merge">
+        <shape type="obj"><string name="filename" value="quad.obj"/>
+            <transform name="to_world"><scale value="0.4"/><rotate x="1" angle="-60"/><translate x="-0.7" y="0.5"/></transform>
+            <bsdf type="diffuse"><rgb name="reflectance" value="0.2, 0.7, 0.3"/></bsdf></shape>
+        <shape type="sphere"><point name="center" value="0.5, 0.45, 0"/><float name="radius" value="0.45"/>
+            <bsdf type="diffuse"><rgb name="reflectance" value="0.8, 0.2, 0.1"/></bsdf></shape>
+        <shape type="rectangle"><transform name="to_world"><rotate x="1" angle="-90"/><scale value="3"/></transform>
+            <bsdf type="diffuse"><rgb name="reflectance" value="0.6, 0.6, 0.55"/></bsdf></shape>
+    </shape>
+"""
+
 CASES = [
+    Case("merge", "merge (obj, sphere, rectangle)", scene(LIGHT + MERGED)),
+    # Mitsuba's default max_depth of the differentiable integrators is 6.
+    Case("prb", "prb (default max_depth)", scene(lit(sphere(DIFFUSE_RED)), integrator='<integrator type="prb"/>'),
+         "llvm_ad_rgb"),
+    Case("prb_projective", "prb_projective, max_depth 3", scene(
+        lit(sphere(DIFFUSE_RED)),
+        integrator='<integrator type="prb_projective"><integer name="max_depth" value="3"/></integrator>'), "llvm_ad_rgb"),
     Case("moment", "moment (of path)", scene(lit(sphere(DIFFUSE_RED)), integrator=MOMENT)),
     Case("hide_emitters", "path (hide_emitters), area, constant", scene(lit(SKY + GLOW + sphere(DIFFUSE_RED)), integrator=HIDE)),
     Case("mesh_attribute", "mesh_attribute (vertex_color), ply", scene(lit("""

@@ -29,6 +29,7 @@ mod mitsuba_principled;
 mod mitsuba_sdfgrid;
 mod mitsuba_sensors;
 mod mitsuba_textures;
+mod mitsuba_wrappers;
 mod native;
 mod obj;
 mod path_convergence;

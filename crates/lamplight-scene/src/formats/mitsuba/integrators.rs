@@ -1,6 +1,11 @@
 //! `<integrator>` to `[render]`: `path`, `direct`, `ptracer`, `volpath` and
 //! `volpathmis` (scenes without media) all have the expected image of
-//! lamplight's path tracer, which is used for them.
+//! lamplight's path tracer, which is used for them. So do the differentiable
+//! integrators, whose primal image is that of the one they differentiate:
+//! `prb`, `prb_basic` and `prb_projective` that of `path`, `prbvolpath` that of
+//! `volpath`, `direct_projective` that of `direct`. Their gradient settings
+//! (`sppc`, `sppp`, `sppi`, `guiding`, ...) change no primal pixel and are read
+//! without a word.
 //!
 //! `max_depth` counts as in Mitsuba: 1 sees emitters only, 2 adds direct light
 //! (lamplight's path tracer counts the same way, camera ray = 1); Mitsuba's
@@ -27,12 +32,23 @@ fn err(loc: &Loc, message: impl Into<String>) -> ParamError {
     ParamError { loc: loc.clone(), message: message.into() }
 }
 
+/// The projective integrators' settings for their gradients (Mitsuba's
+/// `PSIntegrator`, `ad/integrators/common.py`): none changes the primal image.
+fn take_gradient_settings(p: &mut Plugin<'_>) {
+    for key in ["sppc", "sppp", "sppi", "guiding", "guiding_proj", "guiding_rounds", "project_seed"] {
+        let _ = p.take(key);
+    }
+}
+
 /// Reads an `<integrator>`.
 pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<(), ParamError> {
     let mut p = Plugin::new(el)?;
     let depth = match p.kind.as_str() {
-        "path" | "ptracer" | "volpath" | "volpathmis" => {
-            let (d, loc) = p.integer("max_depth")?.unwrap_or((-1, el.loc.clone()));
+        "path" | "ptracer" | "volpath" | "volpathmis" | "prb" | "prb_basic" | "prb_projective" | "prbvolpath" => {
+            // Mitsuba's `path` has no limit by default, its differentiable
+            // integrators 6 (`ad/integrators/common.py`).
+            let default_depth = if p.kind.starts_with("prb") { 6 } else { -1 };
+            let (d, loc) = p.integer("max_depth")?.unwrap_or((default_depth, el.loc.clone()));
             // The same counting as lamplight's path tracer; Mitsuba's default is 5.
             let (rr, rloc) = p.integer("rr_depth")?.unwrap_or((5, el.loc.clone()));
             if rr < 1 {
@@ -44,6 +60,7 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<(), ParamError> {
             if p.kind != "path" {
                 let _ = p.take("samples_per_pass");
             }
+            take_gradient_settings(&mut p);
             match d {
                 -1 => (DEEPEST, loc),
                 d if (1..=DEEPEST).contains(&d) => (d, loc),
@@ -54,7 +71,8 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<(), ParamError> {
                 d => return Err(err(&loc, format!("{}: max_depth: must be -1 or between 1 and {DEEPEST}, got {d}", p.label))),
             }
         }
-        "direct" => {
+        "direct" | "direct_projective" => {
+            take_gradient_settings(&mut p);
             for key in ["emitter_samples", "bsdf_samples", "shading_samples"] {
                 if let Some((_, loc)) = p.integer(key)? {
                     ctx.warn(&loc, format!("{}: {key} changes only the noise, ignored", p.label));
@@ -74,10 +92,8 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<(), ParamError> {
             };
         }
         other => {
-            return Err(err(
-                &el.require("type")?.loc,
-                format!("integrator: \"{other}\" is not supported (lamplight reads path, direct, ptracer, volpath and moment)"),
-            ))
+            let known = "path, direct, ptracer, volpath, the prb integrators and moment";
+            return Err(err(&el.require("type")?.loc, format!("integrator: \"{other}\" is not supported (lamplight reads {known})")));
         }
     };
     let hide = p.boolean("hide_emitters")?;

@@ -11,6 +11,7 @@
 //! | `obj`, `ply` `filename` | a `[meshes]` entry and a `mesh` node |
 //! | `serialized` `filename`, `shape_index` ([`super::serialized`]) | an inline `[meshes]` entry |
 //! | `shapegroup` (with an `id`) and `instance` | `[definitions]` and `instance` nodes |
+//! | `merge` | its nested shapes, each read on its own |
 //! | `sdfgrid` `filename` (a `.vol` grid, [`super::volume`]), `normals` | `sdfgrid` with the grid's `resolution` and `values` |
 //! | a nested `<bsdf>` or `<ref>` | `material` (default: Mitsuba's diffuse 0.5, black on an emitter) |
 //! | a nested `<emitter type="area">` | the material with `emission` |
@@ -50,6 +51,7 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El, out: &mut Vec<Item>) -> Result<()
     let mut ply_mesh = None;
     match p.kind.as_str() {
         "shapegroup" => return shapegroup(ctx, el, p),
+        "merge" => return merge(ctx, p, out),
         "instance" => {
             let target = p.objects.iter().copied().find(|o| o.tag == "ref" || o.tag == "shape");
             let target = target.ok_or_else(|| err(&loc, "shape \"instance\": needs a <ref id=\"...\"/> to a shapegroup"))?;
@@ -145,6 +147,15 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El, out: &mut Vec<Item>) -> Result<()
     for o in p.objects.clone() {
         if !matches!(o.tag.as_str(), "bsdf" | "emitter" | "ref") {
             ctx.warn(&o.loc, format!("{}: nested <{}> is not supported, ignored", p.label, o.tag));
+        } else if o.tag == "ref" {
+            // A reference to a medium (a shape's interior or exterior) changes the
+            // image as a nested one does: said, not dropped.
+            // (An instance's reference names its shapegroup.)
+            let target = ctx.deref(o)?;
+            if !matches!(target.tag.as_str(), "bsdf" | "emitter" | "shape") {
+                let id = o.get("id").unwrap_or_default();
+                ctx.warn(&o.loc, format!("{}: <ref id=\"{id}\"> names a <{}>, which is not supported, ignored", p.label, target.tag));
+            }
         }
     }
     ctx.finish(p);
@@ -253,6 +264,22 @@ fn mesh_name(ctx: &mut Ctx<'_>, el: &El) -> String {
         Some(id) if !ctx.meshes.iter().any(|m| m.key == id) => id.to_string(),
         _ => ctx.fresh("mesh"),
     }
+}
+
+/// `merge`: Mitsuba joins the meshes nested in it that share a BSDF into one
+/// mesh, to save memory and time, and keeps its other shapes as they are; the
+/// image is that of the nested shapes themselves, so each is read on its own.
+fn merge<'a>(ctx: &mut Ctx<'a>, p: Plugin<'a>, out: &mut Vec<Item>) -> Result<(), ParamError> {
+    for &o in &p.objects {
+        let target = ctx.deref(o)?;
+        if target.tag == "shape" {
+            read(ctx, target, out)?;
+        } else {
+            ctx.warn(&o.loc, format!("shape \"merge\": nested <{}> is not supported, ignored", target.tag));
+        }
+    }
+    ctx.finish(p);
+    Ok(())
 }
 
 /// A `shapegroup`: its shapes as a definition named by its id.
