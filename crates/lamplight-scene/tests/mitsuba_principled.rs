@@ -110,6 +110,15 @@ fn bad_principled_parameters_give_their_exact_errors() {
             r#"<bsdf type="principled"><rgb name="roughness" value="0.1, 0.2, 0.3"/></bsdf>"#,
             "s.xml:3:79: bsdf \"principled\": roughness: expected a float, got a colour",
         ),
+        // Mitsuba's own refusal ("expected float, got object"), not a silent 1.5.
+        (
+            r#"<bsdf type="principled"><texture type="checkerboard" name="eta"/></bsdf>"#,
+            "s.xml:3:50: bsdf \"principled\": eta: expected a float, got a <texture> (Mitsuba takes no texture here)",
+        ),
+        (
+            r#"<bsdf type="principled"><texture type="checkerboard" name="specular"/></bsdf>"#,
+            "s.xml:3:50: bsdf \"principled\": specular: expected a float, got a <texture> (Mitsuba takes no texture here)",
+        ),
         (
             r#"<bsdf type="principledthin"><float name="diff_trans" value="2.5"/></bsdf>"#,
             "s.xml:3:86: material \"bsdf_1\": diff_trans: must be between 0 and 2, got 2.5",
@@ -136,4 +145,13 @@ fn principledthin_reads_as_the_thin_sheet() {
     assert_eq!(*p, expected);
     assert!(!m.one_sided);
     assert!(matches!(bsdf_for(m, Vec3::ZERO, false).lobes(), [Lobe::PrincipledThin(_)]));
+}
+
+#[test]
+fn a_textured_thin_eta_is_a_warning_not_silence() {
+    // Mitsuba reads a texture there; lamplight's thin sheet has one index.
+    let (s, warnings) = read(&xml(r#"<bsdf type="principledthin"><texture type="checkerboard" name="eta"/></bsdf>"#));
+    assert_eq!(warnings, ["s.xml:3:54: bsdf \"principledthin\": eta: a texture here is not supported, ignored (1.5 is used)"]);
+    let Some(Model::PrincipledThin(p)) = &s.materials[s.objects[0].material].model else { panic!() };
+    assert_eq!(p.eta, 1.5);
 }

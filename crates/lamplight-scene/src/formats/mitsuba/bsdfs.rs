@@ -18,8 +18,8 @@
 //! | `mask` `opacity` | the nested BSDF with `alpha = opacity`, `alpha_mode = "blend"` (there with probability `opacity`, as Mitsuba) |
 //! | `normalmap` `normalmap` (a bitmap) | the nested BSDF with `normal_map` |
 //! | `bumpmap` (`scale`, one nested height `<texture>`) | the nested BSDF with `bump`, `bump_scale` |
-//! | `principled` (every parameter; `anisotropic` only 0; `eta`, `specular` numbers: a texture there is ignored) | `principled` of the same parameters (Mitsuba's own BSDF, `crates/lamplight-core/src/bsdfs/principled.rs`) |
-//! | `principledthin` (every parameter; `anisotropic` only 0; `eta` a number: a texture there is ignored) | `principled_thin` of the same parameters (`crates/lamplight-core/src/bsdfs/principled_thin.rs`) |
+//! | `principled` (every parameter; `anisotropic` only 0; `eta`, `specular` numbers: a texture there is an error, as in Mitsuba) | `principled` of the same parameters (Mitsuba's own BSDF, `crates/lamplight-core/src/bsdfs/principled.rs`) |
+//! | `principledthin` (every parameter; `anisotropic` only 0; `eta` a number: a texture there is a warning, 1.5 is used) | `principled_thin` of the same parameters (`crates/lamplight-core/src/bsdfs/principled_thin.rs`) |
 //!
 //! | `blendbsdf` `weight` (0.5, number or texture), two nested BSDFs | `blend` with `a`, `b` the nested BSDFs as material tables, each one-sided as Mitsuba's (both sides inside a `twosided`) |
 
@@ -151,6 +151,10 @@ fn principled_thin<'a>(ctx: &mut Ctx<'a>, p: &mut Plugin<'a>, loc: &Loc) -> Resu
             e.push(entry(key, item));
         }
     }
+    // Mitsuba takes a texture here; lamplight's `principled_thin` has a number.
+    if let Some(o) = p.object("eta") {
+        ctx.warn(&o.loc, format!("{}: eta: a texture here is not supported, ignored (1.5 is used)", p.label));
+    }
     for key in [
         "eta",
         "specular_reflectance_sampling_rate",
@@ -176,6 +180,12 @@ fn principled<'a>(ctx: &mut Ctx<'a>, p: &mut Plugin<'a>, loc: &Loc) -> Result<Ve
     }
     if p.has("eta") && p.has("specular") {
         return Err(err(loc, format!("{}: give either eta or specular, not both (as Mitsuba)", p.label)));
+    }
+    // Mitsuba refuses a texture in these two ("expected float, got object").
+    for key in ["eta", "specular"] {
+        if let Some(o) = p.object(key) {
+            return Err(err(&o.loc, format!("{}: {key}: expected a float, got a <{}> (Mitsuba takes no texture here)", p.label, o.tag)));
+        }
     }
     for key in ["eta", "specular", "diffuse_reflectance_sampling_rate", "main_specular_sampling_rate", "clearcoat_sampling_rate"] {
         if let Some((v, vloc)) = p.number(key)? {
