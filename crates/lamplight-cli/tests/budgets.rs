@@ -210,6 +210,12 @@ fn declared_sizes_are_checked_against_the_memory_budget_before_allocating() {
     lamplight_scene::image_io::write_image_as(&d.join("big.exr"), &gradient, Default::default()).unwrap();
     fs::write(d.join("exr.toml"), texture.replace("big.png", "big.exr")).unwrap();
     fs::write(d.join("tex-budget.toml"), format!("[render]\nmemory_budget = \"600M\"\n{texture}")).unwrap();
+    // The same EXR as an environment map: its f64 pixels, sampling distribution
+    // and decoding buffers, 80 bytes a pixel, from the header.
+    let sky = "environment = { file = \"big.exr\" }\n[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\nvfov = 40\n\
+               [[objects]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\n";
+    fs::write(d.join("sky.toml"), sky).unwrap();
+    let big_sky = |shown: &str| format!("environment map '{shown}' (1024x1024 pixels) needs 80.0 MiB of memory");
     let budget = |file: &'static str, size: &'static str| [render(file), vec!["--memory-budget", size]].concat();
     let raise = "raise it with --memory-budget (or [render] memory_budget in a TOML scene)";
     // 16-bit texels are kept as 16-bit (512 MiB), with a third more for the MIP levels.
@@ -240,6 +246,18 @@ fn declared_sizes_are_checked_against_the_memory_budget_before_allocating() {
                     "exr.toml:6:34: material \"a\": color: file: texture 'big.exr' (1024x1024 pixels) needs 33.3 MiB of memory, \
                      more than the memory budget of 32.0 MiB; {raise}"
                 ),
+            ),
+            (
+                budget("sky.toml", "32M"),
+                format!(
+                    "sky.toml:1:24: scene: environment: file: {}, more than the memory budget of 32.0 MiB; {raise}",
+                    big_sky("big.exr")
+                ),
+            ),
+            (
+                [render("spheres"), vec!["--environment", "big.exr", "--memory-budget", "32M"]].concat(),
+                // The film of 8x8 pixels came first.
+                format!("{}, and 6.0 KiB of the memory budget of 32.0 MiB is in use; {raise}", big_sky("big.exr")),
             ),
             (
                 render("tex-budget.toml"),

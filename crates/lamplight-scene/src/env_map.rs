@@ -22,11 +22,50 @@ pub fn read_environment(path: &Path) -> Result<Image, ImageError> {
     decode(path, format, &bytes)
 }
 
+/// Bytes per pixel a built map keeps: its `f64` RGB pixels (24) and its
+/// sampling distribution's function and CDF (16), with room for the rows'
+/// own vectors.
+const KEPT_PER_PIXEL: u64 = 48;
+/// Bytes per pixel held only while a map is built: the decoded `f32` image
+/// (12), the decoder's buffer (12) and the sampling weights (8).
+const TRANSIENT_PER_PIXEL: u64 = 32;
+
 /// Reads an environment map file as the renderer's map (linear RGB with its
 /// sampling distribution), looked up at the nearest pixel; the message names the file.
 pub fn load_map(path: &Path) -> Result<lamplight_core::lights::EnvMap, String> {
-    let map = read_environment(path).map_err(|e| e.to_string())?;
-    env_map(path, &map)
+    let (map, transient) = read_budgeted(path)?;
+    let built = env_map(path, &map);
+    crate::memory::release(transient);
+    built
+}
+
+/// [`read_environment`], having first taken the map's share of the memory
+/// budget ([`crate::memory`]) from the size its header declares, before any
+/// pixel is decoded. Returns the image and the transient share, which the
+/// caller gives back once the map is built.
+fn read_budgeted(path: &Path) -> Result<(Image, u64), String> {
+    let format = format(path).map_err(|e| e.to_string())?;
+    let bytes = crate::input::read_regular(path, crate::image_io::MAX_IMAGE_FILE_BYTES)
+        .map_err(|r| read_error(path, crate::image_io::refusal(&r)).to_string())?;
+    let (width, height) = match format {
+        Format::Exr => crate::image_io::exr_size(path, &bytes).map_err(|e| e.to_string())?,
+        Format::Hdr => image::ImageReader::with_format(std::io::Cursor::new(&bytes), image::ImageFormat::Hdr)
+            .into_dimensions()
+            .map_err(|e| read_error(path, format!("not a valid Radiance .hdr file: {e}")).to_string())?,
+    };
+    let pixels = u64::from(width) * u64::from(height);
+    let transient = pixels.saturating_mul(TRANSIENT_PER_PIXEL);
+    crate::memory::reserve(pixels.saturating_mul(KEPT_PER_PIXEL).saturating_add(transient), || {
+        format!("environment map '{}' ({width}x{height} pixels)", path.display())
+    })
+    .map_err(|e| e.to_string())?;
+    match decode(path, format, &bytes) {
+        Ok(image) => Ok((image, transient)),
+        Err(e) => {
+            crate::memory::release(transient);
+            Err(e.to_string())
+        }
+    }
 }
 
 /// Reads an environment map file as [`load_map`] does, looked up bilinearly
@@ -38,12 +77,15 @@ pub fn load_map(path: &Path) -> Result<lamplight_core::lights::EnvMap, String> {
 ///
 /// [`EnvMap::bilinear`]: lamplight_core::lights::EnvMap::bilinear
 pub fn load_bilinear_map(path: &Path) -> Result<lamplight_core::lights::EnvMap, String> {
-    let mut map = read_environment(path).map_err(|e| e.to_string())?;
+    let (mut map, transient) = read_budgeted(path)?;
     if map.height == 1 {
         map.pixels.extend_from_within(..);
         map.height = 2;
     }
-    env_map(path, &map)?.bilinear().map_err(|e| format!("cannot use '{}' as an environment map: {e}", path.display()))
+    let built =
+        env_map(path, &map).and_then(|m| m.bilinear().map_err(|e| format!("cannot use '{}' as an environment map: {e}", path.display())));
+    crate::memory::release(transient);
+    built
 }
 
 fn env_map(path: &Path, map: &Image) -> Result<lamplight_core::lights::EnvMap, String> {
