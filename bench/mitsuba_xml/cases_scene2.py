@@ -27,7 +27,30 @@ MERGED = """    <shape type="merge">
     </shape>
 """
 
+# Every kind of shape in one scene, as Mitsuba's own test scenes mix them:
+# meshes with Mitsuba's vertex normals (no face_normals), an open cylinder seen
+# inside, a disk, a sphere, the floor; light bounces between them.
+def _diffuse(rgb):
+    return f'<bsdf type="diffuse"><rgb name="reflectance" value="{rgb}"/></bsdf>'
+
+
+VARIOUS = f"""    <shape type="ply"><string name="filename" value="ball.ply"/>
+        <transform name="to_world"><scale value="0.35"/><translate x="-0.9" y="0.35" z="0.3"/></transform>{_diffuse("0.7, 0.6, 0.2")}</shape>
+    <shape type="serialized"><string name="filename" value="tetra.serialized"/>
+        <transform name="to_world"><scale value="0.6"/><translate x="0.9" y="0.01" z="0.4"/></transform>{_diffuse("0.2, 0.5, 0.8")}</shape>
+    <shape type="obj"><string name="filename" value="quad.obj"/>
+        <transform name="to_world"><scale value="0.4"/><rotate x="1" angle="-70"/><translate x="0.1" y="0.7" z="-0.8"/></transform>
+        {_diffuse("0.8, 0.8, 0.8")}</shape>
+    <shape type="sphere"><point name="center" value="0.25, 0.3, 0.5"/><float name="radius" value="0.3"/>{_diffuse("0.8, 0.2, 0.1")}</shape>
+    <shape type="disk"><transform name="to_world"><scale value="0.35"/><rotate y="1" angle="40"/><translate x="-0.4" y="0.45" z="-0.6"/></transform>
+        {_diffuse("0.3, 0.8, 0.3")}</shape>
+    <shape type="cylinder"><point name="p0" value="0.6, 0.25, -0.5"/><point name="p1" value="1.2, 0.5, -0.2"/>
+        <float name="radius" value="0.25"/>{_diffuse("0.6, 0.3, 0.7")}</shape>
+"""
+
 CASES = [
+    Case("various_shapes", "ply, serialized, obj (vertex normals), sphere, disk, cylinder, rectangle in one scene",
+         scene(lit(VARIOUS), size=(64, 48))),
     Case("merge", "merge (obj, sphere, rectangle)", scene(LIGHT + MERGED)),
     # Mitsuba's default max_depth of the differentiable integrators is 6.
     Case("prb", "prb (default max_depth)", scene(lit(sphere(DIFFUSE_RED)), integrator='<integrator type="prb"/>'),

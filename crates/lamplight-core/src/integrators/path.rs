@@ -24,7 +24,7 @@ use crate::materials::{Reflection, Refraction};
 use crate::math::{Rgb, Vec3};
 use crate::ray::{offset_origin, Ray};
 use crate::sampling::{Cone, PixelSampler};
-use crate::scene::{Hit, Scene};
+use crate::scene::{Hit, Scene, Sides};
 use crate::Error;
 
 /// The registry's entry.
@@ -151,6 +151,7 @@ impl PathTracer {
         let mut prev_delta = true;
         let p_pick = self.lights.pick_probability();
         let single_light = self.lights.count() <= 1;
+        let geometric_sides = scene.settings.sides == Sides::Geometric;
         for depth in 1..=self.max_depth {
             // This vertex's light and BSDF points (dimensions 1 and 3 of its five),
             // drawn before the ray is traced: the hashing needs no hit and overlaps
@@ -246,8 +247,9 @@ impl PathTracer {
                 break;
             };
             // The shading normal may disagree with the geometry: keep the side the
-            // geometric normal says, or light would leak through the surface.
-            if (wi.dot(hit.geometric_normal) > 0.0) != (s.wi.z > 0.0) || s.weight == Rgb::ZERO {
+            // geometric normal says, or light would leak through the surface
+            // (unless the scene follows the shading normal's sides, `Sides::Shading`).
+            if (geometric_sides && (wi.dot(hit.geometric_normal) > 0.0) != (s.wi.z > 0.0)) || s.weight == Rgb::ZERO {
                 trace.end(PathEnd::WrongSide);
                 break;
             }
@@ -301,7 +303,7 @@ impl PathTracer {
             return Rgb::ZERO;
         }
         let wi_local = frame.to_local(wi);
-        if (wi.dot(hit.geometric_normal) > 0.0) != (wi_local.z > 0.0) {
+        if scene.settings.sides == Sides::Geometric && (wi.dot(hit.geometric_normal) > 0.0) != (wi_local.z > 0.0) {
             trace.nee_miss(NeeMiss::WrongSide);
             return Rgb::ZERO;
         }

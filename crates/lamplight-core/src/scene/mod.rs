@@ -22,7 +22,7 @@ mod shading;
 
 pub use builder::SceneBuilder;
 pub use reach::reaches_camera_hits;
-pub use settings::SceneSettings;
+pub use settings::{SceneSettings, Sides};
 
 /// A shape placed in the scene with its material.
 #[derive(Clone, Debug)]
@@ -152,10 +152,17 @@ impl Scene {
         let (object, h) = best?;
         let faces_ray = ray.dir.dot(h.normal) < 0.0;
         let (geometric_normal, mut normal) = if faces_ray { (h.normal, h.shading_normal) } else { (-h.normal, -h.shading_normal) };
-        let front_face = faces_ray != self.objects[object].reversed;
+        let mut front_face = faces_ray != self.objects[object].reversed;
         // A shading normal must face the ray too, or the lighting would see the back side.
         if normal.dot(ray.dir) >= 0.0 {
-            normal = geometric_normal;
+            match self.settings.sides {
+                Sides::Geometric => normal = geometric_normal,
+                // The shading normal says the ray arrived on the other side.
+                Sides::Shading => {
+                    normal = -normal;
+                    front_face = !front_face;
+                }
+            }
         }
         Some(Hit {
             t: h.t,
@@ -356,6 +363,9 @@ pub fn surface_bsdf(material: &Material, point: Vec3, front_face: bool) -> Bsdf 
         Bsdf::new(&[])
     }
 }
+
+#[cfg(test)]
+mod sides_tests;
 
 #[cfg(test)]
 mod tests {

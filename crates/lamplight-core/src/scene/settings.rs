@@ -34,6 +34,31 @@ pub struct SceneSettings {
     /// to the sky (Mitsuba's `hide_emitters`, [`crate::Scene::first_camera_hit`]);
     /// the light those give the scene is kept. `false` by default.
     pub hide_emitters: bool,
+    /// Which normal decides the side of a hit when a shading normal and the
+    /// geometry disagree ([`Sides`]); [`Sides::Geometric`] by default.
+    pub sides: Sides,
+}
+
+/// Which normal decides a hit's side (front or back: whether a one-sided
+/// material scatters there) where an interpolated shading normal faces away
+/// from the ray that the geometry faces, as near the silhouette of a coarse
+/// mesh with vertex normals.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Sides {
+    /// The geometry's: the hit keeps its side and is shaded with the geometric
+    /// normal there, and the path tracer ends a path whose sampled direction
+    /// lies on different sides of the two normals (no light leaks through the
+    /// surface). lamplight's own convention.
+    #[default]
+    Geometric,
+    /// The shading normal's (Mitsuba 3's convention, which its BSDFs evaluate in
+    /// the shading frame alone): where the shading normal faces away from the
+    /// ray the hit is on the back, a one-sided material there is black, a
+    /// two-sided one is shaded with the shading normal turned to the ray, and
+    /// the path tracer follows directions whatever side of the geometry they
+    /// leave on. The Mitsuba XML reader sets it, so that such scenes render as
+    /// Mitsuba renders them.
+    Shading,
 }
 
 impl SceneSettings {
@@ -48,6 +73,7 @@ impl SceneSettings {
             min_weight: 0.0,
             rr_depth: 4,
             hide_emitters: false,
+            sides: Sides::Geometric,
         }
     }
 

@@ -59,6 +59,8 @@ pub struct Settings {
     pub crop: Option<lamplight_core::PixelWindow>,
     /// Camera rays see emitters and the sky as black (default `false`).
     pub hide_emitters: bool,
+    /// Which normal decides a hit's side (default the geometry's).
+    pub sides: lamplight_core::scene::Sides,
     /// An `.exr` output holds the variance layer too (default `false`).
     pub variance: bool,
     /// The image is denoised (Open Image Denoise, default `false`).
@@ -175,6 +177,13 @@ pub const RENDER_PARAMS: &[Param] = &[
         "false",
         "",
         "camera rays go through emitting surfaces and see black where they leave the scene (no sky, no background); the light of both still reaches the scene (Mitsuba's `hide_emitters`)",
+    ),
+    Param::new(
+        "sides",
+        T::String,
+        "\"geometric\"",
+        "\"geometric\" or \"shading\"",
+        "which normal decides a hit's side where a mesh's interpolated shading normal faces away from the ray the geometry faces: the geometry's (lamplight's, no light leaks), or the shading normal's, as Mitsuba 3 renders (a one-sided material is black there); the Mitsuba XML reader sets `\"shading\"`",
     ),
 ];
 
@@ -304,6 +313,11 @@ pub fn settings(desc: &SceneDescription, source: &Source) -> Result<Settings, Lo
         };
         let crop = crop(p, width, height)?;
         let hide_emitters = p.boolean("hide_emitters")?.unwrap_or(false);
+        let sides = match p.string("sides")? {
+            None | Some("geometric") => lamplight_core::scene::Sides::Geometric,
+            Some("shading") => lamplight_core::scene::Sides::Shading,
+            Some(other) => return Err(p.key_error("sides", format!("expected \"geometric\" or \"shading\", got \"{other}\""))),
+        };
         let variance = p.boolean("variance")?.unwrap_or(false);
         let denoise = p.boolean("denoise")?.unwrap_or(false);
         let memory_budget = match p.string("memory_budget")? {
@@ -326,6 +340,7 @@ pub fn settings(desc: &SceneDescription, source: &Source) -> Result<Settings, Lo
             filter,
             crop,
             hide_emitters,
+            sides,
             variance,
             denoise,
             memory_budget,
@@ -385,6 +400,7 @@ pub fn build_with_warnings(desc: &SceneDescription, source: &Source) -> Result<B
     builder.settings.environment = environment;
     builder.settings.max_depth = settings.max_depth;
     builder.settings.hide_emitters = settings.hide_emitters;
+    builder.settings.sides = settings.sides;
     builder.settings.rr_depth = settings.rr_depth;
     builder.settings.min_weight = settings.min_weight;
     // Texture files are found beside the scene file, and decoded once each,

@@ -193,6 +193,9 @@ impl<'a> Ctx<'a> {
             return Err(err(&root.loc, "scene: has no <sensor>, expected one (lamplight renders one camera)"));
         }
         let mut entries = std::mem::take(&mut self.globals);
+        // Mitsuba's BSDFs see a hit's side by its shading normal (a coarse mesh's
+        // vertex normals can turn a face seen from the front into a back face).
+        self.render.push(entry("sides", text("shading", &root.loc)));
         entries.push(entry("render", table(std::mem::take(&mut self.render), root.loc.clone())));
         entries.push(entry("camera", self.camera.take().expect("checked")));
         let named = |list: Vec<Entry>| table(list, root.loc.clone());
