@@ -138,9 +138,8 @@ fn reflection(p: &mut Params<'_>) -> ParamResult<Reflection> {
         }
         _ => match (r.string("metal")?, r.color("eta")?, r.color("k")?) {
             (Some(name), None, None) => {
-                let metal = Metal::from_name(name).ok_or_else(|| {
-                    r.key_error("metal", format!("unknown metal \"{name}\", expected \"gold\", \"silver\", \"copper\" or \"aluminium\""))
-                })?;
+                let metal =
+                    Metal::from_name(name).ok_or_else(|| r.key_error("metal", crate::params::unknown("metal", name, &Metal::NAMES)))?;
                 let (eta, k) = metal.eta_k();
                 Reflection::Conductor { eta, k }
             }
