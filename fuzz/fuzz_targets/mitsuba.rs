@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use lamplight_scene::build::SceneFile;
+use lamplight_scene::instantiate::SceneFile;
 use lamplight_scene::formats::mitsuba;
 use libfuzzer_sys::fuzz_target;
 

@@ -224,6 +224,35 @@ fn bsdfs_import_only_math_sampling_and_themselves() {
     );
 }
 
+/// A lobe is its file and one line of the `lobes!` registry (issue 25,
+/// section 1): outside the registry, `bsdfs/mod.rs` names no lobe variant but
+/// the Lambertian one, whose fast path (a BSDF of one diffuse lobe) is the
+/// path tracer's most common case. A match arm per lobe coming back fails here.
+#[test]
+fn bsdfs_mod_names_each_lobe_only_in_the_registry() {
+    let text = std::fs::read_to_string(src_dir().join("bsdfs/mod.rs")).unwrap();
+    let start = text.find("\nlobes! {").expect("bsdfs/mod.rs has the lobes! registry");
+    let end = start + text[start..].find("\n}\n").expect("the registry closes");
+    let variants: Vec<&str> = text[start..end]
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.starts_with("//") && l.ends_with("),"))
+        .filter_map(|l| l.split_once('(').map(|(v, _)| v))
+        .collect();
+    assert!(variants.len() >= 10 && variants.contains(&"Principled"), "the reader finds the registry's lines: {variants:?}");
+    let outside = format!("{}{}", &text[..start], &text[end..]);
+    let named: Vec<String> = variants
+        .iter()
+        .filter(|v| **v != "Diffuse")
+        .filter(|v| outside.contains(&format!("Lobe::{v}")))
+        .map(|v| format!("Lobe::{v}"))
+        .collect();
+    assert!(
+        named.is_empty(),
+        "bsdfs/mod.rs names lobes outside the lobes! registry (each lobe's behaviour belongs in its file's `impl Scatter`): {named:?}"
+    );
+}
+
 /// The renderer runs the integrators; an integrator never reaches back into
 /// the renderer (what both need, such as `PixelWindow`, lives below both, in
 /// `film/`). Code only: a doc link to the crate's `render()` is no import.

@@ -16,8 +16,8 @@ use lamplight_scene::builtin::{self, Builtin};
 use lamplight_scene::description::{Node, SceneDescription};
 use lamplight_scene::formats::native::Source as FileSource;
 use lamplight_scene::instantiate::{self, SceneFile};
-use lamplight_scene::request::{program_defaults, Defaults, SceneRequest, SceneSpec};
-use lamplight_scene::{import, LoadError};
+use lamplight_scene::request::{self, program_defaults, Defaults, FileKind, SceneRequest, SceneSpec};
+use lamplight_scene::LoadError;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
@@ -173,9 +173,7 @@ impl Scene {
             ))
         })?;
         let arg = text.to_string_lossy().into_owned();
-        let has_separator = arg.contains('/') || arg.contains(std::path::MAIN_SEPARATOR);
-        let extension = text.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
-        if !has_separator && extension.is_none() {
+        if request::names_builtin(&arg) {
             return Scene::builtin(&arg);
         }
         Scene::from_file(text)
@@ -192,22 +190,16 @@ impl Scene {
     /// `.ply`, `.gltf`, `.glb`, read when the scene is built), by extension.
     #[staticmethod]
     fn from_file(path: PathBuf) -> PyResult<Scene> {
-        let extension = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).unwrap_or_default();
-        if let Some(format) = lamplight_scene::formats::find(&extension) {
-            return Scene::new(Origin::Toml(SceneFile::read_format(&path, format, &[]).map_err(load_error)?), None);
-        }
-        if import::EXTENSIONS.contains(&extension.as_str()) {
-            if !path.is_file() {
-                return Err(pyo3::exceptions::PyFileNotFoundError::new_err(format!("{}: no such file", path.display())));
+        match request::file_kind(&path).map_err(|e| PyValueError::new_err(e.0))? {
+            FileKind::Scene(format) => Scene::new(Origin::Toml(SceneFile::read_format(&path, format, &[]).map_err(load_error)?), None),
+            FileKind::Mesh => {
+                if !path.is_file() {
+                    return Err(pyo3::exceptions::PyFileNotFoundError::new_err(format!("{}: no such file", path.display())));
+                }
+                let path = std::path::absolute(&path).unwrap_or(path);
+                Scene::new(Origin::Mesh(path), None)
             }
-            let path = std::path::absolute(&path).unwrap_or(path);
-            return Scene::new(Origin::Mesh(path), None);
         }
-        Err(PyValueError::new_err(format!(
-            "{}: unknown scene file type, expected .toml, .xml or a mesh file ({})",
-            path.display(),
-            import::EXTENSIONS.iter().map(|e| format!(".{e}")).collect::<Vec<_>>().join(", ")
-        )))
     }
 
     /// Scene text in the native TOML format; relative mesh paths resolve against

@@ -234,6 +234,7 @@ fn wrong_types_say_what_was_expected_at_the_key() {
         (with_camera("[[objects]]\ntype = \"cylinder\"\nfrom = [0, 0, 0]\nto = [0, 1, 0]\nradius = 1\ncaps = 1\n"), "s.toml:10:8: cylinder: caps: expected true or false, got a number 1"),
         (with_camera("[[objects]]\ntype = \"point_light\"\nposition = [0, 0, 0]\nintensity = [1, 2]\n"), "s.toml:8:13: point_light: intensity: expected a number or [r, g, b], got an array of 2"),
         (with_camera("[materials.m]\ncolor = { type = \"checkers\" }\n"), "s.toml:6:18: material \"m\": color: type: unknown texture \"checkers\" (did you mean 'checker'? textures: {TEXTURES})"),
+        (with_camera("[materials.m]\nreflection = { type = \"conductor\", metal = \"glod\" }\n"), "s.toml:6:44: material \"m\": reflection: metal: unknown metal \"glod\" (did you mean 'gold'? metals: gold, silver, copper, aluminium)"),
         (with_camera("[materials.m]\ntype = \"phongg\"\n"), "s.toml:6:8: material \"m\": unknown material type \"phongg\" (did you mean 'phong'? material types: {MATERIALS})"),
         (with_camera("[[objects]]\ntype = \"spher\"\n"), "s.toml:6:8: spher: unknown node type (did you mean 'sphere'?)"),
         (with_camera("[[objects]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nchildren = []\n"), "s.toml:5:1: sphere: takes no `children` (only a group does)"),

@@ -178,7 +178,7 @@ fn roughness_reaches_the_material() {
     let m = &s.materials[s.objects[0].material];
     assert_eq!(m.roughness, 0.3);
     let bsdf = lamplight_core::materials::bsdf_for(m, lamplight_core::math::Vec3::ZERO, true);
-    assert!(matches!(bsdf.lobes(), [lamplight_core::bsdfs::Lobe::RoughGlass { alpha, .. }] if *alpha == 0.3), "{:?}", bsdf.lobes());
+    assert!(matches!(bsdf.lobes(), [lamplight_core::bsdfs::Lobe::RoughGlass(glass)] if glass.alpha == 0.3), "{:?}", bsdf.lobes());
 }
 
 #[test]
@@ -196,8 +196,8 @@ fn frosted_example_has_rough_lobes_and_a_mesh_light() {
         .iter()
         .flat_map(|o| bsdf_for(&s.materials[o.material], lamplight_core::math::Vec3::ZERO, true).lobes().to_vec())
         .collect();
-    assert!(lobes.iter().any(|l| matches!(l, Lobe::RoughGlass { alpha, .. } if *alpha == 0.2)));
-    assert!(lobes.iter().any(|l| matches!(l, Lobe::RoughConductor { alpha, .. } if *alpha == 0.3)));
+    assert!(lobes.iter().any(|l| matches!(l, Lobe::RoughGlass(glass) if glass.alpha == 0.2)));
+    assert!(lobes.iter().any(|l| matches!(l, Lobe::RoughConductor(metal) if metal.alpha == 0.3)));
     let options = RenderOptions {
         width: 24,
         height: 16,

@@ -5,8 +5,10 @@
 //! weight `f cos / pdf` is the reflectance itself, which never exceeds 1 for a
 //! conductor (Fresnel reflectance lies in `[0, 1]`).
 
+use super::dielectric::reflect_local;
 use super::fresnel::{fresnel_conductor, fresnel_dielectric};
-use crate::math::Rgb;
+use super::{Lobe, Sampled, Scatter};
+use crate::math::{Rgb, Vec3};
 
 /// Where a mirror's reflectance comes from.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -40,14 +42,34 @@ impl MirrorFresnel {
             MirrorFresnel::Conductor { eta, k } => fresnel_conductor(cos_i, eta, k),
         }
     }
+}
 
-    /// An upper bound of the reflectance over all angles (for energy normalization).
-    pub fn bound(&self) -> Rgb {
+/// A smooth mirror (delta): the mirror direction, weighted by the reflectance.
+impl Scatter for MirrorFresnel {
+    const DELTA: bool = true;
+
+    /// An upper bound of the reflectance over all angles.
+    fn bound(&self) -> Rgb {
         match *self {
             MirrorFresnel::Constant(w) => w,
             MirrorFresnel::Dielectric { min, max, .. } => Rgb::splat(min.max(max).max(0.0)),
             MirrorFresnel::Conductor { .. } => Rgb::ONE,
         }
+    }
+
+    /// A constant weight scales; a Fresnel-driven mirror keeps its physics
+    /// unscaled and becomes a constant-weight tint otherwise.
+    fn scaled(self, s: Rgb) -> Lobe {
+        match self {
+            MirrorFresnel::Constant(w) => MirrorFresnel::Constant(w * s).into(),
+            m if s == Rgb::ONE => m.into(),
+            m => MirrorFresnel::Constant(m.bound() * s).into(),
+        }
+    }
+
+    #[inline]
+    fn sample(&self, wo: Vec3, _u_choice: f64, _u: (f64, f64)) -> Option<Sampled> {
+        Some(Sampled::Delta { wi: reflect_local(wo), weight: self.reflectance(wo.z), eta: 1.0 })
     }
 }
 

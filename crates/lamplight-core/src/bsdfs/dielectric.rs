@@ -9,7 +9,8 @@
 //! at the boundary, which the white furnace test checks.
 
 use super::fresnel::fresnel_dielectric;
-use crate::math::Vec3;
+use super::{Lobe, Sampled, Scatter};
+use crate::math::{Rgb, Vec3};
 
 /// One sampled direction of a smooth boundary.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -51,6 +52,65 @@ pub fn sample(wo: Vec3, eta: f64, u: f64) -> DeltaSample {
         Some(wi) => DeltaSample { wi, weight: 1.0 / (eta * eta), transmitted: true },
         // F = 1 under total internal reflection, so u < F above; kept for rounding.
         None => DeltaSample { wi: reflect_local(wo), weight: 1.0, transmitted: false },
+    }
+}
+
+/// Smooth glass (delta): Fresnel reflection and refraction of relative index
+/// `eta = n_t / n_i`, both branches filtered by `tint` (1 for clear glass).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Glass {
+    /// Relative index across the boundary.
+    pub eta: f64,
+    /// Colour filter of both branches.
+    pub tint: Rgb,
+}
+
+impl Scatter for Glass {
+    const DELTA: bool = true;
+
+    fn bound(&self) -> Rgb {
+        self.tint
+    }
+
+    fn scaled(self, s: Rgb) -> Lobe {
+        Glass { eta: self.eta, tint: self.tint * s }.into()
+    }
+
+    #[inline]
+    fn sample(&self, wo: Vec3, u_choice: f64, _u: (f64, f64)) -> Option<Sampled> {
+        let s = sample(wo, self.eta, u_choice);
+        Some(Sampled::Delta { wi: s.wi, weight: self.tint * s.weight, eta: if s.transmitted { self.eta } else { 1.0 } })
+    }
+}
+
+/// Smooth refraction only (delta), of relative index `eta`, with a constant
+/// weight or, for `None`, the Fresnel weight `1 - F`: the lecture's refraction
+/// beside its separate mirror term.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Refract {
+    /// Relative index across the boundary.
+    pub eta: f64,
+    /// Constant weight, or `None` for the Fresnel weight `1 - F`.
+    pub weight: Option<Rgb>,
+}
+
+impl Scatter for Refract {
+    const DELTA: bool = true;
+
+    fn bound(&self) -> Rgb {
+        self.weight.unwrap_or(Rgb::ONE)
+    }
+
+    fn scaled(self, s: Rgb) -> Lobe {
+        Refract { eta: self.eta, weight: Some(self.weight.unwrap_or(Rgb::ONE) * s) }.into()
+    }
+
+    #[inline]
+    fn sample(&self, wo: Vec3, _u_choice: f64, _u: (f64, f64)) -> Option<Sampled> {
+        let eta = self.eta;
+        let wi = refract_local(wo, eta)?;
+        let w = self.weight.unwrap_or_else(|| Rgb::splat(1.0 - fresnel_dielectric(wo.z, eta)));
+        Some(Sampled::Delta { wi, weight: w / (eta * eta), eta })
     }
 }
 

@@ -4,6 +4,7 @@
 
 use std::f64::consts::{FRAC_1_PI, FRAC_PI_4};
 
+use super::{Lobe, Sampled, Scatter};
 use crate::math::{sin_cos_quarter, Rgb, Vec3};
 
 /// `albedo / pi` when both directions lie above the surface (local `z > 0`), else 0.
@@ -56,6 +57,37 @@ pub fn concentric_disk(u: (f64, f64)) -> (f64, f64) {
         (along, across)
     } else {
         (across, along)
+    }
+}
+
+/// The Lambertian lobe of albedo `.0`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Lambertian(pub Rgb);
+
+impl Scatter for Lambertian {
+    const DELTA: bool = false;
+
+    fn bound(&self) -> Rgb {
+        self.0
+    }
+
+    fn scaled(self, s: Rgb) -> Lobe {
+        Lambertian(self.0 * s).into()
+    }
+
+    #[inline]
+    fn f(&self, wo: Vec3, wi: Vec3) -> Rgb {
+        f(self.0, wo, wi)
+    }
+
+    #[inline]
+    fn pdf(&self, wo: Vec3, wi: Vec3) -> f64 {
+        pdf(wo, wi)
+    }
+
+    #[inline]
+    fn sample(&self, _wo: Vec3, _u_choice: f64, u: (f64, f64)) -> Option<Sampled> {
+        Some(Sampled::Smooth(sample(u)))
     }
 }
 

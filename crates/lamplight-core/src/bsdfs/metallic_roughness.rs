@@ -30,7 +30,7 @@
 //! rather than by one minus the specular albedo; the measured table is in
 //! `bsdfs/tests.rs` (`metallic_roughness_stays_below_one_in_the_furnace`).
 
-use super::{lambertian, microfacet};
+use super::{lambertian, microfacet, Sampled, Scatter};
 use crate::math::{Rgb, Vec3};
 
 /// Schlick's factor `(1 - c)^5`.
@@ -192,6 +192,30 @@ impl MetallicRoughness {
         let lo = spec.f0.min(Rgb::splat(spec.f90));
         let hi = spec.f0.max(Rgb::splat(spec.f90));
         ((1.0 - metallic) * (base * (Rgb::ONE - lo) + hi) + Rgb::splat(metallic)).min(Rgb::ONE)
+    }
+}
+
+// `MetallicRoughness::f` and the like name the inherent methods (which come before a trait's).
+impl Scatter for MetallicRoughness {
+    const DELTA: bool = false;
+
+    fn bound(&self) -> Rgb {
+        MetallicRoughness::bound(self)
+    }
+
+    #[inline]
+    fn f(&self, wo: Vec3, wi: Vec3) -> Rgb {
+        MetallicRoughness::f(self, wo, wi)
+    }
+
+    #[inline]
+    fn pdf(&self, wo: Vec3, wi: Vec3) -> f64 {
+        MetallicRoughness::pdf(self, wo, wi)
+    }
+
+    #[inline]
+    fn sample(&self, wo: Vec3, u_choice: f64, u: (f64, f64)) -> Option<Sampled> {
+        MetallicRoughness::sample(self, wo, u_choice, u).map(Sampled::Smooth)
     }
 }
 

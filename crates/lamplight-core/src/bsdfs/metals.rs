@@ -30,6 +30,9 @@ impl Metal {
         }
     }
 
+    /// The names [`Metal::from_name`] takes, for messages (`aluminum` is taken too).
+    pub const NAMES: [&'static str; 4] = ["gold", "silver", "copper", "aluminium"];
+
     /// Looks a preset up by its lower-case English name (`gold`, `silver`, `copper`, `aluminium`/`aluminum`).
     pub fn from_name(name: &str) -> Option<Metal> {
         match name {

@@ -14,6 +14,7 @@
 
 use std::f64::consts::PI;
 
+use super::{Lobe, Sampled, Scatter};
 use crate::math::{Rgb, Vec3};
 
 /// Smallest roughness: narrower lobes would be a mirror that f64 cannot sample.
@@ -101,6 +102,43 @@ pub fn visible_normal(alpha: f64, wo: Vec3, u: (f64, f64)) -> Vec3 {
     let p2 = (1.0 - s) * (1.0 - p1 * p1).max(0.0).sqrt() + s * r * phi.sin();
     let nh = t1 * p1 + t2 * p2 + vh * (1.0 - p1 * p1 - p2 * p2).max(0.0).sqrt();
     Vec3::new(alpha * nh.x, alpha * nh.y, nh.z.max(1e-9)).normalize()
+}
+
+/// GGX reflection with constant reflectance `ks` and roughness `alpha` (the
+/// lecture's Blinn highlight read as a microfacet lobe).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Glossy {
+    /// Reflectance.
+    pub ks: Rgb,
+    /// GGX roughness.
+    pub alpha: f64,
+}
+
+impl Scatter for Glossy {
+    const DELTA: bool = false;
+
+    fn bound(&self) -> Rgb {
+        self.ks
+    }
+
+    fn scaled(self, s: Rgb) -> Lobe {
+        Glossy { ks: self.ks * s, alpha: self.alpha }.into()
+    }
+
+    #[inline]
+    fn f(&self, wo: Vec3, wi: Vec3) -> Rgb {
+        f(self.ks, self.alpha, wo, wi)
+    }
+
+    #[inline]
+    fn pdf(&self, wo: Vec3, wi: Vec3) -> f64 {
+        pdf(self.alpha, wo, wi)
+    }
+
+    #[inline]
+    fn sample(&self, wo: Vec3, _u_choice: f64, u: (f64, f64)) -> Option<Sampled> {
+        sample(self.alpha, wo, u).map(Sampled::Smooth)
+    }
 }
 
 #[cfg(test)]

@@ -13,12 +13,18 @@
 //! The lobes are physics only: they import math and sampling, never the materials
 //! or the scene above them. Which lobes a material is, is decided by the material
 //! kinds, each in its own file.
+//!
+//! Each lobe is a type in its own file that implements [`Scatter`] (its bound,
+//! value, density, sampling and scaling); the `lobes!` registry below gives it
+//! its [`Lobe`] variant and dispatch in one line. A new lobe is its file, its
+//! `pub mod` line and its registry line.
 
 pub mod conductor;
 pub mod dielectric;
 pub mod distribution;
 mod fresnel;
 pub mod lambertian;
+mod lobe;
 pub mod metallic_roughness;
 mod metals;
 pub mod microfacet;
@@ -33,11 +39,19 @@ pub(crate) mod test_support;
 pub mod thin_dielectric;
 
 pub use conductor::MirrorFresnel;
+pub use dielectric::{Glass, Refract};
 pub use distribution::{Distribution, Microfacet};
 pub use fresnel::{fresnel_conductor, fresnel_conductor_channel, fresnel_dielectric};
+pub use lambertian::Lambertian;
+pub use lobe::{Sampled, Scatter};
 pub use metals::Metal;
+pub use microfacet::Glossy;
+pub use rough_conductor::RoughConductor;
+pub use rough_dielectric::RoughGlass;
+pub use thin_dielectric::ThinGlass;
 
 use crate::math::{orthonormal_basis, Rgb, Vec3};
+use lobe::lobes;
 
 /// An orthonormal frame around a unit normal.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -70,60 +84,25 @@ impl Frame {
     }
 }
 
-/// One lobe of a [`Bsdf`].
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Lobe {
-    /// Lambertian reflection of this albedo.
-    Diffuse(Rgb),
-    /// GGX reflection with constant reflectance `ks` and roughness `alpha`.
-    Glossy {
-        /// Reflectance.
-        ks: Rgb,
-        /// GGX roughness.
-        alpha: f64,
-    },
-    /// Smooth mirror (delta).
+lobes! {
+    /// Lambertian reflection ([`lambertian`]).
+    Diffuse(Lambertian),
+    /// GGX reflection with a constant reflectance ([`microfacet`]).
+    Glossy(Glossy),
+    /// Smooth mirror (delta, [`conductor`]).
     Mirror(MirrorFresnel),
-    /// Smooth glass: Fresnel reflection and refraction, relative index `eta = n_t / n_i` (delta).
-    Glass {
-        /// Relative index across the boundary.
-        eta: f64,
-        /// Colour filter of both branches (1 for clear glass).
-        tint: Rgb,
-    },
+    /// Smooth glass: Fresnel reflection and refraction (delta, [`dielectric`]).
+    Glass(Glass),
     /// Rough metal: microfacet reflection with conductor Fresnel ([`rough_conductor`]).
-    RoughConductor {
-        /// Real part of the index, per channel.
-        eta: Rgb,
-        /// Extinction coefficient, per channel.
-        k: Rgb,
-        /// Roughness.
-        alpha: f64,
-        /// GGX or Beckmann.
-        distribution: Distribution,
-    },
+    RoughConductor(RoughConductor),
     /// Rough glass: microfacet reflection and refraction ([`rough_dielectric`]).
-    RoughGlass {
-        /// Relative index across the boundary.
-        eta: f64,
-        /// Roughness.
-        alpha: f64,
-        /// Colour filter of both branches (1 for clear glass).
-        tint: Rgb,
-        /// GGX or Beckmann.
-        distribution: Distribution,
-    },
+    RoughGlass(RoughGlass),
     /// Smooth plastic: a delta coating reflection over a diffuse lobe ([`plastic`]).
     Plastic(plastic::Plastic),
     /// Rough plastic: a microfacet coating over a diffuse base ([`rough_plastic`]).
     RoughPlastic(rough_plastic::RoughPlastic),
-    /// A thin dielectric sheet: reflection `R'` and straight transmission `1 - R'` ([`thin_dielectric`], delta).
-    ThinGlass {
-        /// Relative index of the sheet.
-        eta: f64,
-        /// Colour filter of both branches.
-        tint: Rgb,
-    },
+    /// A thin dielectric sheet: reflection and straight transmission (delta, [`thin_dielectric`]).
+    ThinGlass(ThinGlass),
     /// The glTF metallic-roughness BSDF ([`metallic_roughness`]), with
     /// `KHR_materials_transmission`'s thin-walled transmission.
     MetallicRoughness(metallic_roughness::MetallicRoughness),
@@ -131,72 +110,8 @@ pub enum Lobe {
     Principled(principled::Principled),
     /// Mitsuba's thin principled BSDF ([`principled_thin`]).
     PrincipledThin(principled_thin::PrincipledThin),
-    /// Smooth refraction only, with weight `Constant` or `1 - F` (delta).
-    Refract {
-        /// Relative index across the boundary.
-        eta: f64,
-        /// Constant weight, or `None` for the Fresnel weight `1 - F`.
-        weight: Option<Rgb>,
-    },
-}
-
-impl Lobe {
-    /// True for lobes that scatter into single directions.
-    pub fn is_delta(&self) -> bool {
-        !matches!(
-            self,
-            Lobe::Diffuse(_)
-                | Lobe::Glossy { .. }
-                | Lobe::RoughConductor { .. }
-                | Lobe::RoughGlass { .. }
-                | Lobe::MetallicRoughness(_)
-                | Lobe::Plastic(_)
-                | Lobe::RoughPlastic(_)
-                | Lobe::Principled(_)
-                | Lobe::PrincipledThin(_)
-        )
-    }
-
-    /// Per-channel upper bound of the reflectance (albedo) over all angles.
-    pub fn bound(&self) -> Rgb {
-        match *self {
-            Lobe::Diffuse(a) => a,
-            Lobe::Glossy { ks, .. } => ks,
-            Lobe::Mirror(m) => m.bound(),
-            Lobe::RoughConductor { .. } | Lobe::Plastic(_) | Lobe::RoughPlastic(_) | Lobe::Principled(_) | Lobe::PrincipledThin(_) => {
-                Rgb::ONE
-            }
-            Lobe::Glass { tint, .. } | Lobe::RoughGlass { tint, .. } | Lobe::ThinGlass { tint, .. } => tint,
-            Lobe::Refract { weight, .. } => weight.unwrap_or(Rgb::ONE),
-            Lobe::MetallicRoughness(lobe) => lobe.bound(),
-        }
-    }
-
-    fn scaled(self, s: Rgb) -> Lobe {
-        match self {
-            Lobe::Diffuse(a) => Lobe::Diffuse(a * s),
-            Lobe::Glossy { ks, alpha } => Lobe::Glossy { ks: ks * s, alpha },
-            Lobe::Mirror(MirrorFresnel::Constant(w)) => Lobe::Mirror(MirrorFresnel::Constant(w * s)),
-            // Fresnel-driven lobes keep their physics; only a scale below 1 changes them,
-            // through a constant-weight tint.
-            Lobe::Mirror(m) => {
-                if s == Rgb::ONE {
-                    Lobe::Mirror(m)
-                } else {
-                    Lobe::Mirror(MirrorFresnel::Constant(m.bound() * s))
-                }
-            }
-            Lobe::Glass { eta, tint } => Lobe::Glass { eta, tint: tint * s },
-            Lobe::RoughGlass { eta, alpha, tint, distribution } => Lobe::RoughGlass { eta, alpha, tint: tint * s, distribution },
-            Lobe::ThinGlass { eta, tint } => Lobe::ThinGlass { eta, tint: tint * s },
-            // Like the conductor mirror: physics when unscaled, else a constant-reflectance GGX lobe.
-            Lobe::RoughConductor { alpha, .. } if s != Rgb::ONE => Lobe::Glossy { ks: s, alpha },
-            Lobe::RoughConductor { .. } => self,
-            Lobe::Refract { eta, weight } => Lobe::Refract { eta, weight: Some(weight.unwrap_or(Rgb::ONE) * s) },
-            // Their bounds are at most 1 and their materials use them alone: never scaled.
-            Lobe::MetallicRoughness(_) | Lobe::Plastic(_) | Lobe::RoughPlastic(_) | Lobe::Principled(_) | Lobe::PrincipledThin(_) => self,
-        }
-    }
+    /// Smooth refraction only, with a constant or a Fresnel weight (delta, [`dielectric`]).
+    Refract(Refract),
 }
 
 /// Most lobes a material maps to.
@@ -232,7 +147,7 @@ impl Bsdf {
         let lobes = &lobes[..lobes.len().min(MAX_LOBES)];
         let total: Rgb = lobes.iter().map(|l| l.bound()).sum();
         let scale = Rgb::ONE / total.max(Rgb::ONE);
-        let mut out = Bsdf { lobes: [Lobe::Diffuse(Rgb::ZERO); MAX_LOBES], probs: [0.0; MAX_LOBES], count: 0 };
+        let mut out = Bsdf { lobes: [Lobe::Diffuse(Lambertian(Rgb::ZERO)); MAX_LOBES], probs: [0.0; MAX_LOBES], count: 0 };
         let mut sum = 0.0;
         for lobe in lobes {
             let lobe = lobe.scaled(scale);
@@ -272,7 +187,7 @@ impl Bsdf {
     #[inline(always)]
     fn single_diffuse(&self) -> Option<Rgb> {
         match self.lobes[0] {
-            Lobe::Diffuse(albedo) if self.count == 1 => Some(albedo),
+            Lobe::Diffuse(Lambertian(albedo)) if self.count == 1 => Some(albedo),
             _ => None,
         }
     }
@@ -292,22 +207,7 @@ impl Bsdf {
         }
         let mut sum = Rgb::ZERO;
         for lobe in self.lobes() {
-            match *lobe {
-                Lobe::Diffuse(a) => sum += lambertian::f(a, wo, wi),
-                Lobe::Glossy { ks, alpha } => sum += microfacet::f(ks, alpha, wo, wi),
-                Lobe::RoughGlass { eta, alpha, tint, distribution } => {
-                    sum += tint * rough_dielectric::f(Microfacet::new(distribution, alpha), eta, wo, wi)
-                }
-                Lobe::RoughConductor { eta, k, alpha, distribution } => {
-                    sum += rough_conductor::f(eta, k, Microfacet::new(distribution, alpha), wo, wi)
-                }
-                Lobe::Plastic(p) => sum += p.f(wo, wi),
-                Lobe::RoughPlastic(p) => sum += p.f(wo, wi),
-                Lobe::Principled(p) => sum += p.f(wo, wi),
-                Lobe::PrincipledThin(p) => sum += p.f(wo, wi),
-                Lobe::MetallicRoughness(lobe) => sum += lobe.f(wo, wi),
-                _ => {}
-            }
+            lobe.add_f(&mut sum, wo, wi);
         }
         sum
     }
@@ -322,20 +222,7 @@ impl Bsdf {
         }
         let mut pdf = 0.0;
         for (lobe, p) in self.lobes().iter().zip(self.probs) {
-            match *lobe {
-                Lobe::Diffuse(_) => pdf += p * lambertian::pdf(wo, wi),
-                Lobe::Glossy { alpha, .. } => pdf += p * microfacet::pdf(alpha, wo, wi),
-                Lobe::RoughConductor { alpha, distribution, .. } => pdf += p * Microfacet::new(distribution, alpha).pdf(wo, wi),
-                Lobe::RoughGlass { eta, alpha, distribution, .. } => {
-                    pdf += p * rough_dielectric::pdf(Microfacet::new(distribution, alpha), eta, wo, wi)
-                }
-                Lobe::Plastic(lobe) => pdf += p * lobe.pdf(wo, wi),
-                Lobe::RoughPlastic(lobe) => pdf += p * lobe.pdf(wo, wi),
-                Lobe::Principled(lobe) => pdf += p * lobe.pdf(wo, wi),
-                Lobe::PrincipledThin(lobe) => pdf += p * lobe.pdf(wo, wi),
-                Lobe::MetallicRoughness(lobe) => pdf += p * lobe.pdf(wo, wi),
-                _ => {}
-            }
+            lobe.add_pdf(&mut pdf, p, wo, wi);
         }
         pdf
     }
@@ -364,46 +251,18 @@ impl Bsdf {
         }
         let p = self.probs[chosen];
         let u_rest = ((u_lobe - start) / p).clamp(0.0, 1.0 - f64::EPSILON);
-        let delta = |wi: Vec3, weight: Rgb, eta: f64| Some(BsdfSample { wi, weight: weight / p, pdf: 0.0, delta: true, eta });
-        let wi = match self.lobes[chosen] {
-            Lobe::Diffuse(_) => lambertian::sample(u),
-            Lobe::Glossy { alpha, .. } => microfacet::sample(alpha, wo, u)?,
-            Lobe::RoughConductor { alpha, distribution, .. } => Microfacet::new(distribution, alpha).sample(wo, u)?,
-            Lobe::RoughGlass { eta, alpha, distribution, .. } => {
-                rough_dielectric::sample(Microfacet::new(distribution, alpha), eta, wo, u_rest, u)?
-            }
-            Lobe::Plastic(lobe) => match lobe.sample(wo, u_rest, u)? {
-                plastic::PlasticSample::Specular(wi, weight) => return delta(wi, weight, 1.0),
-                plastic::PlasticSample::Diffuse(wi) => wi,
-            },
-            Lobe::RoughPlastic(lobe) => lobe.sample(wo, u_rest, u)?,
-            Lobe::Principled(lobe) => lobe.sample(wo, u_rest, u)?,
-            Lobe::PrincipledThin(lobe) => lobe.sample(wo, u_rest, u)?,
-            Lobe::ThinGlass { eta, tint } => return delta(thin_dielectric::sample(wo, eta, u_rest).0, tint, 1.0),
-            Lobe::MetallicRoughness(lobe) => lobe.sample(wo, u_rest, u)?,
-            Lobe::Mirror(m) => return delta(dielectric::reflect_local(wo), m.reflectance(wo.z), 1.0),
-            Lobe::Glass { eta, tint } => {
-                let s = dielectric::sample(wo, eta, u_rest);
-                return delta(s.wi, tint * s.weight, if s.transmitted { eta } else { 1.0 });
-            }
-            Lobe::Refract { eta, weight } => {
-                let wi = dielectric::refract_local(wo, eta)?;
-                let w = weight.unwrap_or_else(|| Rgb::splat(1.0 - fresnel::fresnel_dielectric(wo.z, eta)));
-                return delta(wi, w / (eta * eta), eta);
-            }
+        let chosen = &self.lobes[chosen];
+        let wi = match chosen.sample(wo, u_rest, u)? {
+            Sampled::Smooth(wi) => wi,
+            Sampled::Delta { wi, weight, eta } => return Some(BsdfSample { wi, weight: weight / p, pdf: 0.0, delta: true, eta }),
         };
         let pdf = self.pdf(wo, wi);
         if !(pdf > 0.0) {
             return None;
         }
-        // Only rough glass and principled lobes transmit and bend among the
-        // non-delta lobes (a thin sheet does not, nor the metallic-roughness
-        // transmission, which is thin-walled: `eta = 1`).
-        let eta = match self.lobes[chosen] {
-            Lobe::RoughGlass { eta, .. } if wi.z < 0.0 => eta,
-            Lobe::Principled(lobe) => lobe.eta_towards(wi),
-            _ => 1.0,
-        };
+        // Among the non-delta lobes only rough glass and the principled lobe
+        // refract ([`Scatter::eta_towards`]).
+        let eta = chosen.eta_towards(wi);
         Some(BsdfSample { wi, weight: self.f(wo, wi) * wi.z.abs() / pdf, pdf, delta: false, eta })
     }
 }

@@ -21,7 +21,7 @@
 use std::f64::consts::FRAC_1_PI;
 
 use super::fresnel::fresnel_dielectric;
-use super::{dielectric::reflect_local, lambertian};
+use super::{dielectric::reflect_local, lambertian, Sampled, Scatter};
 use crate::math::{Rgb, Vec3};
 
 /// The coating of a plastic, smooth ([`Plastic`]) or rough ([`super::rough_plastic`]).
@@ -147,6 +147,33 @@ impl Plastic {
             return Some(PlasticSample::Specular(reflect_local(wo), weight));
         }
         Some(PlasticSample::Diffuse(lambertian::sample(u)))
+    }
+}
+
+// `Plastic::f` and the like name the inherent methods (which come before a trait's).
+impl Scatter for Plastic {
+    const DELTA: bool = false;
+
+    fn bound(&self) -> Rgb {
+        Rgb::ONE
+    }
+
+    #[inline]
+    fn f(&self, wo: Vec3, wi: Vec3) -> Rgb {
+        Plastic::f(self, wo, wi)
+    }
+
+    #[inline]
+    fn pdf(&self, wo: Vec3, wi: Vec3) -> f64 {
+        Plastic::pdf(self, wo, wi)
+    }
+
+    #[inline]
+    fn sample(&self, wo: Vec3, u_choice: f64, u: (f64, f64)) -> Option<Sampled> {
+        Some(match Plastic::sample(self, wo, u_choice, u)? {
+            PlasticSample::Specular(wi, weight) => Sampled::Delta { wi, weight, eta: 1.0 },
+            PlasticSample::Diffuse(wi) => Sampled::Smooth(wi),
+        })
     }
 }
 

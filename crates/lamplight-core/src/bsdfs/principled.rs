@@ -43,7 +43,7 @@
 use std::f64::consts::{FRAC_1_PI, PI};
 
 use super::fresnel::fresnel_dielectric;
-use super::{lambertian, microfacet};
+use super::{lambertian, microfacet, Sampled, Scatter};
 use crate::math::{Rgb, Vec3};
 
 /// The parameters of a principled surface besides its base colour.
@@ -485,6 +485,34 @@ pub fn burley_diffuse(fv: f64, fl: f64, rr: f64, cos_v: f64, cos_l: f64, flatnes
 #[inline]
 pub(super) fn lerp(a: f64, b: f64, t: f64) -> f64 {
     a * (1.0 - t) + b * t
+}
+
+// `Principled::f` and the like name the inherent methods (which come before a trait's).
+impl Scatter for Principled {
+    const DELTA: bool = false;
+
+    fn bound(&self) -> Rgb {
+        Rgb::ONE
+    }
+
+    #[inline]
+    fn f(&self, wo: Vec3, wi: Vec3) -> Rgb {
+        Principled::f(self, wo, wi)
+    }
+
+    #[inline]
+    fn pdf(&self, wo: Vec3, wi: Vec3) -> f64 {
+        Principled::pdf(self, wo, wi)
+    }
+
+    #[inline]
+    fn sample(&self, wo: Vec3, u_choice: f64, u: (f64, f64)) -> Option<Sampled> {
+        Principled::sample(self, wo, u_choice, u).map(Sampled::Smooth)
+    }
+
+    fn eta_towards(&self, wi: Vec3) -> f64 {
+        Principled::eta_towards(self, wi)
+    }
 }
 
 #[cfg(test)]

@@ -27,7 +27,7 @@
 use std::f64::consts::FRAC_1_PI;
 
 use super::principled::{burley_diffuse, compatible, fresnel, luminance, schlick, schlick_r0, schlick_weight, smith_g1, visible_pdf};
-use super::{lambertian, microfacet};
+use super::{lambertian, microfacet, Sampled, Scatter};
 use crate::math::{Rgb, Vec3};
 
 /// The parameters of a thin principled sheet besides its base colour.
@@ -191,6 +191,30 @@ impl PrincipledThin {
         }
         let l = lambertian::sample(u);
         Some(if u_choice < p_reflect + p_transmit + p_diffuse { l } else { Vec3::new(l.x, l.y, -l.z) })
+    }
+}
+
+// `PrincipledThin::f` and the like name the inherent methods (which come before a trait's).
+impl Scatter for PrincipledThin {
+    const DELTA: bool = false;
+
+    fn bound(&self) -> Rgb {
+        Rgb::ONE
+    }
+
+    #[inline]
+    fn f(&self, wo: Vec3, wi: Vec3) -> Rgb {
+        PrincipledThin::f(self, wo, wi)
+    }
+
+    #[inline]
+    fn pdf(&self, wo: Vec3, wi: Vec3) -> f64 {
+        PrincipledThin::pdf(self, wo, wi)
+    }
+
+    #[inline]
+    fn sample(&self, wo: Vec3, u_choice: f64, u: (f64, f64)) -> Option<Sampled> {
+        PrincipledThin::sample(self, wo, u_choice, u).map(Sampled::Smooth)
     }
 }
 

@@ -6,8 +6,11 @@
 //! direction reflects more than it receives; the single-scattering loss grows with
 //! the roughness as for [`super::rough_dielectric`].
 
+use super::distribution::Distribution;
 use super::distribution::Microfacet;
 use super::fresnel::fresnel_conductor;
+use super::microfacet::Glossy;
+use super::{Lobe, Sampled, Scatter};
 use crate::math::{Rgb, Vec3};
 
 /// The BRDF value for `wo`, `wi` above the surface.
@@ -17,6 +20,52 @@ pub fn f(eta: Rgb, k: Rgb, m: Microfacet, wo: Vec3, wi: Vec3) -> Rgb {
     }
     let Some(h) = (wo + wi).try_normalize() else { return Rgb::ZERO };
     fresnel_conductor(wo.dot(h), eta, k) * m.f(Rgb::ONE, wo, wi)
+}
+
+/// Rough metal: microfacet reflection with conductor Fresnel.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RoughConductor {
+    /// Real part of the index, per channel.
+    pub eta: Rgb,
+    /// Extinction coefficient, per channel.
+    pub k: Rgb,
+    /// Roughness.
+    pub alpha: f64,
+    /// GGX or Beckmann.
+    pub distribution: Distribution,
+}
+
+impl Scatter for RoughConductor {
+    const DELTA: bool = false;
+
+    fn bound(&self) -> Rgb {
+        Rgb::ONE
+    }
+
+    /// Like the conductor mirror: physics when unscaled, else a
+    /// constant-reflectance GGX lobe.
+    fn scaled(self, s: Rgb) -> Lobe {
+        if s != Rgb::ONE {
+            Glossy { ks: s, alpha: self.alpha }.into()
+        } else {
+            self.into()
+        }
+    }
+
+    #[inline]
+    fn f(&self, wo: Vec3, wi: Vec3) -> Rgb {
+        f(self.eta, self.k, Microfacet::new(self.distribution, self.alpha), wo, wi)
+    }
+
+    #[inline]
+    fn pdf(&self, wo: Vec3, wi: Vec3) -> f64 {
+        Microfacet::new(self.distribution, self.alpha).pdf(wo, wi)
+    }
+
+    #[inline]
+    fn sample(&self, wo: Vec3, _u_choice: f64, u: (f64, f64)) -> Option<Sampled> {
+        Microfacet::new(self.distribution, self.alpha).sample(wo, u).map(Sampled::Smooth)
+    }
 }
 
 #[cfg(test)]

@@ -25,9 +25,10 @@
 //! single-scattering model leaves on the microsurface (`G2 < G1`) is lost: the
 //! lobe's albedo is below 1 and falls with the roughness.
 
-use super::distribution::Microfacet;
+use super::distribution::{Distribution, Microfacet};
 use super::fresnel::fresnel_dielectric;
-use crate::math::Vec3;
+use super::{Lobe, Sampled, Scatter};
+use crate::math::{Rgb, Vec3};
 
 /// The microfacet normal of the pair `(wo, wi)` (turned to `+z`) and whether it is a
 /// reflection; `None` for a degenerate or back-facing configuration.
@@ -115,6 +116,55 @@ pub fn sample(m: Microfacet, eta: f64, wo: Vec3, u_branch: f64, u: (f64, f64)) -
     }
     let wi = refract(wo, h, eta)?;
     (wi.z < 0.0).then_some(wi)
+}
+
+/// Rough glass: microfacet reflection and refraction of relative index `eta`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RoughGlass {
+    /// Relative index across the boundary.
+    pub eta: f64,
+    /// Roughness.
+    pub alpha: f64,
+    /// Colour filter of both branches (1 for clear glass).
+    pub tint: Rgb,
+    /// GGX or Beckmann.
+    pub distribution: Distribution,
+}
+
+impl Scatter for RoughGlass {
+    const DELTA: bool = false;
+
+    fn bound(&self) -> Rgb {
+        self.tint
+    }
+
+    fn scaled(self, s: Rgb) -> Lobe {
+        RoughGlass { tint: self.tint * s, ..self }.into()
+    }
+
+    #[inline]
+    fn f(&self, wo: Vec3, wi: Vec3) -> Rgb {
+        self.tint * f(Microfacet::new(self.distribution, self.alpha), self.eta, wo, wi)
+    }
+
+    #[inline]
+    fn pdf(&self, wo: Vec3, wi: Vec3) -> f64 {
+        pdf(Microfacet::new(self.distribution, self.alpha), self.eta, wo, wi)
+    }
+
+    #[inline]
+    fn sample(&self, wo: Vec3, u_choice: f64, u: (f64, f64)) -> Option<Sampled> {
+        sample(Microfacet::new(self.distribution, self.alpha), self.eta, wo, u_choice, u).map(Sampled::Smooth)
+    }
+
+    /// A transmitted direction (below the surface) crossed the boundary.
+    fn eta_towards(&self, wi: Vec3) -> f64 {
+        if wi.z < 0.0 {
+            self.eta
+        } else {
+            1.0
+        }
+    }
 }
 
 #[cfg(test)]

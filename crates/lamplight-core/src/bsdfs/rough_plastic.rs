@@ -31,6 +31,7 @@ use super::fresnel::fresnel_dielectric;
 use super::lambertian;
 use super::plastic::{internal_scattering, specular_probability, Coating};
 use super::rough_dielectric::refract;
+use super::{Sampled, Scatter};
 use crate::math::{Rgb, Vec3};
 
 /// Cosines at which the transmittance is tabulated (Mitsuba's `MI_ROUGH_TRANSMITTANCE_RES`).
@@ -176,6 +177,30 @@ impl RoughPlastic {
         } else {
             Some(lambertian::sample(u))
         }
+    }
+}
+
+// `RoughPlastic::f` and the like name the inherent methods (which come before a trait's).
+impl Scatter for RoughPlastic {
+    const DELTA: bool = false;
+
+    fn bound(&self) -> Rgb {
+        Rgb::ONE
+    }
+
+    #[inline]
+    fn f(&self, wo: Vec3, wi: Vec3) -> Rgb {
+        RoughPlastic::f(self, wo, wi)
+    }
+
+    #[inline]
+    fn pdf(&self, wo: Vec3, wi: Vec3) -> f64 {
+        RoughPlastic::pdf(self, wo, wi)
+    }
+
+    #[inline]
+    fn sample(&self, wo: Vec3, u_choice: f64, u: (f64, f64)) -> Option<Sampled> {
+        RoughPlastic::sample(self, wo, u_choice, u).map(Sampled::Smooth)
     }
 }
 

@@ -8,13 +8,13 @@ fn lossless_lobes_conserve_energy_exactly() {
     // A white Lambertian and clear glass entered from outside keep all energy
     // (glass gives 1/eta^2 on refraction, which the radiance compression explains;
     // its power, weight * eta^2, is 1).
-    let white = Bsdf::new(&[Lobe::Diffuse(Rgb::ONE)]);
+    let white = Bsdf::new(&[Lobe::Diffuse(Lambertian(Rgb::ONE))]);
     for k in 0..8 {
         let theta = (k as f64 * 11.0).to_radians();
         let wo = Vec3::new(theta.sin(), 0.0, theta.cos());
         assert!((albedo(&white, wo).x - 1.0).abs() < 1e-9);
     }
-    let glass = Bsdf::new(&[Lobe::Glass { eta: 1.0, tint: Rgb::ONE }]);
+    let glass = Bsdf::new(&[Lobe::Glass(Glass { eta: 1.0, tint: Rgb::ONE })]);
     assert!((albedo(&glass, Vec3::new(0.6, 0.0, 0.8)).x - 1.0).abs() < 1e-9);
 }
 
@@ -22,7 +22,7 @@ fn lossless_lobes_conserve_energy_exactly() {
 fn glossy_pdf_integrates_to_one_over_the_sphere() {
     // Quadrature of the mixture pdf over the hemisphere (the lobe cannot leave it):
     // the sampled density is a density (integral <= 1, equal for the diffuse part).
-    let bsdf = Bsdf::new(&[Lobe::Diffuse(Rgb::splat(0.5)), Lobe::Glossy { ks: Rgb::splat(0.5), alpha: 0.3 }]);
+    let bsdf = Bsdf::new(&[Lobe::Diffuse(Lambertian(Rgb::splat(0.5))), Lobe::Glossy(Glossy { ks: Rgb::splat(0.5), alpha: 0.3 })]);
     let wo = Vec3::new(0.5, 0.0, 0.75f64.sqrt());
     let (nt, np) = (400, 400);
     let mut integral = 0.0;

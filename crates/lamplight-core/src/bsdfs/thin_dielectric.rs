@@ -10,7 +10,8 @@
 
 use super::dielectric::reflect_local;
 use super::fresnel::fresnel_dielectric;
-use crate::math::Vec3;
+use super::{Lobe, Sampled, Scatter};
+use crate::math::{Rgb, Vec3};
 
 /// `R'`, the sheet's reflectance at `cos_o` (1 under total internal reflection).
 #[inline]
@@ -31,6 +32,33 @@ pub fn sample(wo: Vec3, eta: f64, u: f64) -> (Vec3, bool) {
         (reflect_local(wo), false)
     } else {
         (-wo, true)
+    }
+}
+
+/// A thin dielectric sheet (delta) of relative index `eta`: reflection `R'`
+/// and straight transmission `1 - R'`, both filtered by `tint`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ThinGlass {
+    /// Relative index of the sheet.
+    pub eta: f64,
+    /// Colour filter of both branches.
+    pub tint: Rgb,
+}
+
+impl Scatter for ThinGlass {
+    const DELTA: bool = true;
+
+    fn bound(&self) -> Rgb {
+        self.tint
+    }
+
+    fn scaled(self, s: Rgb) -> Lobe {
+        ThinGlass { eta: self.eta, tint: self.tint * s }.into()
+    }
+
+    #[inline]
+    fn sample(&self, wo: Vec3, u_choice: f64, _u: (f64, f64)) -> Option<Sampled> {
+        Some(Sampled::Delta { wi: sample(wo, self.eta, u_choice).0, weight: self.tint, eta: 1.0 })
     }
 }
 

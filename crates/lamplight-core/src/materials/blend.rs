@@ -112,7 +112,7 @@ pub fn picks_b(u: f64, w: f64) -> bool {
 
 /// A constant emission of `m`, `None` where a texture drives it.
 fn constant_emission(m: &Material) -> Option<Rgb> {
-    let textured = m.textures.as_ref().is_some_and(|t| t.iter().any(|(s, _)| *s == Slot::Emission));
+    let textured = m.textures.as_ref().is_some_and(|t| t.iter().any(|(s, _)| *s == Slot::EMISSION));
     (!textured).then_some(m.emission)
 }
 

@@ -377,7 +377,7 @@ impl Material {
 
     /// The texture of `emission`, where a texture drives it.
     pub fn emission_texture(&self) -> Option<&Texture> {
-        self.textures.as_deref()?.iter().find(|(s, _)| *s == Slot::Emission).map(|(_, t)| t)
+        self.textures.as_deref()?.iter().find(|(s, _)| *s == Slot::EMISSION).map(|(_, t)| t)
     }
 
     /// Whether the material emits anywhere: a non-zero `emission` or a texture for it.

@@ -111,6 +111,31 @@ pub fn derive_lecture_terms(m: &mut Material) {
         if through != Rgb::ZERO { (Refraction::Constant { ior: 1.0, weight: through }, through) } else { (Refraction::None, Rgb::ZERO) };
 }
 
+/// The texture slot of `metallic` (first channel, clamped to `[0, 1]`).
+pub const METALLIC: Slot = Slot::new("pbr.metallic", |m, v| {
+    if let Some(pbr) = &mut m.pbr {
+        pbr.metallic = v.x.clamp(0.0, 1.0);
+    }
+});
+/// The texture slot of `specular` (first channel, clamped to `[0, 1]`).
+pub const SPECULAR: Slot = Slot::new("pbr.specular", |m, v| {
+    if let Some(pbr) = &mut m.pbr {
+        pbr.specular = v.x.clamp(0.0, 1.0);
+    }
+});
+/// The texture slot of `specular_color` (clamped to `>= 0`).
+pub const SPECULAR_COLOR: Slot = Slot::new("pbr.specular_color", |m, v| {
+    if let Some(pbr) = &mut m.pbr {
+        pbr.specular_color = v.max(Rgb::ZERO);
+    }
+});
+/// The texture slot of `transmission` (first channel, clamped to `[0, 1]`).
+pub const TRANSMISSION: Slot = Slot::new("pbr.transmission", |m, v| {
+    if let Some(pbr) = &mut m.pbr {
+        pbr.transmission = v.x.clamp(0.0, 1.0);
+    }
+});
+
 /// A metallic-roughness material: base colour `base`, `metallic`, perceptual
 /// `roughness`, emission, and textures for any of them in `textures`.
 pub fn material(base: Texture, metallic: f64, roughness: f64, emission: Rgb, textures: Vec<(Slot, Texture)>) -> Material {
@@ -161,8 +186,8 @@ pub const KIND: MaterialKind = Kind {
 fn build(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Material> {
     let base = textures.read(p, "base_color")?.unwrap_or(Texture::Constant(Rgb::ONE));
     let mut maps = Vec::new();
-    let metallic = scalar_param(p, textures, "metallic", 0.0, Slot::Metallic, &mut maps)?;
-    let roughness = scalar_param(p, textures, "roughness", 0.5, Slot::Roughness, &mut maps)?;
+    let metallic = scalar_param(p, textures, "metallic", 0.0, METALLIC, &mut maps)?;
+    let roughness = scalar_param(p, textures, "roughness", 0.5, Slot::ROUGHNESS, &mut maps)?;
     for (key, x) in [("metallic", metallic), ("roughness", roughness)] {
         if !(0.0..=1.0).contains(&x) {
             return Err(p.key_error(key, format!("must be between 0 and 1, got {x}")));
@@ -172,12 +197,12 @@ fn build(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Material> {
     if !(ior.is_finite() && ior > 0.0) {
         return Err(p.key_error("ior", format!("must be a positive number, got {ior}")));
     }
-    let specular = scalar_param(p, textures, "specular", 1.0, Slot::Specular, &mut maps)?;
+    let specular = scalar_param(p, textures, "specular", 1.0, SPECULAR, &mut maps)?;
     if !(0.0..=1.0).contains(&specular) {
         return Err(p.key_error("specular", format!("must be between 0 and 1, got {specular}")));
     }
-    let specular_color = super::textured::color_param(p, textures, "specular_color", Rgb::ONE, Slot::SpecularColor, &mut maps)?;
-    let transmission = scalar_param(p, textures, "transmission", 0.0, Slot::Transmission, &mut maps)?;
+    let specular_color = super::textured::color_param(p, textures, "specular_color", Rgb::ONE, SPECULAR_COLOR, &mut maps)?;
+    let transmission = scalar_param(p, textures, "transmission", 0.0, TRANSMISSION, &mut maps)?;
     if !(0.0..=1.0).contains(&transmission) {
         return Err(p.key_error("transmission", format!("must be between 0 and 1, got {transmission}")));
     }
@@ -190,7 +215,7 @@ fn build(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Material> {
         Some(Texture::Constant(c)) => c * strength,
         Some(t) => {
             let scaled = if strength == 1.0 { t } else { Texture::Scale(Arc::new([t, Texture::Constant(Rgb::splat(strength))])) };
-            maps.push((Slot::Emission, scaled));
+            maps.push((Slot::EMISSION, scaled));
             Rgb::ZERO
         }
     };

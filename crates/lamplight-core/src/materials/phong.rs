@@ -19,7 +19,7 @@
 use super::normal_map;
 use super::textured::{color_param, scalar_param, Slot};
 use super::{Material, MaterialKind, Metal, Reflection, Refraction};
-use crate::bsdfs::{microfacet, Bsdf, Lobe, MirrorFresnel};
+use crate::bsdfs::{microfacet, Bsdf, Glass, Glossy, Lambertian, Lobe, MirrorFresnel, Refract, RoughConductor, RoughGlass};
 use crate::math::Rgb;
 use crate::params::{Kind, Param, ParamResult, ParamType as T, Params};
 
@@ -84,11 +84,11 @@ fn build(p: &mut Params<'_>, textures: &super::Textures<'_>) -> ParamResult<Mate
     let mut maps = Vec::new();
     let material = Material {
         color,
-        ka: color_param(p, textures, "ka", d.ka, Slot::Ka, &mut maps)?,
-        kd: color_param(p, textures, "kd", d.kd, Slot::Kd, &mut maps)?,
-        ks: color_param(p, textures, "ks", d.ks, Slot::Ks, &mut maps)?,
-        shininess: scalar_param(p, textures, "shininess", d.shininess, Slot::Shininess, &mut maps)?,
-        emission: color_param(p, textures, "emission", d.emission, Slot::Emission, &mut maps)?,
+        ka: color_param(p, textures, "ka", d.ka, Slot::KA, &mut maps)?,
+        kd: color_param(p, textures, "kd", d.kd, Slot::KD, &mut maps)?,
+        ks: color_param(p, textures, "ks", d.ks, Slot::KS, &mut maps)?,
+        shininess: scalar_param(p, textures, "shininess", d.shininess, Slot::SHININESS, &mut maps)?,
+        emission: color_param(p, textures, "emission", d.emission, Slot::EMISSION, &mut maps)?,
         two_sided: p.boolean("two_sided")?.unwrap_or(d.two_sided),
         one_sided: super::sided::read(p)?,
         reflection: reflection(p)?,
@@ -98,10 +98,10 @@ fn build(p: &mut Params<'_>, textures: &super::Textures<'_>) -> ParamResult<Mate
             textures,
             "shadow_transmittance",
             d.shadow_transmittance,
-            Slot::ShadowTransmittance,
+            Slot::SHADOW_TRANSMITTANCE,
             &mut maps,
         )?,
-        roughness: scalar_param(p, textures, "roughness", d.roughness, Slot::Roughness, &mut maps)?,
+        roughness: scalar_param(p, textures, "roughness", d.roughness, Slot::ROUGHNESS, &mut maps)?,
         distribution: match p.choice("distribution", &["ggx", "beckmann"])? {
             "beckmann" => crate::bsdfs::Distribution::Beckmann,
             _ => crate::bsdfs::Distribution::Ggx,
@@ -138,9 +138,8 @@ fn reflection(p: &mut Params<'_>) -> ParamResult<Reflection> {
         }
         _ => match (r.string("metal")?, r.color("eta")?, r.color("k")?) {
             (Some(name), None, None) => {
-                let metal = Metal::from_name(name).ok_or_else(|| {
-                    r.key_error("metal", format!("unknown metal \"{name}\", expected \"gold\", \"silver\", \"copper\" or \"aluminium\""))
-                })?;
+                let metal =
+                    Metal::from_name(name).ok_or_else(|| r.key_error("metal", crate::params::unknown("metal", name, &Metal::NAMES)))?;
                 let (eta, k) = metal.eta_k();
                 Reflection::Conductor { eta, k }
             }
@@ -193,14 +192,14 @@ fn refraction(p: &mut Params<'_>) -> ParamResult<Refraction> {
 #[inline]
 pub fn lecture_bsdf(material: &Material, color: Rgb, front_face: bool) -> Bsdf {
     let relative = |ior: f64| if front_face { ior } else { 1.0 / ior };
-    let mut lobes: [Lobe; 4] = [Lobe::Diffuse(Rgb::ZERO); 4];
+    let mut lobes: [Lobe; 4] = [Lobe::Diffuse(Lambertian(Rgb::ZERO)); 4];
     let mut n = 0;
     let mut push = |lobe: Lobe| {
         lobes[n] = lobe;
         n += 1;
     };
     if material.kd != Rgb::ZERO {
-        push(Lobe::Diffuse(material.kd * color));
+        push(Lobe::Diffuse(Lambertian(material.kd * color)));
     }
     let glass = match (&material.reflection, &material.refraction) {
         (Reflection::Dielectric { ior, min, max }, Refraction::Fresnel { ior: t }) => *ior == *t && *min == 0.0 && *max == 1.0,
@@ -208,20 +207,20 @@ pub fn lecture_bsdf(material: &Material, color: Rgb, front_face: bool) -> Bsdf {
     };
     let conductor = matches!(material.reflection, Reflection::Conductor { .. });
     if material.ks != Rgb::ZERO && !glass && !conductor {
-        push(Lobe::Glossy { ks: material.ks, alpha: microfacet::alpha_from_shininess(material.shininess) });
+        push(Lobe::Glossy(Glossy { ks: material.ks, alpha: microfacet::alpha_from_shininess(material.shininess) }));
     }
     if glass {
         if let Refraction::Fresnel { ior } = material.refraction {
             // Below the smallest GGX roughness the lobe is a mirror that f64 cannot sample.
             if material.roughness >= microfacet::MIN_ALPHA {
-                push(Lobe::RoughGlass {
+                push(Lobe::RoughGlass(RoughGlass {
                     eta: relative(ior),
                     alpha: material.roughness,
                     tint: Rgb::ONE,
                     distribution: material.distribution,
-                });
+                }));
             } else {
-                push(Lobe::Glass { eta: relative(ior), tint: Rgb::ONE });
+                push(Lobe::Glass(Glass { eta: relative(ior), tint: Rgb::ONE }));
             }
         }
     } else {
@@ -230,14 +229,14 @@ pub fn lecture_bsdf(material: &Material, color: Rgb, front_face: bool) -> Bsdf {
             Reflection::Constant(w) => push(Lobe::Mirror(MirrorFresnel::Constant(w))),
             Reflection::Dielectric { ior, min, max } => push(Lobe::Mirror(MirrorFresnel::Dielectric { eta: relative(ior), min, max })),
             Reflection::Conductor { eta, k } if material.roughness >= microfacet::MIN_ALPHA => {
-                push(Lobe::RoughConductor { eta, k, alpha: material.roughness, distribution: material.distribution })
+                push(Lobe::RoughConductor(RoughConductor { eta, k, alpha: material.roughness, distribution: material.distribution }))
             }
             Reflection::Conductor { eta, k } => push(Lobe::Mirror(MirrorFresnel::Conductor { eta, k })),
         }
         match material.refraction {
             Refraction::None => {}
-            Refraction::Fresnel { ior } => push(Lobe::Refract { eta: relative(ior), weight: None }),
-            Refraction::Constant { ior, weight } => push(Lobe::Refract { eta: relative(ior), weight: Some(weight) }),
+            Refraction::Fresnel { ior } => push(Lobe::Refract(Refract { eta: relative(ior), weight: None })),
+            Refraction::Constant { ior, weight } => push(Lobe::Refract(Refract { eta: relative(ior), weight: Some(weight) })),
         }
     }
     Bsdf::new(&lobes[..n])

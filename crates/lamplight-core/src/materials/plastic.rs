@@ -60,7 +60,7 @@ pub fn emission(p: &mut Params<'_>, textures: &Textures<'_>, maps: &mut Vec<(Slo
         None => Rgb::ZERO,
         Some(Texture::Constant(c)) => c,
         Some(t) => {
-            maps.push((Slot::Emission, t));
+            maps.push((Slot::EMISSION, t));
             Rgb::ZERO
         }
     })

@@ -122,6 +122,57 @@ impl Scalar {
     }
 }
 
+impl Scalar {
+    /// Every scalar, in declaration order.
+    pub const ALL: [Scalar; 10] = [
+        Scalar::Roughness,
+        Scalar::Metallic,
+        Scalar::SpecTrans,
+        Scalar::SpecTint,
+        Scalar::Sheen,
+        Scalar::SheenTint,
+        Scalar::Clearcoat,
+        Scalar::ClearcoatGloss,
+        Scalar::Flatness,
+        Scalar::DiffTrans,
+    ];
+}
+
+/// Writes a texture's value into `scalar`'s field of a principled or thin
+/// principled material, clamped to the field's range (`diff_trans` 0 to 2, the
+/// others 0 to 1).
+fn set_scalar(m: &mut Material, scalar: Scalar, value: Rgb) {
+    match &mut m.model {
+        Some(Model::Principled(p)) => scalar.set(p, value.x.clamp(0.0, 1.0)),
+        Some(Model::PrincipledThin(p)) => {
+            let max = if scalar == Scalar::DiffTrans { 2.0 } else { 1.0 };
+            scalar.set_thin(p, value.x.clamp(0.0, max))
+        }
+        _ => {}
+    }
+}
+
+/// The texture slot of `scalar`, for both principled kinds.
+pub fn slot(scalar: Scalar) -> Slot {
+    macro_rules! slot {
+        ($name:literal, $scalar:ident) => {
+            Slot::new($name, |m, v| set_scalar(m, Scalar::$scalar, v))
+        };
+    }
+    match scalar {
+        Scalar::Roughness => slot!("principled.roughness", Roughness),
+        Scalar::Metallic => slot!("principled.metallic", Metallic),
+        Scalar::SpecTrans => slot!("principled.spec_trans", SpecTrans),
+        Scalar::SpecTint => slot!("principled.spec_tint", SpecTint),
+        Scalar::Sheen => slot!("principled.sheen", Sheen),
+        Scalar::SheenTint => slot!("principled.sheen_tint", SheenTint),
+        Scalar::Clearcoat => slot!("principled.clearcoat", Clearcoat),
+        Scalar::ClearcoatGloss => slot!("principled.clearcoat_gloss", ClearcoatGloss),
+        Scalar::Flatness => slot!("principled.flatness", Flatness),
+        Scalar::DiffTrans => slot!("principled.diff_trans", DiffTrans),
+    }
+}
+
 const SCALARS: [(&str, Scalar, f64); 9] = [
     ("roughness", Scalar::Roughness, 0.5),
     ("metallic", Scalar::Metallic, 0.0),
@@ -150,7 +201,7 @@ fn build(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Material> {
     let transmits =
         p.item("spec_trans").is_some_and(|i| !matches!(i.value, Value::Number(x) if x == 0.0) && !matches!(i.value, Value::Integer(0)));
     for (key, scalar, default) in SCALARS {
-        let v = scalar_param(p, textures, key, default, Slot::Principled(scalar), &mut maps)?;
+        let v = scalar_param(p, textures, key, default, slot(scalar), &mut maps)?;
         if !(0.0..=1.0).contains(&v) {
             return Err(p.key_error(key, format!("must be between 0 and 1, got {v}")));
         }

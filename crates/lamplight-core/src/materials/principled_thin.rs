@@ -23,7 +23,7 @@
 use std::sync::Arc;
 
 use super::principled::Scalar;
-use super::textured::{scalar_param, Slot};
+use super::textured::scalar_param;
 use super::{Material, MaterialKind, Model, Texture, Textures, ToBsdf};
 use crate::bsdfs::principled_thin::{PrincipledThin, ThinParams};
 use crate::bsdfs::{Bsdf, Lobe};
@@ -77,7 +77,7 @@ fn build(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Material> {
     let mut maps = Vec::new();
     let mut params = ThinParams::default();
     for (key, scalar, default, max) in SCALARS {
-        let v = scalar_param(p, textures, key, default, Slot::Principled(scalar), &mut maps)?;
+        let v = scalar_param(p, textures, key, default, super::principled::slot(scalar), &mut maps)?;
         if !(0.0..=max).contains(&v) {
             return Err(p.key_error(key, format!("must be between 0 and {max}, got {v}")));
         }

@@ -15,81 +15,66 @@ use super::{Material, Texture, Textures};
 use crate::math::Rgb;
 use crate::params::{ParamResult, Params};
 
-/// A material field a texture can drive.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Slot {
-    /// `ka`.
-    Ka,
-    /// `kd`.
-    Kd,
-    /// `ks`.
-    Ks,
-    /// `shininess`.
-    Shininess,
-    /// `emission`.
-    Emission,
-    /// `shadow_transmittance`.
-    ShadowTransmittance,
-    /// `roughness`.
-    Roughness,
-    /// The metallic-roughness model's `metallic` ([`super::pbr`]).
-    Metallic,
-    /// Its `specular` strength (`KHR_materials_specular`).
-    Specular,
-    /// Its `specular_color`.
-    SpecularColor,
-    /// A scalar of the principled model ([`super::principled`]).
-    Principled(super::principled::Scalar),
-    /// Its `transmission` (`KHR_materials_transmission`).
-    Transmission,
+/// A material field a texture can drive: a name (for comparisons and debug
+/// output) and the function that writes a texture's value into the field.
+///
+/// The lecture's fields, which every material has, have their slots here
+/// ([`Slot::KA`] ... [`Slot::ROUGHNESS`]); a kind with fields of its own states
+/// their slots in its own file ([`super::pbr::METALLIC`],
+/// [`super::principled::slot`]), so that a new texturable parameter touches
+/// only its kind's file. Two slots are equal when their names are: each name is
+/// given once (a test lists them all).
+#[derive(Clone, Copy)]
+pub struct Slot {
+    name: &'static str,
+    set: fn(&mut Material, Rgb),
+}
+
+impl PartialEq for Slot {
+    fn eq(&self, other: &Slot) -> bool {
+        self.name == other.name
+    }
+}
+
+impl Eq for Slot {}
+
+impl std::fmt::Debug for Slot {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "Slot({})", self.name)
+    }
 }
 
 impl Slot {
+    /// The slot `name` whose texture values `set` writes into a material.
+    pub const fn new(name: &'static str, set: fn(&mut Material, Rgb)) -> Slot {
+        Slot { name, set }
+    }
+
+    /// Its name (`"kd"`, `"pbr.metallic"`).
+    pub fn name(self) -> &'static str {
+        self.name
+    }
+
     /// Writes `value` into the slot's field of `m`.
     #[inline]
     pub fn apply(self, m: &mut Material, value: Rgb) {
-        let colour = value.max(Rgb::ZERO);
-        match self {
-            Slot::Ka => m.ka = colour,
-            Slot::Kd => m.kd = colour,
-            Slot::Ks => m.ks = colour,
-            Slot::Emission => m.emission = colour,
-            Slot::ShadowTransmittance => m.shadow_transmittance = colour,
-            Slot::Shininess => m.shininess = value.x.max(0.0),
-            Slot::Roughness => m.roughness = value.x.clamp(0.0, 1.0),
-            Slot::Metallic => {
-                if let Some(pbr) = &mut m.pbr {
-                    pbr.metallic = value.x.clamp(0.0, 1.0);
-                }
-            }
-            Slot::Specular => {
-                if let Some(pbr) = &mut m.pbr {
-                    pbr.specular = value.x.clamp(0.0, 1.0);
-                }
-            }
-            Slot::SpecularColor => {
-                if let Some(pbr) = &mut m.pbr {
-                    pbr.specular_color = colour;
-                }
-            }
-            Slot::Principled(scalar) => {
-                match &mut m.model {
-                    Some(super::Model::Principled(p)) => scalar.set(p, value.x.clamp(0.0, 1.0)),
-                    // `diff_trans` runs from 0 to 2.
-                    Some(super::Model::PrincipledThin(p)) => {
-                        let max = if scalar == super::principled::Scalar::DiffTrans { 2.0 } else { 1.0 };
-                        scalar.set_thin(p, value.x.clamp(0.0, max))
-                    }
-                    _ => {}
-                }
-            }
-            Slot::Transmission => {
-                if let Some(pbr) = &mut m.pbr {
-                    pbr.transmission = value.x.clamp(0.0, 1.0);
-                }
-            }
-        }
+        (self.set)(m, value)
     }
+
+    /// `ka`.
+    pub const KA: Slot = Slot::new("ka", |m, v| m.ka = v.max(Rgb::ZERO));
+    /// `kd`.
+    pub const KD: Slot = Slot::new("kd", |m, v| m.kd = v.max(Rgb::ZERO));
+    /// `ks`.
+    pub const KS: Slot = Slot::new("ks", |m, v| m.ks = v.max(Rgb::ZERO));
+    /// `shininess`.
+    pub const SHININESS: Slot = Slot::new("shininess", |m, v| m.shininess = v.x.max(0.0));
+    /// `emission`.
+    pub const EMISSION: Slot = Slot::new("emission", |m, v| m.emission = v.max(Rgb::ZERO));
+    /// `shadow_transmittance`.
+    pub const SHADOW_TRANSMITTANCE: Slot = Slot::new("shadow_transmittance", |m, v| m.shadow_transmittance = v.max(Rgb::ZERO));
+    /// `roughness` (the lecture's, which the metallic-roughness model reads too).
+    pub const ROUGHNESS: Slot = Slot::new("roughness", |m, v| m.roughness = v.x.clamp(0.0, 1.0));
 }
 
 /// A colour parameter that may be a texture: the constant (or `default`), with
@@ -137,7 +122,7 @@ mod tests {
     #[test]
     fn every_slot_takes_its_textures_value_at_the_point() {
         let checker = Texture::Checker { size: 1.0, even: Rgb::splat(0.25), odd: Rgb::splat(0.75), offset: Vec3::ZERO };
-        let maps = [Slot::Ka, Slot::Kd, Slot::Ks, Slot::Shininess, Slot::Emission, Slot::ShadowTransmittance, Slot::Roughness];
+        let maps = [Slot::KA, Slot::KD, Slot::KS, Slot::SHININESS, Slot::EMISSION, Slot::SHADOW_TRANSMITTANCE, Slot::ROUGHNESS];
         let m = Material { textures: Some(maps.iter().map(|&s| (s, checker.clone())).collect()), ..Material::default() };
         let even = m.at(&ShadingPoint::at(Vec3::new(0.5, 0.5, 0.5)));
         assert_eq!((even.ka, even.kd, even.ks, even.emission), (Rgb::splat(0.25), Rgb::splat(0.25), Rgb::splat(0.25), Rgb::splat(0.25)));
@@ -147,5 +132,19 @@ mod tests {
         assert_eq!(odd.kd, Rgb::splat(0.75));
         let plain = Material::default();
         assert!(matches!(plain.at(&ShadingPoint::at(Vec3::ZERO)), std::borrow::Cow::Borrowed(_)));
+    }
+
+    /// Slots compare by name, so no two may share one: every slot of every kind.
+    #[test]
+    fn every_slot_has_its_own_name() {
+        use super::super::{pbr, principled};
+        let mut all = vec![Slot::KA, Slot::KD, Slot::KS, Slot::SHININESS, Slot::EMISSION, Slot::SHADOW_TRANSMITTANCE, Slot::ROUGHNESS];
+        all.extend([pbr::METALLIC, pbr::SPECULAR, pbr::SPECULAR_COLOR, pbr::TRANSMISSION]);
+        all.extend(principled::Scalar::ALL.map(principled::slot));
+        let mut names: Vec<&str> = all.iter().map(|s| s.name()).collect();
+        names.sort_unstable();
+        let count = names.len();
+        names.dedup();
+        assert_eq!(names.len(), count, "{names:?}");
     }
 }

@@ -15,7 +15,7 @@ use std::sync::Arc;
 
 use super::plastic::{emission, ior};
 use super::{Material, MaterialKind, Model, Reflection, Refraction, Texture, Textures, ToBsdf};
-use crate::bsdfs::{Bsdf, Lobe};
+use crate::bsdfs::{Bsdf, Lobe, ThinGlass};
 use crate::math::Rgb;
 use crate::params::{Kind, Param, ParamResult, ParamType as T, Params};
 
@@ -64,6 +64,6 @@ impl ToBsdf for ThinSheet {
     // The sheet has the same medium on both sides: the face does not matter.
     #[inline]
     fn bsdf(&self, _: &Material, _: Rgb, _: bool) -> Bsdf {
-        Bsdf::new(&[Lobe::ThinGlass { eta: self.eta, tint: Rgb::ONE }])
+        Bsdf::new(&[Lobe::ThinGlass(ThinGlass { eta: self.eta, tint: Rgb::ONE })])
     }
 }

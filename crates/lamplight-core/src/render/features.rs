@@ -165,7 +165,7 @@ pub fn sample_features(scene: &Scene, camera: &CameraSample, max_depth: u32, rng
 /// [`REFLECTANCE_SAMPLES`] stratified samples (exactly the colour for one
 /// Lambertian lobe, whose every sample weight is its colour).
 fn reflectance(bsdf: &Bsdf, wo: Vec3, rng: &mut Rng) -> Rgb {
-    if let [crate::bsdfs::Lobe::Diffuse(albedo)] = bsdf.lobes() {
+    if let [crate::bsdfs::Lobe::Diffuse(crate::bsdfs::Lambertian(albedo))] = bsdf.lobes() {
         return *albedo;
     }
     let mut sum = Rgb::ZERO;

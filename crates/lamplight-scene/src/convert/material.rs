@@ -14,7 +14,7 @@
 use std::sync::Arc;
 
 use lamplight_core::materials::image::{Channel, Filter, Wrap};
-use lamplight_core::materials::{Material, Reflection, Refraction, Slot, Texture, Textures, UvTransform};
+use lamplight_core::materials::{self, Material, Reflection, Refraction, Slot, Texture, Textures, UvTransform};
 use lamplight_core::math::{Rgb, Vec3};
 use lamplight_core::params::{Entry, Item, Kind, Loc, Params, Table, Value};
 
@@ -70,30 +70,30 @@ pub(super) fn material_table(m: &Material, images: &mut Images) -> Result<Table,
         Some(pbr) => {
             out.push(("type", string("pbr")));
             out.push(("base_color", texture(&m.color, images)?));
-            out.push(("metallic", slot_or(Slot::Metallic, num(pbr.metallic), images)?));
-            out.push(("roughness", slot_or(Slot::Roughness, num(m.roughness), images)?));
+            out.push(("metallic", slot_or(materials::pbr::METALLIC, num(pbr.metallic), images)?));
+            out.push(("roughness", slot_or(Slot::ROUGHNESS, num(m.roughness), images)?));
             out.push(("ior", num(pbr.ior)));
-            out.push(("specular", slot_or(Slot::Specular, num(pbr.specular), images)?));
-            out.push(("specular_color", slot_or(Slot::SpecularColor, rgb(pbr.specular_color), images)?));
-            out.push(("transmission", slot_or(Slot::Transmission, num(pbr.transmission), images)?));
-            out.push(("emission", slot_or(Slot::Emission, rgb(m.emission), images)?));
+            out.push(("specular", slot_or(materials::pbr::SPECULAR, num(pbr.specular), images)?));
+            out.push(("specular_color", slot_or(materials::pbr::SPECULAR_COLOR, rgb(pbr.specular_color), images)?));
+            out.push(("transmission", slot_or(materials::pbr::TRANSMISSION, num(pbr.transmission), images)?));
+            out.push(("emission", slot_or(Slot::EMISSION, rgb(m.emission), images)?));
         }
         None => {
             out.push(("type", string("phong")));
             out.push(("color", texture(&m.color, images)?));
-            out.push(("ka", slot_or(Slot::Ka, rgb(m.ka), images)?));
-            out.push(("kd", slot_or(Slot::Kd, rgb(m.kd), images)?));
-            out.push(("ks", slot_or(Slot::Ks, rgb(m.ks), images)?));
-            out.push(("shininess", slot_or(Slot::Shininess, num(m.shininess), images)?));
-            out.push(("emission", slot_or(Slot::Emission, rgb(m.emission), images)?));
+            out.push(("ka", slot_or(Slot::KA, rgb(m.ka), images)?));
+            out.push(("kd", slot_or(Slot::KD, rgb(m.kd), images)?));
+            out.push(("ks", slot_or(Slot::KS, rgb(m.ks), images)?));
+            out.push(("shininess", slot_or(Slot::SHININESS, num(m.shininess), images)?));
+            out.push(("emission", slot_or(Slot::EMISSION, rgb(m.emission), images)?));
             if let Some(r) = reflection(&m.reflection) {
                 out.push(("reflection", r));
             }
             if let Some(r) = refraction(&m.refraction) {
                 out.push(("refraction", r));
             }
-            out.push(("shadow_transmittance", slot_or(Slot::ShadowTransmittance, rgb(m.shadow_transmittance), images)?));
-            out.push(("roughness", slot_or(Slot::Roughness, num(m.roughness), images)?));
+            out.push(("shadow_transmittance", slot_or(Slot::SHADOW_TRANSMITTANCE, rgb(m.shadow_transmittance), images)?));
+            out.push(("roughness", slot_or(Slot::ROUGHNESS, num(m.roughness), images)?));
         }
     }
     out.push(("two_sided", Value::Bool(m.two_sided)));

@@ -152,12 +152,12 @@ pub(super) fn map(
     if mr.is_some() {
         let metallic = texture(mr.clone(), false, Channel::One(2))?;
         let roughness = texture(mr, false, Channel::One(1))?;
-        maps.push((Slot::Metallic, scaled(metallic, Rgb::splat(metal))));
-        maps.push((Slot::Roughness, scaled(roughness, Rgb::splat(rough))));
+        maps.push((pbr::METALLIC, scaled(metallic, Rgb::splat(metal))));
+        maps.push((Slot::ROUGHNESS, scaled(roughness, Rgb::splat(rough))));
     }
     let emission = match texture(m.emissive_texture(), true, Channel::Rgb)? {
         Some(t) if emissive != Rgb::ZERO => {
-            maps.push((Slot::Emission, scaled(Some(t), emissive)));
+            maps.push((Slot::EMISSION, scaled(Some(t), emissive)));
             Rgb::ZERO
         }
         _ => emissive,
@@ -180,14 +180,14 @@ pub(super) fn map(
         specular = clean(spec.specular_factor()).min(1.0);
         specular_color = rgb(spec.specular_color_factor());
         if let Some(t) = texture(spec.specular_texture(), false, Channel::One(3))? {
-            maps.push((Slot::Specular, scaled(Some(t), Rgb::splat(specular))));
+            maps.push((pbr::SPECULAR, scaled(Some(t), Rgb::splat(specular))));
         }
         if let Some(t) = texture(spec.specular_color_texture(), true, Channel::Rgb)? {
-            maps.push((Slot::SpecularColor, scaled(Some(t), specular_color)));
+            maps.push((pbr::SPECULAR_COLOR, scaled(Some(t), specular_color)));
         }
     }
     if let Some(t) = texture(m.transmission().and_then(|t| t.transmission_texture()), false, Channel::One(0))? {
-        maps.push((Slot::Transmission, scaled(Some(t), Rgb::splat(transmission))));
+        maps.push((pbr::TRANSMISSION, scaled(Some(t), Rgb::splat(transmission))));
     }
     let mut material = pbr::material(base, metal, rough, emission, maps);
     if let Some(p) = &mut material.pbr {

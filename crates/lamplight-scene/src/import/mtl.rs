@@ -302,7 +302,7 @@ fn to_pbr(v: &MtlValues) -> Option<Material> {
     };
     let (metallic, roughness) = (v.pm.unwrap_or(0.0), v.pr.unwrap_or(0.5));
     let mut maps = Vec::new();
-    for (slot, map, factor) in [(Slot::Metallic, &v.map_pm, metallic), (Slot::Roughness, &v.map_pr, roughness)] {
+    for (slot, map, factor) in [(lamplight_core::materials::pbr::METALLIC, &v.map_pm, metallic), (Slot::ROUGHNESS, &v.map_pr, roughness)] {
         if let Some(t) = map {
             maps.push((slot, Texture::Scale(Arc::new([t.clone(), Texture::Constant(Rgb::splat(factor))]))));
         }
@@ -353,13 +353,13 @@ fn to_material(v: &MtlValues, path: &Path, warnings: &mut Warnings) -> Material 
     // map_Ka x Ka, and the dissolve's factor on ka, which the map replaces.
     if let Some(t) = &v.map_ka {
         let d = v.dissolve.filter(|&d| d < 1.0 && !matches!(illum, 4 | 6 | 7 | 9)).unwrap_or(1.0);
-        maps.push((Slot::Ka, scaled(t, m.ka * d)));
+        maps.push((Slot::KA, scaled(t, m.ka * d)));
     }
     if let (Some(t), true) = (&v.map_ks, illum > 1) {
-        maps.push((Slot::Ks, scaled(t, ks)));
+        maps.push((Slot::KS, scaled(t, ks)));
     }
     if let Some(t) = &v.map_ns {
-        maps.push((Slot::Shininess, scaled(t, Rgb::splat(ns))));
+        maps.push((Slot::SHININESS, scaled(t, Rgb::splat(ns))));
     }
     if !maps.is_empty() {
         m.textures = Some(maps.into());
@@ -444,7 +444,7 @@ mod tests {
         );
         // map_Ka drives ka (times Ka, default 0.1 once the decal takes Kd into the colour); the decal blends Kd and map_Kd.
         let slots: Vec<_> = m.textures.as_ref().unwrap().iter().map(|(s, _)| *s).collect();
-        assert_eq!(slots, [Slot::Ka]);
+        assert_eq!(slots, [Slot::KA]);
         assert_eq!((m.kd, m.ka), (Rgb::ONE, Rgb::splat(0.1)));
         let red_at = |m: &Material| m.at(&lamplight_core::materials::ShadingPoint::at(lamplight_core::math::Vec3::ZERO)).into_owned();
         // The 1x1 red decal is 1 in its first channel: the colour is map_Kd's red, ka 0.1 x red.

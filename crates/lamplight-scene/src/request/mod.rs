@@ -24,10 +24,12 @@ mod defaults;
 mod layer;
 mod output;
 mod sampling;
+mod scene_arg;
 pub use defaults::{program_defaults, Defaults};
 pub use layer::Layer;
 pub use output::{write, DisplayTransform, Rendered};
 pub use sampling::{AntialiasRequest, NOISE_DEFAULT_SPP, NOISE_DEFAULT_THRESHOLD};
+pub use scene_arg::{file_kind, names_builtin, FileKind};
 
 pub mod limits;
 
@@ -106,28 +108,20 @@ impl SceneRequest {
     /// [`SceneRequest::resolve`] with `-D name=value` definitions for formats that
     /// take parameters (Mitsuba XML's `$name`).
     pub fn resolve_with(arg: &str, defines: &[(String, String)]) -> Result<SceneRequest, RequestError> {
-        let path = Path::new(arg);
-        let has_separator = arg.contains('/') || arg.contains(std::path::MAIN_SEPARATOR);
-        let extension = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
-        if !has_separator && extension.is_none() {
+        if names_builtin(arg) {
             let b = builtin::find(arg).ok_or_else(|| bad(builtin::unknown(arg)))?;
             return Ok(SceneRequest::builtin(b));
         }
+        let path = Path::new(arg);
         let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "scene".into());
-        match extension.as_deref() {
-            Some(ext) if crate::formats::find(ext).is_some() => {
-                let format = crate::formats::find(ext).expect("checked");
+        match file_kind(path)? {
+            FileKind::Scene(format) => {
                 let file = SceneFile::read_format(path, format, defines).map_err(|e| bad(e.to_string()))?;
                 SceneRequest::file(file, stem)
             }
-            Some(ext) if import::EXTENSIONS.contains(&ext) => {
+            FileKind::Mesh => {
                 Ok(SceneRequest { spec: SceneSpec::Mesh(path.to_path_buf()), name: stem, defaults: program_defaults(), smooth: false })
             }
-            _ => Err(bad(format!(
-                "{arg}: unknown scene file type, expected {} or a mesh file ({})",
-                crate::formats::FORMATS.iter().map(|f| format!(".{}", f.extension)).collect::<Vec<_>>().join(", "),
-                import::EXTENSIONS.iter().map(|e| format!(".{e}")).collect::<Vec<_>>().join(", ")
-            ))),
         }
     }
 

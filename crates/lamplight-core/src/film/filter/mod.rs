@@ -354,7 +354,10 @@ impl std::str::FromStr for Filter {
                 return Err(if allowed.is_empty() {
                     format!("filter {s:?}: \"{name}\" takes no parameters")
                 } else {
-                    format!("filter {s:?}: unknown parameter \"{k}\" (\"{name}\" takes {})", allowed.join(", "))
+                    let hint = crate::params::suggestion(k, allowed.iter().copied())
+                        .map(|near| format!("did you mean '{near}'? "))
+                        .unwrap_or_default();
+                    format!("filter {s:?}: unknown parameter \"{k}\" ({hint}\"{name}\" takes {})", allowed.join(", "))
                 });
             }
         }

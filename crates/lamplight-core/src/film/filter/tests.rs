@@ -277,4 +277,9 @@ fn names_parse() {
         "lanczos(taps=2)".parse::<Filter>(),
         Err("filter \"lanczos(taps=2)\": unknown parameter \"taps\" (\"lanczos\" takes lobes)".into())
     );
+    // A near miss gets the same "did you mean" as every other unknown name.
+    assert_eq!(
+        "lanczos(lobe=2)".parse::<Filter>(),
+        Err("filter \"lanczos(lobe=2)\": unknown parameter \"lobe\" (did you mean 'lobes'? \"lanczos\" takes lobes)".into())
+    );
 }
