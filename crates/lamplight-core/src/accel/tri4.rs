@@ -70,7 +70,7 @@ impl ShearRay {
 
 /// Edge function `a b - c d` of one lane, recomputed in `f64` (products exact).
 #[cold]
-fn edge_exact(a: f32, b: f32, c: f32, d: f32) -> f32 {
+pub(super) fn edge_exact(a: f32, b: f32, c: f32, d: f32) -> f32 {
     (f64::from(a) * f64::from(b) - f64::from(c) * f64::from(d)) as f32
 }
 
@@ -112,7 +112,7 @@ pub fn intersect_one(ray: &ShearRay, tri: [[f32; 3]; 3], t_max: f32) -> Option<f
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(16))]
 pub struct Tri4 {
-    v: [[f32; 4]; 9],
+    pub(super) v: [[f32; 4]; 9],
     /// Triangle index of each lane (`u32::MAX` for an unused lane).
     pub prim: [u32; 4],
 }

@@ -65,8 +65,6 @@ pub struct BatchRay<T> {
     pub origin: [T; 3],
     /// Direction `d` as given (not normalized).
     pub dir: [T; 3],
-    /// `d . d` in `f64`; its square root is only taken where needed.
-    length_sq: f64,
 }
 
 impl<T: Float> BatchRay<T> {
@@ -74,22 +72,17 @@ impl<T: Float> BatchRay<T> {
     /// (non-finite origin, zero or non-finite direction or length).
     #[inline]
     pub fn new(origin: [T; 3], dir: [T; 3]) -> Option<BatchRay<T>> {
-        let d = Vec3::from_array(dir.map(T::to_f64));
-        let length_sq = d.dot(d);
-        // `d . d` is finite and positive exactly when `|d|` is, which also rules
-        // out non-finite components (NaN or inf make the sum NaN or inf). The
-        // checks are `&`, not `&&`: no branches (iterator chains here cost more
-        // than a tenth of a ray's time on a small mesh).
-        let o = origin.map(T::to_f64);
-        let usable = length_sq.is_finite() & (length_sq > 0.0) & o[0].is_finite() & o[1].is_finite() & o[2].is_finite();
-        usable.then_some(BatchRay { origin, dir, length_sq })
+        T::usable_ray(origin, dir).then_some(BatchRay { origin, dir })
     }
 
     /// `|d|`, the factor from the parameter `s` to the distance `t = s |d|`
-    /// (bit for bit glam's `DVec3::length` of the `f64` direction).
+    /// (bit for bit glam's `DVec3::length` of the `f64` direction). Computed
+    /// when asked, not when the ray is made: most rays of a batch never need it
+    /// (issue 24: a tenth of a camera ray's instructions went to making rays).
     #[inline]
     pub fn length(&self) -> f64 {
-        self.length_sq.sqrt()
+        let d = Vec3::from_array(self.dir.map(T::to_f64));
+        d.dot(d).sqrt()
     }
 }
 
@@ -183,6 +176,19 @@ pub trait Float: Copy + Send + Sync + std::fmt::Debug + PartialEq + 'static {
     fn to_f64(self) -> f64;
     /// `self` rounded to `f32` (exact for `f32`).
     fn to_f32(self) -> f32;
+    /// Whether `origin + s dir` is a ray at all: a finite origin, and a
+    /// direction whose `f64` length `|d|` is finite and positive.
+    #[inline]
+    fn usable_ray(origin: [Self; 3], dir: [Self; 3]) -> bool {
+        let d = Vec3::from_array(dir.map(Self::to_f64));
+        let length_sq = d.dot(d);
+        // `d . d` is finite and positive exactly when `|d|` is, which also rules
+        // out non-finite components (NaN or inf make the sum NaN or inf). The
+        // checks are `&`, not `&&`: no branches (iterator chains here cost more
+        // than a tenth of a ray's time on a small mesh).
+        let o = origin.map(Self::to_f64);
+        length_sq.is_finite() & (length_sq > 0.0) & o[0].is_finite() & o[1].is_finite() & o[2].is_finite()
+    }
 }
 
 impl Float for f32 {
@@ -198,6 +204,20 @@ impl Float for f32 {
     #[inline]
     fn to_f32(self) -> f32 {
         self
+    }
+    /// The same answer as the `f64` test, in `f32`: a finite `f32`'s square is
+    /// finite in `f64` (below 1.2e77), and a non-zero one's is positive (at
+    /// least 2e-90), so `|d|` is finite and positive exactly when every
+    /// component is finite and one is not zero.
+    #[inline]
+    fn usable_ray(origin: [f32; 3], dir: [f32; 3]) -> bool {
+        let finite = origin[0].is_finite()
+            & origin[1].is_finite()
+            & origin[2].is_finite()
+            & dir[0].is_finite()
+            & dir[1].is_finite()
+            & dir[2].is_finite();
+        finite & ((dir[0] != 0.0) | (dir[1] != 0.0) | (dir[2] != 0.0))
     }
 }
 

@@ -187,3 +187,25 @@ fn a_mesh_target_does_not_claim_error_bounds() {
     let err = cast(&accel, &RaySlices::new(&[[0.5, 0.5, 1.0]], &[[0.0, 0.0, -1.0]]).unwrap(), out, 1).unwrap_err();
     assert_eq!(err.to_string(), "invalid error: this target does not bound its errors");
 }
+
+/// The `f32` shortcut of [`Float::usable_ray`] refuses exactly the rays the
+/// `f64` definition refuses, on the values at the edges: zeros, the smallest
+/// subnormal, the largest finite, infinities and NaN.
+#[test]
+fn f32_usable_rays_are_those_of_the_f64_definition() {
+    let values =
+        [0.0f32, -0.0, f32::from_bits(1), -f32::from_bits(1), 1.0, -3.5, f32::MAX, f32::MIN, f32::INFINITY, f32::NEG_INFINITY, f32::NAN];
+    let mut checked = 0;
+    for &a in &values {
+        for &b in &values {
+            for &c in &values {
+                for (origin, dir) in [([a, b, c], [1.0, 0.0, 0.0]), ([0.0, 1.0, 2.0], [a, b, c])] {
+                    let wide = <f64 as Float>::usable_ray(origin.map(f64::from), dir.map(f64::from));
+                    assert_eq!(<f32 as Float>::usable_ray(origin, dir), wide, "origin {origin:?} dir {dir:?}");
+                    checked += 1;
+                }
+            }
+        }
+    }
+    assert_eq!(checked, 2 * 11 * 11 * 11);
+}
