@@ -224,9 +224,11 @@ fn explain_command(job: ExplainJob) -> anyhow::Result<()> {
     print_warnings(&built.warnings);
     let built = built.scene;
     let explained = lamplight_scene::explain::explain(&built, &job, pixel, sample, request::Naming::Flags).map_err(UsageError::from)?;
-    let mut out = io::stdout().lock();
+    let mut out = io::BufWriter::new(io::stdout().lock());
     if json {
-        writeln!(out, "{}", serde_json::to_string_pretty(&explained.to_json())?)?;
+        // Written as it is made: one string of a large tree would double its memory.
+        serde_json::to_writer_pretty(&mut out, &explained.to_json())?;
+        writeln!(out)?;
     } else {
         write!(out, "{explained}")?;
     }

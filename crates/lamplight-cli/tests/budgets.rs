@@ -276,6 +276,56 @@ fn declared_sizes_are_checked_against_the_memory_budget_before_allocating() {
     assert!(!d.join("out.png").exists(), "nothing rendered");
 }
 
+/// Two glass shells around the camera, depth 20: one sample's Whitted tree is
+/// about 36,000 rays (22 MB recorded, 650 MB as one JSON string), where the
+/// recorder may hold 8 MiB of the budget's 256 MiB share (the rest for the
+/// JSON form) or less when less is left.
+#[test]
+fn the_explain_recorder_draws_on_the_memory_budget() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let glass = "kd = [0, 0, 0]\nka = [0, 0, 0]\nreflection = { type = \"dielectric\", ior = 1.5 }\nrefraction = { type = \"fresnel\", ior = 1.5 }\n";
+    let shells: String = [10, 20]
+        .iter()
+        .map(|r| format!("[[objects]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = {r}\nmaterial = \"glass\"\n"))
+        .collect();
+    let toml =
+        format!("[render]\nmax_depth = 20\n[camera]\neye = [0, 0, 0]\nlook_at = [0, 0, -1]\nvfov = 40\n[materials.glass]\n{glass}{shells}");
+    fs::write(d.join("deep.toml"), toml).unwrap();
+    let explain =
+        |extra: &[&'static str]| [vec!["explain", "deep.toml", "--pixel", "4,4", "--width", "8", "--height", "8"], extra.to_vec()].concat();
+    let summarised = |args: Vec<&str>, allowance: u64| {
+        let out = lamplight(d, &args);
+        assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+        let tree: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        assert_eq!(tree["samples"].as_array().unwrap().len(), 0, "the one sample's tree does not fit");
+        let u = &tree["unrecorded"];
+        assert_eq!((u["first"].as_u64(), u["count"].as_u64()), (Some(0), Some(1)));
+        assert_eq!(u["why"]["memory_allowance"].as_u64(), Some(allowance));
+    };
+    summarised(explain(&["--json"]), 8 << 20);
+    // A 16 MiB budget leaves the recorder a 32nd of what the film (96 bytes a
+    // pixel) and the BVH (256 bytes an object) have not taken.
+    let used = 8 * 8 * 96 + 2 * 256;
+    summarised(explain(&["--json", "--memory-budget", "16M"]), ((16u64 << 20) - used) / 32);
+    let mut text = lamplight(d, &explain(&[]));
+    assert_eq!(text.status.code(), Some(0));
+    text.stdout.retain(|&b| b != b'\n');
+    assert!(String::from_utf8_lossy(&text.stdout).contains(
+        "samples 0 to 0: traced, not recorded: their records would pass the explanation's memory allowance of 8.0 MiB \
+         (a larger memory budget records more)"
+    ));
+    check(
+        d,
+        &[(
+            explain(&["--sample", "0"]),
+            "--sample 0's record needs more than the 256.0 MiB of the memory budget the explain recorder may take (8.0 MiB for \
+             the record, the rest for its JSON form); raise it with --memory-budget"
+                .into(),
+        )],
+    );
+}
+
 #[cfg(unix)]
 #[test]
 fn a_file_that_is_not_a_regular_file_is_named_for_what_it_is() {

@@ -2,14 +2,25 @@
 //! are checked against the resolved request and named as the front end spells
 //! them ([`Naming`]), then [`lamplight_core::explain::explain`] records the
 //! pixel with the render's own code.
+//!
+//! The recorder draws on the render's memory budget ([`crate::memory`]): the
+//! explanation and its JSON form take [`RECORD_OUTPUT_FACTOR`] times what the
+//! recorder holds, so it reserves that many times
+//! [`lamplight_core::explain::RECORD_BYTES`], or what is left of the budget if
+//! that is less (at least [`RECORDER_MIN_BYTES`]), while it records, and the
+//! recorder stops recording samples in full at that share's fraction.
 
 use std::sync::atomic::AtomicBool;
 use std::sync::Arc;
 
-use lamplight_core::explain::PixelExplanation;
+use lamplight_core::explain::{PixelExplanation, Unrecorded, RECORD_BYTES, RECORD_OUTPUT_FACTOR};
 use lamplight_core::Scene;
 
 use crate::request::{Job, Naming, RequestError};
+
+/// The least of the memory budget an explanation needs: 1 MiB, a record of
+/// 32 KiB (some tens of paths or trees of a usual scene) with its JSON form.
+pub const RECORDER_MIN_BYTES: u64 = 1 << 20;
 
 /// Explains pixel `(x, y)` (every sample, or only `sample`) of the render `job`
 /// asks for of `scene` (prepared, as for [`Job::run`]). Sample indices run
@@ -48,7 +59,29 @@ pub fn explain_cancellable(
             n - 1
         )));
     }
-    plan.explain(scene, sample).map_err(|e| RequestError(e.to_string()))
+    let left = crate::memory::limit().saturating_sub(crate::memory::used());
+    let share = ((RECORD_BYTES * RECORD_OUTPUT_FACTOR) as u64).min(left).max(RECORDER_MIN_BYTES);
+    crate::memory::reserve(share, || "the explain recorder".into()).map_err(|e| RequestError(e.to_string()))?;
+    let allowance = share / RECORD_OUTPUT_FACTOR as u64;
+    let explained = plan.explain_within(scene, sample, allowance as usize).map_err(|e| RequestError(e.to_string()));
+    crate::memory::release(share);
+    let explained = explained?;
+    if let (Some(k), Some(u)) = (sample, &explained.unrecorded) {
+        if let Unrecorded::Memory { .. } = u.why {
+            let raise = match naming {
+                Naming::Flags => "--memory-budget",
+                Naming::Keywords => "memory_budget=",
+            };
+            return Err(RequestError(format!(
+                "{} {k}'s record needs more than the {} of the memory budget the explain recorder may take \
+                 ({} for the record, the rest for its JSON form); raise it with {raise}",
+                naming.name("sample"),
+                crate::memory::bytes(share),
+                crate::memory::bytes(allowance)
+            )));
+        }
+    }
+    Ok(explained)
 }
 
 #[cfg(test)]

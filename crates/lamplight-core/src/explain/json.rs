@@ -35,6 +35,10 @@ fn unrecorded(u: &SampleSummary) -> Value {
     json!({
         "first": u.first,
         "count": u.count,
+        "why": match u.why {
+            super::Unrecorded::PastCount => json!("count"),
+            super::Unrecorded::Memory { allowance } => json!({ "memory_allowance": allowance }),
+        },
         "dropped": u.dropped,
         "film_sum": v(u.film_sum),
         "mean": v(u.mean),

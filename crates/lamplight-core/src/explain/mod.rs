@@ -27,9 +27,12 @@ mod json;
 mod path_record;
 mod ray_tree;
 mod recorder;
+mod summary;
 mod text;
 
 use recorder::Recorder;
+
+pub use summary::{SampleSummary, Unrecorded, MAX_RECORDED_SAMPLES, RECORD_BYTES, RECORD_OUTPUT_FACTOR};
 
 pub use path_record::{NeeRecord, PathRecord, PathVertex};
 pub use ray_tree::{LightOutcome, LightRecord, ObjectRef, RayKind, RayNode, RayOutcome, RayTree, ShadingRecord};
@@ -138,8 +141,9 @@ pub struct PixelExplanation {
     /// The samples recorded in full: the first [`MAX_RECORDED_SAMPLES`] of
     /// them, or the one asked for.
     pub samples: Vec<SampleExplanation>,
-    /// The samples past the first [`MAX_RECORDED_SAMPLES`], summarised
-    /// (`None`: every sample is recorded, or one was asked for).
+    /// The samples not recorded in full, summarised: those past the first
+    /// [`MAX_RECORDED_SAMPLES`], or from where the memory allowance ran out
+    /// (`None`: every sample is recorded).
     pub unrecorded: Option<SampleSummary>,
     /// The film's value of the pixel, `sum / n` of its `n` samples summed as
     /// the render sums them (in sample order within a pass, passes added in
@@ -166,66 +170,28 @@ impl fmt::Display for PixelExplanation {
     }
 }
 
-/// Samples an explanation of a whole pixel records in full; the rest are
-/// traced as the render traces them but only summarised ([`SampleSummary`]),
-/// and `--sample K` (or `sample=`) records any one of them. 64 covers
-/// Whitted's 16 anti-aliasing samples and the viewer's 64 path-traced ones,
-/// and bounds what an explanation holds: one record is some kilobytes (5 KB
-/// of JSON for a `spheres` tree), so a pixel's explanation stays within some
-/// megabytes at any sample count, where recording every sample of 131,072 took
-/// 3.2 GB (issue 30).
-pub const MAX_RECORDED_SAMPLES: u32 = 64;
-
-/// The samples of a pixel past the first [`MAX_RECORDED_SAMPLES`]: what the
-/// film made of them, without their trees or paths.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SampleSummary {
-    /// Index of the first of them ([`MAX_RECORDED_SAMPLES`]).
-    pub first: u32,
-    /// How many there are.
-    pub count: u32,
-    /// How many of them the film drops as not finite.
-    pub dropped: u32,
-    /// The sum of the film values it keeps of them, in sample order.
-    pub film_sum: Rgb,
-    /// Their mean film value, `film_sum / count`.
-    pub mean: Rgb,
-    /// The brightest of them by luminance (Rec. 709) of its film value: its
-    /// index and that value, the sample to ask for in full when hunting a
-    /// firefly (`None`: the film dropped them all).
-    pub brightest: Option<(u32, Rgb)>,
-}
-
-impl SampleSummary {
-    fn new(first: u32) -> SampleSummary {
-        SampleSummary { first, count: 0, dropped: 0, film_sum: Rgb::ZERO, mean: Rgb::ZERO, brightest: None }
-    }
-
-    fn add(&mut self, k: u32, film_value: Option<Rgb>) {
-        self.count += 1;
-        let Some(l) = film_value else {
-            self.dropped += 1;
-            return;
-        };
-        self.film_sum += l;
-        self.mean = self.film_sum / self.count as f64;
-        if self.brightest.is_none_or(|(_, b)| luminance(l) > luminance(b)) {
-            self.brightest = Some((k, l));
-        }
-    }
-}
-
-/// Rec. 709 luminance.
-fn luminance(c: Rgb) -> f64 {
-    0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
-}
-
 /// What [`PixelPlan::film_value`] records: the samples asked for in full, and
 /// a summary of the others when every sample was asked for.
 #[derive(Default)]
 struct Recorded {
     samples: Vec<SampleExplanation>,
     unrecorded: Option<SampleSummary>,
+    /// Bytes the full records may still take.
+    allowance_left: usize,
+    /// The allowance the explanation started with (for the summary).
+    allowance: usize,
+}
+
+impl Recorded {
+    fn within(allowance: usize) -> Recorded {
+        Recorded { allowance_left: allowance, allowance, ..Recorded::default() }
+    }
+
+    /// Sample `k`, not recorded in full for `why` (the first such sample
+    /// decides the summary's reason).
+    fn summarise(&mut self, k: u32, why: Unrecorded, film_value: Option<Rgb>) {
+        self.unrecorded.get_or_insert(SampleSummary::new(k, why)).add(k, film_value);
+    }
 }
 
 /// How the render chose the pixel's samples.
@@ -312,7 +278,7 @@ pub fn plan_cancellable(
             let mut probe = film::Image::new(around.width, around.height);
             for (i, p) in probe.pixels.iter_mut().enumerate() {
                 let (px, py) = (around.x0 + i as u32 % around.width, around.y0 + i as u32 / around.width);
-                *p = plan.film_value(scene, &probe_options, px, py, None, &mut Recorded::default())?.0;
+                *p = plan.film_value(scene, &probe_options, px, py, None, &mut Recorded::within(0))?.0;
             }
             let refined = crate::render::adaptive::refine_mask(&probe, around, here, aa.threshold)[0];
             plan.options.spp = if refined { aa.samples } else { 1 };
@@ -323,7 +289,7 @@ pub fn plan_cancellable(
                 Sampling::NoiseThreshold { threshold: noise.threshold, min_samples: noise.min_samples, max_samples: options.spp };
         }
     }
-    let (pixel, samples) = plan.film_value(scene, &plan.options.clone(), x, y, None, &mut Recorded::default())?;
+    let (pixel, samples) = plan.film_value(scene, &plan.options.clone(), x, y, None, &mut Recorded::within(0))?;
     plan.samples = samples;
     plan.pixel = pixel;
     Ok(plan)
@@ -362,26 +328,34 @@ impl PixelPlan {
                 if k % CANCEL_CHECK == 0 && self.cancel.as_ref().is_some_and(|c| c.load(Ordering::Relaxed)) {
                     return Err(Error::Render("cancelled".into()));
                 }
+                // Once the allowance ran out, every later sample is summarised.
+                let out_of_memory = matches!(recorded.unrecorded, Some(SampleSummary { why: Unrecorded::Memory { .. }, .. }));
                 let wanted = match record {
                     None => false,
-                    Some(None) => k < MAX_RECORDED_SAMPLES,
+                    Some(None) => k < MAX_RECORDED_SAMPLES && !out_of_memory,
                     Some(Some(only)) => only == k,
                 };
                 let radiance = if wanted {
-                    let mut recorder = Recorder::default();
+                    let mut recorder = Recorder::within(recorded.allowance_left);
                     let radiance = integrator.sample_traced(&view, px, py, k, &mut counts, &mut recorder);
-                    let (contributions, mut record) = recorder.finish();
-                    if let Record::RayTree(root) = &mut record {
-                        root.name_lights(scene);
-                    }
                     let film_value = film::kept(radiance, view.clamp);
-                    recorded.samples.push(SampleExplanation { index: k, radiance, film_value, contributions, record });
+                    if recorder.overflowed() {
+                        // Dropped whole: a partial tree would not add up to the sample.
+                        recorded.summarise(k, Unrecorded::Memory { allowance: recorded.allowance }, film_value);
+                    } else {
+                        recorded.allowance_left -= recorder.bytes();
+                        let (contributions, mut record) = recorder.finish();
+                        if let Record::RayTree(root) = &mut record {
+                            root.name_lights(scene);
+                        }
+                        recorded.samples.push(SampleExplanation { index: k, radiance, film_value, contributions, record });
+                    }
                     radiance
                 } else {
                     let radiance = integrator.sample(&view, px, py, k, &mut counts);
                     if record == Some(None) {
-                        let summary = recorded.unrecorded.get_or_insert(SampleSummary::new(MAX_RECORDED_SAMPLES));
-                        summary.add(k, film::kept(radiance, view.clamp));
+                        let why = if out_of_memory { Unrecorded::Memory { allowance: recorded.allowance } } else { Unrecorded::PastCount };
+                        recorded.summarise(k, why, film::kept(radiance, view.clamp));
                     }
                     radiance
                 };
@@ -412,15 +386,24 @@ impl PixelPlan {
 
     /// Records the pixel's samples (the first [`MAX_RECORDED_SAMPLES`] in
     /// full, the rest summarised), or only `sample` (which must be below
-    /// [`PixelPlan::samples`]).
+    /// [`PixelPlan::samples`]), within [`RECORD_BYTES`] of memory.
     pub fn explain(&self, scene: &Scene, sample: Option<u32>) -> Result<PixelExplanation, Error> {
+        self.explain_within(scene, sample, RECORD_BYTES)
+    }
+
+    /// [`PixelPlan::explain`] with full records taking at most about
+    /// `allowance` bytes: recording stops at the sample that would pass it,
+    /// and that sample and the later ones are summarised, with
+    /// [`Unrecorded::Memory`] as the reason (for `sample` asked alone: no
+    /// sample recorded, and a summary of that one).
+    pub fn explain_within(&self, scene: &Scene, sample: Option<u32>, allowance: usize) -> Result<PixelExplanation, Error> {
         if let Some(k) = sample {
             if k >= self.samples {
                 let n = self.samples;
                 return Err(Error::invalid("sample", format!("{k} does not exist: the pixel takes {n} samples (0 to {})", n - 1)));
             }
         }
-        let mut recorded = Recorded::default();
+        let mut recorded = Recorded::within(allowance);
         let (_, n) = self.film_value(scene, &self.options, self.x, self.y, Some(sample), &mut recorded)?;
         debug_assert_eq!(n, self.samples);
         let o = &self.options;

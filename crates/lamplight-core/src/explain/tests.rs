@@ -2,6 +2,7 @@
 //! floor, a point light and an area light, every pixel's recorded contributions
 //! sum to its sample's radiance bit for bit, and the pixel to the render's.
 
+use super::summary::luminance;
 use super::*;
 use crate::integrators::trace::LightRef;
 use crate::prelude::*;
@@ -236,4 +237,52 @@ fn a_cancelled_plan_stops() {
     let plan = plan_cancellable(&scene, &options("path", 8), 10, 9, Some(cancel.clone())).unwrap();
     cancel.store(true, Ordering::Relaxed);
     assert!(plan.explain(&scene, None).is_err(), "the plan's explanation stops too");
+}
+
+#[test]
+fn recording_stops_at_the_memory_allowance() {
+    // See: issue 30 (the recorder draws on the memory budget; one Whitted
+    // sample of a deep glass scene can hold millions of rays).
+    let scene = scene();
+    let o = options("path", 20);
+    let plan = plan(&scene, &o, 10, 9).unwrap();
+    let full = plan.explain(&scene, None).unwrap();
+    assert_eq!((full.samples.len(), full.unrecorded), (20, None));
+    // Allowances from 1 KiB up, doubling: each records a prefix of the samples,
+    // the same records as with room for all, and summarises the rest.
+    let mut stopped_part_way = 0;
+    let mut last = 0;
+    for allowance in (10..24).map(|b| 1usize << b) {
+        let e = plan.explain_within(&scene, None, allowance).unwrap();
+        let m = e.samples.len();
+        assert!(m >= last, "a larger allowance records no fewer samples");
+        last = m;
+        assert_eq!(e.samples[..], full.samples[..m], "allowance {allowance}");
+        assert_eq!(e.pixel, full.pixel, "the pixel is still the render's");
+        if m == 20 {
+            assert_eq!(e.unrecorded, None);
+            continue;
+        }
+        let u = e.unrecorded.unwrap();
+        assert_eq!((u.first, u.count, u.why), (m as u32, 20 - m as u32, Unrecorded::Memory { allowance }));
+        let rest = full.samples[m..].iter().fold(Rgb::ZERO, |s, x| s + x.film_value.unwrap());
+        assert_eq!(u.film_sum, rest);
+        stopped_part_way += usize::from(m > 0);
+        let text = e.to_string();
+        let mib = allowance as f64 / (1 << 20) as f64;
+        let line = format!(
+            "samples {m} to 19: traced, not recorded: their records would pass the explanation's memory allowance of {mib:.1} MiB \
+             (a larger memory budget records more)"
+        );
+        assert!(text.contains(&line), "{text}");
+        assert_eq!(e.to_json()["unrecorded"]["why"]["memory_allowance"], allowance);
+    }
+    assert_eq!(last, 20, "16 MiB holds them all");
+    assert!(stopped_part_way > 0, "some allowance stops after some samples");
+    // Nothing fits: a sample asked for alone is summarised, not recorded.
+    let alone = plan.explain_within(&scene, Some(7), 0).unwrap();
+    assert!(alone.samples.is_empty());
+    let u = alone.unrecorded.unwrap();
+    assert_eq!((u.first, u.count, u.why), (7, 1, Unrecorded::Memory { allowance: 0 }));
+    assert_eq!(u.film_sum, full.samples[7].film_value.unwrap());
 }

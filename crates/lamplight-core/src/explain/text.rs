@@ -62,12 +62,21 @@ pub(super) fn write_pixel(f: &mut fmt::Formatter<'_>, p: &PixelExplanation) -> f
     if let Some(u) = &p.unrecorded {
         writeln!(f)?;
         let last = u.first + u.count - 1;
-        writeln!(
-            f,
-            "samples {} to {last}: traced, not recorded (an explanation records the first {} of a pixel; --sample K shows any one)",
-            u.first,
-            super::MAX_RECORDED_SAMPLES
-        )?;
+        match u.why {
+            super::Unrecorded::PastCount => writeln!(
+                f,
+                "samples {} to {last}: traced, not recorded (an explanation records the first {} of a pixel; --sample K shows any one)",
+                u.first,
+                super::MAX_RECORDED_SAMPLES
+            )?,
+            super::Unrecorded::Memory { allowance } => writeln!(
+                f,
+                "samples {} to {last}: traced, not recorded: their records would pass the explanation's memory allowance of {:.1} MiB \
+                 (a larger memory budget records more)",
+                u.first,
+                allowance as f64 / (1 << 20) as f64
+            )?,
+        }
         write!(f, "  {} samples, mean film value {}", u.count, v(u.mean))?;
         if u.dropped > 0 {
             write!(f, ", {} dropped by the film (not finite)", u.dropped)?;

@@ -44,7 +44,7 @@ function showExplain(m) {
   if (u) {
     // Past the recorded samples: the film's sum of the others (docs/explain.md).
     const all = sum.map((x, k) => (x + u.film_sum[k]) / t.spp);
-    root.append(el("p", "sum", `pixel value ${fmt(t.value)} = mean over ${t.spp} samples ${fmt(all)}: the first ${n} shown, the other ${u.count} traced but not recorded (mean ${fmt(u.mean)}${u.brightest ? `, brightest sample ${u.brightest.index}: ${fmt(u.brightest.film_value)}` : ""})`));
+    root.append(el("p", "sum", `pixel value ${fmt(t.value)} = mean over ${t.spp} samples ${fmt(all)}: the first ${n} shown, the other ${u.count} traced but not recorded${u.why && u.why.memory_allowance !== undefined ? ` (their records would pass the explanation's memory allowance of ${(u.why.memory_allowance / 1048576).toFixed(1)} MiB)` : ""} (mean ${fmt(u.mean)}${u.brightest ? `, brightest sample ${u.brightest.index}: ${fmt(u.brightest.film_value)}` : ""})`));
   } else {
     root.append(el("p", "sum", `pixel value ${fmt(t.value)} = mean over ${n} sample${n === 1 ? "" : "s"} of the sum of their contributions ${fmt(sum.map((x) => x / n))}`));
   }
