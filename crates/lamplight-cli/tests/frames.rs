@@ -147,13 +147,58 @@ fn info_lists_the_range_and_what_is_animated() {
     let out = lamplight(d, &["info", "moving.toml"]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let text = String::from_utf8(out.stdout).unwrap();
-    let rows: Vec<&str> = text.lines().filter(|l| l.starts_with("animat")).collect();
+    let from = text.find("animation:").expect("an animation row");
     assert_eq!(
-        rows,
-        [
-            "animation:  frames 1 to 5 (5 frames at 12 fps, 0.4167 s; described at frame 1)",
-            "animated:   objects[0] (point_light): intensity (linear, 2 keys at frames 1 to 5); \
-             objects[1] (group \"ball\"): translate (cubicspline, 2 keys at frames 1 to 5)",
-        ]
+        &text[from..],
+        "animation:  frames 1 to 5 (5 frames at 12 fps, 0.4167 s; described at frame 1)\n\
+         animated:   2 keys of 2 nodes\n  \
+           objects[0] (point_light): intensity (linear, 2 keys at frames 1 to 5)\n  \
+           objects[1] (group \"ball\"): translate (cubicspline, 2 keys at frames 1 to 5)\n\
+         warnings:   none\n"
     );
+}
+
+/// Ctrl-C during a sequence: exit code 130, the frames before the interrupted
+/// one whole, no file for it or after it, no temporary file; the same command
+/// again renders only what is missing, and every frame is then the bytes of an
+/// uninterrupted run.
+#[cfg(unix)]
+#[test]
+fn an_interrupted_sequence_resumes_where_it_stopped() {
+    let reference = tempfile::tempdir().unwrap();
+    scene(reference.path());
+    let args = ["render", "moving.toml", "--frames", "1-5", "--width", "240", "--height", "160", "--spp", "16", "-o", "f_#.png", "-q"];
+    ok(reference.path(), &args);
+    let mut interrupted = 0;
+    for delay_ms in [100u64, 300, 500, 700] {
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path();
+        scene(d);
+        let child = Command::new(env!("CARGO_BIN_EXE_lamplight"))
+            .args(args)
+            .current_dir(d)
+            .stdin(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(std::time::Duration::from_millis(delay_ms));
+        // Fails harmlessly when the sequence has already ended.
+        let _ = Command::new("kill").args(["-INT", &child.id().to_string()]).stderr(Stdio::null()).status();
+        let out = child.wait_with_output().unwrap();
+        let mut written: Vec<String> =
+            fs::read_dir(d).unwrap().map(|e| e.unwrap().file_name().into_string().unwrap()).filter(|n| !n.ends_with(".toml")).collect();
+        written.sort();
+        let prefix: Vec<String> = (1..=written.len()).map(|f| format!("f_{f}.png")).collect();
+        assert_eq!(written, prefix, "after {delay_ms} ms: the frames before the interrupted one, nothing else");
+        if !out.status.success() {
+            assert_eq!(out.status.code(), Some(130), "after {delay_ms} ms");
+            interrupted += 1;
+        }
+        ok(d, &args);
+        for f in 1..=5 {
+            let name = format!("f_{f}.png");
+            assert_eq!(fs::read(d.join(&name)).unwrap(), fs::read(reference.path().join(&name)).unwrap(), "after {delay_ms} ms: {name}");
+        }
+    }
+    assert!(interrupted > 0, "no sequence lasted 100 ms: the signal was never handled");
 }

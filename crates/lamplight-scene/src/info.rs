@@ -272,7 +272,8 @@ fn describe_scene(name: &str, what: &str, file: Option<&SceneFile>, scene: &Scen
 }
 
 /// `animation:` (the range, the rate and the length; the scene as built above
-/// is its first frame) and `animated:` (each animated node and its keys).
+/// is its first frame) and `animated:` (how many keys move, then each animated
+/// node and its keys on a line of its own).
 fn animation_rows(desc: &crate::description::SceneDescription) -> Vec<(&'static str, String)> {
     use crate::description::animation::TimeUnit;
     let Some(a) = &desc.animation else { return Vec::new() };
@@ -308,6 +309,11 @@ fn animation_rows(desc: &crate::description::SceneDescription) -> Vec<(&'static 
             format!("{what}: {}", tracks.join(", "))
         })
         .collect();
-    let animated = if nodes.is_empty() { "nothing".to_string() } else { nodes.join("; ") };
+    let keys: usize = animated.iter().map(|n| n.tracks.len()).sum();
+    let animated = match nodes.is_empty() {
+        true => "nothing".to_string(),
+        // One line per node, indented as the warnings are.
+        false => format!("{} of {}\n  {}", plural(keys, "key", "keys"), plural(nodes.len(), "node", "nodes"), nodes.join("\n  ")),
+    };
     vec![("animation", range), ("animated", animated)]
 }

@@ -99,3 +99,31 @@ fn the_camera_and_nested_nodes_are_animated_too() {
     let listed = d.animated().unwrap();
     assert_eq!(listed.iter().map(|a| a.path.as_str()).collect::<Vec<_>>(), ["camera", "objects[0].children[0]"]);
 }
+
+#[test]
+fn tangents_of_keys_in_seconds_are_per_second() {
+    // fps 4: keys at 0 s (frame 1) and 0.5 s (frame 3), 0 -> 10, out-tangent 8/s,
+    // in-tangent -8/s. Frame 2 is halfway: 5 + 0.5 (0.125) 8 + 0.5 (-0.125) (-8) = 6.
+    let d = parse(
+        "[[objects]]\ntype = \"sphere\"\nanimate.radius = { seconds = [0, 0.5], values = [0, 10], interpolation = \"cubicspline\", \
+         in_tangents = [0, -8], out_tangents = [8, 0] }\n",
+    );
+    assert_eq!(numbers(&first(&d.at_frame(2.0).unwrap()).params.get("radius").unwrap().item), [6.0]);
+}
+
+#[test]
+fn a_cubic_spline_rotation_is_normalised() {
+    // Zero tangents, symmetric halfway: (q0 + q1) / 2 normalised, 45 degrees about y.
+    let d = parse(
+        "[[objects]]\ntype = \"sphere\"\nanimate.rotate = { frames = [1, 9], values = [[0, 0, 0], [0, 90, 0]], interpolation = \"cubicspline\" }\n",
+    );
+    let q = transform(&d, 5.0, "rotate");
+    let (s, c) = (22.5f64.to_radians().sin(), 22.5f64.to_radians().cos());
+    assert!(close(&q, &[0.0, s, 0.0, c]), "{q:?}");
+    // A quarter of the way: h01 = 0.15625, so the weights are 0.84375 and 0.15625 before normalising.
+    let q = transform(&d, 3.0, "rotate");
+    let (h, w) = (std::f64::consts::FRAC_1_SQRT_2, [0.84375, 0.15625]);
+    let raw = [0.0, w[1] * h, 0.0, w[0] + w[1] * h];
+    let len = (raw[1] * raw[1] + raw[3] * raw[3]).sqrt();
+    assert!(close(&q, &[0.0, raw[1] / len, 0.0, raw[3] / len]), "{q:?}");
+}
