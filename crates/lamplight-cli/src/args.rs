@@ -254,12 +254,12 @@ pub struct RenderArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
     /// Output file; the extension picks the format (.png, .ppm, .exr); a run of # is a frame sequence's
-    /// frame number, zero-padded (frame_####.png) [default: SCENE.png, or SCENE_####.png for several frames].
+    /// frame number, zero-padded, as in frame_####.png. Default: SCENE.png, or SCENE_####.png for several frames.
     #[arg(short, long, value_name = "FILE")]
     pub output: Option<PathBuf>,
-    /// Render these frames of an animated scene, one file each: `1-120`, or one frame `7`
-    /// [default: the scene's first frame; its [animation] frames when -o holds a run of #].
-    /// Frames whose file exists are skipped. A scene without [animation] is the same at every frame.
+    /// Render these frames of an animated scene, one file each: `1-120`, or one frame `7`.
+    /// Default: the scene's first frame, or all the frames of its animation table when -o holds a run of #.
+    /// Frames whose file exists are skipped. A scene without an animation table is the same at every frame.
     #[arg(long, value_name = "N|START-END")]
     pub frames: Option<String>,
     /// Render again, and replace, the frames of a sequence whose files exist.
