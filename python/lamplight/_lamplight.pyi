@@ -92,6 +92,7 @@ class Scene:
         noise_threshold: Optional[float] = None,
         min_spp: Optional[int] = None,
         memory_budget: Optional[Union[int, str]] = None,
+        frame: Optional[int] = None,
         # END settings
     ) -> Dict[str, Any]:
         """Why pixel ``(x, y)`` of the render these settings make has its colour.
@@ -181,6 +182,7 @@ def render_array(
     noise_threshold: Optional[float] = None,
     min_spp: Optional[int] = None,
     memory_budget: Optional[Union[int, str]] = None,
+    frame: Optional[int] = None,
     # END settings
 ) -> Tuple[npt.NDArray[np.float32], Dict[str, Any], Dict[str, npt.NDArray[np.float32]]]:
     """The render under :func:`lamplight.render`: a float32 array ``(h, w, 3)``,
@@ -210,6 +212,7 @@ def resolve_settings(
     noise_threshold: Optional[float] = None,
     min_spp: Optional[int] = None,
     memory_budget: Optional[Union[int, str]] = None,
+    frame: Optional[int] = None,
     # END settings
 ) -> Tuple[int, int, int, str, int]:
     """``(width, height, spp, integrator, seed)`` a render with these settings would

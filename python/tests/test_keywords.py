@@ -45,6 +45,7 @@ SAMPLES = {
     "noise_threshold": 0.5,
     "min_spp": 4,
     "memory_budget": "1G",
+    "frame": 3,
 }
 
 

@@ -193,6 +193,7 @@ impl SceneArgs {
             denoise_library_hints: Vec::new(),
             memory_budget: self.memory_budget,
             smooth: self.smooth,
+            frame: None,
         }
     }
 
@@ -252,9 +253,18 @@ pub struct RenderArgs {
     /// The scene and the settings that decide each pixel's value.
     #[command(flatten)]
     pub scene: SceneArgs,
-    /// Output file; the extension picks the format (.png, .ppm, .exr) [default: SCENE.png].
+    /// Output file; the extension picks the format (.png, .ppm, .exr); a run of # is a frame sequence's
+    /// frame number, zero-padded, as in frame_####.png. Default: SCENE.png, or SCENE_####.png for several frames.
     #[arg(short, long, value_name = "FILE")]
     pub output: Option<PathBuf>,
+    /// Render these frames of an animated scene, one file each: `1-120`, or one frame `7`.
+    /// Default: the scene's first frame, or all the frames of its animation table when -o holds a run of #.
+    /// Frames whose file exists are skipped. A scene without an animation table is the same at every frame.
+    #[arg(long, value_name = "N|START-END")]
+    pub frames: Option<String>,
+    /// Render again, and replace, the frames of a sequence whose files exist.
+    #[arg(long)]
+    pub overwrite: bool,
     /// Worker threads; 0 uses all cores. The image does not depend on it.
     #[arg(long, value_name = "T", default_value_t = 0, allow_negative_numbers = true, value_parser = count::<usize>)]
     pub threads: usize,
@@ -332,6 +342,8 @@ pub struct RenderJob {
     pub variance_output: Option<PathBuf>,
     /// Whether the output file itself holds the variance layer (`--exr-layers variance`).
     pub variance_in_output: bool,
+    /// The frames to render, each to its own file (`--frames`); `None`: one image.
+    pub sequence: Option<crate::frames::Sequence>,
 }
 
 /// Bad input from the user: the program exits with code 2.
@@ -427,7 +439,12 @@ impl RenderArgs {
             ..self.scene.request(self.threads)
         };
         let mut job = request.resolve(&scene.defaults, Naming::Flags)?;
-        let output = self.output.unwrap_or_else(|| PathBuf::from(format!("{}.png", scene.name)));
+        let (sequence, output) = crate::frames::sequence(&scene, self.frames.as_deref(), self.output, self.overwrite)?;
+        if sequence.is_some() && self.variance_output.is_some() {
+            return Err(usage(
+                "--variance-output writes one file; for a frame sequence put the variance in each frame's .exr (--exr-layers variance)",
+            ));
+        }
         let format = Format::from_path(&output).map_err(|e| usage(e.to_string()))?;
         if !job.layers.is_empty() && format != Format::Exr {
             return Err(usage("--exr-layers needs an .exr output file"));
@@ -446,7 +463,7 @@ impl RenderArgs {
         }
         let display =
             DisplayTransform { exposure: self.exposure, tonemap: self.tonemap, transfer: self.transfer.unwrap_or(scene.defaults.transfer) };
-        Ok(RenderJob { scene, output, job, quiet: self.quiet, display, variance_output, variance_in_output })
+        Ok(RenderJob { scene, output, job, quiet: self.quiet, display, variance_output, variance_in_output, sequence })
     }
 }
 

@@ -18,11 +18,13 @@
 
 mod args;
 mod denoise;
+mod frames;
 mod raycast;
 mod signals;
 mod view;
 
 use std::io::{self, IsTerminal, Write};
+use std::path::Path;
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
 
@@ -30,7 +32,7 @@ use anyhow::Context;
 use clap::Parser;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use lamplight_core::{RenderControl, RenderStats};
-use lamplight_scene::request::{self, Layer};
+use lamplight_scene::request::{self, Job, Layer};
 use lamplight_scene::{builtin, image_io};
 
 use crate::args::{Cli, Command, ExplainJob, RenderJob, UsageError};
@@ -135,15 +137,26 @@ fn info_command(file: &str) -> anyhow::Result<()> {
     Ok(())
 }
 
-fn render_command(job: RenderJob) -> anyhow::Result<()> {
-    let RenderJob { scene, output, job, quiet, display, variance_output, variance_in_output } = job;
+fn render_command(render: RenderJob) -> anyhow::Result<()> {
+    if render.sequence.is_some() {
+        return frames::render_sequence(&render);
+    }
     // Fail before a long render, not after it, when the file cannot be written.
-    image_io::check_writable(&output)?;
+    image_io::check_writable(&render.output)?;
+    render_to(&render, &render.job, &render.output, None)
+}
+
+/// Renders `job` (the render `render` asks for, at one frame) to `output`.
+/// Within a sequence (`frame`), a frame that a signal interrupts is not
+/// written: its file would look finished to the next run, which skips it.
+pub(crate) fn render_to(render: &RenderJob, job: &Job, output: &Path, frame: Option<i64>) -> anyhow::Result<()> {
+    let RenderJob { scene, quiet, display, variance_output, variance_in_output, .. } = render;
+    let (quiet, display, variance_in_output) = (*quiet, *display, *variance_in_output);
 
     let build_start = Instant::now();
     let (width, height) = (job.options.width, job.options.height);
     // Scene errors are the user's input: exit code 2, one line naming file and place.
-    let built = scene.instantiate(&job).map_err(|e| UsageError(e.0))?;
+    let built = scene.instantiate(job).map_err(|e| UsageError(e.0))?;
     print_warnings(&built.warnings);
     let built = built.scene;
     print_warnings(&job.light_warnings(&built));
@@ -164,6 +177,10 @@ fn render_command(job: RenderJob) -> anyhow::Result<()> {
     if let Some(bar) = &bar {
         bar.finish_and_clear();
     }
+    if let (true, Some(frame)) = (signals::stop_requested(), frame) {
+        eprintln!("lamplight: error: interrupted at frame {frame}, which was not written (the frames before it were)");
+        std::process::exit(signals::INTERRUPTED);
+    }
     if signals::stop_requested() && rendered.is_err() {
         // No pass was complete: nothing to write.
         eprintln!("lamplight: error: interrupted");
@@ -181,7 +198,7 @@ fn render_command(job: RenderJob) -> anyhow::Result<()> {
             rendered.layers.retain(|(l, _)| *l != Layer::Variance);
         }
     }
-    request::write(&output, &rendered, display)?;
+    request::write(output, &rendered, display)?;
 
     let stats = rendered.stats;
     if stopped_early {
@@ -193,15 +210,12 @@ fn render_command(job: RenderJob) -> anyhow::Result<()> {
         );
         std::process::exit(signals::INTERRUPTED);
     }
-    let summary = Summary {
-        scene: &scene.name,
-        width,
-        height,
-        spp: stats.samples_per_pixel,
-        adaptive: job.options.adaptive.is_some(),
-        build_time,
-        stats,
+    let name = match frame {
+        Some(f) => format!("{} frame {f}", scene.name),
+        None => scene.name.clone(),
     };
+    let summary =
+        Summary { scene: &name, width, height, spp: stats.samples_per_pixel, adaptive: job.options.adaptive.is_some(), build_time, stats };
     if !quiet {
         eprintln!("{} -> {}", summary, output.display());
         if let Some(t) = rendered.denoise_time {

@@ -8,6 +8,7 @@ mod budgets;
 mod cli;
 mod denoise;
 mod explain;
+mod frames;
 mod hardening;
 mod info;
 mod lighting;

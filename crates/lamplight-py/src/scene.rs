@@ -102,7 +102,7 @@ impl Scene {
         }
         // Building reads mesh files and builds BVHs: let other Python threads run.
         // Two threads may both build; the first to finish is kept.
-        let (scene, warnings) = py.allow_threads(|| self.build_core())?;
+        let (scene, warnings) = py.allow_threads(|| self.build_core(None))?;
         let built = (Arc::new(scene), Arc::new(warnings));
         let (kept, first) = {
             let mut kept = self.built.lock().map_err(|_| SceneError::new_err("scene cache poisoned"))?;
@@ -115,20 +115,21 @@ impl Scene {
         Ok(kept)
     }
 
-    fn build_core(&self) -> PyResult<(CoreScene, Vec<String>)> {
+    /// Builds the scene at `frame` of its animation (`None`: the first frame).
+    fn build_core(&self, frame: Option<i64>) -> PyResult<(CoreScene, Vec<String>)> {
         // The request layer builds what a job renders, as for the command line;
         // only a dict's errors are worded here, by key path without a file.
         let spec = match &self.origin {
             Origin::Builtin(b) => SceneSpec::Builtin(b),
             Origin::Toml(file) => SceneSpec::File(Box::new(file.clone())),
             Origin::Dict { file, .. } => {
-                let built = instantiate::build_with_warnings(&file.description, &file.source).map_err(dict_error)?;
+                let built = instantiate::build_frame(&file.description, &file.source, frame).map_err(dict_error)?;
                 return Ok(self.with_own_camera(built.scene, built.warnings));
             }
             Origin::Mesh(path) => SceneSpec::Mesh(path.clone()),
         };
         let request = SceneRequest { spec, name: String::new(), defaults: self.defaults, smooth: false };
-        let built = request.build_with_warnings().map_err(|e| SceneError::new_err(e.0))?;
+        let built = request.build_frame(frame).map_err(|e| SceneError::new_err(e.0))?;
         Ok(self.with_own_camera(built.scene, built.warnings))
     }
 
@@ -409,6 +410,14 @@ impl Scene {
 }
 
 impl Scene {
+    /// The `[animation]` of an animated scene file or dict.
+    pub fn animation(&self) -> Option<&lamplight_scene::description::Animation> {
+        match &self.origin {
+            Origin::Toml(file) | Origin::Dict { file, .. } => file.description.animation.as_ref(),
+            _ => None,
+        }
+    }
+
     /// The settings a render uses when it does not say.
     pub fn settings(&self) -> &Defaults {
         &self.defaults
@@ -418,20 +427,30 @@ impl Scene {
     /// its own environment map, takes this).
     /// Its warnings go to `warnings.warn` unless a kept build gave them already.
     pub fn fresh_core(&self, py: Python<'_>) -> PyResult<CoreScene> {
-        let (scene, warnings) = py.allow_threads(|| self.build_core())?;
+        self.fresh_core_at(py, None)
+    }
+
+    /// [`Scene::fresh_core`] at `frame` of an animated scene.
+    fn fresh_core_at(&self, py: Python<'_>, frame: Option<i64>) -> PyResult<CoreScene> {
+        let (scene, warnings) = py.allow_threads(|| self.build_core(frame))?;
         if self.built.lock().map_err(|_| SceneError::new_err("scene cache poisoned"))?.is_none() {
             warn_each(py, &warnings)?;
         }
         Ok(scene)
     }
 
-    /// The core scene `job` renders: the kept build, or a fresh one lit by the
-    /// job's environment map.
+    /// The core scene `job` renders: the kept build (the first frame of an
+    /// animated scene), or a fresh one of the job's frame, or lit by its
+    /// environment map.
     pub fn core_for(&self, py: Python<'_>, job: &lamplight_scene::request::Job) -> PyResult<Arc<CoreScene>> {
-        if job.environment.is_none() {
+        let other_frame = match (self.animation(), job.frame) {
+            (Some(a), Some(frame)) => frame != a.start,
+            _ => false,
+        };
+        if job.environment.is_none() && !other_frame {
             return self.core(py);
         }
-        let mut fresh = self.fresh_core(py)?;
+        let mut fresh = self.fresh_core_at(py, job.frame)?;
         job.prepare(&mut fresh).map_err(|e| PyValueError::new_err(e.0))?;
         Ok(Arc::new(fresh))
     }

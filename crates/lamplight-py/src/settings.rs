@@ -22,6 +22,7 @@
 //! | `denoise` | `bool` | Open Image Denoise on the image |
 //! | `antialias` | `bool` or `float` | on, off, or a threshold |
 //! | `memory_budget` | `int` or `str` | bytes, or a size such as `"4G"` ([`lamplight_scene::memory`]) |
+//! | `frame` | `int` | the frame of an animated scene, 0 to 1048574 (default: its first) |
 
 use std::path::PathBuf;
 
@@ -211,6 +212,12 @@ pub const KEYWORDS: &[Keyword] = &[
         annotation: "Optional[Union[int, str]]",
         takes: Takes::Both,
         read: |r, v| set(&mut r.memory_budget, memory_budget(v).map(Some)),
+    },
+    Keyword {
+        name: "frame",
+        annotation: "Optional[int]",
+        takes: Takes::Both,
+        read: |r, v| set(&mut r.frame, whole("frame", Some(v), 0, lamplight_scene::request::frames::MAX_FRAME as i128, "")),
     },
 ];
 

@@ -230,7 +230,12 @@ fn describe_scene(name: &str, what: &str, file: Option<&SceneFile>, scene: &Scen
     };
     let cameras = match file.and_then(|f| f.description.camera.as_ref()) {
         Some(camera) => {
-            let params: Vec<String> = camera.params.entries.iter().map(|e| format!("{} = {}", e.key, value(&e.item.value))).collect();
+            let params: Vec<String> = camera
+                .params
+                .entries
+                .iter()
+                .map(|e| if e.key == "animate" { "animated".to_string() } else { format!("{} = {}", e.key, value(&e.item.value)) })
+                .collect();
             format!("1: {}, {}", camera.kind, params.join(", "))
         }
         None => "1".to_string(),
@@ -252,7 +257,7 @@ fn describe_scene(name: &str, what: &str, file: Option<&SceneFile>, scene: &Scen
         lights.push(format!("ambient {}", rgb(scene.settings.ambient)));
     }
     let lights = if lights.is_empty() { "none".to_string() } else { lights.join(", ") };
-    let rows = [
+    let mut rows = vec![
         ("objects", objects),
         ("bounds", bounds(world)),
         ("materials", materials),
@@ -260,5 +265,55 @@ fn describe_scene(name: &str, what: &str, file: Option<&SceneFile>, scene: &Scen
         ("lights", lights),
         ("background", rgb(scene.settings.background)),
     ];
+    if let Some(desc) = file.map(|f| &f.description) {
+        rows.extend(animation_rows(desc));
+    }
     lines(format!("{name}: {what}"), &rows, warnings)
+}
+
+/// `animation:` (the range, the rate and the length; the scene as built above
+/// is its first frame) and `animated:` (how many keys move, then each animated
+/// node and its keys on a line of its own).
+fn animation_rows(desc: &crate::description::SceneDescription) -> Vec<(&'static str, String)> {
+    use crate::description::animation::TimeUnit;
+    let Some(a) = &desc.animation else { return Vec::new() };
+    let count = a.frame_count();
+    let range = format!(
+        "frames {} to {} ({} at {} fps, {} s; described at frame {})",
+        a.start,
+        a.end,
+        plural(count as usize, "frame", "frames"),
+        num(a.fps),
+        num(count as f64 / a.fps),
+        a.start
+    );
+    // The description was checked when it was read.
+    let animated = desc.animated().unwrap_or_default();
+    let nodes: Vec<String> = animated
+        .iter()
+        .map(|node| {
+            let name = node.name.as_ref().map(|n| format!(" {n:?}")).unwrap_or_default();
+            let what = if node.path == "camera" { "camera".to_string() } else { format!("{} ({}{name})", node.path, node.label) };
+            let tracks: Vec<String> = node
+                .tracks
+                .iter()
+                .map(|t| {
+                    let (first, last) = (t.times[0], t.times[t.times.len() - 1]);
+                    let when = match t.unit {
+                        TimeUnit::Frames => format!("frames {} to {}", num(first), num(last)),
+                        TimeUnit::Seconds => format!("{} to {} s", num(first), num(last)),
+                    };
+                    format!("{} ({}, {} at {when})", t.key, t.interpolation.name(), plural(t.times.len(), "key", "keys"))
+                })
+                .collect();
+            format!("{what}: {}", tracks.join(", "))
+        })
+        .collect();
+    let keys: usize = animated.iter().map(|n| n.tracks.len()).sum();
+    let animated = match nodes.is_empty() {
+        true => "nothing".to_string(),
+        // One line per node, indented as the warnings are.
+        false => format!("{} of {}\n  {}", plural(keys, "key", "keys"), plural(nodes.len(), "node", "nodes"), nodes.join("\n  ")),
+    };
+    vec![("animation", range), ("animated", animated)]
 }

@@ -153,10 +153,17 @@ pub const NODE_COMMON: &[Param] = &[
         T::Table,
         "none",
         "degrees",
-        "`{ axis = VECTOR, degrees = N }`, `{ x = N, y = N, z = N }` or `[x, y, z]` (degrees about x, then y, then z)",
+        "`{ axis = VECTOR, degrees = N }`, `{ x = N, y = N, z = N }` or `[x, y, z]` (degrees about x, then y, then z), or `{ quaternion = [x, y, z, w] }` (glTF's order)",
     ),
     Param::new("scale", T::Color, "none", "non-zero", "a factor or `[sx, sy, sz]`"),
     Param::new("matrix", T::Matrix, "none", "affine", "4 rows of 4 numbers, last row `[0, 0, 0, 1]`; points are column vectors"),
+    Param::new(
+        "animate",
+        T::Table,
+        "none",
+        "",
+        "keyframes: `animate.KEY = { frames = [...], values = [...] }` for `translate`, `rotate`, `scale` or a key of the node's kind (see `animate.KEY`)",
+    ),
 ];
 
 /// The names of every node type, structural ones first (for messages).

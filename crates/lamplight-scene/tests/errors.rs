@@ -31,7 +31,7 @@ fn malformed_inputs_give_their_exact_errors() {
         ("[camera\n".into(), "s.toml:1:8: unclosed table, expected `]`"),
         ("[camera]\neye = [0, 0, 0\n".into(), "s.toml:2:15: unclosed array, expected `]`"),
         ("ambient = 1\n".into(), "s.toml: has no [camera] table, expected one"),
-        (format!("colour = 1\n{CAMERA}"), "s.toml:1:1: scene: unknown key 'colour' (the top level takes: ambient, background, environment, render, camera, materials, meshes, definitions, objects)"),
+        (format!("colour = 1\n{CAMERA}"), "s.toml:1:1: scene: unknown key 'colour' (the top level takes: ambient, background, environment, render, animation, camera, materials, meshes, definitions, objects)"),
         (with_camera("colour = 1\n"), "s.toml:5:1: camera: unknown parameter 'colour' (it takes: eye, look_at, up, vfov, hfov, fov, pixel_offset, shift)"),
         ("[camera]\neye = \"here\"\n".into(), "s.toml:2:7: camera: eye: expected [x, y, z], got a string \"here\""),
         ("[camera]\neye = [0, 0]\n".into(), "s.toml:2:7: camera: eye: expected [x, y, z], got an array of 2"),
@@ -228,7 +228,7 @@ fn every_registered_kind_reports_a_mistyped_parameter_at_its_key() {
 #[test]
 fn wrong_types_say_what_was_expected_at_the_key() {
     let cases: Vec<(String, &str)> = vec![
-        (with_camera("[[objects]]\ntype = \"group\"\nrotate = \"left\"\n"), "s.toml:7:10: group: rotate: expected a table { axis = [x, y, z], degrees = N } or { x = N, y = N, z = N }, or [x, y, z] degrees, got a string \"left\""),
+        (with_camera("[[objects]]\ntype = \"group\"\nrotate = \"left\"\n"), "s.toml:7:10: group: rotate: expected a table { axis = [x, y, z], degrees = N }, { x = N, y = N, z = N } or { quaternion = [x, y, z, w] }, or [x, y, z] degrees, got a string \"left\""),
         (with_camera("[[objects]]\ntype = \"group\"\nrotate = { axis = [0, 1, 0], degree = 3 }\n"), "s.toml:7:30: group: rotate: unknown parameter 'degree' (did you mean 'degrees'?)"),
         (with_camera("[[objects]]\ntype = \"box\"\nmin = [0, 0, 0]\nmax = 1\n"), "s.toml:8:7: box: max: expected [x, y, z], got a number 1"),
         (with_camera("[[objects]]\ntype = \"cylinder\"\nfrom = [0, 0, 0]\nto = [0, 1, 0]\nradius = 1\ncaps = 1\n"), "s.toml:10:8: cylinder: caps: expected true or false, got a number 1"),

@@ -10,10 +10,11 @@ use lamplight_scene::instantiate::SceneFile;
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed};
 
-const EXAMPLES: [&str; 3] = [
+const EXAMPLES: [&str; 4] = [
     include_str!("../../../examples/luxo.toml"),
     include_str!("../../../examples/business-card.toml"),
     include_str!("../../../examples/spheres.toml"),
+    include_str!("../../../examples/turntable.toml"),
 ];
 
 /// Fragments a mutation may insert: TOML syntax, keys and values that matter.
@@ -53,6 +54,10 @@ const FRAGMENTS: &[&str] = &[
     "type = \"box\"\n",
     "\u{feff}",
     "é",
+    "[animation]\nframes = [1, 3]\n",
+    "animate.translate = { frames = [1, 2], values = [[0, 0, 0], [1e308, 0, 0]] }\n",
+    "animate.rotate = { seconds = [0, 1], values = [[0, 0, 0], { quaternion = [0, 1, 0, 0] }], interpolation = \"cubicspline\", out_tangents = [[1e308, 0, 0, 0], [0, 0, 0, 0]] }\n",
+    "interpolation = \"step\"\n",
 ];
 
 /// Parses and builds `text`; a panic fails the property.
@@ -60,6 +65,11 @@ fn load(text: &str) {
     if let Ok(file) = SceneFile::parse(Path::new("fuzz.toml"), text) {
         if file.settings().is_ok() {
             let _ = file.build();
+            // An animated scene: a frame between keys and one past the last too.
+            if file.description.animation.is_some() {
+                let _ = file.build_frame(Some(2));
+                let _ = file.build_frame(Some(1_000));
+            }
         }
     }
 }
@@ -112,7 +122,7 @@ proptest! {
     #![proptest_config(config(256, 0x5ce7e))]
 
     #[test]
-    fn mutated_examples_never_panic(which in 0..3usize, edits in prop::collection::vec(edit(), 1..8)) {
+    fn mutated_examples_never_panic(which in 0..EXAMPLES.len(), edits in prop::collection::vec(edit(), 1..8)) {
         load(&apply(EXAMPLES[which], &edits));
     }
 }

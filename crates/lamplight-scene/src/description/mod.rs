@@ -10,8 +10,11 @@
 
 use lamplight_core::params::{Entry, Item, Loc, ParamError, Table, Value};
 
+pub mod animation;
 mod node;
+pub mod rotation;
 
+pub use animation::Animation;
 pub use node::{Named, Node, TRANSFORM_KEYS};
 
 /// A whole scene.
@@ -31,11 +34,14 @@ pub struct SceneDescription {
     pub definitions: Vec<Named<Node>>,
     /// `[[objects]]`: the scene's top-level nodes, in order.
     pub objects: Vec<Node>,
+    /// `[animation]`: the frame range and rate, when the scene is animated
+    /// (its nodes' `animate` tables say what moves; [`SceneDescription::at_frame`]).
+    pub animation: Option<Animation>,
 }
 
 /// The top-level keys, in the order the reference lists them.
 pub const TOP_LEVEL_KEYS: &[&str] =
-    &["ambient", "background", "environment", "render", "camera", "materials", "meshes", "definitions", "objects"];
+    &["ambient", "background", "environment", "render", "animation", "camera", "materials", "meshes", "definitions", "objects"];
 
 impl SceneDescription {
     /// Sorts a parsed top-level table into a description. The `scene` label
@@ -51,6 +57,9 @@ impl SceneDescription {
         let mut desc = SceneDescription::default();
         if let Some(e) = root.remove("render") {
             desc.render = Some(into_table(e, "render")?);
+        }
+        if let Some(e) = root.remove("animation") {
+            desc.animation = Some(Animation::read(&into_table(e, "animation")?)?);
         }
         if let Some(e) = root.remove("camera") {
             desc.camera = Some(Node::from_table(into_table(e, "camera")?, "camera", Some("perspective"), false)?);
@@ -79,6 +88,7 @@ impl SceneDescription {
             desc.objects = node::node_list(e.item, "objects")?;
         }
         desc.globals = root;
+        desc.check_animation()?;
         Ok(desc)
     }
 

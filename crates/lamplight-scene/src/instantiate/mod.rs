@@ -253,6 +253,11 @@ impl SceneFile {
     pub fn build_with_warnings(&self) -> Result<Built, LoadError> {
         build_with_warnings(&self.description, &self.source)
     }
+
+    /// Builds frame `frame` of an animated scene ([`build_frame`]).
+    pub fn build_frame(&self, frame: Option<i64>) -> Result<Built, LoadError> {
+        build_frame(&self.description, &self.source, frame)
+    }
 }
 
 /// The description's settings with defaults filled in, checked.
@@ -384,8 +389,25 @@ pub fn build(desc: &SceneDescription, source: &Source) -> Result<Scene, LoadErro
     build_with_warnings(desc, source).map(|built| built.scene)
 }
 
-/// [`build`], keeping the warnings of the mesh files the scene reads.
+/// [`build`], keeping the warnings of the mesh files the scene reads. An
+/// animated scene is built at its first frame.
 pub fn build_with_warnings(desc: &SceneDescription, source: &Source) -> Result<Built, LoadError> {
+    build_frame(desc, source, None)
+}
+
+/// Builds frame `frame` (`None`: the first of `[animation] frames`): the
+/// static description of that frame ([`SceneDescription::at_frame`]), built as
+/// any other. Errors found in it say the frame: `s.toml:9:20: frame 12: ...`.
+/// A scene without `[animation]` is the same at every frame.
+pub fn build_frame(desc: &SceneDescription, source: &Source, frame: Option<i64>) -> Result<Built, LoadError> {
+    let Some(animation) = &desc.animation else { return build_static(desc, source) };
+    let frame = frame.unwrap_or(animation.start);
+    let in_frame = |e: LoadError| LoadError { message: format!("frame {frame}: {}", e.message), ..e };
+    let at = desc.at_frame(frame as f64).map_err(|e| in_frame(source.param_error(e)))?;
+    build_static(&at, source).map_err(in_frame)
+}
+
+fn build_static(desc: &SceneDescription, source: &Source) -> Result<Built, LoadError> {
     let settings = settings(desc, source)?;
     // Each build counts afresh (a reload, another Python `Scene`); the limit
     // is the job's ([`crate::request::SceneRequest::instantiate`]).

@@ -6,11 +6,8 @@
 //! glam's `from_rotation_{x,y,z}` so that `rotate = { y = 25 }` gives exactly the
 //! matrix the built-in scenes compute.
 
-use lamplight_core::math::{Mat4, Vec3};
-use lamplight_core::params::{Item, ParamResult, Params, Table, Value};
-
-/// What `rotate` must be.
-const ROTATE_FORMS: &str = "expected a table { axis = [x, y, z], degrees = N } or { x = N, y = N, z = N }, or [x, y, z] degrees";
+use lamplight_core::math::Mat4;
+use lamplight_core::params::{ParamResult, Params, Table};
 
 /// The node's own transform from its transform keys (read for `label`).
 pub fn local(label: &str, table: &Table) -> ParamResult<Mat4> {
@@ -42,84 +39,16 @@ pub fn local(label: &str, table: &Table) -> ParamResult<Mat4> {
 }
 
 fn rotation(p: &mut Params<'_>) -> ParamResult<Mat4> {
-    let item = p.item("rotate").expect("present");
-    let xyz = |x: f64, y: f64, z: f64| {
-        let mut m = Mat4::IDENTITY;
-        // x first: the matrix applied first stands rightmost.
-        for (deg, make) in [(z, Mat4::from_rotation_z as fn(f64) -> Mat4), (y, Mat4::from_rotation_y), (x, Mat4::from_rotation_x)] {
-            if deg != 0.0 {
-                m *= make(deg.to_radians());
-            }
-        }
-        m
-    };
-    match &item.value {
-        Value::Array(_) => {
-            let one = lamplight_core::params::Table {
-                entries: vec![lamplight_core::params::Entry { key: "rotate".into(), key_loc: item.loc.clone(), item: item.clone() }],
-                loc: item.loc.clone(),
-            };
-            let mut q = Params::new(p.label().to_string(), &one);
-            let v = q.vec3("rotate").map_err(|_| p.key_error("rotate", ROTATE_FORMS))?.expect("present");
-            Ok(xyz(v.x, v.y, v.z))
-        }
-        Value::Table(_) => {
-            let mut r = p.table("rotate")?.expect("present");
-            r.check_keys(&ROTATE_KEYS, &[])?;
-            let out = match (r.vec3("axis")?, r.number("degrees")?) {
-                (Some(axis), Some(deg)) => {
-                    if r.has("x") || r.has("y") || r.has("z") {
-                        return Err(r.error("takes either axis and degrees or x, y, z, not both"));
-                    }
-                    let axis = axis.try_normalize().ok_or_else(|| r.key_error("axis", "must not be zero"))?;
-                    axis_rotation(axis, deg.to_radians())
-                }
-                (None, None) => {
-                    let (x, y, z) = (r.number_or("x", 0.0)?, r.number_or("y", 0.0)?, r.number_or("z", 0.0)?);
-                    xyz(x, y, z)
-                }
-                _ => return Err(r.error("needs both axis and degrees")),
-            };
-            r.finish()?;
-            Ok(out)
-        }
-        _ => Err(bad_rotate(p, item)),
-    }
+    crate::description::rotation::read(p, "rotate").map(|r| r.matrix())
 }
 
-const ROTATE_KEYS: [lamplight_core::params::Param; 5] = {
-    use lamplight_core::params::{Param, ParamType as T};
-    [
-        Param::new("axis", T::Vector, "", "", "rotation axis"),
-        Param::new("degrees", T::Number, "", "degrees", "angle, counter-clockwise looking down the axis"),
-        Param::new("x", T::Number, "0", "degrees", "about x"),
-        Param::new("y", T::Number, "0", "degrees", "about y"),
-        Param::new("z", T::Number, "0", "degrees", "about z"),
-    ]
-};
-
-fn bad_rotate(p: &Params<'_>, item: &Item) -> lamplight_core::params::ParamError {
-    p.key_error("rotate", format!("{ROTATE_FORMS}, got {}", item.value.describe()))
-}
-
-/// The rotation by `rad` about the unit `axis`; about a coordinate axis it is
-/// glam's exact one (`from_axis_angle` rounds its off-axis terms).
-pub(crate) fn axis_rotation(axis: Vec3, rad: f64) -> Mat4 {
-    if axis == Vec3::X {
-        Mat4::from_rotation_x(rad)
-    } else if axis == Vec3::Y {
-        Mat4::from_rotation_y(rad)
-    } else if axis == Vec3::Z {
-        Mat4::from_rotation_z(rad)
-    } else {
-        Mat4::from_axis_angle(axis, rad)
-    }
-}
+pub(crate) use crate::description::rotation::axis_rotation;
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use lamplight_core::params::{Entry, Loc};
+    use lamplight_core::math::Vec3;
+    use lamplight_core::params::{Entry, Item, Loc, Value};
 
     fn table(entries: Vec<(&str, Value)>) -> Table {
         Table {
@@ -160,6 +89,9 @@ mod tests {
         let half = table(vec![("rotate", Value::Table(table(vec![("degrees", Value::Number(3.0))])))]);
         assert_eq!(local("group", &half).unwrap_err().message, "group: rotate: needs both axis and degrees");
         let word = table(vec![("rotate", Value::String("left".into()))]);
-        assert_eq!(local("group", &word).unwrap_err().message, format!("group: rotate: {ROTATE_FORMS}, got a string \"left\""));
+        assert_eq!(
+            local("group", &word).unwrap_err().message,
+            format!("group: rotate: {}, got a string \"left\"", crate::description::rotation::ROTATE_FORMS)
+        );
     }
 }

@@ -21,6 +21,18 @@ pub fn reference() -> String {
         crate::instantiate::environment::ENVIRONMENT_PARAMS,
     );
     section(&mut out, "`[render]`", "", RENDER_PARAMS);
+    section(
+        &mut out,
+        "`[animation]`",
+        "the frame range and rate of an animated scene (see docs/animation.md)",
+        crate::description::animation::ANIMATION_PARAMS,
+    );
+    section(
+        &mut out,
+        "`animate.KEY` of a node or the camera",
+        "keyframes of `KEY`, any key whose value is a number or `[x, y, z]`, or `rotate`; before the first key and after the last the end values hold (glTF)",
+        crate::description::animation::TRACK_PARAMS,
+    );
     for k in CAMERAS {
         section(&mut out, &format!("Camera `type = \"{}\"`", k.name), k.summary, k.params);
     }

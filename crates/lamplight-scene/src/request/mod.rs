@@ -31,6 +31,7 @@ pub use output::{write, DisplayTransform, Rendered};
 pub use sampling::{AntialiasRequest, NOISE_DEFAULT_SPP, NOISE_DEFAULT_THRESHOLD};
 pub use scene_arg::{file_kind, names_builtin, FileKind};
 
+pub mod frames;
 pub mod limits;
 
 /// Memory the film takes per pixel: its sums and squares and the image.
@@ -177,7 +178,7 @@ impl SceneRequest {
     /// request to a scene that renders.
     pub fn instantiate(&self, job: &Job) -> Result<Built, RequestError> {
         crate::memory::set_limit(job.memory_budget);
-        let mut built = self.build_with_warnings()?;
+        let mut built = self.build_frame(job.frame)?;
         job.reserve_film()?;
         job.prepare(&mut built.scene)?;
         Ok(built)
@@ -186,13 +187,29 @@ impl SceneRequest {
     /// Builds the scene and keeps the warnings of the mesh files it read
     /// (`FILE: what`, each once), for the front end to show.
     pub fn build_with_warnings(&self) -> Result<Built, RequestError> {
+        self.build_frame(None)
+    }
+
+    /// [`SceneRequest::build_with_warnings`] at frame `frame` of an animated
+    /// scene file (`None`: its first frame); any other scene is the same at every frame.
+    pub fn build_frame(&self, frame: Option<i64>) -> Result<Built, RequestError> {
         crate::memory::restart();
         match &self.spec {
             SceneSpec::Builtin(b) => (b.build)()
                 .map(|scene| Built { scene, warnings: Vec::new() })
                 .map_err(|e| bad(format!("cannot build scene '{}': {e}", b.name))),
-            SceneSpec::File(file) => file.build_with_warnings().map_err(|e| bad(e.to_string())),
+            SceneSpec::File(file) => file.build_frame(frame).map_err(|e| bad(e.to_string())),
             SceneSpec::Mesh(path) => imported::load_shaded(path, self.smooth).map_err(|e| bad(e.to_string())),
+        }
+    }
+}
+
+impl SceneRequest {
+    /// The scene's `[animation]`, when it is an animated scene file.
+    pub fn animation(&self) -> Option<&crate::description::Animation> {
+        match &self.spec {
+            SceneSpec::File(file) => file.description.animation.as_ref(),
+            _ => None,
         }
     }
 }
@@ -243,6 +260,8 @@ pub struct Request {
     /// Smooth a mesh file's meshes that have no normals ([`SceneRequest::smoothed`]):
     /// the viewer builds its scene from the request.
     pub smooth: bool,
+    /// The frame of an animated scene (`None`: its first); see [`frames`].
+    pub frame: Option<i64>,
 }
 
 /// A request checked and with every default resolved.
@@ -259,6 +278,8 @@ pub struct Job {
     pub denoiser: Option<std::sync::Arc<crate::denoise::Denoiser>>,
     /// The memory budget in bytes that building and rendering draw on.
     pub memory_budget: u64,
+    /// The frame of an animated scene this job renders (`None`: its first).
+    pub frame: Option<i64>,
 }
 
 impl Request {
@@ -361,6 +382,9 @@ impl Request {
         };
         let (spp, adaptive) = sampling::resolve(self, d, integrator, naming)?;
         let seed = self.seed.unwrap_or(d.seed);
+        if let Some(frame) = self.frame {
+            frames::check_frame(frame).map_err(|e| bad(format!("{} {e}", n("frame"))))?;
+        }
         let options = RenderOptions {
             width,
             height,
@@ -377,7 +401,7 @@ impl Request {
             adaptive,
         };
         let memory_budget = self.memory_budget.or(d.memory_budget).unwrap_or_else(crate::memory::default_limit);
-        Ok(Job { options, environment: self.environment.clone(), layers, denoiser, memory_budget })
+        Ok(Job { options, environment: self.environment.clone(), layers, denoiser, memory_budget, frame: self.frame })
     }
 }
 
