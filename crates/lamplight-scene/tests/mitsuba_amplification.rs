@@ -3,7 +3,9 @@
 //! chains of `<default>`s that each repeat the last `k` times, and files that
 //! each include the next `k` times, `depth` deep. Each either reads (when its
 //! size stays under the budgets) or ends in the one error of the budget it
-//! crosses, and every case ends in well under a second.
+//! crosses, and every case ends within issue 30's bound of 5 seconds (each
+//! takes milliseconds; the bound catches a budget that stopped bounding,
+//! where a tighter one failed under a loaded 2-core machine's test run).
 //! See: issue 30 in the project's tracker.
 
 use std::path::Path;
@@ -36,7 +38,7 @@ fn amplification_shapes_stay_bounded() {
             }
             lines.push(format!("<bsdf type=\"diffuse\" id=\"b\"><string name=\"s\" value=\"$a{n}\"/></bsdf>"));
             let (result, took) = read(d, scene(&lines.join("\n")));
-            assert!(took < Duration::from_secs(1), "k={k} n={n}: {took:?}");
+            assert!(took < Duration::from_secs(5), "k={k} n={n}: {took:?}");
             // Bytes made: every default's value, 2 k^i for i = 1..=n, and the use of the last.
             let sizes: Vec<u64> = (1..=n).map(|i| u64::from(k).saturating_pow(i).saturating_mul(2)).collect();
             let largest = *sizes.last().unwrap();
@@ -64,7 +66,7 @@ fn amplification_shapes_stay_bounded() {
             let start = Instant::now();
             let main = sub.join("main.xml");
             let result = mitsuba::parse_table(&main, scene("<include filename=\"f0.xml\"/>"), &[]).map(drop).map_err(|e| e.to_string());
-            assert!(start.elapsed() < Duration::from_secs(1), "k={k} depth={depth}: {:?}", start.elapsed());
+            assert!(start.elapsed() < Duration::from_secs(5), "k={k} depth={depth}: {:?}", start.elapsed());
             // Includes read: 1 + k + k^2 + ... + k^depth.
             let includes: u64 = (0..=depth as u32).map(|i| (k as u64).pow(i)).sum();
             let too_deep = depth + 1 > xml::MAX_INCLUDE_DEPTH;
