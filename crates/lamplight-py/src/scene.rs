@@ -127,7 +127,7 @@ impl Scene {
             }
             Origin::Mesh(path) => SceneSpec::Mesh(path.clone()),
         };
-        let request = SceneRequest { spec, name: String::new(), defaults: self.defaults, smooth: false };
+        let request = SceneRequest { spec, name: String::new(), defaults: self.defaults, mesh: Default::default() };
         let built = request.build_with_warnings().map_err(|e| SceneError::new_err(e.0))?;
         Ok(self.with_own_camera(built.scene, built.warnings))
     }

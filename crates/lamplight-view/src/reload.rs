@@ -13,7 +13,7 @@ use std::sync::mpsc;
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
-use lamplight_scene::request::{Naming, Request, SceneRequest};
+use lamplight_scene::request::{MeshOptions, Naming, Request, SceneRequest};
 use notify::{EventKind, RecursiveMode, Watcher};
 
 use crate::renderer::Loaded;
@@ -29,7 +29,8 @@ pub const QUIET: Duration = Duration::from_millis(60);
 /// Reads and builds the scene `arg` names (a built-in, a scene file or a mesh
 /// file), lit by the environment map `request` names, if any.
 pub fn load(arg: &str, request: &Request) -> Result<Loaded, String> {
-    let scene = SceneRequest::resolve(arg).and_then(|s| s.smoothed(request.smooth)).map_err(|e| e.0)?;
+    let options = request.mesh_options(MeshOptions::default());
+    let scene = SceneRequest::resolve(arg).and_then(|s| s.with_mesh_options(options, Naming::Flags)).map_err(|e| e.0)?;
     let job = request.resolve(&scene.defaults, Naming::Flags).map_err(|e| e.0)?;
     let built = scene.instantiate(&job).map_err(|e| e.0)?;
     Ok(Loaded::new(built.scene, scene.defaults, built.warnings))
