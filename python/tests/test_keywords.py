@@ -45,6 +45,10 @@ SAMPLES = {
     "noise_threshold": 0.5,
     "min_spp": 4,
     "memory_budget": "1G",
+    # The mesh file settings' defaults (cornell-box is no mesh file: other values
+    # are refused there; test_mesh_options.py renders them on one).
+    "smooth": False,
+    "keep_auto_lights": "auto",
 }
 
 
