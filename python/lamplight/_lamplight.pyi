@@ -30,8 +30,10 @@ class Scene:
     def builtin(name: str) -> "Scene":
         """The built-in scene ``name`` (see :func:`builtin_names`)."""
     @staticmethod
-    def from_file(path: _Path) -> "Scene":
-        """A scene file (``.toml``, read now) or a mesh file (read when built)."""
+    def from_file(path: _Path, *, smooth: Optional[bool] = None, keep_auto_lights: Optional[Union[bool, str]] = None) -> "Scene":
+        """A scene file (``.toml``, read now) or a mesh file (read when built).
+        A mesh file takes the settings that decide how it is built (the
+        settings table's build keywords), which a render's own override."""
     @staticmethod
     def from_toml(text: str, base_dir: Optional[_Path] = None) -> "Scene":
         """Scene text in the native format; mesh paths relative to ``base_dir`` (default: the current directory)."""
@@ -92,6 +94,8 @@ class Scene:
         noise_threshold: Optional[float] = None,
         min_spp: Optional[int] = None,
         memory_budget: Optional[Union[int, str]] = None,
+        smooth: Optional[bool] = None,
+        keep_auto_lights: Optional[Union[bool, str]] = None,
         frame: Optional[int] = None,
         # END settings
     ) -> Dict[str, Any]:
@@ -182,6 +186,8 @@ def render_array(
     noise_threshold: Optional[float] = None,
     min_spp: Optional[int] = None,
     memory_budget: Optional[Union[int, str]] = None,
+    smooth: Optional[bool] = None,
+    keep_auto_lights: Optional[Union[bool, str]] = None,
     frame: Optional[int] = None,
     # END settings
 ) -> Tuple[npt.NDArray[np.float32], Dict[str, Any], Dict[str, npt.NDArray[np.float32]]]:
@@ -212,6 +218,8 @@ def resolve_settings(
     noise_threshold: Optional[float] = None,
     min_spp: Optional[int] = None,
     memory_budget: Optional[Union[int, str]] = None,
+    smooth: Optional[bool] = None,
+    keep_auto_lights: Optional[Union[bool, str]] = None,
     frame: Optional[int] = None,
     # END settings
 ) -> Tuple[int, int, int, str, int]:

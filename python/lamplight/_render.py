@@ -32,16 +32,42 @@ def as_scene(scene: SceneLike, base_dir: Optional[Union[str, "os.PathLike[str]"]
     raise TypeError(f"a scene is a built-in name, a file path, a dict or a lamplight.Scene, got {type(scene).__name__}")
 
 
-def load(path: Union[str, "os.PathLike[str]"]) -> Scene:
-    """Reads a scene file (``.toml``) or a mesh file (``.obj``, ``.ply``, ``.gltf``, ``.glb``)."""
-    return Scene.from_file(os.fspath(path))
-
-
 #: ``(name, annotation, explain)`` of every render setting, in order: the one
 #: table (``crates/lamplight-py/src/settings.rs``) that ``render_array``,
 #: ``Scene.explain``, the wrappers here and in :mod:`lamplight.dask` and the
 #: type stub take their keywords from.
 RENDER_KEYWORDS: Tuple[Tuple[str, str, bool], ...] = tuple(_lamplight.render_keywords())
+
+#: The settings of the table that decide how a mesh file rendered directly is
+#: built (``smooth``, ``keep_auto_lights``): :func:`load` takes them too.
+BUILD_KEYWORDS: Tuple[str, ...] = tuple(_lamplight.build_keywords())
+
+
+def load(path: Union[str, "os.PathLike[str]"], **settings: Any) -> Scene:
+    """Reads a scene file (``.toml``, ``.xml``) or a mesh file (``.obj``,
+    ``.ply``, ``.gltf``, ``.glb``). A mesh file takes the settings that decide
+    how it is built, as the scene's own (a render's keywords override them):
+    ``smooth=True`` shades its meshes without normals smooth, as
+    ``lamplight render --smooth``; ``keep_auto_lights`` (``True``, ``False``
+    or ``"auto"``, the default) keeps the automatic lights of a bare model
+    beside the file's own, as ``--keep-auto-lights``."""
+    for key in settings:
+        if key not in BUILD_KEYWORDS:
+            near = difflib.get_close_matches(key, BUILD_KEYWORDS, n=1)
+            hint = f" (did you mean '{near[0]}'?)" if near else ""
+            raise TypeError(f"load() got an unexpected keyword argument '{key}'{hint}")
+    return Scene.from_file(os.fspath(path), **settings)
+
+
+load.__signature__ = inspect.Signature(  # type: ignore[attr-defined]
+    [inspect.Parameter("path", inspect.Parameter.POSITIONAL_OR_KEYWORD, annotation='Union[str, "os.PathLike[str]"]')]
+    + [
+        inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY, default=None, annotation=annotation)
+        for name, annotation, _ in RENDER_KEYWORDS
+        if name in BUILD_KEYWORDS
+    ],
+    return_annotation=Scene,
+)
 
 
 def with_settings(

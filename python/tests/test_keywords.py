@@ -46,6 +46,10 @@ SAMPLES = {
     "min_spp": 4,
     "memory_budget": "1G",
     "frame": 3,
+    # The mesh file settings' defaults (cornell-box is no mesh file: other values
+    # are refused there; test_mesh_options.py renders them on one).
+    "smooth": False,
+    "keep_auto_lights": "auto",
 }
 
 

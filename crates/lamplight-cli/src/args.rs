@@ -12,7 +12,9 @@ use lamplight_core::film::tonemap::ToneMap;
 use lamplight_scene::builtin;
 use lamplight_scene::image_io::Format;
 use lamplight_scene::image_io::Transfer;
-use lamplight_scene::request::{AntialiasRequest, DisplayTransform, Job, Layer, Naming, Request, RequestError, SceneRequest};
+use lamplight_scene::request::{
+    AntialiasRequest, AutoLights, DisplayTransform, Job, Layer, MeshOptions, Naming, Request, RequestError, SceneRequest,
+};
 
 /// The `lamplight` command line.
 #[derive(Debug, Parser)]
@@ -167,6 +169,9 @@ pub struct SceneArgs {
     /// A mesh file (.obj, .ply, .gltf, .glb): shade its meshes that have no normals smooth (angle-weighted vertex normals, Mitsuba's default) rather than flat (glTF's rule, Blender's import). In a scene file, a mesh's `shading = "smooth"` says it.
     #[arg(long)]
     pub smooth: bool,
+    /// A mesh file (.obj, .ply, .gltf, .glb) with lights of its own: keep the automatic lights a bare model gets (a neutral studio, key, fill and rim) `on` always, `off` never, or `auto` when the file's lights reach less than a quarter of what the camera sees (a light shut inside the model); a note says when they are kept. `--keep-auto-lights` alone is `on` [default: auto].
+    #[arg(long, value_name = "on|off|auto", num_args = 0..=1, default_missing_value = "on", value_parser = auto_lights)]
+    pub keep_auto_lights: Option<AutoLights>,
 }
 
 impl SceneArgs {
@@ -192,9 +197,16 @@ impl SceneArgs {
             denoise: None,
             denoise_library_hints: Vec::new(),
             memory_budget: self.memory_budget,
-            smooth: self.smooth,
+            smooth: self.smooth.then_some(true),
+            keep_auto_lights: self.keep_auto_lights,
             frame: None,
         }
+    }
+
+    /// The scene these flags name, with the mesh file options they give.
+    pub fn scene_request(&self) -> Result<SceneRequest, UsageError> {
+        let options = self.request(0).mesh_options(MeshOptions::default());
+        Ok(SceneRequest::resolve_with(&self.scene, &self.define)?.with_mesh_options(options, Naming::Flags)?)
     }
 
     /// Starts the memory budget ([`lamplight_scene::memory`]) before the scene
@@ -202,6 +214,11 @@ impl SceneArgs {
     pub fn begin_memory_budget(&self) {
         lamplight_scene::memory::begin(self.memory_budget, Naming::Flags);
     }
+}
+
+/// `--keep-auto-lights on|off|auto`.
+fn auto_lights(text: &str) -> Result<AutoLights, String> {
+    text.parse()
 }
 
 /// `X,Y` as two whole numbers.
@@ -241,7 +258,7 @@ impl ExplainArgs {
     /// Reads the scene and resolves the render settings as `render` does.
     pub fn validate(self) -> Result<ExplainJob, UsageError> {
         self.render.begin_memory_budget();
-        let scene = SceneRequest::resolve_with(&self.render.scene, &self.render.define)?.smoothed(self.render.smooth)?;
+        let scene = self.render.scene_request()?;
         let job = self.render.request(1).resolve(&scene.defaults, Naming::Flags)?;
         Ok(ExplainJob { scene, job, pixel: self.pixel, sample: self.sample, json: self.json })
     }
@@ -417,7 +434,7 @@ impl RenderArgs {
     /// file's settings, which override the program's defaults.
     pub fn validate(self) -> Result<RenderJob, UsageError> {
         self.scene.begin_memory_budget();
-        let scene = SceneRequest::resolve_with(&self.scene.scene, &self.scene.define)?.smoothed(self.scene.smooth)?;
+        let scene = self.scene.scene_request()?;
         if !self.exposure.is_finite() {
             return Err(usage("--exposure must be a finite number"));
         }

@@ -35,7 +35,7 @@ fn a_mesh_file_lists_its_meshes_bounds_materials_and_warnings() {
          bounds:     [0, 0, -3] to [2, 1, 0] (size [2, 1, 3])\n\
          materials:  1 material; 1 placed mesh without one (the default grey)\n\
          cameras:    none (a render frames the model from a 3/4 view)\n\
-         lights:     none (a render adds a neutral surround and key, fill and rim lights)\n\
+         lights:     none (a render adds a neutral studio and key, fill and rim lights)\n\
          warnings:   1\n  \
            OBJ material `none` is defined by no `mtllib` read so far: no material used\n"
     );

@@ -1,6 +1,7 @@
 //! What `lamplight render` says and does about a scene's lights (issue 27): a
 //! light shut in by geometry is named, with what blocks it; an environment map
-//! from the command line is interpolated between its pixels.
+//! from the command line is interpolated between its pixels; a model file whose
+//! own lights reach too little of the view keeps the automatic lights.
 
 use std::path::Path;
 use std::process::{Command, Output, Stdio};
@@ -125,4 +126,93 @@ fn an_environment_map_from_the_command_line_is_interpolated_bilinearly() {
     // midway between pixel centres u = 1/4 and 3/4, (2 + 6) / 2 = 4 (the nearest pixel gives 6).
     let seen = centre_of_the_sky(vec![[2.0; 3], [6.0; 3]], 2, 1, "whitted");
     assert!(seen.iter().all(|c| (c - 4.0).abs() < 1e-5), "{seen:?}");
+}
+
+/// An OBJ of two boxes: a closed orange shell of half-size 1 about the origin
+/// and an emitting lamp box of half-size 0.2 about `lamp` (its only light,
+/// MTL `Ke`), both wound outwards.
+fn two_boxes(lamp: [f64; 3]) -> (String, String) {
+    let cube = |c: [f64; 3], h: f64, first: usize, material: &str| {
+        let mut s = format!("usemtl {material}\n");
+        // OBJ order 1..8: (-,-,-) (+,-,-) (+,+,-) (-,+,-) (-,-,+) (+,-,+) (+,+,+) (-,+,+).
+        for (x, y, z) in [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)] {
+            let at = |b: i32, c0: f64| c0 + if b == 1 { h } else { -h };
+            s += &format!("v {} {} {}\n", at(x, c[0]), at(y, c[1]), at(z, c[2]));
+        }
+        for f in [[1, 4, 3, 2], [5, 6, 7, 8], [1, 5, 8, 4], [2, 3, 7, 6], [1, 2, 6, 5], [4, 8, 7, 3]] {
+            s += &format!("f {} {} {} {}\n", f[0] + first, f[1] + first, f[2] + first, f[3] + first);
+        }
+        s
+    };
+    let obj = format!("mtllib boxes.mtl\n{}{}", cube([0.0; 3], 1.0, 0, "skin"), cube(lamp, 0.2, 8, "candle"));
+    let mtl = "newmtl skin\nKd 0.9 0.45 0.1\nnewmtl candle\nKd 0 0 0\nKe 4 3 1\n".to_string();
+    (obj, mtl)
+}
+
+/// Renders `boxes.obj` with `flags` to EXR: the image and the warning lines.
+fn render_boxes(dir: &Path, flags: &[&str]) -> (Vec<[f32; 3]>, Vec<String>) {
+    let args = [&["render", "boxes.obj", "--width", "64", "--height", "48", "-o", "out.exr"][..], flags].concat();
+    let out = lamplight(dir, &args);
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert!(out.status.success(), "{err}");
+    let warnings = err.lines().filter(|l| l.starts_with("lamplight: warning: ")).map(str::to_string).collect();
+    (lamplight_scene::image_io::read_exr(&dir.join("out.exr")).unwrap().pixels, warnings)
+}
+
+fn mean(pixels: &[[f32; 3]]) -> f64 {
+    pixels.iter().map(|p| (p[0] + p[1] + p[2]) as f64 / 3.0).sum::<f64>() / pixels.len() as f64
+}
+
+#[test]
+fn a_model_lit_only_from_inside_keeps_the_automatic_lights_unless_told_not_to() {
+    // A jack-o'-lantern without its face: the candle is shut in the pumpkin.
+    let dir = tempfile::tempdir().unwrap();
+    let (obj, mtl) = two_boxes([0.0; 3]);
+    std::fs::write(dir.path().join("boxes.obj"), obj).unwrap();
+    std::fs::write(dir.path().join("boxes.mtl"), mtl).unwrap();
+    let (kept, warnings) = render_boxes(dir.path(), &[]);
+    assert_eq!(
+        warnings,
+        ["lamplight: warning: boxes.obj: the file's own lights reach 0 % of what the camera sees (less than 25 %), so the \
+          automatic lights (studio, key, fill and rim) are kept with them; --keep-auto-lights off (Python keep_auto_lights=False) \
+          leaves them out"]
+    );
+    // The pumpkin's outside is lit (its pixels and the studio behind it).
+    assert!(mean(&kept) > 0.2, "mean {}", mean(&kept));
+    // `on` keeps them too, without a note; `off` is the rule before: the file's light alone, black outside.
+    let (on, warnings) = render_boxes(dir.path(), &["--keep-auto-lights"]);
+    assert_eq!((on == kept, warnings), (true, vec![]));
+    let (off, warnings) = render_boxes(dir.path(), &["--keep-auto-lights", "off"]);
+    assert_eq!(warnings, Vec::<String>::new());
+    let brightest = off.iter().flatten().fold(0.0f32, |a, &b| a.max(b));
+    assert!(brightest < 0.02, "the shell's outside sees only the file's ambient light: {brightest}");
+    // A bad value is one line and exit code 2.
+    let out = lamplight(dir.path(), &["render", "boxes.obj", "--keep-auto-lights", "maybe"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.starts_with("lamplight: error: invalid value 'maybe' for '--keep-auto-lights"), "{err}");
+    assert!(err.contains("must be on, off or auto"), "{err}");
+}
+
+#[test]
+fn a_model_its_own_light_reaches_keeps_that_light_alone_by_default() {
+    // The lamp outside, above, right and in front: it lights the faces the camera sees.
+    let dir = tempfile::tempdir().unwrap();
+    let (obj, mtl) = two_boxes([2.0, 2.0, 2.0]);
+    std::fs::write(dir.path().join("boxes.obj"), obj).unwrap();
+    std::fs::write(dir.path().join("boxes.mtl"), mtl).unwrap();
+    let (default, warnings) = render_boxes(dir.path(), &[]);
+    assert_eq!(warnings, Vec::<String>::new());
+    let (off, _) = render_boxes(dir.path(), &["--keep-auto-lights", "off"]);
+    assert!(default == off, "the file's light alone");
+    let (on, _) = render_boxes(dir.path(), &["--keep-auto-lights", "on"]);
+    assert!(mean(&on) > mean(&default) + 0.05, "on adds the studio: {} vs {}", mean(&on), mean(&default));
+    // A scene file states its own lights: the flag is refused there.
+    let out = lamplight(dir.path(), &["render", "luxo", "--keep-auto-lights", "on"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(
+        String::from_utf8_lossy(&out.stderr),
+        "lamplight: error: --keep-auto-lights applies to a mesh file rendered directly (.obj, .ply, .gltf, .glb); 'luxo' is not one: \
+         a scene file is lit by the lights it states\n"
+    );
 }

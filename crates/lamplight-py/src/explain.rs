@@ -32,7 +32,7 @@ pub fn explain(
     let sample = whole::<u32>("sample", sample.as_ref(), 0, u32::MAX.into(), "")?;
     let request = crate::settings::request(settings, "explain", true)?;
     let job = request.resolve(scene.settings(), Naming::Keywords).map_err(|e| PyValueError::new_err(e.0))?;
-    let core = scene.core_for(py, &job)?;
+    let core = scene.core_for(py, &job, &request)?;
     let text = py.allow_threads(|| {
         lamplight_scene::explain::explain(&core, &job, (x, y), sample, Naming::Keywords).map(|e| e.to_json().to_string())
     });

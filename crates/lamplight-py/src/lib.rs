@@ -31,6 +31,7 @@ fn _lamplight(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(kinds::kinds, m)?)?;
     m.add_function(wrap_pyfunction!(render::resolve_settings, m)?)?;
     m.add_function(wrap_pyfunction!(settings::render_keywords, m)?)?;
+    m.add_function(wrap_pyfunction!(settings::build_keywords, m)?)?;
     m.add_function(wrap_pyfunction!(image::write_image, m)?)?;
     m.add_function(wrap_pyfunction!(image::encode_png, m)?)?;
     m.add_function(wrap_pyfunction!(image::read_exr, m)?)?;

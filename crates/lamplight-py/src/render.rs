@@ -51,7 +51,7 @@ pub fn render_array<'py>(
     crate::denoise::add_library_hints(py, &mut request, scene.settings());
     let mut job = request.resolve(scene.settings(), Naming::Keywords).map_err(|e| PyValueError::new_err(e.0))?;
     job.add_scene_layers(scene.settings(), true);
-    let core = scene.core_for(py, &job)?;
+    let core = scene.core_for(py, &job, &request)?;
     job.reserve_film().map_err(|e| PyValueError::new_err(e.0))?;
 
     let warnings: Vec<String> = job.light_warnings(&core);

@@ -16,7 +16,7 @@ use lamplight_scene::builtin::{self, Builtin};
 use lamplight_scene::description::{Node, SceneDescription};
 use lamplight_scene::formats::native::Source as FileSource;
 use lamplight_scene::instantiate::{self, SceneFile};
-use lamplight_scene::request::{self, program_defaults, Defaults, FileKind, SceneRequest, SceneSpec};
+use lamplight_scene::request::{self, program_defaults, Defaults, FileKind, MeshOptions, Naming, Request, SceneRequest, SceneSpec};
 use lamplight_scene::LoadError;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -49,8 +49,11 @@ pub struct Scene {
     /// A camera replacing the scene's (`with_camera`): the plain dict and its description.
     camera: Option<(PyObject, Arc<dyn Camera>)>,
     defaults: Defaults,
-    /// The core scene once built, and the warnings of the mesh files it read.
-    built: Mutex<Option<Kept>>,
+    /// How a mesh file is built unless a render says otherwise (`load(path, smooth=True)`).
+    mesh: MeshOptions,
+    /// The core scene once built for each mesh file options asked for, and the
+    /// warnings of the mesh files it read.
+    built: Mutex<Vec<(MeshOptions, Kept)>>,
 }
 
 /// The names of the built-in scenes, the default first.
@@ -86,28 +89,55 @@ impl Scene {
             }
             Origin::Mesh(_) => program_defaults(),
         };
-        Ok(Scene { origin, camera, defaults, built: Mutex::new(None) })
+        Ok(Scene { origin, camera, defaults, mesh: MeshOptions::default(), built: Mutex::new(Vec::new()) })
+    }
+
+    /// The scene built with the mesh file `options` unless a render says
+    /// otherwise; refused for a scene that is not a mesh file.
+    fn with_mesh(mut self, options: MeshOptions) -> PyResult<Scene> {
+        self.check_mesh_options(options)?;
+        self.mesh = options;
+        Ok(self)
+    }
+
+    /// Refuses mesh file `options` other than the default for a scene that is not a mesh file.
+    fn check_mesh_options(&self, options: MeshOptions) -> PyResult<()> {
+        let name = match &self.origin {
+            Origin::Builtin(b) => b.name.to_string(),
+            Origin::Toml(file) => file.source.path.display().to_string(),
+            Origin::Dict { .. } => "scene dict".to_string(),
+            Origin::Mesh(path) => path.display().to_string(),
+        };
+        request::check_mesh_options(matches!(self.origin, Origin::Mesh(_)), &name, options, Naming::Keywords)
+            .map_err(|e| PyValueError::new_err(e.0))
     }
 
     /// The core scene (for any image size), built once and kept.
     pub fn core(&self, py: Python<'_>) -> PyResult<Arc<CoreScene>> {
-        self.core_and_warnings(py).map(|(scene, _)| scene)
+        self.core_and_warnings(py, self.mesh).map(|(scene, _)| scene)
     }
 
-    /// The core scene and its mesh files' warnings, built once and kept. The
-    /// build that is kept gives each warning to Python's `warnings.warn` once.
-    fn core_and_warnings(&self, py: Python<'_>) -> PyResult<Kept> {
-        if let Some(built) = self.built.lock().map_err(|_| SceneError::new_err("scene cache poisoned"))?.as_ref() {
-            return Ok(built.clone());
+    /// The core scene built with `options` and its mesh files' warnings, built
+    /// once and kept. The build that is kept gives each warning to Python's
+    /// `warnings.warn` once.
+    fn core_and_warnings(&self, py: Python<'_>, options: MeshOptions) -> PyResult<Kept> {
+        let found = |kept: &[(MeshOptions, Kept)]| kept.iter().find(|(o, _)| *o == options).map(|(_, k)| k.clone());
+        if let Some(built) = found(&self.built.lock().map_err(|_| SceneError::new_err("scene cache poisoned"))?) {
+            return Ok(built);
         }
         // Building reads mesh files and builds BVHs: let other Python threads run.
         // Two threads may both build; the first to finish is kept.
-        let (scene, warnings) = py.allow_threads(|| self.build_core(None))?;
+        let (scene, warnings) = py.allow_threads(|| self.build_core(options, None))?;
         let built = (Arc::new(scene), Arc::new(warnings));
         let (kept, first) = {
             let mut kept = self.built.lock().map_err(|_| SceneError::new_err("scene cache poisoned"))?;
-            let first = kept.is_none();
-            (kept.get_or_insert(built).clone(), first)
+            match found(&kept) {
+                Some(earlier) => (earlier, false),
+                None => {
+                    kept.push((options, built.clone()));
+                    (built, true)
+                }
+            }
         };
         if first {
             warn_each(py, &kept.1)?;
@@ -115,8 +145,9 @@ impl Scene {
         Ok(kept)
     }
 
-    /// Builds the scene at `frame` of its animation (`None`: the first frame).
-    fn build_core(&self, frame: Option<i64>) -> PyResult<(CoreScene, Vec<String>)> {
+    /// Builds the scene with the mesh file `options`, at `frame` of its
+    /// animation (`None`: the first frame).
+    fn build_core(&self, options: MeshOptions, frame: Option<i64>) -> PyResult<(CoreScene, Vec<String>)> {
         // The request layer builds what a job renders, as for the command line;
         // only a dict's errors are worded here, by key path without a file.
         let spec = match &self.origin {
@@ -128,7 +159,7 @@ impl Scene {
             }
             Origin::Mesh(path) => SceneSpec::Mesh(path.clone()),
         };
-        let request = SceneRequest { spec, name: String::new(), defaults: self.defaults, smooth: false };
+        let request = SceneRequest { spec, name: String::new(), defaults: self.defaults, mesh: options };
         let built = request.build_frame(frame).map_err(|e| SceneError::new_err(e.0))?;
         Ok(self.with_own_camera(built.scene, built.warnings))
     }
@@ -139,6 +170,20 @@ impl Scene {
             scene.settings.camera = camera.clone();
         }
         (scene, warnings)
+    }
+
+    /// A scene file (read now) or a mesh file (read when built), by extension.
+    fn read_file(path: PathBuf) -> PyResult<Scene> {
+        match request::file_kind(&path).map_err(|e| PyValueError::new_err(e.0))? {
+            FileKind::Scene(format) => Scene::new(Origin::Toml(SceneFile::read_format(&path, format, &[]).map_err(load_error)?), None),
+            FileKind::Mesh => {
+                if !path.is_file() {
+                    return Err(pyo3::exceptions::PyFileNotFoundError::new_err(format!("{}: no such file", path.display())));
+                }
+                let path = std::path::absolute(&path).unwrap_or(path);
+                Scene::new(Origin::Mesh(path), None)
+            }
+        }
     }
 
     fn from_dict_with(py: Python<'_>, dict: &Bound<'_, PyAny>, base_dir: Option<PathBuf>) -> PyResult<Scene> {
@@ -177,7 +222,7 @@ impl Scene {
         if request::names_builtin(&arg) {
             return Scene::builtin(&arg);
         }
-        Scene::from_file(text)
+        Scene::read_file(text)
     }
 
     /// The built-in scene `name`.
@@ -188,19 +233,15 @@ impl Scene {
     }
 
     /// A scene file (`.toml` or Mitsuba `.xml`, read now) or a mesh file (`.obj`,
-    /// `.ply`, `.gltf`, `.glb`, read when the scene is built), by extension.
+    /// `.ply`, `.gltf`, `.glb`, read when the scene is built), by extension. A
+    /// mesh file takes the keywords that decide how it is built (`smooth`,
+    /// `keep_auto_lights`: the settings table's build keywords), which a
+    /// render's own override.
     #[staticmethod]
-    fn from_file(path: PathBuf) -> PyResult<Scene> {
-        match request::file_kind(&path).map_err(|e| PyValueError::new_err(e.0))? {
-            FileKind::Scene(format) => Scene::new(Origin::Toml(SceneFile::read_format(&path, format, &[]).map_err(load_error)?), None),
-            FileKind::Mesh => {
-                if !path.is_file() {
-                    return Err(pyo3::exceptions::PyFileNotFoundError::new_err(format!("{}: no such file", path.display())));
-                }
-                let path = std::path::absolute(&path).unwrap_or(path);
-                Scene::new(Origin::Mesh(path), None)
-            }
-        }
+    #[pyo3(signature = (path, **settings))]
+    fn from_file(path: PathBuf, settings: Option<&Bound<'_, PyDict>>) -> PyResult<Scene> {
+        let options = crate::settings::mesh_options(settings, "from_file")?;
+        Scene::read_file(path)?.with_mesh(options)
     }
 
     /// Scene text in the native TOML format; relative mesh paths resolve against
@@ -240,7 +281,7 @@ impl Scene {
             }
             Origin::Mesh(path) => Origin::Mesh(path.clone()),
         };
-        Scene::new(origin, Some((plain, camera)))
+        Scene::new(origin, Some((plain, camera)))?.with_mesh(self.mesh)
     }
 
     /// What the scene was made from: `"builtin"`, `"file"`, `"dict"` or `"mesh"`.
@@ -345,7 +386,7 @@ impl Scene {
     /// `warnings.warn` once.
     #[getter]
     fn warnings(&self, py: Python<'_>) -> PyResult<Vec<String>> {
-        Ok(self.core_and_warnings(py)?.1.as_ref().clone())
+        Ok(self.core_and_warnings(py, self.mesh)?.1.as_ref().clone())
     }
 
     /// Number of objects (placed shapes) in the scene; primitive ids run below it.
@@ -386,14 +427,15 @@ impl Scene {
     fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(PyObject, Bound<'py, PyTuple>)> {
         let from_state = py.import("lamplight._lamplight")?.getattr("scene_from_state")?.unbind();
         let camera = self.camera(py)?;
+        let mesh = (self.mesh.smooth, self.mesh.auto_lights.name());
         let state = match &self.origin {
-            Origin::Builtin(b) => ("builtin", b.name.into_pyobject(py)?.into_any().unbind(), None, camera),
+            Origin::Builtin(b) => ("builtin", b.name.into_pyobject(py)?.into_any().unbind(), None, camera, mesh),
             Origin::Toml(file) => {
                 let text = file.source.text.clone().unwrap_or_default();
-                ("file", text.into_pyobject(py)?.into_any().unbind(), Some(file.source.path.clone()), camera)
+                ("file", text.into_pyobject(py)?.into_any().unbind(), Some(file.source.path.clone()), camera, mesh)
             }
-            Origin::Dict { dict, base_dir, .. } => ("dict", dict.clone_ref(py), Some(base_dir.clone()), camera),
-            Origin::Mesh(path) => ("mesh", path.clone().into_pyobject(py)?.into_any().unbind(), None, camera),
+            Origin::Dict { dict, base_dir, .. } => ("dict", dict.clone_ref(py), Some(base_dir.clone()), camera, mesh),
+            Origin::Mesh(path) => ("mesh", path.clone().into_pyobject(py)?.into_any().unbind(), None, camera, mesh),
         };
         Ok((from_state, (state,).into_pyobject(py)?))
     }
@@ -426,31 +468,34 @@ impl Scene {
     /// A fresh core scene, not cached (a render that changes it, such as one with
     /// its own environment map, takes this).
     /// Its warnings go to `warnings.warn` unless a kept build gave them already.
-    pub fn fresh_core(&self, py: Python<'_>) -> PyResult<CoreScene> {
-        self.fresh_core_at(py, None)
+    pub fn fresh_core(&self, py: Python<'_>, options: MeshOptions) -> PyResult<CoreScene> {
+        self.fresh_core_at(py, options, None)
     }
 
     /// [`Scene::fresh_core`] at `frame` of an animated scene.
-    fn fresh_core_at(&self, py: Python<'_>, frame: Option<i64>) -> PyResult<CoreScene> {
-        let (scene, warnings) = py.allow_threads(|| self.build_core(frame))?;
-        if self.built.lock().map_err(|_| SceneError::new_err("scene cache poisoned"))?.is_none() {
+    fn fresh_core_at(&self, py: Python<'_>, options: MeshOptions, frame: Option<i64>) -> PyResult<CoreScene> {
+        let (scene, warnings) = py.allow_threads(|| self.build_core(options, frame))?;
+        if !self.built.lock().map_err(|_| SceneError::new_err("scene cache poisoned"))?.iter().any(|(o, _)| *o == options) {
             warn_each(py, &warnings)?;
         }
         Ok(scene)
     }
 
-    /// The core scene `job` renders: the kept build (the first frame of an
+    /// The core scene `job` renders, built with the mesh file options of
+    /// `request` over the scene's own: the kept build (the first frame of an
     /// animated scene), or a fresh one of the job's frame, or lit by its
     /// environment map.
-    pub fn core_for(&self, py: Python<'_>, job: &lamplight_scene::request::Job) -> PyResult<Arc<CoreScene>> {
+    pub fn core_for(&self, py: Python<'_>, job: &lamplight_scene::request::Job, request: &Request) -> PyResult<Arc<CoreScene>> {
+        let options = request.mesh_options(self.mesh);
+        self.check_mesh_options(options)?;
         let other_frame = match (self.animation(), job.frame) {
             (Some(a), Some(frame)) => frame != a.start,
             _ => false,
         };
         if job.environment.is_none() && !other_frame {
-            return self.core(py);
+            return self.core_and_warnings(py, options).map(|(scene, _)| scene);
         }
-        let mut fresh = self.fresh_core_at(py, job.frame)?;
+        let mut fresh = self.fresh_core_at(py, options, job.frame)?;
         job.prepare(&mut fresh).map_err(|e| PyValueError::new_err(e.0))?;
         Ok(Arc::new(fresh))
     }
@@ -466,10 +511,15 @@ fn warn_each(py: Python<'_>, warnings: &[String]) -> PyResult<()> {
     Ok(())
 }
 
-/// Rebuilds a pickled [`Scene`] from `(kind, payload, path, camera)`.
+/// The pickled state of a [`Scene`]: kind, payload, path, camera and mesh file options.
+type State<'py> = (String, Bound<'py, PyAny>, Option<PathBuf>, Option<Bound<'py, PyAny>>, (bool, String));
+
+/// Rebuilds a pickled [`Scene`] from `(kind, payload, path, camera, (smooth, keep_auto_lights))`.
 #[pyfunction]
 pub fn scene_from_state(py: Python<'_>, state: &Bound<'_, PyTuple>) -> PyResult<Scene> {
-    let (kind, payload, path, camera): (String, Bound<'_, PyAny>, Option<PathBuf>, Option<Bound<'_, PyAny>>) = state.extract()?;
+    let (kind, payload, path, camera, (smooth, auto_lights)): State<'_> = state.extract()?;
+    let auto_lights = auto_lights.parse().map_err(PyValueError::new_err)?;
+    let mesh = MeshOptions { smooth, auto_lights };
     let scene = match kind.as_str() {
         "builtin" => Scene::builtin(&payload.extract::<String>()?)?,
         "file" => {
@@ -480,6 +530,7 @@ pub fn scene_from_state(py: Python<'_>, state: &Bound<'_, PyTuple>) -> PyResult<
         "mesh" => Scene::new(Origin::Mesh(payload.extract()?), None)?,
         other => return Err(PyValueError::new_err(format!("unknown pickled scene kind {other:?}"))),
     };
+    let scene = scene.with_mesh(mesh)?;
     match camera {
         Some(camera) => scene.with_camera(py, &camera),
         None => Ok(scene),

@@ -23,10 +23,16 @@
 //! | `antialias` | `bool` or `float` | on, off, or a threshold |
 //! | `memory_budget` | `int` or `str` | bytes, or a size such as `"4G"` ([`lamplight_scene::memory`]) |
 //! | `frame` | `int` | the frame of an animated scene, 0 to 1048574 (default: its first) |
+//! | `smooth` | `bool` | a mesh file's meshes without normals smooth (`--smooth`) |
+//! | `keep_auto_lights` | `bool` or `str` | `True`, `False` or `"auto"` (`--keep-auto-lights on`, `off`, `auto`) |
+//!
+//! The last two ([`BUILD_KEYWORDS`]) decide how a mesh file rendered directly
+//! is built: `lamplight.load` and `Scene.from_file` take them too, as the
+//! scene's own, which a render's keywords override.
 
 use std::path::PathBuf;
 
-use lamplight_scene::request::{limits, Layer, Request};
+use lamplight_scene::request::{limits, AutoLights, Layer, MeshOptions, Request};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
@@ -87,6 +93,25 @@ fn window(value: &Bound<'_, PyAny>) -> PyResult<(u32, u32, u32, u32)> {
         .ok_or_else(|| PyTypeError::new_err(format!("window must be (x0, y0, width, height), got {}", type_name(value))))?;
     let side = |name: &str, v: &Bound<'_, PyAny>| whole::<u32>(name, Some(v), 0, u32::MAX.into(), "").map(Option::unwrap_or_default);
     Ok((side("window x0", &parts[0])?, side("window y0", &parts[1])?, side("window width", &parts[2])?, side("window height", &parts[3])?))
+}
+
+/// A `True` or `False` keyword.
+fn flag(name: &str, value: &Bound<'_, PyAny>) -> PyResult<bool> {
+    value
+        .downcast::<pyo3::types::PyBool>()
+        .map(|b| b.is_true())
+        .map_err(|_| PyTypeError::new_err(format!("{name} must be True or False, got {}", type_name(value))))
+}
+
+/// `keep_auto_lights`: `True` (on), `False` (off) or `"auto"` (also `"on"`, `"off"`).
+fn auto_lights(value: &Bound<'_, PyAny>) -> PyResult<AutoLights> {
+    if let Ok(on) = value.downcast::<pyo3::types::PyBool>() {
+        return Ok(if on.is_true() { AutoLights::On } else { AutoLights::Off });
+    }
+    let text = value
+        .extract::<String>()
+        .map_err(|_| PyTypeError::new_err(format!("keep_auto_lights must be True, False or \"auto\", got {}", type_name(value))))?;
+    text.parse().map_err(|_| PyValueError::new_err(format!("keep_auto_lights must be True, False or \"auto\", got {text:?}")))
 }
 
 /// The layers of `exr_layers`.
@@ -214,12 +239,50 @@ pub const KEYWORDS: &[Keyword] = &[
         read: |r, v| set(&mut r.memory_budget, memory_budget(v).map(Some)),
     },
     Keyword {
+        name: "smooth",
+        annotation: "Optional[bool]",
+        takes: Takes::Both,
+        read: |r, v| set(&mut r.smooth, flag("smooth", v).map(Some)),
+    },
+    Keyword {
+        name: "keep_auto_lights",
+        annotation: "Optional[Union[bool, str]]",
+        takes: Takes::Both,
+        read: |r, v| set(&mut r.keep_auto_lights, auto_lights(v).map(Some)),
+    },
+    Keyword {
         name: "frame",
         annotation: "Optional[int]",
         takes: Takes::Both,
         read: |r, v| set(&mut r.frame, whole("frame", Some(v), 0, lamplight_scene::request::frames::MAX_FRAME as i128, "")),
     },
 ];
+
+/// The keywords that decide how a mesh file is built ([`MeshOptions`]), which
+/// `lamplight.load` and `Scene.from_file` take as well as the renders.
+pub const BUILD_KEYWORDS: &[&str] = &["smooth", "keep_auto_lights"];
+
+/// The mesh file options the keywords `settings` give for `call` (`load`,
+/// `Scene.from_file`): only [`BUILD_KEYWORDS`], read by their rows of [`KEYWORDS`].
+pub fn mesh_options(settings: Option<&Bound<'_, PyDict>>, call: &str) -> PyResult<MeshOptions> {
+    let Some(settings) = settings else { return Ok(MeshOptions::default()) };
+    for key in settings.keys() {
+        let key: String = key.extract()?;
+        if !BUILD_KEYWORDS.contains(&key.as_str()) {
+            let hint = lamplight_core::params::suggestion(&key, BUILD_KEYWORDS.iter().copied())
+                .map(|s| format!(" (did you mean '{s}'?)"))
+                .unwrap_or_default();
+            return Err(PyTypeError::new_err(format!("{call}() got an unexpected keyword argument '{key}'{hint}")));
+        }
+    }
+    Ok(request(Some(settings), call, false)?.mesh_options(MeshOptions::default()))
+}
+
+/// The names of [`BUILD_KEYWORDS`], for the Python wrapper of `load`.
+#[pyfunction]
+pub fn build_keywords() -> Vec<&'static str> {
+    BUILD_KEYWORDS.to_vec()
+}
 
 /// `memory_budget`: bytes as an `int`, or a size such as `"4G"`.
 fn memory_budget(v: &Bound<'_, PyAny>) -> PyResult<u64> {

@@ -8,8 +8,9 @@
 //! through pixel centres, as [`lamplight_core::scene::reaches_camera_hits`]
 //! takes them. For each point, light (point, spot or directional) that sends
 //! it light, from the side of the surface the camera sees, casts one shadow
-//! ray. A light whose every such shadow ray is blocked gets a warning naming
-//! the object that stopped most of them first. Points the light does not face,
+//! ray. A light whose every such shadow ray is blocked, of at least
+//! [`MIN_PROBED`], gets a warning naming the object that stopped most of them
+//! first. Points the light does not face,
 //! or does not send light to (outside a spot's cone), cast no ray and decide
 //! nothing: a light that faces nothing the camera sees is the other warning's
 //! case ("no light reaches anything the camera sees").
@@ -27,6 +28,14 @@ const GRID: u32 = 16;
 /// Lights probed at most: each costs up to `GRID^2` shadow rays, so a scene of
 /// thousands of lights is probed for its first ones only.
 pub const MAX_PROBED_LIGHTS: usize = 256;
+
+/// Fewest shadow rays a light must cast, all blocked, for a warning. A light
+/// that sends light to fewer of the probe points lights little of the view
+/// either way, and a few blocked ones are no sign of a light shut in: the
+/// viewer's rim light behind a bare `igea.ply` or Suzanne faces one point
+/// at the model's silhouette, which the model itself shadows, and was named
+/// as shut in ("(1 probed)"), in the viewer's warnings too.
+pub const MIN_PROBED: usize = 8;
 
 /// Objects crossed at most while looking for what blocks a shadow ray.
 const MAX_CROSSINGS: usize = 64;
@@ -76,7 +85,7 @@ pub fn enclosed_light_warnings(scene: &Scene, camera: &dyn Camera, width: u32, h
                 None => blockers.push((first, 1)),
             }
         }
-        if reached || cast == 0 {
+        if reached || cast < MIN_PROBED {
             continue;
         }
         warnings.push(message(scene, index, cast, &blockers));
@@ -130,7 +139,7 @@ fn first_opaque(scene: &Scene, mut origin: Vec3, dir: Vec3, distance: f64, own: 
 mod tests {
     use super::*;
     use lamplight_core::camera::{Fov, Perspective};
-    use lamplight_core::lights::{DirectionalLight, PointLight};
+    use lamplight_core::lights::{DirectionalLight, PointLight, SpotLight, SpotProfile};
     use lamplight_core::materials::Material;
     use lamplight_core::shapes::{Rectangle, Sphere};
     use lamplight_core::SceneBuilder;
@@ -168,6 +177,37 @@ mod tests {
             "light 0 (DirectionalLight) lights nothing the camera sees: every shadow ray towards it from what the camera sees (240"
         );
         assert_eq!(tail, "171 of them by object 1 \"left roof\" (Rectangle), the rest by another object");
+    }
+
+    #[test]
+    fn a_light_that_sends_light_to_few_probe_points_is_not_named_even_when_they_are_blocked() {
+        // A spot light shut in a small opaque ball over the floor: how many
+        // probe points its cone covers decides.
+        let spot = |outer: f64| {
+            floor(|b, grey| {
+                b.object(Sphere::new(Vec3::new(0.0, 2.0, 0.0), 0.1).unwrap(), grey).unwrap();
+                b.light(SpotLight::new(Vec3::new(0.0, 2.0, 0.0), -Vec3::Y, Rgb::ONE, 0.9 * outer, outer, SpotProfile::Gltf).unwrap());
+            })
+        };
+        // The probe points inside a cone of half-angle `outer` (what the spot casts shadow rays from).
+        let covered = |scene: &Scene| {
+            let camera = scene.settings.camera.as_ref();
+            (0..GRID * GRID)
+                .filter_map(|k| {
+                    let (x, y) = ((k % GRID) as f64 + 0.5, (k / GRID) as f64 + 0.5);
+                    let ray = camera.ray(x / GRID as f64 * 64.0, y / GRID as f64 * 48.0, 64, 48, (0.5, 0.5));
+                    scene.first_intersect(&ray, f64::INFINITY)
+                })
+                .filter(|hit| scene.lights[0].illuminate(hit.point).is_some_and(|s| s.radiance != Rgb::ZERO))
+                .count()
+        };
+        let narrow = spot(10.0);
+        let n = covered(&narrow);
+        assert!((1..MIN_PROBED).contains(&n), "{n} probe points in the narrow cone");
+        assert_eq!(warnings(&narrow), Vec::<String>::new());
+        let wide = spot(60.0);
+        assert!(covered(&wide) >= MIN_PROBED);
+        assert_eq!(warnings(&wide).len(), 1, "{:?}", warnings(&wide));
     }
 
     #[test]

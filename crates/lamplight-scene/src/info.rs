@@ -149,7 +149,7 @@ fn describe_imported(path: &Path, imported: &Imported) -> String {
         lights.push(plural(emitting, "emitting mesh (an area light)", "emitting meshes (area lights)"));
     }
     let lights = if lights.is_empty() {
-        "none (a render adds a neutral surround and key, fill and rim lights)".to_string()
+        "none (a render adds a neutral studio and key, fill and rim lights)".to_string()
     } else {
         lights.join("; ")
     };

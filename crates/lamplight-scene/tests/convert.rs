@@ -117,9 +117,10 @@ fn an_obj_with_an_mtl_and_textures_converts_to_the_same_renders() {
     assert!(toml.contains("reflection = { type = \"constant\", weight = 0.6 }"), "{toml}");
     assert!(toml.contains("color = { type = \"mix\", a = [0.8, 0.7, 0.6], b = { type = \"image\""), "decal: {toml}");
     assert!(toml.contains("type = \"pbr\""), "{toml}");
-    // No lights in the file: the viewer's three, its surround and its camera.
+    // No lights in the file: the viewer's three, its studio and its camera.
     assert_eq!(toml.matches("type = \"directional_light\"").count(), 3, "{toml}");
-    assert!(toml.contains("ambient = 2.0\nbackground = 0.2\n") && toml.contains("fov = 40.0\n"), "{toml}");
+    let studio = "ambient = 3.0\nbackground = 0.2\nenvironment = { preset = \"studio\", rotate = 35.0 }\n";
+    assert!(toml.contains(studio) && toml.contains("fov = 40.0\n"), "{toml}");
     assert_same_renders(&obj, &out);
 
     // Written to another folder, the references follow it; editing a material changes the render.

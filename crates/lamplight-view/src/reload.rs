@@ -13,7 +13,7 @@ use std::sync::mpsc;
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
-use lamplight_scene::request::{Naming, Request, SceneRequest};
+use lamplight_scene::request::{MeshOptions, Naming, Request, SceneRequest};
 use notify::{EventKind, RecursiveMode, Watcher};
 
 use crate::renderer::Loaded;
@@ -27,12 +27,19 @@ pub const WATCHED_EXTENSIONS: &[&str] =
 pub const QUIET: Duration = Duration::from_millis(60);
 
 /// Reads and builds the scene `arg` names (a built-in, a scene file or a mesh
-/// file), lit by the environment map `request` names, if any.
+/// file), lit by the environment map `request` names, if any. Its warnings are
+/// the mesh files' and then those `lamplight render` gives about its lights
+/// ([`lamplight_scene::request::Job::light_warnings`]: none reaches the view, a
+/// light shut in by geometry, naming what blocks it), probed through the
+/// scene's own camera at the request's image size.
 pub fn load(arg: &str, request: &Request) -> Result<Loaded, String> {
-    let scene = SceneRequest::resolve(arg).and_then(|s| s.smoothed(request.smooth)).map_err(|e| e.0)?;
+    let options = request.mesh_options(MeshOptions::default());
+    let scene = SceneRequest::resolve(arg).and_then(|s| s.with_mesh_options(options, Naming::Flags)).map_err(|e| e.0)?;
     let job = request.resolve(&scene.defaults, Naming::Flags).map_err(|e| e.0)?;
     let built = scene.instantiate(&job).map_err(|e| e.0)?;
-    Ok(Loaded::new(built.scene, scene.defaults, built.warnings))
+    let mut warnings = built.warnings;
+    warnings.extend(job.light_warnings(&built.scene));
+    Ok(Loaded::new(built.scene, scene.defaults, warnings))
 }
 
 /// Whether a change to `path` may change the scene.

@@ -7,3 +7,4 @@
 mod doors;
 mod server;
 mod storm;
+mod warnings;

@@ -22,7 +22,7 @@ fn start(scene: &str, save_dir: Option<&Path>) -> Viewer {
 
 /// Sends `head` (a request line and headers, without the blank line) and
 /// returns the connection and the response's head.
-fn ask(viewer: &Viewer, head: &str) -> (TcpStream, String) {
+pub fn ask(viewer: &Viewer, head: &str) -> (TcpStream, String) {
     let mut stream = TcpStream::connect(viewer.address).unwrap();
     stream.set_read_timeout(Some(Duration::from_secs(10))).unwrap();
     write!(stream, "{head}\r\n\r\n").unwrap();
@@ -34,11 +34,11 @@ fn ask(viewer: &Viewer, head: &str) -> (TcpStream, String) {
     (stream, String::from_utf8_lossy(&bytes).into_owned())
 }
 
-fn status(head: &str) -> u16 {
+pub fn status(head: &str) -> u16 {
     head.split(' ').nth(1).and_then(|s| s.parse().ok()).unwrap_or(0)
 }
 
-const UPGRADE: &str =
+pub const UPGRADE: &str =
     "Upgrade: websocket\r\nConnection: Upgrade\r\nSec-WebSocket-Version: 13\r\nSec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==";
 
 #[test]
@@ -86,7 +86,7 @@ fn no_file_of_the_scene_s_folder_is_served() {
 }
 
 /// Reads one WebSocket frame from the server (unmasked): its opcode and payload.
-fn frame(stream: &mut TcpStream) -> (u8, Vec<u8>) {
+pub fn frame(stream: &mut TcpStream) -> (u8, Vec<u8>) {
     let mut head = [0u8; 2];
     stream.read_exact(&mut head).unwrap();
     let mut len = (head[1] & 0x7f) as usize;

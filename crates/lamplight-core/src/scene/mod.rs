@@ -21,7 +21,7 @@ mod settings;
 mod shading;
 
 pub use builder::SceneBuilder;
-pub use reach::reaches_camera_hits;
+pub use reach::{lit_share, reaches_camera_hits};
 pub use settings::{SceneSettings, Sides};
 
 /// A shape placed in the scene with its material.

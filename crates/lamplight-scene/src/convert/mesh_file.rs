@@ -12,9 +12,10 @@
 //! - the camera is the file's first camera, or the viewer's framing camera
 //!   written as `perspective` with `fov` (across the shorter side);
 //! - the lights are the file's (glTF punctual lights as `point_light`,
-//!   `directional_light` and `spot_light` with the glTF profile), or, when the
-//!   file has none and nothing emits, the viewer's key, fill and rim lights
-//!   with its `ambient` and `background`.
+//!   `directional_light` and `spot_light` with the glTF profile), and, when the
+//!   file has none and nothing emits, or its lights reach too little of the
+//!   view ([`crate::instantiate::imported`]), the viewer's key, fill and rim
+//!   lights with its `ambient`, `background` and studio `environment`.
 
 use std::path::Path;
 
@@ -25,7 +26,7 @@ use super::images::{relative_to, Images};
 use super::material::{item, material_table, num, read_back, rgb, same_material, table, vec3};
 use crate::error::LoadError;
 use crate::import::{self, ImportedLight, ImportedProjection};
-use crate::instantiate::{imported, viewer};
+use crate::instantiate::{imported, studio, viewer};
 
 /// The scene table of the mesh file `input` for a TOML written to `output`,
 /// the warnings, and the image files to extract (absolute path, bytes).
@@ -65,12 +66,16 @@ pub(super) fn convert(input: &Path, output: &Path) -> Result<super::Converted, L
         }
     };
     let mut lights = Vec::new();
-    if imported::has_own_lights(&imported) {
+    // The same choice as rendering the file (`--keep-auto-lights auto`).
+    let (viewer_lights, note) = imported::viewer_lights(input, &imported, imported::AutoLights::Auto)?;
+    if !viewer_lights {
         root.push(("ambient", num(imported::AMBIENT)));
         root.push(("background", num(0.0)));
     } else {
         root.push(("ambient", num(viewer::AMBIENT)));
-        root.push(("background", num(viewer::SURROUND)));
+        root.push(("background", num(studio::FLOOR)));
+        let rotate = studio::rotation_towards(eye, target);
+        root.push(("environment", Value::Table(table(vec![("preset", string("studio")), ("rotate", num(rotate))]))));
         for (direction, irradiance) in viewer::light_directions(eye, target) {
             lights.push(table(vec![("type", string("directional_light")), ("direction", vec3(direction)), ("radiance", num(irradiance))]));
         }
@@ -131,7 +136,9 @@ pub(super) fn convert(input: &Path, output: &Path) -> Result<super::Converted, L
         input.display()
     );
     let toml = crate::formats::native_writer::write(&table(root), &header);
-    Ok(super::Converted { toml, warnings: imported.warnings_of(input), files: images.extracted })
+    let mut warnings = imported.warnings_of(input);
+    warnings.extend(note);
+    Ok(super::Converted { toml, warnings, files: images.extracted })
 }
 
 /// The file's name of the part's material (or `default`, or `material_N`),

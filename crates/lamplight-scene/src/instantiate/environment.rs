@@ -5,6 +5,7 @@
 //! environment = { file = "sky.hdr", strength = 2, rotate = 90 }
 //! # looked up bilinearly, as Mitsuba's envmap: filter = "bilinear"
 //! # or: environment = { color = [0.4, 0.5, 0.7] }
+//! # or the studio a bare model is lit by: environment = { preset = "studio", rotate = 35 }
 //! ```
 //!
 //! Under path tracing it lights every surface and is seen by every ray that
@@ -21,13 +22,20 @@ use lamplight_core::params::{Param, ParamResult, ParamType as T, Params};
 
 /// The `environment` table's keys.
 pub const ENVIRONMENT_PARAMS: &[Param] = &[
-    Param::new("color", T::Color, "none", "radiance", "a uniform sky of this radiance (one of `color`, `file`)"),
+    Param::new("color", T::Color, "none", "radiance", "a uniform sky of this radiance (one of `color`, `file`, `preset`)"),
     Param::new(
         "file",
         T::String,
         "none",
         "",
         "an equirectangular `.exr` or `.hdr` map: an absolute path, or one relative to the scene file's folder",
+    ),
+    Param::new(
+        "preset",
+        T::String,
+        "none",
+        "\"studio\"",
+        "a sky made in code: `studio`, the neutral studio a bare model is lit by (a grey floor, a brighter sky, a soft box overhead and strip lights at the sides of a camera on `+z`; `docs/examples.md`)",
     ),
     Param::new("strength", T::Number, "1", ">= 0", "multiplies the radiance"),
     Param::new("rotate", T::Number, "0", "degrees", "turns the map about +y, counter-clockwise seen from above"),
@@ -50,6 +58,19 @@ pub fn read(mut p: Params<'_>, dir: &Path) -> ParamResult<Arc<Environment>> {
     }
     let rotate = p.number_or("rotate", 0.0)?;
     let bilinear = p.choice("filter", &["nearest", "bilinear"])? == "bilinear";
+    let preset = p.string("preset")?;
+    if let Some(name) = preset {
+        if p.color("color")?.is_some() || p.string("file")?.is_some() {
+            return Err(p.error("takes one of `color`, `file` and `preset`"));
+        }
+        if name != "studio" {
+            return Err(p.key_error("preset", format!("must be \"studio\", got {name:?}")));
+        }
+        let map = super::studio::map(rotate).map_err(|e| p.key_error("preset", e))?;
+        let map = if strength == 1.0 { map } else { map.scaled(Rgb::splat(strength)).map_err(|e| p.key_error("strength", e))? };
+        p.finish()?;
+        return Ok(Arc::new(Environment::Map(map)));
+    }
     let environment = match (p.color("color")?, p.string("file")?) {
         (Some(color), None) => {
             if color.min_element() < 0.0 {

@@ -1,9 +1,17 @@
 //! A scene from an imported mesh file (OBJ, PLY, glTF): its meshes, placed as
 //! the file places them, seen by the file's first camera or else by the
 //! viewer's camera framing everything ([`super::viewer`]), and lit by the file's
-//! lights or else by the viewer's lights and neutral surround. Emitting meshes
-//! (MTL `Ke`, glTF `emissiveFactor`) are lights of the file too: they are the
-//! path tracer's area lights, and a scene with one gets no default light.
+//! lights, the viewer's lights and studio ([`super::studio`]), or both.
+//! Emitting meshes (MTL `Ke`, glTF `emissiveFactor`) are lights of the file
+//! too: they are the path tracer's area lights.
+//!
+//! A file without lights of its own gets the viewer's. A file with lights
+//! keeps them alone when they reach at least [`viewer::MIN_LIT_SHARE`] of
+//! what the camera sees of the model, as a probe of 16 x 16 camera rays at
+//! [`viewer::PROBE_SIZE`] finds ([`lamplight_core::scene::lit_share`]); below
+//! that (a jack-o'-lantern whose only light is inside it) the viewer's
+//! lights are kept with them, and a note says so. [`MeshOptions::auto_lights`]
+//! decides otherwise ([`AutoLights`]).
 
 use std::path::Path;
 use std::sync::Arc;
@@ -11,14 +19,27 @@ use std::sync::Arc;
 use lamplight_core::camera::{Camera, Fov, Orthographic, Perspective};
 use lamplight_core::materials::Material;
 use lamplight_core::math::{Rgb, Vec3};
+use lamplight_core::shapes::TriangleMesh;
 use lamplight_core::{Scene, SceneBuilder};
 
-use super::{viewer, Built};
+pub use super::viewer::AutoLights;
+use super::{studio, viewer, Built};
 use crate::error::LoadError;
 use crate::import::{self, Imported, ImportedProjection};
 
 /// Ambient radiance of an imported scene with lights of its own (its files carry none).
 pub const AMBIENT: f64 = 0.1;
+
+/// The choices a front end makes for a mesh file rendered directly.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct MeshOptions {
+    /// Meshes without normals get angle-weighted vertex normals (`--smooth`,
+    /// Mitsuba's default for OBJ and PLY); else they are flat (glTF's rule,
+    /// and Blender's import).
+    pub smooth: bool,
+    /// Whether a file with lights of its own keeps the viewer's lights too.
+    pub auto_lights: AutoLights,
+}
 
 /// Reads the mesh file at `path` and builds a scene (for any image size).
 pub fn load(path: &Path) -> Result<Scene, LoadError> {
@@ -27,87 +48,164 @@ pub fn load(path: &Path) -> Result<Scene, LoadError> {
 
 /// [`load`], keeping the importer's warnings, each as `PATH: what`.
 pub fn load_with_warnings(path: &Path) -> Result<Built, LoadError> {
-    load_shaded(path, false)
+    load_with(path, MeshOptions::default())
 }
 
-/// [`load_with_warnings`]; with `smooth`, meshes without normals get
-/// angle-weighted vertex normals (`--smooth`, Mitsuba's default for OBJ and
-/// PLY), else they are flat (glTF's rule, and Blender's import).
-pub fn load_shaded(path: &Path, smooth: bool) -> Result<Built, LoadError> {
+/// [`load_with_warnings`] with the front end's `options`; the warnings end
+/// with the note on the lights, if any ([`build_with`]).
+pub fn load_with(path: &Path, options: MeshOptions) -> Result<Built, LoadError> {
     let imported = import::load(path)?;
-    let scene = build_shaded(path, &imported, smooth)?;
-    Ok(Built { scene, warnings: imported.warnings_of(path) })
+    let (scene, note) = build_with(path, &imported, options)?;
+    let mut warnings = imported.warnings_of(path);
+    warnings.extend(note);
+    Ok(Built { scene, warnings })
 }
 
 /// Builds a scene from what an importer read from `path`.
 pub fn build(path: &Path, imported: &Imported) -> Result<Scene, LoadError> {
-    build_shaded(path, imported, false)
+    build_with(path, imported, MeshOptions::default()).map(|(scene, _)| scene)
 }
 
-/// [`build`], smoothing meshes without normals when `smooth` ([`load_shaded`]).
-pub fn build_shaded(path: &Path, imported: &Imported, smooth: bool) -> Result<Scene, LoadError> {
-    let fail = |e: lamplight_core::Error| LoadError::file(path, e.to_string());
-    let mut meshes = Vec::with_capacity(imported.meshes.len());
-    for data in &imported.meshes {
-        // An index out of range is the mesh's error, reported by `to_mesh`.
-        let in_range = || data.indices.iter().flatten().all(|&i| (i as usize) < data.positions.len());
-        let mesh = if smooth && data.normals.is_none() && in_range() {
-            let normals = lamplight_core::shapes::TriangleMesh::angle_weighted_normals(&data.positions, &data.indices);
-            data.to_mesh_with(Some(normals))
-        } else {
-            data.to_mesh()
-        };
-        meshes.push(Arc::new(mesh.map_err(fail)?));
-    }
-    for placed in &imported.instances {
-        if imported.meshes.get(placed.mesh).is_none() {
-            return Err(LoadError::file(path, format!("instance of missing mesh {}", placed.mesh)));
-        }
-    }
-    let sphere = world_sphere(imported).ok_or_else(|| LoadError::file(path, "has no geometry to render"))?;
-    let (eye, target, camera): (Vec3, Vec3, Arc<dyn Camera>) = match imported.cameras.first() {
-        Some(c) => match c.projection {
-            ImportedProjection::Perspective { vfov_deg } => {
-                (c.eye, c.target, Arc::new(Perspective::look_at(c.eye, c.target, c.up, Fov::VerticalDeg(vfov_deg)).map_err(fail)?))
-            }
-            ImportedProjection::Orthographic { xmag, ymag } => {
-                (c.eye, c.target, Arc::new(Orthographic::look_at(c.eye, c.target, c.up, xmag, ymag).map_err(fail)?))
-            }
-        },
-        None => {
-            let (eye, camera) = viewer::camera(sphere).map_err(fail)?;
-            (eye, sphere.center, Arc::new(camera))
-        }
+/// [`build`] with `options`, and a note when the viewer's lights were kept
+/// beside the file's because these reach too little of the view (module doc).
+pub fn build_with(path: &Path, imported: &Imported, options: MeshOptions) -> Result<(Scene, Option<String>), LoadError> {
+    let parts = Parts::new(path, imported, options.smooth)?;
+    let decided = decide(&parts, options.auto_lights)?;
+    let scene = match decided.own {
+        Some(scene) if !decided.viewer_lights => scene,
+        _ => parts.assemble(decided.viewer_lights)?,
     };
-    let mut builder = SceneBuilder::with_camera(camera);
-    builder.settings.ambient = Rgb::splat(AMBIENT);
-    let default_material = builder.material(Material::default()).map_err(fail)?;
-    for placed in &imported.instances {
-        let material = match &placed.material {
-            Some(m) => builder.material(m.clone()).map_err(fail)?,
-            None => default_material,
+    Ok((scene, decided.note))
+}
+
+/// Whether the scene [`build_with`] makes of `imported` has the viewer's
+/// lights, and its note (for `lamplight convert`, which writes them out).
+pub fn viewer_lights(path: &Path, imported: &Imported, auto_lights: AutoLights) -> Result<(bool, Option<String>), LoadError> {
+    let parts = Parts::new(path, imported, false)?;
+    let decided = decide(&parts, auto_lights)?;
+    Ok((decided.viewer_lights, decided.note))
+}
+
+/// What [`decide`] found: whether the viewer's lights are added, the scene
+/// lit by the file alone when it was built to probe, and the note.
+struct Decided {
+    viewer_lights: bool,
+    own: Option<Scene>,
+    note: Option<String>,
+}
+
+/// The module doc's rule.
+fn decide(parts: &Parts<'_>, auto_lights: AutoLights) -> Result<Decided, LoadError> {
+    let plain = |viewer_lights| Ok(Decided { viewer_lights, own: None, note: None });
+    if !has_own_lights(parts.imported) {
+        return plain(true);
+    }
+    match auto_lights {
+        AutoLights::On => plain(true),
+        AutoLights::Off => plain(false),
+        AutoLights::Auto => {
+            let own = parts.assemble(false)?;
+            let (w, h) = viewer::PROBE_SIZE;
+            let share = lamplight_core::scene::lit_share(&own, parts.camera.as_ref(), w, h).unwrap_or(1.0);
+            if share >= viewer::MIN_LIT_SHARE {
+                return Ok(Decided { viewer_lights: false, own: Some(own), note: None });
+            }
+            let note = format!(
+                "{}: the file's own lights reach {:.0} % of what the camera sees (less than {:.0} %), so the automatic lights \
+                 (studio, key, fill and rim) are kept with them; --keep-auto-lights off (Python keep_auto_lights=False) leaves them out",
+                parts.path.display(),
+                100.0 * share,
+                100.0 * viewer::MIN_LIT_SHARE
+            );
+            Ok(Decided { viewer_lights: true, own: Some(own), note: Some(note) })
+        }
+    }
+}
+
+/// What every build of one file shares: its meshes and the camera.
+struct Parts<'a> {
+    path: &'a Path,
+    imported: &'a Imported,
+    meshes: Vec<Arc<TriangleMesh>>,
+    eye: Vec3,
+    target: Vec3,
+    camera: Arc<dyn Camera>,
+}
+
+impl<'a> Parts<'a> {
+    fn new(path: &'a Path, imported: &'a Imported, smooth: bool) -> Result<Parts<'a>, LoadError> {
+        let fail = |e: lamplight_core::Error| LoadError::file(path, e.to_string());
+        let mut meshes = Vec::with_capacity(imported.meshes.len());
+        for data in &imported.meshes {
+            // An index out of range is the mesh's error, reported by `to_mesh`.
+            let in_range = || data.indices.iter().flatten().all(|&i| (i as usize) < data.positions.len());
+            let mesh = if smooth && data.normals.is_none() && in_range() {
+                let normals = TriangleMesh::angle_weighted_normals(&data.positions, &data.indices);
+                data.to_mesh_with(Some(normals))
+            } else {
+                data.to_mesh()
+            };
+            meshes.push(Arc::new(mesh.map_err(fail)?));
+        }
+        for placed in &imported.instances {
+            if imported.meshes.get(placed.mesh).is_none() {
+                return Err(LoadError::file(path, format!("instance of missing mesh {}", placed.mesh)));
+            }
+        }
+        let sphere = world_sphere(imported).ok_or_else(|| LoadError::file(path, "has no geometry to render"))?;
+        let (eye, target, camera): (Vec3, Vec3, Arc<dyn Camera>) = match imported.cameras.first() {
+            Some(c) => match c.projection {
+                ImportedProjection::Perspective { vfov_deg } => {
+                    (c.eye, c.target, Arc::new(Perspective::look_at(c.eye, c.target, c.up, Fov::VerticalDeg(vfov_deg)).map_err(fail)?))
+                }
+                ImportedProjection::Orthographic { xmag, ymag } => {
+                    (c.eye, c.target, Arc::new(Orthographic::look_at(c.eye, c.target, c.up, xmag, ymag).map_err(fail)?))
+                }
+            },
+            None => {
+                let (eye, camera) = viewer::camera(sphere).map_err(fail)?;
+                (eye, sphere.center, Arc::new(camera))
+            }
         };
-        // The file's names, for `explain` (as a converted scene file keeps them).
-        if let Some(name) = placed.material_name.as_deref().filter(|n| placed.material.is_some() && !n.trim().is_empty()) {
-            builder.name_material(material, name);
-        }
-        let shape = lamplight_core::shapes::placed(meshes[placed.mesh].clone(), &placed.transform).map_err(fail)?;
-        let object = builder.shared_object(shape, material).map_err(fail)?;
-        if let Some(name) = imported.meshes[placed.mesh].name.as_deref().filter(|n| !n.trim().is_empty()) {
-            builder.name_object(object, name);
-        }
+        Ok(Parts { path, imported, meshes, eye, target, camera })
     }
-    if !has_own_lights(imported) {
-        builder.settings.ambient = Rgb::splat(viewer::AMBIENT);
-        builder.settings.background = Rgb::splat(viewer::SURROUND);
-        for light in viewer::lights(eye, target).map_err(fail)? {
-            builder.light(light);
+
+    /// The scene: the file's objects and lights, with the viewer's lights and
+    /// studio when `viewer_lights`.
+    fn assemble(&self, viewer_lights: bool) -> Result<Scene, LoadError> {
+        let fail = |e: lamplight_core::Error| LoadError::file(self.path, e.to_string());
+        let imported = self.imported;
+        let mut builder = SceneBuilder::with_camera(self.camera.clone());
+        builder.settings.ambient = Rgb::splat(AMBIENT);
+        let default_material = builder.material(Material::default()).map_err(fail)?;
+        for placed in &imported.instances {
+            let material = match &placed.material {
+                Some(m) => builder.material(m.clone()).map_err(fail)?,
+                None => default_material,
+            };
+            // The file's names, for `explain` (as a converted scene file keeps them).
+            if let Some(name) = placed.material_name.as_deref().filter(|n| placed.material.is_some() && !n.trim().is_empty()) {
+                builder.name_material(material, name);
+            }
+            let shape = lamplight_core::shapes::placed(self.meshes[placed.mesh].clone(), &placed.transform).map_err(fail)?;
+            let object = builder.shared_object(shape, material).map_err(fail)?;
+            if let Some(name) = imported.meshes[placed.mesh].name.as_deref().filter(|n| !n.trim().is_empty()) {
+                builder.name_object(object, name);
+            }
         }
+        if viewer_lights {
+            builder.settings.ambient = Rgb::splat(viewer::AMBIENT);
+            builder.settings.background = Rgb::splat(studio::FLOOR);
+            builder.settings.environment = Some(Arc::new(studio::environment(self.eye, self.target).map_err(fail)?));
+            for light in viewer::lights(self.eye, self.target).map_err(fail)? {
+                builder.light(light);
+            }
+        }
+        for light in &imported.lights {
+            builder.shared_light(light.build().map_err(fail)?);
+        }
+        builder.build().map_err(fail)
     }
-    for light in &imported.lights {
-        builder.shared_light(light.build().map_err(fail)?);
-    }
-    builder.build().map_err(fail)
 }
 
 /// The bounding sphere of every placed vertex, in world space (what the
@@ -151,7 +249,8 @@ mod tests {
         let scene = build(Path::new("t.obj"), &imported).unwrap();
         assert_eq!(scene.objects.len(), 1);
         assert_eq!(scene.lights.len(), 3, "key, fill and rim");
-        assert_eq!((scene.settings.background, scene.settings.ambient), (Rgb::splat(viewer::SURROUND), Rgb::splat(viewer::AMBIENT)));
+        assert_eq!((scene.settings.background, scene.settings.ambient), (Rgb::splat(studio::FLOOR), Rgb::splat(viewer::AMBIENT)));
+        assert!(scene.settings.environment.is_some(), "the studio");
         let ray = scene.settings.camera.ray(0.5, 0.5, 1, 1, (0.5, 0.5));
         let centre = Vec3::new(0.5, 0.5, 1.0);
         assert!((ray.dir - (centre - ray.origin).normalize()).length() < 1e-12, "looks at the centre");

@@ -20,6 +20,7 @@ pub mod implicit;
 pub mod imported;
 mod materials;
 mod nodes;
+pub mod studio;
 pub(crate) mod transform;
 pub mod viewer;
 

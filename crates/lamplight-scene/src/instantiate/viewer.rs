@@ -8,18 +8,24 @@
 //!   [`VFOV_DEG`], spans the image's shorter side, and it stands where the
 //!   sphere's outline spans [`FILL`] of that side, at any image size.
 //! - **Lighting**, as Blender's and model-viewer's defaults light a model: a
-//!   neutral grey surround of radiance [`SURROUND`], seen as the background
-//!   and lighting every surface through the lecture's ambient term (the ambient
-//!   light is [`AMBIENT`], so that `ka C La` with the importers' `ka = 0.1 kd`
-//!   is what a diffuse surface reflects under an open sky of the surround's
-//!   radiance; the path tracer reads the ambient back as that sky), and three
+//!   neutral studio environment ([`super::studio`]: a grey floor, a sky
+//!   brighter overhead, a soft box above and strip lights at the sides),
+//!   seen as the background, mirrored by metals and lighting every surface
+//!   under path tracing; the Whitted tracer's diffuse surfaces see it through
+//!   the lecture's ambient term (the ambient light is [`AMBIENT`], so that
+//!   `ka C La` with the importers' `ka = 0.1 kd` is what a diffuse surface
+//!   reflects under an open sky of the studio's mean radiance); and three
 //!   directional lights set relative to the camera, so that the model is lit
 //!   the same from any file: a key light from the upper left, a weaker fill
 //!   from the right, and a rim light from behind. Directional lights make the
 //!   lighting independent of the model's size. Their irradiances ([`KEY`],
-//!   [`FILL_LIGHT`], [`RIM`]) and the surround add to less than 1 at any
+//!   [`FILL_LIGHT`], [`RIM`]) and the studio add to less than 1 at any
 //!   surface a diffuse white (`kd * C = 1`) turns to them, so almost nothing
-//!   clips (the tests measure it).
+//!   clips (the tests measure it, here and in [`super::studio`]).
+//! - **Which files get it:** a file without lights of its own (no lights, no
+//!   emitting material) always; a file with lights keeps them too when they
+//!   reach less than [`MIN_LIT_SHARE`] of what the camera sees of the model
+//!   ([`super::imported`], [`AutoLights`]).
 
 use lamplight_core::camera::{Fov, Perspective};
 use lamplight_core::lights::DirectionalLight;
@@ -34,16 +40,64 @@ pub const FILL: f64 = 0.8;
 pub const AZIMUTH_DEG: f64 = 35.0;
 /// Angle of the view above the horizon, degrees.
 pub const ELEVATION_DEG: f64 = 25.0;
-/// Radiance of the neutral surround (the background), linear.
-pub const SURROUND: f64 = 0.2;
-/// The ambient light `La`: ten times the surround, for the importers' `ka = 0.1 kd`.
-pub const AMBIENT: f64 = SURROUND / 0.1;
+/// The ambient light `La`: ten times the studio's mean radiance
+/// ([`super::studio::MEAN`], 0.3), for the importers' `ka = 0.1 kd`.
+pub const AMBIENT: f64 = 3.0;
 /// Irradiance of the key light.
-pub const KEY: f64 = 0.6;
+pub const KEY: f64 = 0.5;
 /// Irradiance of the fill light.
 pub const FILL_LIGHT: f64 = 0.25;
 /// Irradiance of the rim light.
 pub const RIM: f64 = 0.25;
+
+/// The share of what the camera sees of a model that the file's own lights
+/// must reach ([`lamplight_core::scene::lit_share`]: probe rays whose first hit
+/// a light reaches, or that emits towards the camera) for the automatic lights
+/// to be left out, by default.
+pub const MIN_LIT_SHARE: f64 = 0.25;
+
+/// The image size the reach of a file's lights is probed at: the program's default.
+pub const PROBE_SIZE: (u32, u32) = (640, 360);
+
+/// Whether a model file that has lights of its own keeps the automatic lights
+/// (the studio, key, fill and rim) too: `--keep-auto-lights on|off|auto`,
+/// Python `keep_auto_lights=True|False|"auto"`. A file without lights always
+/// gets them.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum AutoLights {
+    /// Kept when the file's lights reach less than [`MIN_LIT_SHARE`] of what
+    /// the camera sees (the default).
+    #[default]
+    Auto,
+    /// Always kept.
+    On,
+    /// Left out whenever the file has lights (the rule before issue 27).
+    Off,
+}
+
+impl AutoLights {
+    /// How the command line spells it.
+    pub fn name(self) -> &'static str {
+        match self {
+            AutoLights::Auto => "auto",
+            AutoLights::On => "on",
+            AutoLights::Off => "off",
+        }
+    }
+}
+
+impl std::str::FromStr for AutoLights {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<AutoLights, String> {
+        match s {
+            "auto" => Ok(AutoLights::Auto),
+            "on" => Ok(AutoLights::On),
+            "off" => Ok(AutoLights::Off),
+            _ => Err(format!("must be on, off or auto, got {s:?}")),
+        }
+    }
+}
 
 /// A bounding sphere: centre and radius.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -130,7 +184,7 @@ mod tests {
     }
 
     #[test]
-    fn the_lights_and_the_surround_add_to_less_than_one_on_any_surface() {
+    fn the_lights_and_the_ambient_light_add_to_less_than_one_on_any_surface() {
         let lights = lights(Vec3::new(3.0, 2.0, 4.0), Vec3::ZERO).unwrap();
         // The most irradiance a surface can get is the length of the sum of the
         // vectors towards the lights it faces; try every subset.
@@ -139,7 +193,9 @@ mod tests {
             let sum: Vec3 = (0..3).filter(|i| mask & (1 << i) != 0).map(|i| -lights[i].direction * lights[i].radiance.x).sum();
             most = most.max(sum.length());
         }
-        assert!(most + SURROUND < 0.92, "{most} + {SURROUND}: a diffuse white clips");
+        assert!((AMBIENT * 0.1 - super::super::studio::MEAN).abs() < 1e-12, "the ambient term is the studio's mean");
+        let ambient = AMBIENT * 0.1;
+        assert!(most + ambient < 0.92, "{most} + {ambient}: a diffuse white clips under the Whitted tracer");
         assert!(lights[0].direction.y < 0.0, "the key light comes from above");
     }
 }

@@ -19,6 +19,7 @@ use lamplight_core::{PixelWindow, RenderOptions, Scene};
 use crate::builtin::{self, Builtin};
 use crate::import;
 use crate::instantiate::{imported, Built, SceneFile};
+pub use imported::{AutoLights, MeshOptions};
 
 mod defaults;
 mod layer;
@@ -94,8 +95,8 @@ pub struct SceneRequest {
     pub name: String,
     /// Its settings.
     pub defaults: Defaults,
-    /// A mesh file's meshes without normals get smooth ones ([`SceneRequest::smoothed`]).
-    pub smooth: bool,
+    /// How a mesh file rendered directly is built ([`SceneRequest::with_mesh_options`]).
+    pub mesh: MeshOptions,
 }
 
 impl SceneRequest {
@@ -120,9 +121,12 @@ impl SceneRequest {
                 let file = SceneFile::read_format(path, format, defines).map_err(|e| bad(e.to_string()))?;
                 SceneRequest::file(file, stem)
             }
-            FileKind::Mesh => {
-                Ok(SceneRequest { spec: SceneSpec::Mesh(path.to_path_buf()), name: stem, defaults: program_defaults(), smooth: false })
-            }
+            FileKind::Mesh => Ok(SceneRequest {
+                spec: SceneSpec::Mesh(path.to_path_buf()),
+                name: stem,
+                defaults: program_defaults(),
+                mesh: MeshOptions::default(),
+            }),
         }
     }
 
@@ -139,7 +143,7 @@ impl SceneRequest {
                 spp: b.spp,
                 ..program_defaults()
             },
-            smooth: false,
+            mesh: MeshOptions::default(),
         }
     }
 
@@ -147,23 +151,16 @@ impl SceneRequest {
     pub fn file(file: SceneFile, name: String) -> Result<SceneRequest, RequestError> {
         let s = file.settings().map_err(|e| bad(e.to_string()))?;
         let defaults = Defaults::from_settings(&s);
-        Ok(SceneRequest { spec: SceneSpec::File(Box::new(file)), name, defaults, smooth: false })
+        Ok(SceneRequest { spec: SceneSpec::File(Box::new(file)), name, defaults, mesh: MeshOptions::default() })
     }
 
-    /// With `smooth`, a mesh file rendered directly shades its meshes that have
-    /// no normals with angle-weighted vertex normals (`--smooth`), as Mitsuba
-    /// does; without, they stay flat, as glTF requires and as Blender imports
-    /// them. A scene file says it per mesh (`shading = "smooth"`), so the flag
-    /// is refused there rather than ignored.
-    pub fn smoothed(mut self, smooth: bool) -> Result<SceneRequest, RequestError> {
-        if smooth && !matches!(self.spec, SceneSpec::Mesh(_)) {
-            return Err(bad(format!(
-                "--smooth applies to a mesh file rendered directly ({}); '{}' is not one: in a scene file, give the mesh `shading = \"smooth\"`",
-                import::EXTENSIONS.iter().map(|e| format!(".{e}")).collect::<Vec<_>>().join(", "),
-                self.name
-            )));
-        }
-        self.smooth = smooth;
+    /// The scene built with `options` when it is a mesh file rendered
+    /// directly ([`MeshOptions`]: `--smooth`, `--keep-auto-lights`). A scene
+    /// file says these itself (a mesh's `shading = "smooth"`, its own lights),
+    /// so a choice other than the default is refused there rather than ignored.
+    pub fn with_mesh_options(mut self, options: MeshOptions, naming: Naming) -> Result<SceneRequest, RequestError> {
+        check_mesh_options(matches!(self.spec, SceneSpec::Mesh(_)), &self.name, options, naming)?;
+        self.mesh = options;
         Ok(self)
     }
 
@@ -199,7 +196,7 @@ impl SceneRequest {
                 .map(|scene| Built { scene, warnings: Vec::new() })
                 .map_err(|e| bad(format!("cannot build scene '{}': {e}", b.name))),
             SceneSpec::File(file) => file.build_frame(frame).map_err(|e| bad(e.to_string())),
-            SceneSpec::Mesh(path) => imported::load_shaded(path, self.smooth).map_err(|e| bad(e.to_string())),
+            SceneSpec::Mesh(path) => imported::load_with(path, self.mesh).map_err(|e| bad(e.to_string())),
         }
     }
 }
@@ -212,6 +209,23 @@ impl SceneRequest {
             _ => None,
         }
     }
+}
+
+/// Refuses mesh file `options` other than the default for a scene `name`
+/// that is not a mesh file rendered directly (`is_mesh`), naming the option as
+/// the front end spells it ([`SceneRequest::with_mesh_options`]).
+pub fn check_mesh_options(is_mesh: bool, name: &str, options: MeshOptions, naming: Naming) -> Result<(), RequestError> {
+    let (key, instead) = if is_mesh {
+        return Ok(());
+    } else if options.smooth {
+        ("smooth", "in a scene file, give the mesh `shading = \"smooth\"`")
+    } else if options.auto_lights != AutoLights::Auto {
+        ("keep_auto_lights", "a scene file is lit by the lights it states")
+    } else {
+        return Ok(());
+    };
+    let mesh_files = import::EXTENSIONS.iter().map(|e| format!(".{e}")).collect::<Vec<_>>().join(", ");
+    Err(bad(format!("{} applies to a mesh file rendered directly ({mesh_files}); '{name}' is not one: {instead}", naming.name(key))))
 }
 
 /// What the user asked for; `None` leaves a setting to the scene or the default.
@@ -257,9 +271,11 @@ pub struct Request {
     /// The memory budget in bytes ([`crate::memory`]); `None`: the scene's, else
     /// the default share of the machine's memory.
     pub memory_budget: Option<u64>,
-    /// Smooth a mesh file's meshes that have no normals ([`SceneRequest::smoothed`]):
-    /// the viewer builds its scene from the request.
-    pub smooth: bool,
+    /// Smooth a mesh file's meshes that have no normals ([`MeshOptions::smooth`]);
+    /// `None`: as the scene was made (not smoothed).
+    pub smooth: Option<bool>,
+    /// Whether a mesh file with lights keeps the automatic ones ([`AutoLights`]); `None`: as the scene was made (auto).
+    pub keep_auto_lights: Option<AutoLights>,
     /// The frame of an animated scene (`None`: its first); see [`frames`].
     pub frame: Option<i64>,
 }
@@ -283,6 +299,11 @@ pub struct Job {
 }
 
 impl Request {
+    /// The mesh file options of this request over those a scene was made with (`base`).
+    pub fn mesh_options(&self, base: MeshOptions) -> MeshOptions {
+        MeshOptions { smooth: self.smooth.unwrap_or(base.smooth), auto_lights: self.keep_auto_lights.unwrap_or(base.auto_lights) }
+    }
+
     /// Applies the precedence and the limits; messages spell options by `naming`.
     pub fn resolve(&self, defaults: &Defaults, naming: Naming) -> Result<Job, RequestError> {
         let n = |k: &str| naming.name(k);

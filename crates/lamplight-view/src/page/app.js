@@ -64,6 +64,13 @@ function applyState(m) {
   const overlay = $("overlay");
   overlay.hidden = !m.error;
   overlay.textContent = m.error || "";
+  // The scene's warnings (its files', and a light shut in or reaching nothing), as `lamplight render` prints them.
+  const list = $("warnings"), warnings = m.warnings || [];
+  if (list.dataset.shown !== JSON.stringify(warnings)) {
+    list.dataset.shown = JSON.stringify(warnings);
+    list.replaceChildren(...warnings.map((w) => { const li = document.createElement("li"); li.textContent = "warning: " + w; return li; }));
+  }
+  list.hidden = warnings.length === 0;
   if (canvas.width !== m.settings.width || canvas.height !== m.settings.height) {
     canvas.width = m.settings.width; canvas.height = m.settings.height;
   }
