@@ -41,6 +41,7 @@ fn every_parameter_reaches_the_lobe() {
     assert!(warnings.is_empty(), "{warnings:?}");
     let expected = PrincipledParams {
         roughness: 0.3,
+        anisotropic: 0.0,
         metallic: 0.25,
         spec_trans: 0.4,
         eta: eta_from_specular(0.3),

@@ -216,6 +216,7 @@ pub fn lecture_bsdf(material: &Material, color: Rgb, front_face: bool) -> Bsdf {
                 push(Lobe::RoughGlass(RoughGlass {
                     eta: relative(ior),
                     alpha: material.roughness,
+                    alpha_v: material.roughness,
                     tint: Rgb::ONE,
                     distribution: material.distribution,
                 }));
@@ -228,9 +229,13 @@ pub fn lecture_bsdf(material: &Material, color: Rgb, front_face: bool) -> Bsdf {
             Reflection::None => {}
             Reflection::Constant(w) => push(Lobe::Mirror(MirrorFresnel::Constant(w))),
             Reflection::Dielectric { ior, min, max } => push(Lobe::Mirror(MirrorFresnel::Dielectric { eta: relative(ior), min, max })),
-            Reflection::Conductor { eta, k } if material.roughness >= microfacet::MIN_ALPHA => {
-                push(Lobe::RoughConductor(RoughConductor { eta, k, alpha: material.roughness, distribution: material.distribution }))
-            }
+            Reflection::Conductor { eta, k } if material.roughness >= microfacet::MIN_ALPHA => push(Lobe::RoughConductor(RoughConductor {
+                eta,
+                k,
+                alpha: material.roughness,
+                alpha_v: material.roughness,
+                distribution: material.distribution,
+            })),
             Reflection::Conductor { eta, k } => push(Lobe::Mirror(MirrorFresnel::Conductor { eta, k })),
         }
         match material.refraction {
