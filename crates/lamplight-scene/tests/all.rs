@@ -7,6 +7,7 @@
 mod common;
 
 mod alpha_blend;
+mod anisotropic;
 mod bare_mesh;
 mod blend;
 mod business_card;
