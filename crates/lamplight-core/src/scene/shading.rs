@@ -27,6 +27,7 @@ impl Scene {
 
     /// [`Frame::from_tangent`] of the shading normal and the shape's `dp/du`; the
     /// fallback basis is built around the outward shading normal, as Mitsuba's.
+    #[cold]
     #[inline(never)]
     fn tangent_frame(&self, hit: &Hit) -> Frame {
         let dpdu = self.surface_coords(hit).dpdu;
