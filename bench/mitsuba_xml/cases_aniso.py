@@ -3,8 +3,9 @@
 principled BSDFs' `anisotropic`. The roughness is measured along the shading
 frame's first tangent, the surface's dp/du, so each case puts the lobe on a
 shape whose dp/du differs: a sphere (azimuthal, about its local z, here turned
-by to_world), a rectangle (its to_world x axis), a disk (radial) and an OBJ
-mesh (from its texture coordinates). Rendered in `llvm_ad_rgb` (the JIT
+by to_world), a rectangle (its to_world x axis), a disk (radial), an OBJ
+mesh (from its texture coordinates) and a cube (per face, as Mitsuba's cube
+mesh). Rendered in `llvm_ad_rgb` (the JIT
 variant; set DRJIT_LIBLLVM_PATH to LLVM 19 as the comparator does). Imported
 by cases.py, which appends them to its CASES."""
 from .cases import LIGHT, SKY, Case, lit, scene, sphere
@@ -60,6 +61,9 @@ CASES = [
     Case("roughconductor_aniso_mesh", "roughconductor (anisotropic; OBJ quad, dp/du from its uv)", scene(
         SKY + LIGHT + MESH_FLOOR.format(bsdf=rough_conductor(0.04, 0.3, "beckmann", "Cu"))
         + sphere(DIFFUSE, center="-0.5, 0.4, 0", radius=0.4)), V),
+    Case("roughconductor_aniso_cube", "roughconductor (anisotropic; cube, turned)", scene(lit(SKY + floor(
+        "cube", rough_conductor(0.04, 0.4, "ggx", "Cu"),
+        '<scale value="0.4"/><rotate y="1" angle="30"/><rotate x="1" angle="20"/><translate y="0.6"/>'))), V),
     Case("roughdielectric_aniso", "roughdielectric (ggx, alpha_u 0.02, alpha_v 0.4; turned sphere)", scene(lit(SKY + turned_sphere(
         '<bsdf type="roughdielectric"><float name="int_ior" value="1.5"/><string name="distribution" value="ggx"/>'
         '<float name="alpha_u" value="0.02"/><float name="alpha_v" value="0.4"/></bsdf>'))), V),
