@@ -291,3 +291,5 @@ from mitsuba_xml import cases_sdf as _sdf  # noqa: E402  (the signed-distance gr
 CASES += _sdf.CASES
 from mitsuba_xml import cases_textures3 as _textures3  # noqa: E402  (checkerboard phase, bitmap texels, mesh attributes)
 CASES += _textures3.CASES
+from mitsuba_xml import cases_aniso as _aniso  # noqa: E402  (anisotropic microfacets, issue 26)
+CASES += _aniso.CASES

@@ -8,6 +8,7 @@ mod common;
 
 mod alpha_blend;
 mod animation;
+mod anisotropic;
 mod bare_mesh;
 mod blend;
 mod business_card;

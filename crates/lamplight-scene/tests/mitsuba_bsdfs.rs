@@ -39,13 +39,13 @@ fn roughplastic_defaults_to_beckmann_of_alpha_one_tenth() {
     assert!(warnings.is_empty(), "{warnings:?}");
     let Some(Model::Plastic(c)) = &s.materials[s.objects[0].material].model else { panic!() };
     let (m, _) = c.rough.expect("rough");
-    assert_eq!((m.distribution, m.alpha), (Distribution::Beckmann, 0.1));
+    assert_eq!((m.distribution, m.alpha_u), (Distribution::Beckmann, 0.1));
     assert!((c.eta - 1.5046 / 1.00028).abs() < 1e-12);
     assert!(matches!(lobes(&s)[..], [Lobe::RoughPlastic(_)]));
     let (s, _) =
         read(&xml(r#"<bsdf type="roughplastic"><string name="distribution" value="ggx"/><float name="alpha" value="0.3"/></bsdf>"#));
     let Some(Model::Plastic(c)) = &s.materials[s.objects[0].material].model else { panic!() };
-    assert_eq!(c.rough.map(|(m, _)| (m.distribution, m.alpha)), Some((Distribution::Ggx, 0.3)));
+    assert_eq!(c.rough.map(|(m, _)| (m.distribution, m.alpha_u)), Some((Distribution::Ggx, 0.3)));
 }
 
 #[test]

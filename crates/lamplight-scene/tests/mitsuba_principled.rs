@@ -41,6 +41,7 @@ fn every_parameter_reaches_the_lobe() {
     assert!(warnings.is_empty(), "{warnings:?}");
     let expected = PrincipledParams {
         roughness: 0.3,
+        anisotropic: 0.0,
         metallic: 0.25,
         spec_trans: 0.4,
         eta: eta_from_specular(0.3),
@@ -99,8 +100,8 @@ fn bad_principled_parameters_give_their_exact_errors() {
             "s.xml:3:26: bsdf \"principled\": give either eta or specular, not both (as Mitsuba)",
         ),
         (
-            r#"<bsdf type="principled"><float name="anisotropic" value="0.5"/></bsdf>"#,
-            "s.xml:3:83: material \"bsdf_1\": anisotropic: must be 0 (lamplight's shading frame has no tangent direction), got 0.5",
+            r#"<bsdf type="principled"><float name="anisotropic" value="1.5"/></bsdf>"#,
+            "s.xml:3:83: material \"bsdf_1\": anisotropic: must be between 0 and 1, got 1.5",
         ),
         (
             r#"<bsdf type="principled"><float name="metallic" value="1.5"/></bsdf>"#,

@@ -1,5 +1,6 @@
 //! The microfacet distribution of a rough lobe: GGX ([`super::microfacet`]) or
-//! Beckmann, of roughness `alpha`, with the sampling of its normals.
+//! Beckmann, of roughness `alpha` (or `alpha_u`, `alpha_v` along the two tangents:
+//! [`super::anisotropic`]), with the sampling of its normals.
 //!
 //! Beckmann (Walter et al. 2007, Mitsuba's `beckmann`):
 //! `D(h) = exp(-tan^2(theta_h) / a^2) / (pi a^2 cos^4(theta_h))`, and Smith's
@@ -16,7 +17,7 @@
 
 use std::f64::consts::PI;
 
-use super::microfacet;
+use super::{anisotropic, microfacet};
 use crate::math::{Rgb, Vec3};
 
 /// Which normal distribution a rough surface has.
@@ -40,49 +41,70 @@ impl Distribution {
     }
 }
 
-/// A distribution of a given roughness.
+/// A distribution of a given roughness: `alpha_u` along the shading frame's
+/// first tangent (local `x`), `alpha_v` along the second (local `y`); equal for
+/// an isotropic surface, which then takes the isotropic forms above (the
+/// anisotropic ones, [`super::anisotropic`], are only for `alpha_u != alpha_v`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Microfacet {
     /// GGX or Beckmann.
     pub distribution: Distribution,
-    /// Roughness `a`.
-    pub alpha: f64,
+    /// Roughness `a_u` along local `x`.
+    pub alpha_u: f64,
+    /// Roughness `a_v` along local `y`.
+    pub alpha_v: f64,
 }
 
 impl Microfacet {
     /// GGX of roughness `alpha`.
     pub fn ggx(alpha: f64) -> Microfacet {
-        Microfacet { distribution: Distribution::Ggx, alpha }
+        Microfacet::new(Distribution::Ggx, alpha)
     }
 
     /// `distribution` of roughness `alpha`.
     pub fn new(distribution: Distribution, alpha: f64) -> Microfacet {
-        Microfacet { distribution, alpha }
+        Microfacet { distribution, alpha_u: alpha, alpha_v: alpha }
+    }
+
+    /// `distribution` of roughness `alpha_u` along local `x` and `alpha_v` along `y`.
+    pub fn anisotropic(distribution: Distribution, alpha_u: f64, alpha_v: f64) -> Microfacet {
+        Microfacet { distribution, alpha_u, alpha_v }
+    }
+
+    /// True when the roughness is the same in every direction.
+    #[inline]
+    pub fn is_isotropic(&self) -> bool {
+        self.alpha_u == self.alpha_v
     }
 
     /// `D(h)` for a unit half vector in the local frame (0 below the surface).
     #[inline]
     pub fn d(&self, h: Vec3) -> f64 {
+        let (au, av) = (self.alpha_u, self.alpha_v);
         match self.distribution {
-            Distribution::Ggx => microfacet::d(self.alpha, h),
-            Distribution::Beckmann => {
+            Distribution::Ggx if au == av => microfacet::d(au, h),
+            Distribution::Ggx => anisotropic::ggx_d(au, av, h),
+            Distribution::Beckmann if au == av => {
                 if h.z <= 0.0 {
                     return 0.0;
                 }
                 let c2 = h.z * h.z;
-                let a2 = self.alpha * self.alpha;
+                let a2 = au * au;
                 let tan2 = ((1.0 - c2) / c2).max(0.0);
                 (-tan2 / a2).exp() / (PI * a2 * c2 * c2)
             }
+            Distribution::Beckmann => anisotropic::beckmann_d(au, av, h),
         }
     }
 
     /// Smith's `Lambda(v)`, even in `v.z`.
     #[inline]
     pub fn lambda(&self, v: Vec3) -> f64 {
+        let (au, av) = (self.alpha_u, self.alpha_v);
         match self.distribution {
-            Distribution::Ggx => microfacet::lambda(self.alpha, v),
-            Distribution::Beckmann => {
+            Distribution::Ggx if au == av => microfacet::lambda(au, v),
+            Distribution::Ggx => anisotropic::ggx_lambda(au, av, v),
+            Distribution::Beckmann if au == av => {
                 let c2 = v.z * v.z;
                 if c2 <= 0.0 {
                     return f64::INFINITY;
@@ -91,12 +113,13 @@ impl Microfacet {
                 if tan == 0.0 {
                     return 0.0;
                 }
-                let b = 1.0 / (self.alpha * tan);
+                let b = 1.0 / (au * tan);
                 if b >= 1.6 {
                     return 0.0;
                 }
                 (1.0 - 1.259 * b + 0.396 * b * b) / (3.535 * b + 2.181 * b * b)
             }
+            Distribution::Beckmann => anisotropic::beckmann_lambda(au, av, v),
         }
     }
 
@@ -112,18 +135,27 @@ impl Microfacet {
         1.0 / (1.0 + self.lambda(wo) + self.lambda(wi))
     }
 
+    /// True for isotropic GGX, whose value, density and sampling are
+    /// [`super::microfacet`]'s own functions.
+    #[inline]
+    fn is_isotropic_ggx(&self) -> bool {
+        self.distribution == Distribution::Ggx && self.alpha_u == self.alpha_v
+    }
+
     /// A microfacet normal for outgoing `wo` (`wo.z > 0`), density [`Microfacet::normal_pdf`].
     #[inline]
     pub fn sample_normal(&self, wo: Vec3, u: (f64, f64)) -> Vec3 {
+        let (au, av) = (self.alpha_u, self.alpha_v);
         match self.distribution {
-            Distribution::Ggx => microfacet::visible_normal(self.alpha, wo, u),
-            Distribution::Beckmann => {
-                let tan2 = -self.alpha * self.alpha * (1.0 - u.0).ln();
+            Distribution::Ggx => microfacet::visible_normal_stretched(au, av, wo, u),
+            Distribution::Beckmann if au == av => {
+                let tan2 = -au * au * (1.0 - u.0).ln();
                 let cos = 1.0 / (1.0 + tan2).sqrt();
                 let sin = (1.0 - cos * cos).max(0.0).sqrt();
                 let phi = 2.0 * PI * u.1;
                 Vec3::new(sin * phi.cos(), sin * phi.sin(), cos)
             }
+            Distribution::Beckmann => anisotropic::beckmann_normal(au, av, u),
         }
     }
 
@@ -132,7 +164,11 @@ impl Microfacet {
     pub fn normal_pdf(&self, wo: Vec3, h: Vec3) -> f64 {
         match self.distribution {
             // The form rough glass has always used: its images stay the same.
-            Distribution::Ggx => microfacet::g1(self.alpha, wo) * wo.dot(h).max(0.0) * microfacet::d(self.alpha, h) / wo.z,
+            Distribution::Ggx if self.is_isotropic() => {
+                let alpha = self.alpha_u;
+                microfacet::g1(alpha, wo) * wo.dot(h).max(0.0) * microfacet::d(alpha, h) / wo.z
+            }
+            Distribution::Ggx => self.g1(wo) * wo.dot(h).max(0.0) * self.d(h) / wo.z,
             Distribution::Beckmann => self.d(h) * h.z.max(0.0),
         }
     }
@@ -140,54 +176,48 @@ impl Microfacet {
     /// Reflection of constant reflectance `ks`: `ks D(h) G2 / (4 cos_o cos_i)`.
     #[inline]
     pub fn f(&self, ks: Rgb, wo: Vec3, wi: Vec3) -> Rgb {
-        match self.distribution {
-            Distribution::Ggx => microfacet::f(ks, self.alpha, wo, wi),
-            Distribution::Beckmann => {
-                if wo.z <= 0.0 || wi.z <= 0.0 {
-                    return Rgb::ZERO;
-                }
-                let h = (wo + wi).normalize();
-                ks * (self.d(h) * self.g2(wo, wi) / (4.0 * wo.z * wi.z))
-            }
+        if self.is_isotropic_ggx() {
+            return microfacet::f(ks, self.alpha_u, wo, wi);
         }
+        if wo.z <= 0.0 || wi.z <= 0.0 {
+            return Rgb::ZERO;
+        }
+        let h = (wo + wi).normalize();
+        ks * (self.d(h) * self.g2(wo, wi) / (4.0 * wo.z * wi.z))
     }
 
     /// Density of [`Microfacet::sample`]: `p(h) / (4 wo.h)`.
     #[inline]
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f64 {
-        match self.distribution {
-            Distribution::Ggx => microfacet::pdf(self.alpha, wo, wi),
-            Distribution::Beckmann => {
-                if wo.z <= 0.0 || wi.z <= 0.0 {
-                    return 0.0;
-                }
-                let h = (wo + wi).normalize();
-                let wo_h = wo.dot(h);
-                if wo_h <= 0.0 {
-                    return 0.0;
-                }
-                self.normal_pdf(wo, h) / (4.0 * wo_h)
-            }
+        if self.is_isotropic_ggx() {
+            return microfacet::pdf(self.alpha_u, wo, wi);
         }
+        if wo.z <= 0.0 || wi.z <= 0.0 {
+            return 0.0;
+        }
+        let h = (wo + wi).normalize();
+        let wo_h = wo.dot(h);
+        if wo_h <= 0.0 {
+            return 0.0;
+        }
+        self.normal_pdf(wo, h) / (4.0 * wo_h)
     }
 
     /// A reflected direction through a sampled normal; `None` below the surface.
     pub fn sample(&self, wo: Vec3, u: (f64, f64)) -> Option<Vec3> {
-        match self.distribution {
-            Distribution::Ggx => microfacet::sample(self.alpha, wo, u),
-            Distribution::Beckmann => {
-                if wo.z <= 0.0 {
-                    return None;
-                }
-                let h = self.sample_normal(wo, u);
-                let wo_h = wo.dot(h);
-                if wo_h <= 0.0 {
-                    return None;
-                }
-                let wi = h * (2.0 * wo_h) - wo;
-                (wi.z > 0.0).then_some(wi)
-            }
+        if self.is_isotropic_ggx() {
+            return microfacet::sample(self.alpha_u, wo, u);
         }
+        if wo.z <= 0.0 {
+            return None;
+        }
+        let h = self.sample_normal(wo, u);
+        let wo_h = wo.dot(h);
+        if wo_h <= 0.0 {
+            return None;
+        }
+        let wi = h * (2.0 * wo_h) - wo;
+        (wi.z > 0.0).then_some(wi)
     }
 }
 

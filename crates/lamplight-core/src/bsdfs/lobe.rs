@@ -70,6 +70,13 @@ pub trait Scatter: Copy + Into<Lobe> {
     fn eta_towards(&self, _wi: Vec3) -> f64 {
         1.0
     }
+
+    /// True when the lobe is anisotropic: its local `x` axis must be the
+    /// surface's tangent `dp/du` ([`super::Frame::from_tangent`]), not any
+    /// direction around the normal.
+    fn needs_tangent(&self) -> bool {
+        false
+    }
 }
 
 /// The registry: `lobes! { /// doc \n Variant(Type), ... }` makes the enum
@@ -146,6 +153,14 @@ macro_rules! lobes {
             fn sample(&self, wo: Vec3, u_choice: f64, u: (f64, f64)) -> Option<Sampled> {
                 match self {
                     $(Lobe::$variant(lobe) => Scatter::sample(lobe, wo, u_choice, u),)*
+                }
+            }
+
+            /// Whether the lobe's local `x` must be the surface's tangent ([`Scatter::needs_tangent`]).
+            #[inline]
+            fn needs_tangent(&self) -> bool {
+                match self {
+                    $(Lobe::$variant(lobe) => Scatter::needs_tangent(lobe),)*
                 }
             }
 

@@ -89,9 +89,18 @@ pub fn sample(alpha: f64, wo: Vec3, u: (f64, f64)) -> Option<Vec3> {
 /// A microfacet normal distributed as the normals visible from `wo` (`wo.z > 0`),
 /// density `D_wo(h) = G1(wo) max(0, wo.h) D(h) / cos(theta_o)` (Heitz 2018,
 /// "Sampling the GGX Distribution of Visible Normals").
+#[inline]
 pub fn visible_normal(alpha: f64, wo: Vec3, u: (f64, f64)) -> Vec3 {
+    visible_normal_stretched(alpha, alpha, wo, u)
+}
+
+/// [`visible_normal`] of anisotropic GGX, roughness `alpha_u` along local `x`
+/// and `alpha_v` along `y` ([`super::anisotropic`]): Heitz's algorithm is a
+/// stretch of `wo` to unit roughness and back, so one routine serves both.
+#[inline]
+pub fn visible_normal_stretched(alpha_u: f64, alpha_v: f64, wo: Vec3, u: (f64, f64)) -> Vec3 {
     // Stretch to the unit-roughness configuration.
-    let vh = Vec3::new(alpha * wo.x, alpha * wo.y, wo.z).normalize();
+    let vh = Vec3::new(alpha_u * wo.x, alpha_v * wo.y, wo.z).normalize();
     let len2 = vh.x * vh.x + vh.y * vh.y;
     let t1 = if len2 > 0.0 { Vec3::new(-vh.y, vh.x, 0.0) / len2.sqrt() } else { Vec3::X };
     let t2 = vh.cross(t1);
@@ -101,7 +110,7 @@ pub fn visible_normal(alpha: f64, wo: Vec3, u: (f64, f64)) -> Vec3 {
     let s = 0.5 * (1.0 + vh.z);
     let p2 = (1.0 - s) * (1.0 - p1 * p1).max(0.0).sqrt() + s * r * phi.sin();
     let nh = t1 * p1 + t2 * p2 + vh * (1.0 - p1 * p1 - p2 * p2).max(0.0).sqrt();
-    Vec3::new(alpha * nh.x, alpha * nh.y, nh.z.max(1e-9)).normalize()
+    Vec3::new(alpha_u * nh.x, alpha_v * nh.y, nh.z.max(1e-9)).normalize()
 }
 
 /// GGX reflection with constant reflectance `ks` and roughness `alpha` (the

@@ -19,6 +19,7 @@
 //! its [`Lobe`] variant and dispatch in one line. A new lobe is its file, its
 //! `pub mod` line and its registry line.
 
+pub mod anisotropic;
 pub mod conductor;
 pub mod dielectric;
 pub mod distribution;
@@ -82,6 +83,21 @@ impl Frame {
     pub fn to_world(&self, v: Vec3) -> Vec3 {
         self.t * v.x + self.b * v.y + self.n * v.z
     }
+
+    /// The frame of unit normal `n` whose first tangent follows the surface's
+    /// `dpdu`, as Mitsuba 3 builds its shading frame (`initialize_sh_frame`):
+    /// `t = normalize(dpdu - n (n.dpdu))` (Gram-Schmidt), `b = n x t`. Where
+    /// `dpdu` is zero or along `n`, `t` is the first tangent of the basis
+    /// around `outward` (Mitsuba's `coordinate_system` of its outward shading
+    /// normal; `n` or `-n`). Anisotropic lobes need it: their roughness is
+    /// measured along `t` and `b`.
+    pub fn from_tangent(n: Vec3, dpdu: Vec3, outward: Vec3) -> Frame {
+        let t = match (dpdu - n * n.dot(dpdu)).try_normalize() {
+            Some(t) => t,
+            None => orthonormal_basis(outward).0,
+        };
+        Frame { t, b: n.cross(t), n }
+    }
 }
 
 lobes! {
@@ -139,6 +155,8 @@ pub struct Bsdf {
     lobes: [Lobe; MAX_LOBES],
     probs: [f64; MAX_LOBES],
     count: usize,
+    /// Some lobe is anisotropic ([`Bsdf::needs_tangent`]).
+    tangent: bool,
 }
 
 impl Bsdf {
@@ -147,7 +165,7 @@ impl Bsdf {
         let lobes = &lobes[..lobes.len().min(MAX_LOBES)];
         let total: Rgb = lobes.iter().map(|l| l.bound()).sum();
         let scale = Rgb::ONE / total.max(Rgb::ONE);
-        let mut out = Bsdf { lobes: [Lobe::Diffuse(Lambertian(Rgb::ZERO)); MAX_LOBES], probs: [0.0; MAX_LOBES], count: 0 };
+        let mut out = Bsdf { lobes: [Lobe::Diffuse(Lambertian(Rgb::ZERO)); MAX_LOBES], probs: [0.0; MAX_LOBES], count: 0, tangent: false };
         let mut sum = 0.0;
         for lobe in lobes {
             let lobe = lobe.scaled(scale);
@@ -155,6 +173,7 @@ impl Bsdf {
             if !(p > 0.0) {
                 continue;
             }
+            out.tangent |= lobe.needs_tangent();
             out.lobes[out.count] = lobe;
             out.probs[out.count] = p;
             out.count += 1;
@@ -174,6 +193,14 @@ impl Bsdf {
     /// True when nothing scatters (a black or purely emitting surface).
     pub fn is_black(&self) -> bool {
         self.count == 0
+    }
+
+    /// True when some lobe is anisotropic: the local frame's first tangent must
+    /// then be the surface's `dp/du` ([`Frame::from_tangent`]); any frame around
+    /// the normal serves the others.
+    #[inline]
+    pub fn needs_tangent(&self) -> bool {
+        self.tangent
     }
 
     /// True when some lobe has a value that a light sample can meet.

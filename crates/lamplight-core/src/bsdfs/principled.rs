@@ -8,6 +8,7 @@
 //! `z` the outward shading normal, so `v.z < 0` when the ray arrived from
 //! inside. With `brdf = (1 - metallic)(1 - spec_trans)`,
 //! `bsdf = (1 - metallic) spec_trans`, GGX of `alpha = max(0.001, roughness^2)`
+//! (a pair along and across `dp/du` when `anisotropic > 0`, [`ggx`])
 //! (`D`, and the separable Smith `G = G1(v) G1(l)` with Mitsuba's orientation
 //! checks), `eta_p` the index across the boundary along the path (`eta` from
 //! outside, `1 / eta` from inside), `h` the half vector `v + l` (reflection) or
@@ -43,7 +44,7 @@
 use std::f64::consts::{FRAC_1_PI, PI};
 
 use super::fresnel::fresnel_dielectric;
-use super::{lambertian, microfacet, Sampled, Scatter};
+use super::{lambertian, Sampled, Scatter};
 use crate::math::{Rgb, Vec3};
 
 /// The parameters of a principled surface besides its base colour.
@@ -51,6 +52,9 @@ use crate::math::{Rgb, Vec3};
 pub struct PrincipledParams {
     /// `roughness`, 0 to 1 (GGX `alpha = max(0.001, roughness^2)`).
     pub roughness: f64,
+    /// `anisotropic`, 0 to 1: the GGX roughness along `dp/du` and across it
+    /// ([`ggx::alphas`]); 0 is isotropic.
+    pub anisotropic: f64,
     /// `metallic`, 0 to 1.
     pub metallic: f64,
     /// `spec_trans`, 0 to 1: the share of the dielectric that transmits.
@@ -82,6 +86,7 @@ impl Default for PrincipledParams {
     fn default() -> PrincipledParams {
         PrincipledParams {
             roughness: 0.5,
+            anisotropic: 0.0,
             metallic: 0.0,
             spec_trans: 0.0,
             eta: eta_from_specular(0.5),
@@ -150,26 +155,6 @@ pub(super) fn fresnel(cos: f64, eta: f64) -> f64 {
     } else {
         fresnel_dielectric(-cos, 1.0 / eta)
     }
-}
-
-/// Smith's GGX masking of `v` by normal `m` (Mitsuba's `smith_g1`):
-/// `2 / (1 + sqrt(1 + alpha^2 tan^2))`, 0 where `m` faces away from `v`'s side.
-#[inline]
-pub(super) fn smith_g1(alpha: f64, v: Vec3, m: Vec3) -> f64 {
-    if v.dot(m) * v.z <= 0.0 {
-        return 0.0;
-    }
-    if v.x * v.x + v.y * v.y == 0.0 {
-        return 1.0;
-    }
-    let tan2 = (v.x * v.x + v.y * v.y) / (v.z * v.z);
-    2.0 / (1.0 + (1.0 + alpha * alpha * tan2).sqrt())
-}
-
-/// GGX's density of the normals visible from `v` (upper side): `D(m) G1(v, m) |v.m| / cos_v`.
-#[inline]
-pub(super) fn visible_pdf(alpha: f64, v: Vec3, m: Vec3) -> f64 {
-    microfacet::d(alpha, m) * smith_g1(alpha, v, m) * v.dot(m).abs() / v.z
 }
 
 /// GTR1 (Burley's clearcoat distribution) of roughness `a`:
@@ -244,8 +229,8 @@ impl Principled {
         Principled { base, p: params, front }
     }
 
-    fn alpha(&self) -> f64 {
-        (self.p.roughness * self.p.roughness).max(0.001)
+    fn alpha(&self) -> (f64, f64) {
+        ggx::alphas(self.p.roughness, self.p.anisotropic)
     }
 
     /// Lamplight's local direction in Mitsuba's frame.
@@ -310,8 +295,8 @@ impl Principled {
         let (brdf, bsdf) = self.weights();
         let (m, base, front) = (self.p.metallic, self.base, v.z > 0.0);
         let alpha = self.alpha();
-        let d = microfacet::d(alpha, h);
-        let g = smith_g1(alpha, v, h) * smith_g1(alpha, l, h);
+        let d = ggx::d(alpha, h);
+        let g = ggx::smith_g1(alpha, v, h) * ggx::smith_g1(alpha, l, h);
         let (vh, lh) = (v.dot(h), l.dot(h));
         let lum = luminance(base);
         let tint = if lum > 0.0 { base / lum } else { Rgb::ONE };
@@ -368,7 +353,7 @@ impl Principled {
             (eta_path * eta_path * lh / (denom * denom)).abs()
         };
         let v_up = if v.z < 0.0 { -v } else { v };
-        let normals = visible_pdf(self.alpha(), v_up, h) * jacobian;
+        let normals = ggx::visible_pdf(self.alpha(), v_up, h) * jacobian;
         let mut pdf = 0.0;
         if reflect {
             if compatible(h, v, l, true) {
@@ -422,7 +407,7 @@ impl Principled {
             }
             l
         } else {
-            let m = microfacet::visible_normal(self.alpha(), v_up, u);
+            let m = ggx::visible_normal(self.alpha(), v_up, u);
             let vm = v.dot(m);
             let f = fresnel(vm, self.p.eta);
             let [_, _, p_reflect, p_transmit] = self.probabilities(front, f);
@@ -513,7 +498,13 @@ impl Scatter for Principled {
     fn eta_towards(&self, wi: Vec3) -> f64 {
         Principled::eta_towards(self, wi)
     }
+
+    fn needs_tangent(&self) -> bool {
+        let (u, v) = self.alpha();
+        u != v
+    }
 }
 
+pub(super) mod ggx;
 #[cfg(test)]
 mod tests;

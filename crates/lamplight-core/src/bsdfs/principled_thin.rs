@@ -8,7 +8,8 @@
 //! of `v.h` at the sheet's `eta`, `st = spec_trans`, `dt = diff_trans / 2`, GGX
 //! of `alpha = max(0.001, roughness^2)` and of the scaled
 //! `alpha_t = max(0.001, ((0.65 eta - 0.35) roughness)^2)` for transmission (Burley's
-//! Figure 15), the value `f |cos_l|` is the sum of:
+//! Figure 15; each a pair along and across `dp/du` when `anisotropic > 0`,
+//! [`super::principled::ggx`]), the value `f |cos_l|` is the sum of:
 //!
 //! - glossy reflection (`l.z > 0`): `st F_thin D G / (4 cos_v)`, with
 //!   `F_thin = lerp(F, S(C_tint R0(eta)), spec_tint)` (Mitsuba's Schlick `S`,
@@ -26,8 +27,9 @@
 
 use std::f64::consts::FRAC_1_PI;
 
-use super::principled::{burley_diffuse, compatible, fresnel, luminance, schlick, schlick_r0, schlick_weight, smith_g1, visible_pdf};
-use super::{lambertian, microfacet, Sampled, Scatter};
+use super::principled::ggx::{self, smith_g1, visible_pdf};
+use super::principled::{burley_diffuse, compatible, fresnel, luminance, schlick, schlick_r0, schlick_weight};
+use super::{lambertian, Sampled, Scatter};
 use crate::math::{Rgb, Vec3};
 
 /// The parameters of a thin principled sheet besides its base colour.
@@ -35,6 +37,8 @@ use crate::math::{Rgb, Vec3};
 pub struct ThinParams {
     /// `roughness`, 0 to 1.
     pub roughness: f64,
+    /// `anisotropic`, 0 to 1 ([`ggx::alphas`]); 0 is isotropic.
+    pub anisotropic: f64,
     /// `spec_trans`, 0 to 1: the glossy share.
     pub spec_trans: f64,
     /// Half of Mitsuba's `diff_trans` (0 to 2): the diffuse share that transmits.
@@ -59,6 +63,7 @@ impl Default for ThinParams {
     fn default() -> ThinParams {
         ThinParams {
             roughness: 0.5,
+            anisotropic: 0.0,
             spec_trans: 0.0,
             diff_trans: 0.0,
             eta: 1.5,
@@ -85,10 +90,11 @@ impl PrincipledThin {
         PrincipledThin { base, p: params }
     }
 
-    fn alphas(&self) -> (f64, f64) {
+    /// The GGX roughness of reflection and of transmission (each `(a_u, a_v)`).
+    fn alphas(&self) -> ((f64, f64), (f64, f64)) {
         let r = self.p.roughness;
         let rt = (0.65 * self.p.eta - 0.35) * r;
-        ((r * r).max(0.001), (rt * rt).max(0.001))
+        (ggx::alphas(r, self.p.anisotropic), ggx::alphas(rt, self.p.anisotropic))
     }
 
     /// The probabilities of glossy reflection, glossy transmission, diffuse
@@ -127,11 +133,11 @@ impl PrincipledThin {
             let schlick_tint = schlick(tint * schlick_r0(self.p.eta), vh, self.p.eta);
             let f_thin = Rgb::splat(f) * (1.0 - self.p.spec_tint) + schlick_tint * self.p.spec_tint;
             let g = smith_g1(alpha, v, h) * smith_g1(alpha, l, h);
-            value += f_thin * (st * microfacet::d(alpha, h) * g / (4.0 * v.z));
+            value += f_thin * (st * ggx::d(alpha, h) * g / (4.0 * v.z));
         }
         if st > 0.0 && !reflect && compatible(h, v, l, false) {
             let g = smith_g1(alpha_t, v, h) * smith_g1(alpha_t, l, h);
-            value += base * (st * (1.0 - f) * microfacet::d(alpha_t, h) * g / (4.0 * v.z));
+            value += base * (st * (1.0 - f) * ggx::d(alpha_t, h) * g / (4.0 * v.z));
         }
         if reflect && st < 1.0 && dt < 1.0 {
             let lh = l.dot(h);
@@ -181,7 +187,7 @@ impl PrincipledThin {
         let (alpha, alpha_t) = self.alphas();
         if u_choice < p_reflect + p_transmit {
             let transmit = u_choice >= p_reflect;
-            let m = microfacet::visible_normal(if transmit { alpha_t } else { alpha }, v, u);
+            let m = ggx::visible_normal(if transmit { alpha_t } else { alpha }, v, u);
             let mut l = m * (2.0 * v.dot(m)) - v;
             if transmit {
                 l.z = -l.z;
@@ -215,6 +221,11 @@ impl Scatter for PrincipledThin {
     #[inline]
     fn sample(&self, wo: Vec3, u_choice: f64, u: (f64, f64)) -> Option<Sampled> {
         PrincipledThin::sample(self, wo, u_choice, u).map(Sampled::Smooth)
+    }
+
+    fn needs_tangent(&self) -> bool {
+        let (a, a_t) = self.alphas();
+        a.0 != a.1 || a_t.0 != a_t.1
     }
 }
 

@@ -29,10 +29,20 @@ pub struct RoughConductor {
     pub eta: Rgb,
     /// Extinction coefficient, per channel.
     pub k: Rgb,
-    /// Roughness.
+    /// Roughness (along local `x`, the surface's `dp/du`, when `alpha_v` differs).
     pub alpha: f64,
+    /// Roughness along local `y` ([`super::anisotropic`]); `alpha` when isotropic.
+    pub alpha_v: f64,
     /// GGX or Beckmann.
     pub distribution: Distribution,
+}
+
+impl RoughConductor {
+    /// The distribution of its normals.
+    #[inline]
+    fn microfacet(&self) -> Microfacet {
+        Microfacet::anisotropic(self.distribution, self.alpha, self.alpha_v)
+    }
 }
 
 impl Scatter for RoughConductor {
@@ -43,10 +53,12 @@ impl Scatter for RoughConductor {
     }
 
     /// Like the conductor mirror: physics when unscaled, else a
-    /// constant-reflectance GGX lobe.
+    /// constant-reflectance isotropic GGX lobe (of the geometric mean roughness
+    /// when anisotropic: the lecture's Blinn lobe has one).
     fn scaled(self, s: Rgb) -> Lobe {
         if s != Rgb::ONE {
-            Glossy { ks: s, alpha: self.alpha }.into()
+            let alpha = if self.alpha == self.alpha_v { self.alpha } else { (self.alpha * self.alpha_v).sqrt() };
+            Glossy { ks: s, alpha }.into()
         } else {
             self.into()
         }
@@ -54,17 +66,21 @@ impl Scatter for RoughConductor {
 
     #[inline]
     fn f(&self, wo: Vec3, wi: Vec3) -> Rgb {
-        f(self.eta, self.k, Microfacet::new(self.distribution, self.alpha), wo, wi)
+        f(self.eta, self.k, self.microfacet(), wo, wi)
     }
 
     #[inline]
     fn pdf(&self, wo: Vec3, wi: Vec3) -> f64 {
-        Microfacet::new(self.distribution, self.alpha).pdf(wo, wi)
+        self.microfacet().pdf(wo, wi)
     }
 
     #[inline]
     fn sample(&self, wo: Vec3, _u_choice: f64, u: (f64, f64)) -> Option<Sampled> {
-        Microfacet::new(self.distribution, self.alpha).sample(wo, u).map(Sampled::Smooth)
+        self.microfacet().sample(wo, u).map(Sampled::Smooth)
+    }
+
+    fn needs_tangent(&self) -> bool {
+        self.alpha != self.alpha_v
     }
 }
 

@@ -123,12 +123,22 @@ pub fn sample(m: Microfacet, eta: f64, wo: Vec3, u_branch: f64, u: (f64, f64)) -
 pub struct RoughGlass {
     /// Relative index across the boundary.
     pub eta: f64,
-    /// Roughness.
+    /// Roughness (along local `x`, the surface's `dp/du`, when `alpha_v` differs).
     pub alpha: f64,
+    /// Roughness along local `y` ([`super::anisotropic`]); `alpha` when isotropic.
+    pub alpha_v: f64,
     /// Colour filter of both branches (1 for clear glass).
     pub tint: Rgb,
     /// GGX or Beckmann.
     pub distribution: Distribution,
+}
+
+impl RoughGlass {
+    /// The distribution of its normals.
+    #[inline]
+    fn microfacet(&self) -> Microfacet {
+        Microfacet::anisotropic(self.distribution, self.alpha, self.alpha_v)
+    }
 }
 
 impl Scatter for RoughGlass {
@@ -144,17 +154,21 @@ impl Scatter for RoughGlass {
 
     #[inline]
     fn f(&self, wo: Vec3, wi: Vec3) -> Rgb {
-        self.tint * f(Microfacet::new(self.distribution, self.alpha), self.eta, wo, wi)
+        self.tint * f(self.microfacet(), self.eta, wo, wi)
     }
 
     #[inline]
     fn pdf(&self, wo: Vec3, wi: Vec3) -> f64 {
-        pdf(Microfacet::new(self.distribution, self.alpha), self.eta, wo, wi)
+        pdf(self.microfacet(), self.eta, wo, wi)
     }
 
     #[inline]
     fn sample(&self, wo: Vec3, u_choice: f64, u: (f64, f64)) -> Option<Sampled> {
-        sample(Microfacet::new(self.distribution, self.alpha), self.eta, wo, u_choice, u).map(Sampled::Smooth)
+        sample(self.microfacet(), self.eta, wo, u_choice, u).map(Sampled::Smooth)
+    }
+
+    fn needs_tangent(&self) -> bool {
+        self.alpha != self.alpha_v
     }
 
     /// A transmitted direction (below the surface) crossed the boundary.

@@ -108,7 +108,7 @@ static TABLES: Mutex<Vec<(Key, &'static CoatTable)>> = Mutex::new(Vec::new());
 
 /// The table of the coating `(m, eta)`, computed on first use and kept for the process.
 pub fn table(m: Microfacet, eta: f64) -> &'static CoatTable {
-    let key = (m.distribution, m.alpha.to_bits(), eta.to_bits());
+    let key = (m.distribution, m.alpha_u.to_bits(), eta.to_bits());
     let mut tables = TABLES.lock().unwrap_or_else(|e| e.into_inner());
     if let Some((_, t)) = tables.iter().find(|(k, _)| *k == key) {
         return t;

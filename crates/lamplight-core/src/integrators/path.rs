@@ -213,7 +213,7 @@ impl PathTracer {
                 trace.end(PathEnd::BlackBsdf);
                 break;
             }
-            let frame = Frame::new(hit.normal);
+            let frame = scene.shading_frame(&hit, bsdf);
             let wo = frame.to_local(-ray.dir);
             // Every vertex owns the same five dimensions, so that every sample of a
             // pixel uses dimension k for the same decision; values a vertex does not

@@ -3,7 +3,6 @@
 //! light sampling or MIS weights, it is the oracle [`super::PathTracer`] is tested
 //! against. No Russian roulette: paths end at the depth limit.
 
-use crate::bsdfs::Frame;
 use crate::lights::LightSet;
 use crate::math::Rgb;
 use crate::ray::{offset_origin, Ray};
@@ -44,7 +43,7 @@ impl SimplePath {
                 break;
             }
             let bsdf = scene.bsdf(&hit, material);
-            let frame = Frame::new(hit.normal);
+            let frame = scene.shading_frame(&hit, &bsdf);
             let wo = frame.to_local(-ray.dir);
             let u_lobe = sampler.get_1d();
             let Some(s) = bsdf.sample(wo, u_lobe, sampler.get_2d()) else { break };

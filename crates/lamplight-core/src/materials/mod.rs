@@ -233,6 +233,11 @@ pub struct Material {
     /// tracer (0: smooth; see [`lobes`]); the Whitted tracer ignores it.
     /// Under [`Material::pbr`], glTF's perceptual roughness `r` (GGX `alpha = r^2`).
     pub roughness: f64,
+    /// Anisotropic roughness: `Some(alpha_v)` makes the rough glass and conductor
+    /// lobes [`Material::roughness`] rough along the surface's `dp/du` and
+    /// `alpha_v` rough along the other tangent ([`crate::bsdfs::anisotropic`]);
+    /// `None` (isotropic) by default.
+    pub roughness_v: Option<f64>,
     /// The microfacet distribution of the rough glass and conductor lobes (GGX by default).
     pub distribution: crate::bsdfs::Distribution,
     /// A scattering model of its own ([`Model`]), which then decides the path tracer's BSDF.
@@ -270,6 +275,7 @@ impl Default for Material {
             refraction: Refraction::None,
             shadow_transmittance: Rgb::ZERO,
             roughness: 0.0,
+            roughness_v: None,
             distribution: crate::bsdfs::Distribution::Ggx,
             model: None,
             textures: None,
@@ -417,6 +423,9 @@ impl Material {
         }
         if !(self.roughness.is_finite() && (0.0..=1.0).contains(&self.roughness)) {
             return Err(crate::Error::invalid("roughness", format!("must be between 0 and 1, got {}", self.roughness)));
+        }
+        if let Some(v) = self.roughness_v.filter(|v| !(v.is_finite() && (0.0..=1.0).contains(v))) {
+            return Err(crate::Error::invalid("roughness_v", format!("must be between 0 and 1, got {v}")));
         }
         match &self.color {
             Texture::Constant(c) => rgb_ok("color", *c)?,

@@ -66,6 +66,14 @@ pub const KIND: MaterialKind = Kind {
             "fraction of light a shadow ray keeps crossing this surface (clear glass: 1; a texture applies where the surface is shaded, not to shadow rays)",
         ),
         Param::new("roughness", T::ScalarTexture, "0", "0 to 1", "microfacet roughness of Fresnel glass and conductors in the path tracer"),
+        Param::new(
+            "roughness_u",
+            T::ScalarTexture,
+            "none",
+            "0 to 1",
+            "anisotropic roughness along the surface's `dp/du`, with `roughness_v` and instead of `roughness`",
+        ),
+        Param::new("roughness_v", T::ScalarTexture, "none", "0 to 1", "anisotropic roughness along the other tangent, with `roughness_u`"),
         Param::new("distribution", T::String, "ggx", "ggx, beckmann", "microfacet distribution of rough glass and conductors"),
     ],
     build,
@@ -82,6 +90,7 @@ fn build(p: &mut Params<'_>, textures: &super::Textures<'_>) -> ParamResult<Mate
         _ => textures.read(p, "color")?.unwrap_or(d.color.clone()),
     };
     let mut maps = Vec::new();
+    let (roughness, roughness_v) = roughness(p, textures, &mut maps)?;
     let material = Material {
         color,
         ka: color_param(p, textures, "ka", d.ka, Slot::KA, &mut maps)?,
@@ -101,7 +110,8 @@ fn build(p: &mut Params<'_>, textures: &super::Textures<'_>) -> ParamResult<Mate
             Slot::SHADOW_TRANSMITTANCE,
             &mut maps,
         )?,
-        roughness: scalar_param(p, textures, "roughness", d.roughness, Slot::ROUGHNESS, &mut maps)?,
+        roughness,
+        roughness_v,
         distribution: match p.choice("distribution", &["ggx", "beckmann"])? {
             "beckmann" => crate::bsdfs::Distribution::Beckmann,
             _ => crate::bsdfs::Distribution::Ggx,
@@ -117,6 +127,35 @@ fn build(p: &mut Params<'_>, textures: &super::Textures<'_>) -> ParamResult<Mate
     let material = Material { textures: (!maps.is_empty()).then(|| maps.into()), ..material };
     material.validate().map_err(|e| p.core_error(e))?;
     Ok(material)
+}
+
+/// `roughness`, or the anisotropic pair `roughness_u` (along `dp/du`, stored as
+/// the roughness) and `roughness_v`: both or neither, and not with `roughness`
+/// (Mitsuba's rule for `alpha`, `alpha_u`, `alpha_v`).
+fn roughness(
+    p: &mut Params<'_>,
+    textures: &super::Textures<'_>,
+    maps: &mut Vec<(Slot, super::Texture)>,
+) -> ParamResult<(f64, Option<f64>)> {
+    let pair = "anisotropic roughness takes both `roughness_u` and `roughness_v`";
+    match (p.has("roughness_u"), p.has("roughness_v")) {
+        (false, false) => Ok((scalar_param(p, textures, "roughness", 0.0, Slot::ROUGHNESS, maps)?, None)),
+        (true, false) => Err(p.key_error("roughness_u", format!("needs `roughness_v` too ({pair})"))),
+        (false, true) => Err(p.key_error("roughness_v", format!("needs `roughness_u` too ({pair})"))),
+        (true, true) if p.has("roughness") => {
+            Err(p.key_error("roughness", "give either `roughness` or `roughness_u` and `roughness_v`, not both"))
+        }
+        (true, true) => {
+            let u = scalar_param(p, textures, "roughness_u", 0.0, Slot::ROUGHNESS, maps)?;
+            let v = scalar_param(p, textures, "roughness_v", 0.0, Slot::ROUGHNESS_V, maps)?;
+            for (key, x) in [("roughness_u", u), ("roughness_v", v)] {
+                if !(0.0..=1.0).contains(&x) {
+                    return Err(p.key_error(key, format!("must be between 0 and 1, got {x}")));
+                }
+            }
+            Ok((u, Some(v)))
+        }
+    }
 }
 
 fn reflection(p: &mut Params<'_>) -> ParamResult<Reflection> {
@@ -174,6 +213,7 @@ fn refraction(p: &mut Params<'_>) -> ParamResult<Refraction> {
 /// | `Reflection::Dielectric` + `Refraction::Fresnel` of one index, `min 0 max 1` | smooth glass; rough glass (GGX, [`crate::bsdfs::rough_dielectric`]) of `alpha = roughness` when `roughness >= 0.001` |
 /// | `Reflection::Dielectric {min, max}` otherwise | mirror of weight `min + (max - min) F` |
 /// | `Reflection::Conductor {eta, k}` | conductor mirror with complex Fresnel; rough metal (GGX, [`crate::bsdfs::rough_conductor`]) of `alpha = roughness` when `roughness >= 0.001` |
+/// | [`Material::roughness_v`] | the rough glass and metal lobes anisotropic: `alpha = roughness` along `dp/du`, `alpha_v = roughness_v` along the other tangent, each at least 0.001 |
 /// | `Refraction::Fresnel` alone | refraction of weight `1 - F` |
 /// | `Refraction::Constant(w)` | refraction of weight `w` |
 /// | `emission` | area light radiance (see [`crate::lights::area`]) |
@@ -209,13 +249,23 @@ pub fn lecture_bsdf(material: &Material, color: Rgb, front_face: bool) -> Bsdf {
     if material.ks != Rgb::ZERO && !glass && !conductor {
         push(Lobe::Glossy(Glossy { ks: material.ks, alpha: microfacet::alpha_from_shininess(material.shininess) }));
     }
+    // Below the smallest GGX roughness the lobe is a mirror that f64 cannot
+    // sample; an anisotropic lobe is rough when either roughness is, each
+    // clamped to the smallest (as Mitsuba clamps to 1e-4).
+    let (rough, alpha, alpha_v) = match material.roughness_v {
+        None => (material.roughness >= microfacet::MIN_ALPHA, material.roughness, material.roughness),
+        Some(v) => {
+            let u = material.roughness;
+            (u.max(v) >= microfacet::MIN_ALPHA, u.max(microfacet::MIN_ALPHA), v.max(microfacet::MIN_ALPHA))
+        }
+    };
     if glass {
         if let Refraction::Fresnel { ior } = material.refraction {
-            // Below the smallest GGX roughness the lobe is a mirror that f64 cannot sample.
-            if material.roughness >= microfacet::MIN_ALPHA {
+            if rough {
                 push(Lobe::RoughGlass(RoughGlass {
                     eta: relative(ior),
-                    alpha: material.roughness,
+                    alpha,
+                    alpha_v,
                     tint: Rgb::ONE,
                     distribution: material.distribution,
                 }));
@@ -228,8 +278,8 @@ pub fn lecture_bsdf(material: &Material, color: Rgb, front_face: bool) -> Bsdf {
             Reflection::None => {}
             Reflection::Constant(w) => push(Lobe::Mirror(MirrorFresnel::Constant(w))),
             Reflection::Dielectric { ior, min, max } => push(Lobe::Mirror(MirrorFresnel::Dielectric { eta: relative(ior), min, max })),
-            Reflection::Conductor { eta, k } if material.roughness >= microfacet::MIN_ALPHA => {
-                push(Lobe::RoughConductor(RoughConductor { eta, k, alpha: material.roughness, distribution: material.distribution }))
+            Reflection::Conductor { eta, k } if rough => {
+                push(Lobe::RoughConductor(RoughConductor { eta, k, alpha, alpha_v, distribution: material.distribution }))
             }
             Reflection::Conductor { eta, k } => push(Lobe::Mirror(MirrorFresnel::Conductor { eta, k })),
         }

@@ -5,7 +5,7 @@
 //! |---|---|---|---|
 //! | `base_color` | colour or texture | 0.5 | the base colour `C` |
 //! | `roughness` | number or texture | 0.5 | 0 to 1; GGX `alpha = max(0.001, roughness^2)` |
-//! | `anisotropic` | number | 0 | only 0: lamplight's shading frame has no tangent direction |
+//! | `anisotropic` | number or texture | 0 | 0 to 1: GGX `alpha_u = max(0.001, roughness^2 / aspect)` along the surface's `dp/du`, `alpha_v = max(0.001, roughness^2 aspect)` across it, `aspect = sqrt(1 - 0.9 anisotropic)` |
 //! | `metallic` | number or texture | 0 | 0 to 1: blends the dielectric towards a Schlick metal of colour `C` |
 //! | `spec_trans` | number or texture | 0 | 0 to 1: the share of the dielectric that transmits (rough glass tinted `sqrt(C)`) |
 //! | `specular` | number | 0.5 | Fresnel strength: `eta = 2 / (1 - sqrt(0.08 specular)) - 1`; not with `eta` |
@@ -40,7 +40,13 @@ pub const KIND: MaterialKind = Kind {
     params: super::surface_params![
         Param::new("base_color", T::Texture, "0.5", "0 to 1", "the base colour"),
         Param::new("roughness", T::Texture, "0.5", "0 to 1", "GGX `alpha = max(0.001, roughness^2)`"),
-        Param::new("anisotropic", T::Number, "0", "0", "anisotropy (only 0)"),
+        Param::new(
+            "anisotropic",
+            T::Texture,
+            "0",
+            "0 to 1",
+            "anisotropy: GGX `alpha = roughness^2 / aspect` along `dp/du` and `roughness^2 aspect` across, `aspect = sqrt(1 - 0.9 anisotropic)`",
+        ),
         Param::new("metallic", T::Texture, "0", "0 to 1", "blend towards a metal of the base colour"),
         Param::new("spec_trans", T::Texture, "0", "0 to 1", "share of the dielectric that transmits"),
         Param::new("specular", T::Number, "0.5", "0 to 1", "Fresnel strength, `eta = 2 / (1 - sqrt(0.08 specular)) - 1`"),
@@ -65,6 +71,8 @@ pub const KIND: MaterialKind = Kind {
 pub enum Scalar {
     /// `roughness`.
     Roughness,
+    /// `anisotropic`.
+    Anisotropic,
     /// `metallic`.
     Metallic,
     /// `spec_trans`.
@@ -90,6 +98,7 @@ impl Scalar {
     pub fn set(self, p: &mut PrincipledParams, value: f64) {
         let field = match self {
             Scalar::Roughness => &mut p.roughness,
+            Scalar::Anisotropic => &mut p.anisotropic,
             Scalar::Metallic => &mut p.metallic,
             Scalar::SpecTrans => &mut p.spec_trans,
             Scalar::SpecTint => &mut p.spec_tint,
@@ -107,6 +116,7 @@ impl Scalar {
     pub fn set_thin(self, p: &mut ThinParams, value: f64) {
         let field = match self {
             Scalar::Roughness => &mut p.roughness,
+            Scalar::Anisotropic => &mut p.anisotropic,
             Scalar::SpecTrans => &mut p.spec_trans,
             Scalar::SpecTint => &mut p.spec_tint,
             Scalar::Sheen => &mut p.sheen,
@@ -124,8 +134,9 @@ impl Scalar {
 
 impl Scalar {
     /// Every scalar, in declaration order.
-    pub const ALL: [Scalar; 10] = [
+    pub const ALL: [Scalar; 11] = [
         Scalar::Roughness,
+        Scalar::Anisotropic,
         Scalar::Metallic,
         Scalar::SpecTrans,
         Scalar::SpecTint,
@@ -161,6 +172,7 @@ pub fn slot(scalar: Scalar) -> Slot {
     }
     match scalar {
         Scalar::Roughness => slot!("principled.roughness", Roughness),
+        Scalar::Anisotropic => slot!("principled.anisotropic", Anisotropic),
         Scalar::Metallic => slot!("principled.metallic", Metallic),
         Scalar::SpecTrans => slot!("principled.spec_trans", SpecTrans),
         Scalar::SpecTint => slot!("principled.spec_tint", SpecTint),
@@ -173,8 +185,9 @@ pub fn slot(scalar: Scalar) -> Slot {
     }
 }
 
-const SCALARS: [(&str, Scalar, f64); 9] = [
+const SCALARS: [(&str, Scalar, f64); 10] = [
     ("roughness", Scalar::Roughness, 0.5),
+    ("anisotropic", Scalar::Anisotropic, 0.0),
     ("metallic", Scalar::Metallic, 0.0),
     ("spec_trans", Scalar::SpecTrans, 0.0),
     ("spec_tint", Scalar::SpecTint, 0.0),
@@ -206,12 +219,6 @@ fn build(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Material> {
             return Err(p.key_error(key, format!("must be between 0 and 1, got {v}")));
         }
         scalar.set(&mut params, v);
-    }
-    let anisotropic = p.number_or("anisotropic", 0.0)?;
-    if anisotropic != 0.0 {
-        return Err(
-            p.key_error("anisotropic", format!("must be 0 (lamplight's shading frame has no tangent direction), got {anisotropic}"))
-        );
     }
     params.eta = match (p.has("eta"), p.has("specular")) {
         (true, true) => return Err(p.key_error("eta", "give either `eta` or `specular`, not both")),

@@ -6,7 +6,7 @@
 //! |---|---|---|---|
 //! | `base_color` | colour or texture | 0.5 | the base colour `C` |
 //! | `roughness` | number or texture | 0.5 | 0 to 1; GGX `alpha = max(0.001, roughness^2)` (transmission: `(0.65 eta - 0.35) roughness`) |
-//! | `anisotropic` | number | 0 | only 0: lamplight's shading frame has no tangent direction |
+//! | `anisotropic` | number or texture | 0 | 0 to 1: as `principled`'s, for both the reflection's and the transmission's roughness |
 //! | `spec_trans` | number or texture | 0 | 0 to 1: the glossy share (reflection and straight-through transmission) |
 //! | `diff_trans` | number or texture | 0 | 0 to 2: the diffuse share that is transmitted (Mitsuba's range) |
 //! | `eta` | number | 1.5 | relative index of the sheet |
@@ -37,7 +37,7 @@ pub const KIND: MaterialKind = Kind {
     params: super::surface_params![
         Param::new("base_color", T::Texture, "0.5", "0 to 1", "the base colour"),
         Param::new("roughness", T::Texture, "0.5", "0 to 1", "GGX `alpha = max(0.001, roughness^2)`"),
-        Param::new("anisotropic", T::Number, "0", "0", "anisotropy (only 0)"),
+        Param::new("anisotropic", T::Texture, "0", "0 to 1", "anisotropy, as `principled`'s"),
         Param::new("spec_trans", T::Texture, "0", "0 to 1", "glossy share"),
         Param::new("diff_trans", T::Texture, "0", "0 to 2", "transmitted diffuse share (Mitsuba's range)"),
         Param::new("eta", T::Number, "1.5", "> 0", "relative index of the sheet"),
@@ -55,8 +55,9 @@ pub const KIND: MaterialKind = Kind {
     build,
 };
 
-const SCALARS: [(&str, Scalar, f64, f64); 7] = [
+const SCALARS: [(&str, Scalar, f64, f64); 8] = [
     ("roughness", Scalar::Roughness, 0.5, 1.0),
+    ("anisotropic", Scalar::Anisotropic, 0.0, 1.0),
     ("spec_trans", Scalar::SpecTrans, 0.0, 1.0),
     ("diff_trans", Scalar::DiffTrans, 0.0, 2.0),
     ("spec_tint", Scalar::SpecTint, 0.0, 1.0),
@@ -82,12 +83,6 @@ fn build(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Material> {
             return Err(p.key_error(key, format!("must be between 0 and {max}, got {v}")));
         }
         scalar.set_thin(&mut params, v);
-    }
-    let anisotropic = p.number_or("anisotropic", 0.0)?;
-    if anisotropic != 0.0 {
-        return Err(
-            p.key_error("anisotropic", format!("must be 0 (lamplight's shading frame has no tangent direction), got {anisotropic}"))
-        );
     }
     params.eta = super::plastic::ior(p, "eta", 1.5)?;
     for (rate, key) in params.rates.iter_mut().zip(RATES) {

@@ -75,6 +75,8 @@ impl Slot {
     pub const SHADOW_TRANSMITTANCE: Slot = Slot::new("shadow_transmittance", |m, v| m.shadow_transmittance = v.max(Rgb::ZERO));
     /// `roughness` (the lecture's, which the metallic-roughness model reads too).
     pub const ROUGHNESS: Slot = Slot::new("roughness", |m, v| m.roughness = v.x.clamp(0.0, 1.0));
+    /// `roughness_v`, the anisotropic roughness along the second tangent.
+    pub const ROUGHNESS_V: Slot = Slot::new("roughness_v", |m, v| m.roughness_v = Some(v.x.clamp(0.0, 1.0)));
 }
 
 /// A colour parameter that may be a texture: the constant (or `default`), with
@@ -138,7 +140,16 @@ mod tests {
     #[test]
     fn every_slot_has_its_own_name() {
         use super::super::{pbr, principled};
-        let mut all = vec![Slot::KA, Slot::KD, Slot::KS, Slot::SHININESS, Slot::EMISSION, Slot::SHADOW_TRANSMITTANCE, Slot::ROUGHNESS];
+        let mut all = vec![
+            Slot::KA,
+            Slot::KD,
+            Slot::KS,
+            Slot::SHININESS,
+            Slot::EMISSION,
+            Slot::SHADOW_TRANSMITTANCE,
+            Slot::ROUGHNESS,
+            Slot::ROUGHNESS_V,
+        ];
         all.extend([pbr::METALLIC, pbr::SPECULAR, pbr::SPECULAR_COLOR, pbr::TRANSMISSION]);
         all.extend(principled::Scalar::ALL.map(principled::slot));
         let mut names: Vec<&str> = all.iter().map(|s| s.name()).collect();

@@ -34,7 +34,7 @@
 use rayon::prelude::*;
 
 use super::{integrator_for, thread_pool, view_of, RenderOptions};
-use crate::bsdfs::{Bsdf, Frame};
+use crate::bsdfs::Bsdf;
 use crate::film::{Film, Image};
 use crate::integrators::{CameraSample, Integrator, Schedule, View};
 use crate::math::{Rgb, Vec3};
@@ -143,7 +143,7 @@ pub fn sample_features(scene: &Scene, camera: &CameraSample, max_depth: u32, rng
         if bsdf.is_black() || material.emits_towards(hit.front_face) {
             return (Rgb::ZERO, hit.normal);
         }
-        let frame = Frame::new(hit.normal);
+        let frame = scene.shading_frame(&hit, bsdf);
         let wo = frame.to_local(-ray.dir);
         if bsdf.has_smooth_part() || depth == max_depth {
             return (throughput * reflectance(bsdf, wo, rng), hit.normal);

@@ -5,11 +5,36 @@
 use std::borrow::Cow;
 
 use super::{Hit, Scene};
+use crate::bsdfs::{Bsdf, Frame};
 use crate::materials::blend::{choice_sample, picks_b};
 use crate::materials::{Blend, Material, ShadingPoint};
 use crate::math::Vec3;
 
 impl Scene {
+    /// The local shading frame of `bsdf` at `hit` (`z` the shading normal on the
+    /// ray's side): any frame around the normal, or, for an anisotropic BSDF, the
+    /// one whose first tangent follows the surface's `dp/du` as Mitsuba's
+    /// ([`Frame::from_tangent`]). Only then are the surface coordinates computed,
+    /// so isotropic surfaces keep their frame and their cost.
+    #[inline(always)]
+    pub fn shading_frame(&self, hit: &Hit, bsdf: &Bsdf) -> Frame {
+        if bsdf.needs_tangent() {
+            self.tangent_frame(hit)
+        } else {
+            Frame::new(hit.normal)
+        }
+    }
+
+    /// [`Frame::from_tangent`] of the shading normal and the shape's `dp/du`; the
+    /// fallback basis is built around the outward shading normal, as Mitsuba's.
+    #[cold]
+    #[inline(never)]
+    fn tangent_frame(&self, hit: &Hit) -> Frame {
+        let dpdu = self.surface_coords(hit).dpdu;
+        let outward = if hit.front_face { hit.normal } else { -hit.normal };
+        Frame::from_tangent(hit.normal, dpdu, outward)
+    }
+
     /// What textures are evaluated at for `hit`: its point, and its surface
     /// coordinates and vertex colour when the material reads them (computed
     /// only then, [`Scene::surface_coords`]).

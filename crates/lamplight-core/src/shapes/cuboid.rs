@@ -19,12 +19,14 @@
 //! `(a, b) = (i + 1, i + 2) mod 3` and `f_k = (l_k - min_k) / (max_k - min_k)` for
 //! the local point `l`: `(u, v) = (f_a, f_b)` on the `max` face and
 //! `(1 - f_a, f_b)` on the `min` face, so that `dp/du x dp/dv` points out of the
-//! box on all six (`dp/du = +-M e_a (max_a - min_a)`, `dp/dv = M e_b (max_b - min_b)`).
+//! box on all six (`dp/du = +-M e_a (max_a - min_a)`, `dp/dv = M e_b (max_b - min_b)`);
+//! `uv_layout = "mitsuba"` lays them out as Mitsuba's `cube` ([`super::box_uv`]).
 
 use std::sync::Arc;
 
 use glam::DMat3;
 
+use super::box_uv::BoxUv;
 use super::{Shape, ShapeKind, SurfaceCoords, SurfaceHit};
 use crate::accel::Aabb;
 use crate::math::{Mat4, Vec3};
@@ -39,13 +41,21 @@ pub const KIND: ShapeKind = Kind {
     params: &[
         Param::new("min", T::Point, "", "", "low corner"),
         Param::new("max", T::Point, "", "", "high corner, above `min` on every axis"),
+        Param::new(
+            "uv_layout",
+            T::String,
+            "\"faces\"",
+            "",
+            "`\"faces\"`: each face `[0, 1]^2`, `dp/du x dp/dv` outward; `\"mitsuba\"`: the texture coordinates of Mitsuba's `cube` mesh",
+        ),
     ],
     build: |p, m| {
         let (lo, hi) = (p.required_vec3("min")?, p.required_vec3("max")?);
         if !(lo.cmplt(hi).all()) {
             return Err(p.error(format!("min {lo} must be below max {hi} on every axis")));
         }
-        Ok(vec![Arc::new(Cuboid::new(lo, hi, *m).map_err(|e| p.core_error(e))?)])
+        let uv = if p.choice("uv_layout", &["faces", "mitsuba"])? == "mitsuba" { BoxUv::Mitsuba } else { BoxUv::Faces };
+        Ok(vec![Arc::new(Cuboid::new(lo, hi, *m).map_err(|e| p.core_error(e))?.with_uv(uv))])
     },
 };
 
@@ -69,6 +79,8 @@ pub struct Cuboid {
     face_areas: [f64; 6],
     area: f64,
     bounds: Aabb,
+    /// The layout of its surface coordinates ([`BoxUv`]).
+    uv: BoxUv,
 }
 
 impl Cuboid {
@@ -118,7 +130,13 @@ impl Cuboid {
             return Err(Error::invalid("box", "is too large to represent"));
         }
         let (lo_shift, hi_shift) = (min - local_offset, max - local_offset);
-        Ok(Cuboid { min, max, world_from_local: m, local_linear, lo_shift, hi_shift, normals, face_areas, area, bounds })
+        Ok(Cuboid { min, max, world_from_local: m, local_linear, lo_shift, hi_shift, normals, face_areas, area, bounds, uv: BoxUv::Faces })
+    }
+
+    /// This box with its surface coordinates laid out as `uv` ([`BoxUv`]).
+    pub fn with_uv(mut self, uv: BoxUv) -> Cuboid {
+        self.uv = uv;
+        self
     }
 
     /// The local box's lower corner.
@@ -238,16 +256,7 @@ impl Shape for Cuboid {
             }
         }
         let (axis, max_side) = face;
-        let (a, b) = ((axis + 1) % 3, (axis + 2) % 3);
-        let linear = DMat3::from_mat4(self.world_from_local);
-        let size = self.max - self.min;
-        let (fa, fb) = (f[a].clamp(0.0, 1.0), f[b].clamp(0.0, 1.0));
-        let (dpdu, dpdv) = (linear.col(a) * size[a], linear.col(b) * size[b]);
-        if max_side {
-            SurfaceCoords::new([fa, fb], dpdu, dpdv)
-        } else {
-            SurfaceCoords::new([1.0 - fa, fb], -dpdu, dpdv)
-        }
+        self.uv.coords(axis, max_side, f, DMat3::from_mat4(self.world_from_local), self.max - self.min)
     }
 
     fn area(&self) -> Option<f64> {

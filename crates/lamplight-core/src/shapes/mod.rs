@@ -22,6 +22,7 @@ pub type ShapeBuild = fn(&mut Params<'_>, &Mat4) -> ParamResult<Vec<Arc<dyn Shap
 /// A shape kind of the scene format.
 pub type ShapeKind = Kind<ShapeBuild>;
 
+pub mod box_uv;
 pub mod cuboid;
 pub mod disk_uv;
 mod implicit;

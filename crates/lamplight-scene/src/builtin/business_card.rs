@@ -158,6 +158,7 @@ pub fn build() -> Result<Scene, Error> {
             refraction: Refraction::Constant { ior: s.ir, weight: Rgb::splat(s.kt) },
             shadow_transmittance: Rgb::ZERO,
             roughness: 0.0,
+            roughness_v: None,
             distribution: Default::default(),
             model: None,
             textures: None,

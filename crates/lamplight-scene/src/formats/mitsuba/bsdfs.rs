@@ -7,9 +7,9 @@
 //! | `diffuse` `reflectance` (0.5, colour or texture) | `color = reflectance`, `kd = 1`, `ka = ks = 0` |
 //! | none (Mitsuba's default) | diffuse 0.5; on an emitting shape diffuse 0 (black), as Mitsuba |
 //! | `conductor` `material` (`none`: a perfect mirror) or `eta`, `k` | `kd = 0`, `reflection = { type = "conductor", eta, k }` ([`super::conductors`]: Mitsuba's table, as `scalar_rgb` reduces it) |
-//! | `roughconductor` `alpha` (0.1), `distribution` (`beckmann`) | the same with `roughness = alpha`, `distribution` |
+//! | `roughconductor` `alpha` (0.1) or `alpha_u` and `alpha_v` (numbers), `distribution` (`beckmann`) | the same with `roughness = alpha`, or `roughness_u = alpha_u`, `roughness_v = alpha_v` (along and across the surface's `dp/du`, Mitsuba's shading frame), `distribution` |
 //! | `dielectric` `int_ior` (`bk7`), `ext_ior` (`air`): numbers or names | `reflection = { type = "dielectric", ior }`, `refraction = { type = "fresnel", ior }`, `ior = int_ior / ext_ior` |
-//! | `roughdielectric` `alpha`, `distribution` | the same with `roughness = alpha`, `distribution` |
+//! | `roughdielectric` `alpha` or `alpha_u` and `alpha_v`, `distribution` | the same with `roughness = alpha` or `roughness_u`, `roughness_v`, `distribution` |
 //! | `plastic` `diffuse_reflectance` (0.5), `specular_reflectance` (1), `int_ior` (`polypropylene`), `ext_ior` (`air`), `nonlinear` | `plastic` of the same parameters |
 //! | `roughplastic` (the same and `alpha`, `distribution`) | `plastic` with `roughness = alpha`, `distribution` |
 //! | `thindielectric` `int_ior` (`bk7`), `ext_ior` (`air`) | `thin_dielectric` |
@@ -18,8 +18,8 @@
 //! | `mask` `opacity` | the nested BSDF with `alpha = opacity`, `alpha_mode = "blend"` (there with probability `opacity`, as Mitsuba) |
 //! | `normalmap` `normalmap` (a bitmap) | the nested BSDF with `normal_map` |
 //! | `bumpmap` (`scale`, one nested height `<texture>`) | the nested BSDF with `bump`, `bump_scale` |
-//! | `principled` (every parameter; `anisotropic` only 0; `eta`, `specular` numbers: a texture there is an error, as in Mitsuba) | `principled` of the same parameters (Mitsuba's own BSDF, `crates/lamplight-core/src/bsdfs/principled.rs`) |
-//! | `principledthin` (every parameter; `anisotropic` only 0; `eta` a number: a texture there is a warning, 1.5 is used) | `principled_thin` of the same parameters (`crates/lamplight-core/src/bsdfs/principled_thin.rs`) |
+//! | `principled` (every parameter, `anisotropic` a number or texture; `eta`, `specular` numbers: a texture there is an error, as in Mitsuba) | `principled` of the same parameters (Mitsuba's own BSDF, `crates/lamplight-core/src/bsdfs/principled.rs`) |
+//! | `principledthin` (every parameter, `anisotropic` a number or texture; `eta` a number: a texture there is a warning, 1.5 is used) | `principled_thin` of the same parameters (`crates/lamplight-core/src/bsdfs/principled_thin.rs`) |
 //!
 //! | `blendbsdf` `weight` (0.5, number or texture), two nested BSDFs | `blend` with `a`, `b` the nested BSDFs as material tables, each one-sided as Mitsuba's (both sides inside a `twosided`) |
 
@@ -219,34 +219,51 @@ fn ior(p: &mut Plugin<'_>, key: &str, default: &str) -> Result<(f64, Loc), Param
     }
 }
 
-/// The `roughness` and `distribution` entries of a rough BSDF: `alpha` (or the mean
-/// of `alpha_u` and `alpha_v`) and `distribution` (Mitsuba's default `beckmann`).
-fn rough(ctx: &mut Ctx<'_>, p: &mut Plugin<'_>) -> Result<Vec<Entry>, ParamError> {
+/// The `roughness` (or `roughness_u`, `roughness_v`) and `distribution` entries
+/// of a rough BSDF: `alpha`, or with `anisotropic` (`roughconductor`,
+/// `roughdielectric`) the pair `alpha_u`, `alpha_v` ([`alpha`]), and
+/// `distribution` (Mitsuba's default `beckmann`).
+fn rough(p: &mut Plugin<'_>, anisotropic: bool) -> Result<Vec<Entry>, ParamError> {
     let (name, dloc) = p.string("distribution")?.unwrap_or(("beckmann".into(), p.el.loc.clone()));
     if name != "ggx" && name != "beckmann" {
         return Err(err(&dloc, format!("{}: distribution: expected beckmann or ggx, got \"{name}\"", p.label)));
     }
-    let (a, aloc) = alpha(ctx, p)?;
-    Ok(vec![entry("roughness", num(a, &aloc)), entry("distribution", text(&name, &dloc))])
+    let mut e = alpha(p, anisotropic)?;
+    e.push(entry("distribution", text(&name, &dloc)));
+    Ok(e)
 }
 
-/// `alpha` of a rough BSDF (`alpha`, or the mean of `alpha_u` and `alpha_v`).
-fn alpha(ctx: &mut Ctx<'_>, p: &mut Plugin<'_>) -> Result<(f64, Loc), ParamError> {
+/// The roughness of a rough BSDF as Mitsuba's `MicrofacetDistribution` reads
+/// it: `alpha` (0.1), or `alpha_u` and `alpha_v` together and never with
+/// `alpha` (Mitsuba's rule). An isotropic pair is lamplight's `roughness`, an
+/// anisotropic one `roughness_u` (along `dp/du`) and `roughness_v`. Numbers only.
+fn alpha(p: &mut Plugin<'_>, anisotropic: bool) -> Result<Vec<Entry>, ParamError> {
     // Only the sampling changes with it, not the image.
     let _ = p.boolean("sample_visible")?;
-    let (a, loc) = match (p.number("alpha_u")?, p.number("alpha_v")?) {
-        (Some((u, loc)), Some((v, _))) => {
-            if u != v {
-                ctx.warn(&loc, format!("{}: anisotropic roughness is read as the mean alpha {}", p.label, (u + v) / 2.0));
-            }
-            ((u + v) / 2.0, loc)
+    let checked = |p: &mut Plugin<'_>, key: &str| {
+        let (a, loc) = number(p, key, 0.1)?;
+        if (0.0..=1.0).contains(&a) {
+            Ok((a, loc))
+        } else {
+            Err(err(&loc, format!("{}: {key}: must be between 0 and 1, got {a}", p.label)))
         }
-        _ => number(p, "alpha", 0.1)?,
     };
-    if !(0.0..=1.0).contains(&a) {
-        return Err(err(&loc, format!("{}: alpha: must be between 0 and 1, got {a}", p.label)));
+    if anisotropic && (p.has("alpha_u") || p.has("alpha_v")) {
+        if p.has("alpha") {
+            return Err(err(&p.el.loc, format!("{}: give either alpha or alpha_u and alpha_v, not both (as Mitsuba)", p.label)));
+        }
+        if !(p.has("alpha_u") && p.has("alpha_v")) {
+            return Err(err(&p.el.loc, format!("{}: give both alpha_u and alpha_v (as Mitsuba)", p.label)));
+        }
+        let (u, uloc) = checked(p, "alpha_u")?;
+        let (v, vloc) = checked(p, "alpha_v")?;
+        if u == v {
+            return Ok(vec![entry("roughness", num(u, &uloc))]);
+        }
+        return Ok(vec![entry("roughness_u", num(u, &uloc)), entry("roughness_v", num(v, &vloc))]);
     }
-    Ok((a, loc))
+    let (a, loc) = checked(p, "alpha")?;
+    Ok(vec![entry("roughness", num(a, &loc))])
 }
 
 /// Warns when the optional `key` (a colour factor lamplight does not have) is not 1.
@@ -338,7 +355,7 @@ pub fn material<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<Vec<Entry>, ParamEr
                 table_of(vec![("type", text("conductor", &eloc)), ("eta", vec3(eta, &eloc)), ("k", vec3(k, &eloc))], &eloc),
             ));
             if p.kind == "roughconductor" {
-                e.extend(rough(ctx, &mut p)?);
+                e.extend(rough(&mut p, true)?);
             }
             e
         }
@@ -352,7 +369,7 @@ pub fn material<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<Vec<Entry>, ParamEr
             e.push(entry("reflection", table_of(vec![("type", text("dielectric", &iloc)), ("ior", num(eta, &iloc))], &iloc)));
             e.push(entry("refraction", table_of(vec![("type", text("fresnel", &iloc)), ("ior", num(eta, &iloc))], &iloc)));
             if p.kind == "roughdielectric" {
-                e.extend(rough(ctx, &mut p)?);
+                e.extend(rough(&mut p, true)?);
             }
             e
         }
@@ -379,7 +396,8 @@ pub fn material<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<Vec<Entry>, ParamEr
                 e.push(entry("nonlinear", super::boolean(b, &bloc)));
             }
             if p.kind == "roughplastic" {
-                e.extend(rough(ctx, &mut p)?);
+                // Mitsuba's `roughplastic` is isotropic: `alpha` only.
+                e.extend(rough(&mut p, false)?);
                 if e.iter().any(|x| x.key == "roughness" && matches!(x.item.value, Value::Number(a) if a == 0.0)) {
                     // lamplight's roughness 0 is the smooth coating; Mitsuba clamps to 1e-4.
                     e.retain(|x| x.key != "roughness");

@@ -6,7 +6,7 @@
 //! | `sphere` `center` (0), `radius` (1) | `sphere` |
 //! | `rectangle` (`[-1, 1]^2` at `z = 0`, normal `+z`) | `rectangle` corner `[-1, 1, 0]`, edges `[2, 0, 0]`, `[0, -2, 0]`, `flip_normals` (see below) |
 //! | `disk` (radius 1 at `z = 0`, normal `+z`) | `disk` with `uv_layout = "radial"` |
-//! | `cube` (`[-1, 1]^3`) | `box` |
+//! | `cube` (`[-1, 1]^3`) | `box` with `uv_layout = "mitsuba"` (the cube mesh's texture coordinates) |
 //! | `cylinder` `p0` (0), `p1` (`[0, 0, 1]`), `radius` (1), open | `cylinder` |
 //! | `obj`, `ply` `filename` | a `[meshes]` entry and a `mesh` node |
 //! | `serialized` `filename`, `shape_index` ([`super::serialized`]) | an inline `[meshes]` entry |
@@ -85,6 +85,8 @@ pub fn read<'a>(ctx: &mut Ctx<'a>, el: &'a El, out: &mut Vec<Item>) -> Result<()
             node.push(("type", text("box", &loc)));
             node.push(("min", vec3(Vec3::splat(-1.0), &loc)));
             node.push(("max", vec3(Vec3::splat(1.0), &loc)));
+            // The cube mesh's texture coordinates, and so its dp/du (anisotropic BSDFs).
+            node.push(("uv_layout", text("mitsuba", &loc)));
         }
         "cylinder" => {
             let (a, aloc) = p.vec3("p0")?.unwrap_or((Vec3::ZERO, loc.clone()));
