@@ -8,7 +8,7 @@
 //! `z` the outward shading normal, so `v.z < 0` when the ray arrived from
 //! inside. With `brdf = (1 - metallic)(1 - spec_trans)`,
 //! `bsdf = (1 - metallic) spec_trans`, GGX of `alpha = max(0.001, roughness^2)`
-//! (a pair along and across `dp/du` when `anisotropic > 0`, [`ggx`])
+//! (a pair along and across `dp/du` when `anisotropic > 0`, `principled/ggx.rs`)
 //! (`D`, and the separable Smith `G = G1(v) G1(l)` with Mitsuba's orientation
 //! checks), `eta_p` the index across the boundary along the path (`eta` from
 //! outside, `1 / eta` from inside), `h` the half vector `v + l` (reflection) or
@@ -53,7 +53,7 @@ pub struct PrincipledParams {
     /// `roughness`, 0 to 1 (GGX `alpha = max(0.001, roughness^2)`).
     pub roughness: f64,
     /// `anisotropic`, 0 to 1: the GGX roughness along `dp/du` and across it
-    /// ([`ggx::alphas`]); 0 is isotropic.
+    /// (`ggx::alphas`); 0 is isotropic.
     pub anisotropic: f64,
     /// `metallic`, 0 to 1.
     pub metallic: f64,

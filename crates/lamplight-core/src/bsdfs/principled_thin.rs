@@ -9,7 +9,7 @@
 //! of `alpha = max(0.001, roughness^2)` and of the scaled
 //! `alpha_t = max(0.001, ((0.65 eta - 0.35) roughness)^2)` for transmission (Burley's
 //! Figure 15; each a pair along and across `dp/du` when `anisotropic > 0`,
-//! [`super::principled::ggx`]), the value `f |cos_l|` is the sum of:
+//! `principled/ggx.rs`), the value `f |cos_l|` is the sum of:
 //!
 //! - glossy reflection (`l.z > 0`): `st F_thin D G / (4 cos_v)`, with
 //!   `F_thin = lerp(F, S(C_tint R0(eta)), spec_tint)` (Mitsuba's Schlick `S`,
@@ -37,7 +37,7 @@ use crate::math::{Rgb, Vec3};
 pub struct ThinParams {
     /// `roughness`, 0 to 1.
     pub roughness: f64,
-    /// `anisotropic`, 0 to 1 ([`ggx::alphas`]); 0 is isotropic.
+    /// `anisotropic`, 0 to 1 (`principled::ggx::alphas`); 0 is isotropic.
     pub anisotropic: f64,
     /// `spec_trans`, 0 to 1: the glossy share.
     pub spec_trans: f64,
