@@ -283,3 +283,40 @@ fn names_parse() {
         Err("filter \"lanczos(lobe=2)\": unknown parameter \"lobe\" (did you mean 'lobes'? \"lanczos\" takes lobes)".into())
     );
 }
+
+/// The box's inlined axis ([`box_axis`]) is the general route's arithmetic:
+/// `W` at both bounds, `W^-1` of the interpolated weight, clamped, for
+/// interior pixels (bounds past the support), border pixels (a bound inside
+/// it) and pixels outside the bounds, bit for bit.
+#[test]
+fn the_inlined_box_is_the_general_route_bit_for_bit() {
+    let b = Filter::Box;
+    let general = |u: f64, lo: f64, hi: f64| -> f64 {
+        let (a, c) = (lo.max(-0.5), hi.min(0.5));
+        if !(a < c) {
+            return u - 0.5;
+        }
+        let (wa, wc) = (b.cumulative(a), b.cumulative(c));
+        b.inverse_cumulative(wa + u * (wc - wa), a, c)
+    };
+    let mut state = 0x9e37_79b9_7f4a_7c15u64;
+    let mut next = || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let bounds = [f64::NEG_INFINITY, -3.0, -0.5, -0.4999999999999999, -0.3, 0.0, 0.1, 0.5, 2.0, f64::INFINITY];
+    for &lo in &bounds {
+        for &hi in &bounds {
+            for _ in 0..200 {
+                let u = next();
+                assert_eq!(box_axis(u, lo, hi).0.to_bits(), general(u, lo, hi).to_bits(), "u {u} lo {lo} hi {hi}");
+                assert_eq!(box_axis(u, lo, hi).1, 1.0);
+            }
+            for u in [0.0, 0.5, 1.0 - f64::EPSILON / 2.0] {
+                assert_eq!(box_axis(u, lo, hi).0.to_bits(), general(u, lo, hi).to_bits(), "u {u} lo {lo} hi {hi}");
+            }
+        }
+    }
+}
