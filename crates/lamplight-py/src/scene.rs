@@ -1,9 +1,13 @@
 //! `Scene`: a scene from a built-in name, a scene file, a mesh file or a dict,
 //! with the core scene built from it kept after its first use.
 //!
-//! A scene keeps what it was made from (the name, the file's text and path, the
-//! dict, or the mesh path) and pickles as that, never as built data: a Dask
-//! worker that receives it rebuilds it on first use and then keeps the build.
+//! A scene is the request layer's [`SceneRequest`], as the command line makes
+//! it (a built-in, a scene file or dict, or a mesh file, with its settings),
+//! so that both front ends build the same scene the same way; Python only
+//! keeps the dict a scene came from. It pickles as what it was made from (the
+//! name, the file's text and path, the dict, or the mesh path), never as built
+//! data: a Dask worker that receives it rebuilds it on first use and then
+//! keeps the build.
 //! The core camera applies the image's aspect when rendering, so one build serves
 //! every image size.
 
@@ -12,10 +16,10 @@ use std::sync::{Arc, Mutex};
 
 use lamplight_core::camera::Camera;
 use lamplight_core::Scene as CoreScene;
-use lamplight_scene::builtin::{self, Builtin};
+use lamplight_scene::builtin;
 use lamplight_scene::description::{Node, SceneDescription};
 use lamplight_scene::formats::native::Source as FileSource;
-use lamplight_scene::instantiate::{self, SceneFile};
+use lamplight_scene::instantiate::SceneFile;
 use lamplight_scene::request::{self, program_defaults, Defaults, FileKind, MeshOptions, Naming, Request, SceneRequest, SceneSpec};
 use lamplight_scene::LoadError;
 use pyo3::exceptions::PyValueError;
@@ -25,19 +29,6 @@ use pyo3::types::{PyDict, PyTuple};
 use crate::convert;
 use crate::SceneError;
 
-/// Where a scene comes from.
-#[derive(Debug)]
-enum Origin {
-    /// A built-in scene.
-    Builtin(&'static Builtin),
-    /// A native scene file: its text and path.
-    Toml(SceneFile),
-    /// A dict (kept plain, for pickling) and the description read from it.
-    Dict { dict: PyObject, file: SceneFile, base_dir: PathBuf },
-    /// A mesh file for the importers.
-    Mesh(PathBuf),
-}
-
 /// A kept build: the core scene and its mesh files' warnings.
 type Kept = (Arc<CoreScene>, Arc<Vec<String>>);
 
@@ -45,12 +36,14 @@ type Kept = (Arc<CoreScene>, Arc<Vec<String>>);
 /// built on first use.
 #[pyclass(module = "lamplight._lamplight", frozen)]
 pub struct Scene {
-    origin: Origin,
+    /// What the request layer builds: the scene, its settings (`defaults`),
+    /// and how a mesh file is built unless a render says otherwise
+    /// (`load(path, smooth=True)`).
+    request: SceneRequest,
+    /// The dict a scene dict was made from, kept plain (its `source`, and what it pickles as).
+    dict: Option<PyObject>,
     /// A camera replacing the scene's (`with_camera`): the plain dict and its description.
     camera: Option<(PyObject, Arc<dyn Camera>)>,
-    defaults: Defaults,
-    /// How a mesh file is built unless a render says otherwise (`load(path, smooth=True)`).
-    mesh: MeshOptions,
     /// The core scene once built for each mesh file options asked for, and the
     /// warnings of the mesh files it read.
     built: Mutex<Vec<(MeshOptions, Kept)>>,
@@ -66,55 +59,48 @@ fn load_error(e: LoadError) -> PyErr {
     SceneError::new_err(e.to_string())
 }
 
-/// A dict's errors name no file: `scene dict: key.path: message`.
-fn dict_error(e: LoadError) -> PyErr {
-    match e.location {
-        lamplight_scene::Location::KeyPath(path) => SceneError::new_err(format!("scene dict: {path}: {}", e.message)),
-        _ => SceneError::new_err(format!("scene dict: {}", e.message)),
-    }
-}
-
-/// A parameter error of a dict (key paths, no file).
+/// A parameter error of a dict: `scene dict: key.path: message`.
 fn dict_param_error(e: lamplight_core::params::ParamError) -> PyErr {
-    dict_error(FileSource::without_text("scene dict").param_error(e))
+    load_error(FileSource::without_text("scene dict").param_error(e))
 }
 
 impl Scene {
-    fn new(origin: Origin, camera: Option<(PyObject, Arc<dyn Camera>)>) -> PyResult<Scene> {
-        let defaults = match &origin {
-            Origin::Builtin(b) => SceneRequest::builtin(b).defaults,
-            Origin::Toml(file) | Origin::Dict { file, .. } => {
-                let s = file.settings().map_err(|e| if matches!(origin, Origin::Dict { .. }) { dict_error(e) } else { load_error(e) })?;
-                Defaults::from_settings(&s)
-            }
-            Origin::Mesh(_) => program_defaults(),
-        };
-        Ok(Scene { origin, camera, defaults, mesh: MeshOptions::default(), built: Mutex::new(Vec::new()) })
+    fn new(request: SceneRequest, dict: Option<PyObject>) -> Scene {
+        Scene { request, dict, camera: None, built: Mutex::new(Vec::new()) }
+    }
+
+    /// A parsed scene file or dict, its settings checked now.
+    fn from_scene_file(file: SceneFile, dict: Option<PyObject>) -> PyResult<Scene> {
+        let name = if file.source.is_dict() { "scene dict".to_string() } else { file.source.path.display().to_string() };
+        let request = SceneRequest::file(file, name).map_err(|e| SceneError::new_err(e.0))?;
+        Ok(Scene::new(request, dict))
+    }
+
+    /// The scene file or dict the scene was made from, if it was.
+    fn scene_file(&self) -> Option<&SceneFile> {
+        match &self.request.spec {
+            SceneSpec::File(file) => Some(file),
+            _ => None,
+        }
     }
 
     /// The scene built with the mesh file `options` unless a render says
     /// otherwise; refused for a scene that is not a mesh file.
     fn with_mesh(mut self, options: MeshOptions) -> PyResult<Scene> {
         self.check_mesh_options(options)?;
-        self.mesh = options;
+        self.request.mesh = options;
         Ok(self)
     }
 
     /// Refuses mesh file `options` other than the default for a scene that is not a mesh file.
     fn check_mesh_options(&self, options: MeshOptions) -> PyResult<()> {
-        let name = match &self.origin {
-            Origin::Builtin(b) => b.name.to_string(),
-            Origin::Toml(file) => file.source.path.display().to_string(),
-            Origin::Dict { .. } => "scene dict".to_string(),
-            Origin::Mesh(path) => path.display().to_string(),
-        };
-        request::check_mesh_options(matches!(self.origin, Origin::Mesh(_)), &name, options, Naming::Keywords)
-            .map_err(|e| PyValueError::new_err(e.0))
+        let is_mesh = matches!(self.request.spec, SceneSpec::Mesh(_));
+        request::check_mesh_options(is_mesh, &self.request.name, options, Naming::Keywords).map_err(|e| PyValueError::new_err(e.0))
     }
 
     /// The core scene (for any image size), built once and kept.
     pub fn core(&self, py: Python<'_>) -> PyResult<Arc<CoreScene>> {
-        self.core_and_warnings(py, self.mesh).map(|(scene, _)| scene)
+        self.core_and_warnings(py, self.request.mesh).map(|(scene, _)| scene)
     }
 
     /// The core scene built with `options` and its mesh files' warnings, built
@@ -148,18 +134,9 @@ impl Scene {
     /// Builds the scene with the mesh file `options`, at `frame` of its
     /// animation (`None`: the first frame).
     fn build_core(&self, options: MeshOptions, frame: Option<i64>) -> PyResult<(CoreScene, Vec<String>)> {
-        // The request layer builds what a job renders, as for the command line;
-        // only a dict's errors are worded here, by key path without a file.
-        let spec = match &self.origin {
-            Origin::Builtin(b) => SceneSpec::Builtin(b),
-            Origin::Toml(file) => SceneSpec::File(Box::new(file.clone())),
-            Origin::Dict { file, .. } => {
-                let built = instantiate::build_frame(&file.description, &file.source, frame).map_err(dict_error)?;
-                return Ok(self.with_own_camera(built.scene, built.warnings));
-            }
-            Origin::Mesh(path) => SceneSpec::Mesh(path.clone()),
-        };
-        let request = SceneRequest { spec, name: String::new(), defaults: self.defaults, mesh: options };
+        // The request layer builds what a job renders, as for the command line
+        // (a dict's errors read `scene dict: key.path: message`).
+        let request = SceneRequest { mesh: options, ..self.request.clone() };
         let built = request.build_frame(frame).map_err(|e| SceneError::new_err(e.0))?;
         Ok(self.with_own_camera(built.scene, built.warnings))
     }
@@ -175,13 +152,12 @@ impl Scene {
     /// A scene file (read now) or a mesh file (read when built), by extension.
     fn read_file(path: PathBuf) -> PyResult<Scene> {
         match request::file_kind(&path).map_err(|e| PyValueError::new_err(e.0))? {
-            FileKind::Scene(format) => Scene::new(Origin::Toml(SceneFile::read_format(&path, format, &[]).map_err(load_error)?), None),
+            FileKind::Scene(format) => Scene::from_scene_file(SceneFile::read_format(&path, format, &[]).map_err(load_error)?, None),
             FileKind::Mesh => {
                 if !path.is_file() {
                     return Err(pyo3::exceptions::PyFileNotFoundError::new_err(format!("{}: no such file", path.display())));
                 }
-                let path = std::path::absolute(&path).unwrap_or(path);
-                Scene::new(Origin::Mesh(path), None)
+                Ok(Scene::mesh(std::path::absolute(&path).unwrap_or(path)))
             }
         }
     }
@@ -196,9 +172,14 @@ impl Scene {
             Some(dir) => dir,
             None => std::env::current_dir().map_err(|e| SceneError::new_err(format!("cannot read the current directory: {e}")))?,
         };
-        // Relative mesh paths resolve against the folder of the source's path.
-        let file = SceneFile { description, source: FileSource::without_text(base_dir.join("<dict>")) };
-        Scene::new(Origin::Dict { dict: plain, file, base_dir }, None)
+        let file = SceneFile { description, source: FileSource::for_dict(base_dir) };
+        Scene::from_scene_file(file, Some(plain))
+    }
+
+    /// A mesh file, read when built.
+    fn mesh(path: PathBuf) -> Scene {
+        let name = path.display().to_string();
+        Scene::new(SceneRequest { spec: SceneSpec::Mesh(path), name, defaults: program_defaults(), mesh: MeshOptions::default() }, None)
     }
 }
 
@@ -229,7 +210,7 @@ impl Scene {
     #[staticmethod]
     fn builtin(name: &str) -> PyResult<Scene> {
         let b = builtin::find(name).ok_or_else(|| PyValueError::new_err(builtin::unknown(name)))?;
-        Scene::new(Origin::Builtin(b), None)
+        Ok(Scene::new(SceneRequest::builtin(b), None))
     }
 
     /// A scene file (`.toml` or Mitsuba `.xml`, read now) or a mesh file (`.obj`,
@@ -253,7 +234,7 @@ impl Scene {
             Some(dir) => dir,
             None => std::env::current_dir().map_err(|e| SceneError::new_err(format!("cannot read the current directory: {e}")))?,
         };
-        Scene::new(Origin::Toml(SceneFile::parse(&dir.join("<text>.toml"), text).map_err(load_error)?), None)
+        Scene::from_scene_file(SceneFile::parse(&dir.join("<text>.toml"), text).map_err(load_error)?, None)
     }
 
     /// A scene from a dict with the structure of a scene file (see
@@ -273,55 +254,49 @@ impl Scene {
         let desc = Node::from_table(table, "camera", Some("perspective"), false).map_err(dict_param_error)?;
         // Built now, so that a bad camera fails here rather than at the first render.
         let camera = lamplight_scene::instantiate::camera::camera(&desc).map_err(dict_param_error)?;
-        let origin = match &self.origin {
-            Origin::Builtin(b) => Origin::Builtin(b),
-            Origin::Toml(file) => Origin::Toml(file.clone()),
-            Origin::Dict { dict, file, base_dir } => {
-                Origin::Dict { dict: dict.clone_ref(py), file: file.clone(), base_dir: base_dir.clone() }
-            }
-            Origin::Mesh(path) => Origin::Mesh(path.clone()),
-        };
-        Scene::new(origin, Some((plain, camera)))?.with_mesh(self.mesh)
+        let dict = self.dict.as_ref().map(|d| d.clone_ref(py));
+        Ok(Scene { camera: Some((plain, camera)), ..Scene::new(self.request.clone(), dict) })
     }
 
     /// What the scene was made from: `"builtin"`, `"file"`, `"dict"` or `"mesh"`.
     #[getter]
     fn kind(&self) -> &'static str {
-        match self.origin {
-            Origin::Builtin(_) => "builtin",
-            Origin::Toml(_) => "file",
-            Origin::Dict { .. } => "dict",
-            Origin::Mesh(_) => "mesh",
+        match &self.request.spec {
+            SceneSpec::Builtin(_) => "builtin",
+            SceneSpec::File(_) if self.dict.is_some() => "dict",
+            SceneSpec::File(_) => "file",
+            SceneSpec::Mesh(_) => "mesh",
         }
     }
 
     /// The built-in name, the file's path, or a copy of the dict.
     #[getter]
     fn source(&self, py: Python<'_>) -> PyResult<PyObject> {
-        Ok(match &self.origin {
-            Origin::Builtin(b) => b.name.into_pyobject(py)?.into_any().unbind(),
-            Origin::Toml(file) => file.source.path.clone().into_pyobject(py)?.into_any().unbind(),
-            Origin::Dict { dict, .. } => convert::plain(dict.bind(py))?,
-            Origin::Mesh(path) => path.clone().into_pyobject(py)?.into_any().unbind(),
+        if let Some(dict) = &self.dict {
+            return convert::plain(dict.bind(py));
+        }
+        Ok(match &self.request.spec {
+            SceneSpec::Builtin(b) => b.name.into_pyobject(py)?.into_any().unbind(),
+            SceneSpec::File(file) => file.source.path.clone().into_pyobject(py)?.into_any().unbind(),
+            SceneSpec::Mesh(path) => path.clone().into_pyobject(py)?.into_any().unbind(),
         })
     }
 
     /// The folder relative mesh paths resolve against (`None` for built-in scenes).
     #[getter]
     fn base_dir(&self) -> Option<PathBuf> {
-        match &self.origin {
-            Origin::Builtin(_) => None,
-            Origin::Toml(file) => Some(file.source.path.parent().map(Path::to_path_buf).unwrap_or_default()),
-            Origin::Dict { base_dir, .. } => Some(base_dir.clone()),
-            Origin::Mesh(path) => Some(path.parent().map(Path::to_path_buf).unwrap_or_default()),
+        match &self.request.spec {
+            SceneSpec::Builtin(_) => None,
+            SceneSpec::File(file) => Some(file.source.dir()),
+            SceneSpec::Mesh(path) => Some(path.parent().map(Path::to_path_buf).unwrap_or_default()),
         }
     }
 
     /// Mesh files the scene reads, as written (relative to `base_dir` unless absolute).
     fn mesh_files(&self) -> Vec<String> {
-        match &self.origin {
-            Origin::Builtin(_) => Vec::new(),
-            Origin::Toml(file) | Origin::Dict { file, .. } => {
+        match &self.request.spec {
+            SceneSpec::Builtin(_) => Vec::new(),
+            SceneSpec::File(file) => {
                 let mut files: Vec<String> = file
                     .description
                     .meshes
@@ -334,17 +309,14 @@ impl Scene {
                 files.dedup();
                 files
             }
-            Origin::Mesh(path) => vec![path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default()],
+            SceneSpec::Mesh(path) => vec![path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default()],
         }
     }
 
     /// The scene file's text (`None` unless the scene came from a `.toml` file or text).
     #[getter]
     fn text(&self) -> Option<String> {
-        match &self.origin {
-            Origin::Toml(file) => file.source.text.clone(),
-            _ => None,
-        }
+        self.scene_file().and_then(|file| file.source.text.clone())
     }
 
     /// The replacement camera given to `with_camera`, or `None`.
@@ -359,7 +331,7 @@ impl Scene {
     /// `(x0, y0, width, height)` of the image the scene renders (`None`: all).
     fn defaults<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let d = PyDict::new(py);
-        let Defaults { size: (width, height), spp, seed, integrator, transfer, crop, denoise, .. } = self.defaults;
+        let Defaults { size: (width, height), spp, seed, integrator, transfer, crop, denoise, .. } = self.request.defaults;
         d.set_item("width", width)?;
         d.set_item("height", height)?;
         d.set_item("spp", spp)?;
@@ -386,7 +358,7 @@ impl Scene {
     /// `warnings.warn` once.
     #[getter]
     fn warnings(&self, py: Python<'_>) -> PyResult<Vec<String>> {
-        Ok(self.core_and_warnings(py, self.mesh)?.1.as_ref().clone())
+        Ok(self.core_and_warnings(py, self.request.mesh)?.1.as_ref().clone())
     }
 
     /// Number of objects (placed shapes) in the scene; primitive ids run below it.
@@ -427,26 +399,28 @@ impl Scene {
     fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(PyObject, Bound<'py, PyTuple>)> {
         let from_state = py.import("lamplight._lamplight")?.getattr("scene_from_state")?.unbind();
         let camera = self.camera(py)?;
-        let mesh = (self.mesh.smooth, self.mesh.auto_lights.name());
-        let state = match &self.origin {
-            Origin::Builtin(b) => ("builtin", b.name.into_pyobject(py)?.into_any().unbind(), None, camera, mesh),
-            Origin::Toml(file) => {
+        let mesh = (self.request.mesh.smooth, self.request.mesh.auto_lights.name());
+        let state = match (&self.request.spec, &self.dict) {
+            (SceneSpec::Builtin(b), _) => ("builtin", b.name.into_pyobject(py)?.into_any().unbind(), None, camera, mesh),
+            (SceneSpec::File(file), Some(dict)) => ("dict", dict.clone_ref(py), Some(file.source.dir()), camera, mesh),
+            (SceneSpec::File(file), None) => {
                 let text = file.source.text.clone().unwrap_or_default();
                 ("file", text.into_pyobject(py)?.into_any().unbind(), Some(file.source.path.clone()), camera, mesh)
             }
-            Origin::Dict { dict, base_dir, .. } => ("dict", dict.clone_ref(py), Some(base_dir.clone()), camera, mesh),
-            Origin::Mesh(path) => ("mesh", path.clone().into_pyobject(py)?.into_any().unbind(), None, camera, mesh),
+            (SceneSpec::Mesh(path), _) => ("mesh", path.clone().into_pyobject(py)?.into_any().unbind(), None, camera, mesh),
         };
         Ok((from_state, (state,).into_pyobject(py)?))
     }
 
     fn __repr__(&self) -> String {
         let camera = if self.camera.is_some() { ", camera replaced" } else { "" };
-        match &self.origin {
-            Origin::Builtin(b) => format!("lamplight.Scene(builtin {:?}{camera})", b.name),
-            Origin::Toml(file) => format!("lamplight.Scene(file {:?}{camera})", file.source.path.display().to_string()),
-            Origin::Dict { file, .. } => format!("lamplight.Scene(dict with {} top-level objects{camera})", file.description.objects.len()),
-            Origin::Mesh(path) => format!("lamplight.Scene(mesh {:?}{camera})", path.display().to_string()),
+        match &self.request.spec {
+            SceneSpec::Builtin(b) => format!("lamplight.Scene(builtin {:?}{camera})", b.name),
+            SceneSpec::File(file) if self.dict.is_some() => {
+                format!("lamplight.Scene(dict with {} top-level objects{camera})", file.description.objects.len())
+            }
+            SceneSpec::File(file) => format!("lamplight.Scene(file {:?}{camera})", file.source.path.display().to_string()),
+            SceneSpec::Mesh(path) => format!("lamplight.Scene(mesh {:?}{camera})", path.display().to_string()),
         }
     }
 }
@@ -454,15 +428,12 @@ impl Scene {
 impl Scene {
     /// The `[animation]` of an animated scene file or dict.
     pub fn animation(&self) -> Option<&lamplight_scene::description::Animation> {
-        match &self.origin {
-            Origin::Toml(file) | Origin::Dict { file, .. } => file.description.animation.as_ref(),
-            _ => None,
-        }
+        self.request.animation()
     }
 
     /// The settings a render uses when it does not say.
     pub fn settings(&self) -> &Defaults {
-        &self.defaults
+        &self.request.defaults
     }
 
     /// A fresh core scene, not cached (a render that changes it, such as one with
@@ -486,7 +457,7 @@ impl Scene {
     /// animated scene), or a fresh one of the job's frame, or lit by its
     /// environment map.
     pub fn core_for(&self, py: Python<'_>, job: &lamplight_scene::request::Job, request: &Request) -> PyResult<Arc<CoreScene>> {
-        let options = request.mesh_options(self.mesh);
+        let options = request.mesh_options(self.request.mesh);
         self.check_mesh_options(options)?;
         let other_frame = match (self.animation(), job.frame) {
             (Some(a), Some(frame)) => frame != a.start,
@@ -524,10 +495,10 @@ pub fn scene_from_state(py: Python<'_>, state: &Bound<'_, PyTuple>) -> PyResult<
         "builtin" => Scene::builtin(&payload.extract::<String>()?)?,
         "file" => {
             let path = path.ok_or_else(|| PyValueError::new_err("a pickled scene file needs its path"))?;
-            Scene::new(Origin::Toml(SceneFile::parse(&path, &payload.extract::<String>()?).map_err(load_error)?), None)?
+            Scene::from_scene_file(SceneFile::parse(&path, &payload.extract::<String>()?).map_err(load_error)?, None)?
         }
         "dict" => Scene::from_dict_with(py, &payload, path)?,
-        "mesh" => Scene::new(Origin::Mesh(payload.extract()?), None)?,
+        "mesh" => Scene::mesh(payload.extract()?),
         other => return Err(PyValueError::new_err(format!("unknown pickled scene kind {other:?}"))),
     };
     let scene = scene.with_mesh(mesh)?;

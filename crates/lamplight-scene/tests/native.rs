@@ -265,3 +265,30 @@ fn flip_normals_turns_the_side_one_sided_materials_and_emitters_act_on() {
     assert_eq!(glow(false).get(4, 4), [0.0, 0.0, 0.0], "the back of an emitter is dark");
     assert_eq!(glow(true).get(4, 4), [2.0, 1.0, 0.5], "flipped, its emission faces the camera");
 }
+
+/// A dict's source (Python's scene dicts, `Source::for_dict`): its relative
+/// mesh paths resolve against its folder, and its errors name the dict and
+/// not a file, through the same build as a scene file's. (This description is
+/// parsed from TOML text, so its values carry text spans, which a dict has no
+/// text for: the error names the dict alone. A dict read from Python carries
+/// key paths; `python/tests/test_hardening.py` checks those messages.)
+#[test]
+fn a_dict_resolves_against_its_folder_and_names_itself_in_errors() {
+    use lamplight_scene::formats::native::Source;
+    let dir = std::env::temp_dir().join(format!("lamplight-dict-source-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("tri.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+    let as_dict = |text: &str| {
+        let parsed = SceneFile::parse(Path::new("unused.toml"), &format!("{CAMERA}{text}")).unwrap_or_else(|e| panic!("{e}"));
+        SceneFile { description: parsed.description, source: Source::for_dict(dir.clone()) }
+    };
+    let mesh = "[meshes.m]\nfile = \"tri.obj\"\n[[objects]]\ntype = \"mesh\"\nmesh = \"m\"\n";
+    let built = as_dict(mesh).build().unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(built.objects.len(), 1);
+    let missing = as_dict(&mesh.replace("tri.obj", "none.obj")).build().unwrap_err().to_string();
+    let expected = format!("scene dict: mesh \"m\": file \"none.obj\" not found (looked for {})", dir.join("none.obj").display());
+    assert_eq!(missing, expected);
+    let bad = as_dict("[[objects]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = -1\n").build().unwrap_err().to_string();
+    assert_eq!(bad, "scene dict: sphere: invalid radius: must be a positive number, got -1");
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -29,12 +29,35 @@ pub struct Source {
     pub text: Option<String>,
     /// What the reader warned about, one line each (`FILE:LINE:COL: message`).
     pub warnings: Vec<String>,
+    /// The folder relative paths resolve against when it is not `path`'s
+    /// (a dict's: [`Source::for_dict`]).
+    pub base_dir: Option<PathBuf>,
 }
 
 impl Source {
     /// A source with no text (data from elsewhere, named by `path`).
     pub fn without_text(path: impl Into<PathBuf>) -> Source {
-        Source { path: path.into(), text: None, warnings: Vec::new() }
+        Source { path: path.into(), text: None, warnings: Vec::new(), base_dir: None }
+    }
+
+    /// The source of a scene dict (Python's): its errors read
+    /// `scene dict: key.path: message`, and its relative paths resolve against
+    /// `base_dir`.
+    pub fn for_dict(base_dir: PathBuf) -> Source {
+        Source { base_dir: Some(base_dir), ..Source::without_text("scene dict") }
+    }
+
+    /// Whether this is a dict's source ([`Source::for_dict`]).
+    pub fn is_dict(&self) -> bool {
+        self.base_dir.is_some()
+    }
+
+    /// The folder relative mesh, texture and include paths resolve against.
+    pub fn dir(&self) -> PathBuf {
+        match &self.base_dir {
+            Some(dir) => dir.clone(),
+            None => self.path.parent().map(Path::to_path_buf).unwrap_or_default(),
+        }
     }
 
     /// The location of byte span `span`: its start as `line:col`, or the whole file.
@@ -91,7 +114,7 @@ pub fn parse(path: &Path, text: String) -> Result<(SceneDescription, Source), Lo
     if text.trim().is_empty() {
         return Err(LoadError::file(path, "is empty, expected a scene (at least a [camera] table)"));
     }
-    let source = Source { path: path.to_path_buf(), text: None, warnings: Vec::new() };
+    let source = Source::without_text(path);
     if let Some(offset) = too_deep(&text) {
         let source = Source { text: Some(text), ..source };
         let message =

@@ -416,7 +416,7 @@ fn build_static(desc: &SceneDescription, source: &Source) -> Result<Built, LoadE
     let camera_node = desc.camera.as_ref().ok_or_else(|| LoadError::file(&source.path, "has no [camera] table, expected one"))?;
     let camera = camera::camera(camera_node).map_err(|e| source.param_error(e))?;
     let mut builder = SceneBuilder::with_camera(camera);
-    let dir = source.path.parent().map(Path::to_path_buf).unwrap_or_default();
+    let dir = source.dir();
     let (ambient, background, environment) = globals(&desc.globals, &dir).map_err(|e| source.param_error(e))?;
     builder.settings.ambient = ambient;
     builder.settings.background = background;

@@ -271,7 +271,7 @@ impl<'a> Ctx<'a> {
         if file.is_empty() {
             return Err(Ok("file: the path is empty, expected a mesh file".to_string()));
         }
-        let dir = self.source.path.parent().map(|p| p.to_path_buf()).unwrap_or_default();
+        let dir = self.source.dir();
         let path = dir.join(file);
         match crate::input::check_regular(&path) {
             Ok(_) => {}

@@ -72,7 +72,7 @@ pub fn parse_table(path: &Path, text: String, defines: &[(String, String)]) -> R
     if text.trim().is_empty() {
         return Err(LoadError::file(path, "is empty, expected a Mitsuba scene (<scene version=\"3.0.0\">)"));
     }
-    let source = |text: Option<String>| Source { path: path.to_path_buf(), text, warnings: Vec::new() };
+    let source = |text: Option<String>| Source { text, ..Source::without_text(path) };
     let doc = match xml::read(path, text, defines) {
         Ok(doc) => doc,
         Err((e, text)) => return Err(source(text).param_error(e)),
