@@ -224,7 +224,7 @@ impl Microfacet {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bsdfs::test_support::{hemisphere_quadrature, stratified_mean};
+    use crate::bsdfs::test_support::{hemisphere_quadrature, projected_area, stratified_mean};
 
     fn beckmann(alpha: f64) -> Microfacet {
         Microfacet::new(Distribution::Beckmann, alpha)
@@ -233,12 +233,7 @@ mod tests {
     #[test]
     fn beckmann_is_normalized_over_projected_area() {
         for alpha in [0.05, 0.2, 0.5, 1.0] {
-            let n = 400_000;
-            let mut sum = 0.0;
-            for i in 0..n {
-                let c = (i as f64 + 0.5) / n as f64;
-                sum += beckmann(alpha).d(Vec3::new((1.0 - c * c).sqrt(), 0.0, c)) * c * 2.0 * PI / n as f64;
-            }
+            let sum = projected_area(400_000, |h| beckmann(alpha).d(h));
             assert!((sum - 1.0).abs() < 2e-3, "alpha {alpha}: {sum}");
         }
     }

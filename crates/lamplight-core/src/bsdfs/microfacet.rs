@@ -153,20 +153,13 @@ impl Scatter for Glossy {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bsdfs::test_support::{hemisphere_quadrature, stratified_mean};
+    use crate::bsdfs::test_support::{hemisphere_quadrature, projected_area, stratified_mean};
 
     #[test]
     fn distribution_is_normalized_over_projected_area() {
         // Integral of D(h) cos(theta_h) over the hemisphere is 1, for every roughness.
         for alpha in [0.05, 0.2, 0.5, 1.0] {
-            let n = 200_000;
-            let mut sum = 0.0;
-            // Substitute c = cos(theta): d(omega) = 2 pi dc.
-            for i in 0..n {
-                let c = (i as f64 + 0.5) / n as f64;
-                let h = Vec3::new((1.0 - c * c).sqrt(), 0.0, c);
-                sum += d(alpha, h) * c * 2.0 * PI / n as f64;
-            }
+            let sum = projected_area(200_000, |h| d(alpha, h));
             assert!((sum - 1.0).abs() < 2e-3, "alpha {alpha}: {sum}");
         }
     }

@@ -8,20 +8,41 @@ use super::Bsdf;
 use crate::math::{Rgb, Vec3};
 use crate::sampling::Rng;
 
+/// Calls `visit(u_choice, u)` for the centres `u` of an `n x n` grid over the
+/// unit square, with a one-dimensional choice (of a lobe or a branch) from a
+/// golden-ratio sequence: the stratified pattern every furnace test samples with.
+pub fn stratified_grid(n: usize, mut visit: impl FnMut(f64, (f64, f64))) {
+    for i in 0..n {
+        for j in 0..n {
+            let u = ((i as f64 + 0.5) / n as f64, (j as f64 + 0.5) / n as f64);
+            visit(((i * n + j) as f64 * 0.618_033_988_749_895).fract(), u);
+        }
+    }
+}
+
+/// `integral of d(h) cos(theta_h) d(omega)` over the upper hemisphere for a
+/// distribution `d` symmetric about the normal, by the midpoint rule in
+/// `c = cos theta` over `n` cells (`d(omega) = 2 pi dc` around the axis): 1
+/// for a normalised microfacet distribution.
+pub fn projected_area(n: usize, d: impl Fn(Vec3) -> f64) -> f64 {
+    (0..n)
+        .map(|i| {
+            let c = (i as f64 + 0.5) / n as f64;
+            d(Vec3::new((1.0 - c * c).sqrt(), 0.0, c)) * c * 2.0 * PI / n as f64
+        })
+        .sum()
+}
+
 /// Directional albedo (reflected and transmitted power over incident power,
 /// `E[weight * eta^2]`) of `bsdf` for `wo`, estimated with stratified samples.
 pub fn albedo(bsdf: &Bsdf, wo: Vec3) -> Rgb {
     let n = 128;
     let mut sum = Rgb::ZERO;
-    for i in 0..n {
-        for j in 0..n {
-            let u = ((i as f64 + 0.5) / n as f64, (j as f64 + 0.5) / n as f64);
-            let u_lobe = ((i * n + j) as f64 * 0.618_033_988_749_895).fract();
-            if let Some(s) = bsdf.sample(wo, u_lobe, u) {
-                sum += s.weight * (s.eta * s.eta);
-            }
+    stratified_grid(n, |u_lobe, u| {
+        if let Some(s) = bsdf.sample(wo, u_lobe, u) {
+            sum += s.weight * (s.eta * s.eta);
         }
-    }
+    });
     sum / (n * n) as f64
 }
 
@@ -40,20 +61,14 @@ pub enum Sampled {
 pub fn furnace(mut sample: impl FnMut(f64, (f64, f64)) -> Option<Sampled>) -> (f64, f64) {
     let n = 256;
     let (mut sum, mut delta) = (0.0, 0.0);
-    for i in 0..n {
-        for j in 0..n {
-            let u = ((i as f64 + 0.5) / n as f64, (j as f64 + 0.5) / n as f64);
-            let u_choice = ((i * n + j) as f64 * 0.618_033_988_749_895).fract();
-            match sample(u_choice, u) {
-                Some(Sampled::Delta(w)) => {
-                    sum += w;
-                    delta += 1.0;
-                }
-                Some(Sampled::Smooth(_, w)) => sum += w,
-                None => {}
-            }
+    stratified_grid(n, |u_choice, u| match sample(u_choice, u) {
+        Some(Sampled::Delta(w)) => {
+            sum += w;
+            delta += 1.0;
         }
-    }
+        Some(Sampled::Smooth(_, w)) => sum += w,
+        None => {}
+    });
     let count = (n * n) as f64;
     (sum / count, delta / count)
 }

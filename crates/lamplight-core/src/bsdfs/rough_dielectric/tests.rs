@@ -137,20 +137,16 @@ fn transport_is_reciprocal() {
 fn albedo(alpha: f64, eta: f64, wo: Vec3) -> (f64, f64) {
     let n = 256;
     let (mut total, mut reflected) = (0.0, 0.0);
-    for i in 0..n {
-        for j in 0..n {
-            let u = ((i as f64 + 0.5) / n as f64, (j as f64 + 0.5) / n as f64);
-            let u_branch = ((i * n + j) as f64 * 0.618_033_988_749_895).fract();
-            let Some(wi) = sample(alpha, eta, wo, u_branch, u) else { continue };
-            let w = f(alpha, eta, wo, wi) * wi.z.abs() / pdf(alpha, eta, wo, wi);
-            if wi.z > 0.0 {
-                reflected += w;
-                total += w;
-            } else {
-                total += w * eta * eta;
-            }
+    crate::bsdfs::test_support::stratified_grid(n, |u_branch, u| {
+        let Some(wi) = sample(alpha, eta, wo, u_branch, u) else { return };
+        let w = f(alpha, eta, wo, wi) * wi.z.abs() / pdf(alpha, eta, wo, wi);
+        if wi.z > 0.0 {
+            reflected += w;
+            total += w;
+        } else {
+            total += w * eta * eta;
         }
-    }
+    });
     (total / (n * n) as f64, reflected / (n * n) as f64)
 }
 
