@@ -122,6 +122,27 @@ def _stitch_task(size: Tuple[int, int], windows, denoise: bool, transfer: str, p
     return {"rendered": True}
 
 
+def _remove_stale_temporaries(paths: List[str]) -> None:
+    """Removes what a killed job's writes of ``paths`` left: the atomic
+    writer's ``.<name>.<random>.tmp`` beside each (a process killed by SIGKILL
+    cannot remove its own), so that resumed jobs do not pile them up."""
+    by_folder: Dict[str, set] = {}
+    for path in paths:
+        by_folder.setdefault(os.path.dirname(path), set()).add(os.path.basename(path))
+    for folder, names in by_folder.items():
+        try:
+            entries = os.listdir(folder)
+        except OSError:
+            continue  # not made yet: nothing left there
+        for entry in entries:
+            stem, dot, rest = entry[1:].rpartition(".tmp")[0].rpartition(".")
+            if entry.startswith(".") and entry.endswith(".tmp") and dot and stem in names:
+                try:
+                    os.remove(os.path.join(folder, entry))
+                except OSError:
+                    pass  # gone already, or not ours to remove
+
+
 @dataclass
 class _Frame:
     number: int
@@ -210,7 +231,8 @@ def render_frames(
     if video is not None:
         check_video(os.fspath(video), paths[jobs[0].number])
     todo = [j for j in jobs if out is None or overwrite or not os.path.exists(paths[j.number])]
-    skipped = [j.number for j in jobs if j not in todo]
+    skipped = sorted({j.number for j in jobs} - {j.number for j in todo})
+    _remove_stale_temporaries([paths[j.number] for j in todo] if out is not None else [])
     written: List[int] = []
     seconds: Dict[int, float] = {}
     if todo:
