@@ -51,8 +51,7 @@ def frame_paths(pattern: PathLike, frames: Sequence[int], name: str = "out") -> 
     """The file of each of ``frames`` under ``pattern`` (a path with one run of
     ``#``: ``out/frame_####.png`` gives ``out/frame_0007.png``), made absolute
     here, so that workers whose working folder differs write the same files."""
-    absolute = os.path.abspath(os.fspath(pattern))
-    return [os.fspath(p) for p in _lamplight.frame_paths(absolute, list(frames), name)]
+    return [os.path.abspath(os.fspath(p)) for p in _lamplight.frame_paths(os.fspath(pattern), list(frames), name)]
 
 
 def make_video(pattern: PathLike, video: PathLike, frames: Frames = None, fps: Optional[float] = None, scene: Optional[Any] = None) -> None:

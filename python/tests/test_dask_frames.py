@@ -224,6 +224,18 @@ def test_the_lamp_turntable_to_mp4_locally_and_on_a_cluster_has_the_same_frames(
     assert frames_of(tmp_path / "local.mp4") == frames_of(tmp_path / "dask.mp4") == 48
 
 
+def test_bad_frames_and_patterns_say_what_was_expected(client, tmp_path):
+    with pytest.raises(ValueError, match=r'^frames "5-1" ends before it starts \(expected START <= END\)$'):
+        lamplight.dask.render_frames(str(EXAMPLES / "turntable.toml"), client, frames="5-1", out=tmp_path / "f_#.png")
+    with pytest.raises(ValueError, match=r'^out="f\.png" must hold a run of # for the frame number, such as frame_####\.png$'):
+        lamplight.dask.render_frames(str(EXAMPLES / "turntable.toml"), client, frames="1-2", out="f.png")
+    with pytest.raises(ValueError, match=r"^the scene has no \[animation\] to give its frames; say which with frames="):
+        lamplight.dask.render_frames("spheres", client, out=tmp_path / "f_#.png")
+    with pytest.raises(ValueError, match=r'^video="v\.avi" must end in \.mp4, \.webm or \.gif \(the video.s format\)$'):
+        lamplight.dask.render_frames(str(EXAMPLES / "turntable.toml"), client, frames="1-2", out=tmp_path / "f_#.png", video="v.avi")
+    assert os.listdir(tmp_path) == [], "nothing rendered"
+
+
 def test_make_video_without_ffmpeg_keeps_the_frames(tmp_path, monkeypatch):
     scene = lamplight.Scene.from_toml(MOVING)
     for f in (1, 2):
