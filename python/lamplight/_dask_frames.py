@@ -230,6 +230,9 @@ def render_frames(
     paths = dict(zip([j.number for j in jobs], frame_paths(out, [j.number for j in jobs]))) if out is not None else {}
     if video is not None:
         check_video(os.fspath(video), paths[jobs[0].number])
+        numbers = [j.number for j in jobs]
+        if numbers != list(range(numbers[0], numbers[0] + len(numbers))):
+            raise ValueError("a video's frames must be consecutive, such as \"1-48\"")
     todo = [j for j in jobs if out is None or overwrite or not os.path.exists(paths[j.number])]
     skipped = sorted({j.number for j in jobs} - {j.number for j in todo})
     _remove_stale_temporaries([paths[j.number] for j in todo] if out is not None else [])

@@ -233,6 +233,8 @@ def test_bad_frames_and_patterns_say_what_was_expected(client, tmp_path):
         lamplight.dask.render_frames("spheres", client, out=tmp_path / "f_#.png")
     with pytest.raises(ValueError, match=r'^video="v\.avi" must end in \.mp4, \.webm or \.gif \(the video.s format\)$'):
         lamplight.dask.render_frames(str(EXAMPLES / "turntable.toml"), client, frames="1-2", out=tmp_path / "f_#.png", video="v.avi")
+    with pytest.raises(ValueError, match=r'^a video.s frames must be consecutive, such as "1-48"$'):
+        lamplight.dask.render_frames(str(EXAMPLES / "turntable.toml"), client, frames=[1, 3], out=tmp_path / "f_#.png", video="v.mp4")
     assert os.listdir(tmp_path) == [], "nothing rendered"
 
 
