@@ -89,6 +89,12 @@ def test_each_frame_is_the_bytes_of_the_command_line_and_of_frame(client, cli, t
     tiled = lamplight.dask.render_frames(str(scene), client, frames=[2, 4], tiles=3, out=tmp_path / "tiled" / "f_####.png")
     assert tiled.written == [2, 4]
     assert all((tmp_path / "tiled" / f"f_{f:04d}.png").read_bytes() == (tmp_path / "cli" / f"f_{f:04d}.png").read_bytes() for f in (2, 4))
+    # One frame on two worker threads: cut into tiles by itself (2 per thread).
+    with distributed.get_task_stream(client) as stream:
+        lamplight.dask.render_frames(str(scene), client, frames=[5], out=tmp_path / "one" / "f_####.png")
+    tiles = {str(t["key"]).rsplit("-", 1)[0] for t in stream.data if "lamplight-frame-tile" in str(t["key"])}
+    assert tiles == {f"lamplight-frame-tile-0005-{i}" for i in range(4)}
+    assert (tmp_path / "one" / "f_0005.png").read_bytes() == (tmp_path / "cli" / "f_0005.png").read_bytes()
     images = lamplight.dask.render_frames(str(scene), client, frames="2-3")
     assert [i.tobytes() for i in images] == [lamplight.render(str(scene), frame=f, progress=False).tobytes() for f in (2, 3)]
     # A second run skips what exists, and reports only what it rendered.
