@@ -66,7 +66,9 @@ class FramesFailed(RuntimeError):
 class FramesWritten:
     """What :func:`render_frames` with ``out`` did: the frames it rendered and
     wrote, those it skipped because their files existed, every frame's file,
-    the seconds each rendered frame's task took on its worker, and the video."""
+    the seconds each rendered frame's task took on its worker, and the video.
+    A frame written by this call whose worker then died before the client
+    heard of it runs again, finds its file and is listed as skipped."""
 
     written: List[int]
     skipped: List[int]
