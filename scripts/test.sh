@@ -33,6 +33,8 @@ command -v cc >/dev/null 2>&1 || need_apt+=(gcc libc6-dev)
 # Headless Chromium for the `lamplight view` browser tests (python/tests/test_view_browser.py).
 command -v chromium >/dev/null 2>&1 || need_apt+=(chromium)
 command -v chromedriver >/dev/null 2>&1 || need_apt+=(chromium-driver)
+# ffmpeg (and its ffprobe) for `lamplight render --video` and its tests (issue 29).
+command -v ffprobe >/dev/null 2>&1 || need_apt+=(ffmpeg)
 if [ ${#need_apt[@]} -gt 0 ] && command -v apt-get >/dev/null 2>&1; then
   phase "apt-get install ${need_apt[*]}"
   (apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${need_apt[@]}") ||
@@ -77,7 +79,7 @@ RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked --quiet
 # The Python package: a virtual environment with what pytest needs, the
 # extension built into it (the dev profile, which reuses the build above), and
 # the Python tests (scene dicts, renders against the binary's EXR output, ray
-# queries, Dask on a LocalCluster, a killed worker).
+# queries, Dask on a LocalCluster, a killed worker, frames resumed after a killed job).
 phase "pip install"
 .venv/bin/python -m pip install --quiet --disable-pip-version-check "maturin>=1.5,<2" numpy pytest "dask[distributed]" tqdm
 # Selenium drives Chromium in the viewer's browser tests; without it they skip.

@@ -15,9 +15,10 @@ cluster. The tutorial is ``docs/python.md``.
 
 from __future__ import annotations
 
-from . import dask, objects
+from . import dask, frames, objects
 from ._lamplight import Scene, SceneError, __version__, builtin_names, kinds
 from ._render import as_scene, load, render
+from .frames import make_video
 from .image import Image, denoise, read_exr, save
 from .objects import (
     box,
@@ -51,9 +52,11 @@ __all__ = [
     "denoise",
     "directional_light",
     "disk",
+    "frames",
     "group",
     "instance",
     "load",
+    "make_video",
     "material",
     "mesh",
     "node",

@@ -61,6 +61,9 @@ class Scene:
         """The camera given to :meth:`with_camera`, if any."""
     def mesh_files(self) -> List[str]:
         """Mesh files the scene reads, as written."""
+    @property
+    def animation(self) -> Optional[Dict[str, Any]]:
+        """The scene's ``[animation]``: ``{"frames": (start, end), "fps": fps}``, or ``None``."""
     def defaults(self) -> Dict[str, Any]:
         """``width``, ``height``, ``spp``, ``seed``, ``integrator`` a render uses when not told,
         ``transfer``, and ``crop``: the ``(x0, y0, w, h)`` of the image the scene renders, or ``None``."""
@@ -253,3 +256,16 @@ def denoise_array(
     """``color`` denoised by Open Image Denoise's HDR ``RT`` filter, guided by
     ``albedo`` and ``normal`` of the same shape when given; ``ValueError`` when
     the library is missing."""
+
+def frame_range(text: str, name: str) -> Tuple[int, int]:
+    """``(start, end)`` of ``"1-48"`` or ``"7"``, as ``--frames`` reads it; the ``ValueError`` names ``name``."""
+
+def frame_paths(pattern: _Path, frames: List[int], name: str) -> List[str]:
+    """Each frame's file under ``pattern`` (one run of ``#``, zero-padded), as ``-o`` names them."""
+
+def make_video(pattern: _Path, start: int, end: int, fps: float, video: _Path) -> None:
+    """Encodes frames ``start`` to ``end`` of ``pattern`` into ``video`` (``.mp4``, ``.webm``,
+    ``.gif``) with ffmpeg; ``FileNotFoundError`` when ffmpeg is not on ``PATH``."""
+
+def check_video(video: _Path, frames: _Path) -> None:
+    """``ValueError`` unless ``video`` is ``.mp4``, ``.webm`` or ``.gif`` and ``frames`` (one frame's path) ``.png`` or ``.ppm``."""

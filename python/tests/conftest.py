@@ -39,3 +39,15 @@ def oidn() -> None:
         if os.environ.get("CI"):
             pytest.fail(f"CI must denoise (scripts/test.sh installs pyoidn): {e}")
         pytest.skip(f"Open Image Denoise is not installed: {e}")
+
+
+@pytest.fixture(scope="session")
+def client():
+    """A Dask client of a LocalCluster of two one-thread worker processes,
+    shared by the Dask tests (test_dask.py, test_dask_frames.py): starting one
+    takes seconds of the suite's time."""
+    distributed = pytest.importorskip("distributed")
+    cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0")
+    with distributed.Client(cluster) as c:
+        yield c
+    cluster.close()

@@ -14,14 +14,6 @@ distributed = pytest.importorskip("distributed")
 import lamplight.dask  # noqa: E402  (after the skip: it needs distributed at call time only)
 
 
-@pytest.fixture(scope="module")
-def client():
-    cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0")
-    with distributed.Client(cluster) as c:
-        yield c
-    cluster.close()
-
-
 def local(scene, **kw):
     return lamplight.render(scene, progress=False, **kw)
 

@@ -80,7 +80,9 @@ def test_the_wrappers_take_the_table_in_order():
     split = [n for n in names if n not in ("window", "time_limit", "exr_layers")]
     assert list(inspect.signature(ldask.render).parameters) == ["scene", "client", *split, "tiles", "ship_meshes", "progress", "retries", "base_dir"]
     frames = list(inspect.signature(ldask.render_frames).parameters)
-    assert frames == ["scenes", "client", "cameras", *split, "ship_meshes", "progress", "retries", "base_dir"]
+    # frames= (which frames) takes the place of the one-frame setting frame=.
+    each = [n for n in split if n != "frame"]
+    assert frames == ["scenes", "client", "cameras", *each, "frames", "out", "overwrite", "video", "tiles", "ship_meshes", "progress", "retries", "base_dir"]
     assert inspect.signature(ldask.render).parameters["threads"].default == 1
 
 

@@ -282,6 +282,10 @@ pub struct RenderArgs {
     /// Render again, and replace, the frames of a sequence whose files exist.
     #[arg(long)]
     pub overwrite: bool,
+    /// Then encode the sequence's frames into this video (.mp4, .webm or .gif) at the scene's fps, with ffmpeg
+    /// from PATH; without ffmpeg the frames are kept and the command exits with code 2.
+    #[arg(long, value_name = "FILE")]
+    pub video: Option<PathBuf>,
     /// Worker threads; 0 uses all cores. The image does not depend on it.
     #[arg(long, value_name = "T", default_value_t = 0, allow_negative_numbers = true, value_parser = count::<usize>)]
     pub threads: usize,
@@ -456,7 +460,7 @@ impl RenderArgs {
             ..self.scene.request(self.threads)
         };
         let mut job = request.resolve(&scene.defaults, Naming::Flags)?;
-        let (sequence, output) = crate::frames::sequence(&scene, self.frames.as_deref(), self.output, self.overwrite)?;
+        let (sequence, output) = crate::frames::sequence(&scene, self.frames.as_deref(), self.output, self.overwrite, self.video)?;
         if sequence.is_some() && self.variance_output.is_some() {
             return Err(usage(
                 "--variance-output writes one file; for a frame sequence put the variance in each frame's .exr (--exr-layers variance)",

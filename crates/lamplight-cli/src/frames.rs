@@ -8,10 +8,15 @@
 //! `[animation] frames` when `-o` holds a run of `#`. A scene without
 //! `[animation]` is the same at every frame, as Blender and POV-Ray render it:
 //! it is rendered once and that image written to each frame's file.
+//!
+//! `--video out.mp4` then encodes the frames with ffmpeg
+//! ([`lamplight_scene::request::video`]); frames skipped because they exist
+//! are encoded too, so a rerun with ffmpeg installed only makes the video.
 
 use std::path::{Path, PathBuf};
 
 use lamplight_scene::request::frames::{FrameRange, OutputPattern};
+use lamplight_scene::request::video;
 use lamplight_scene::request::SceneRequest;
 
 use crate::args::{RenderJob, UsageError};
@@ -25,6 +30,8 @@ pub struct Sequence {
     pub pattern: Option<OutputPattern>,
     /// Render frames whose file exists too.
     pub overwrite: bool,
+    /// The video to encode the frames into (`--video`), and its frame rate.
+    pub video: Option<(PathBuf, f64)>,
 }
 
 impl Sequence {
@@ -37,7 +44,30 @@ impl Sequence {
 /// The sequence `--frames` (`frames`), `-o` (`output`, `None` when not given)
 /// and `--overwrite` ask of `scene`, `None` for a single image; and the
 /// output path (a pattern by default for a sequence: `SCENE_####.png`).
+/// `video` (`--video`) needs a sequence of numbered `.png` or `.ppm` frames.
 pub fn sequence(
+    scene: &SceneRequest,
+    frames: Option<&str>,
+    output: Option<PathBuf>,
+    overwrite: bool,
+    video: Option<PathBuf>,
+) -> Result<(Option<Sequence>, PathBuf), UsageError> {
+    let (sequence, output) = frame_sequence(scene, frames, output, overwrite)?;
+    let Some(path) = video else { return Ok((sequence, output)) };
+    let Some(mut sequence) = sequence.filter(|s| s.pattern.is_some()) else {
+        return Err(UsageError(format!(
+            "--video {} encodes a frame sequence: give -o a run of # for the frame number (frame_####.png), with --frames \
+             or the scene's [animation]",
+            path.display()
+        )));
+    };
+    video::check(&path, &output).map_err(|e| UsageError(format!("--video {} {e}", path.display())))?;
+    let fps = scene.animation().map_or(24.0, |a| a.fps);
+    sequence.video = Some((path, fps));
+    Ok((Some(sequence), output))
+}
+
+fn frame_sequence(
     scene: &SceneRequest,
     frames: Option<&str>,
     output: Option<PathBuf>,
@@ -81,7 +111,7 @@ pub fn sequence(
         }
         (Some(_), None) => unreachable!("a pattern comes from -o"),
     };
-    Ok((Some(Sequence { range, pattern, overwrite }), output))
+    Ok((Some(Sequence { range, pattern, overwrite, video: None }), output))
 }
 
 /// Renders the frames of `render.sequence` that are not written yet.
@@ -96,6 +126,23 @@ pub fn render_sequence(render: &RenderJob) -> anyhow::Result<()> {
             sequence.path(sequence.range.iter().find(|f| !todo.contains(f)).unwrap_or(sequence.range.start), &render.output).display()
         );
     }
+    render_frames(render, sequence, &todo)?;
+    let (Some((path, fps)), Some(pattern)) = (&sequence.video, &sequence.pattern) else { return Ok(()) };
+    match video::assemble(pattern, sequence.range, *fps, path) {
+        Ok(()) => {
+            if !render.quiet {
+                eprintln!("{} frames -> {}", sequence.range.len(), path.display());
+            }
+            Ok(())
+        }
+        Err(e) if e.kind == video::VideoErrorKind::Failed => Err(anyhow::anyhow!(e.message)),
+        // ffmpeg not installed is the user's setup, as bad input is (exit code 2).
+        Err(e) => Err(UsageError(e.message).into()),
+    }
+}
+
+/// Renders the frames `todo` of `sequence`, each to its file.
+fn render_frames(render: &RenderJob, sequence: &Sequence, todo: &[i64]) -> anyhow::Result<()> {
     let Some(&first) = todo.first() else { return Ok(()) };
     let first_path = sequence.path(first, &render.output);
     if let Some(dir) = first_path.parent().filter(|d| !d.as_os_str().is_empty()) {
@@ -104,7 +151,7 @@ pub fn render_sequence(render: &RenderJob) -> anyhow::Result<()> {
     // Fail before a long render, not after it, when the files cannot be written.
     lamplight_scene::image_io::check_writable(&first_path)?;
     let animated = render.scene.animation().is_some();
-    for &frame in &todo {
+    for &frame in todo {
         let path = sequence.path(frame, &render.output);
         if !animated && frame != first {
             // The same scene at every frame: the same bytes.

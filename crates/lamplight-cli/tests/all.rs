@@ -14,4 +14,5 @@ mod info;
 mod lighting;
 mod meshes;
 mod raycast;
+mod video;
 mod view;

@@ -12,6 +12,7 @@ use pyo3::prelude::*;
 pub mod convert;
 pub mod denoise;
 pub mod explain;
+pub mod frames;
 pub mod image;
 pub mod intersect;
 pub mod kinds;
@@ -36,6 +37,10 @@ fn _lamplight(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(image::encode_png, m)?)?;
     m.add_function(wrap_pyfunction!(image::read_exr, m)?)?;
     m.add_function(wrap_pyfunction!(denoise::denoise_array, m)?)?;
+    m.add_function(wrap_pyfunction!(frames::frame_range, m)?)?;
+    m.add_function(wrap_pyfunction!(frames::frame_paths, m)?)?;
+    m.add_function(wrap_pyfunction!(frames::make_video, m)?)?;
+    m.add_function(wrap_pyfunction!(frames::check_video, m)?)?;
     m.add("SceneError", m.py().get_type::<SceneError>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())

@@ -325,6 +325,17 @@ impl Scene {
         self.camera.as_ref().map(|(dict, _)| convert::plain(dict.bind(py))).transpose()
     }
 
+    /// The scene's `[animation]` as `{"frames": (start, end), "fps": fps}`,
+    /// `None` for a scene that does not move.
+    #[getter(animation)]
+    fn animation_dict<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        let Some(a) = self.animation() else { return Ok(None) };
+        let d = PyDict::new(py);
+        d.set_item("frames", (a.start, a.end))?;
+        d.set_item("fps", a.fps)?;
+        Ok(Some(d))
+    }
+
     /// The settings a render uses when it does not say: `width`, `height`,
     /// `spp`, `seed` and `integrator`, `transfer`, how the scene's PNGs
     /// store values (`"srgb"` or `"linear"`), and `crop`, the part

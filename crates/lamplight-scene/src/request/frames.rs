@@ -99,6 +99,13 @@ impl OutputPattern {
     pub fn path(&self, frame: i64) -> PathBuf {
         PathBuf::from(format!("{}{frame:0width$}{}", self.before, self.after, width = self.width))
     }
+
+    /// The pattern in C's printf form, as ffmpeg's `image2` reader takes it:
+    /// `out/frame_%04d.png`, with a `%` of the path itself doubled.
+    pub fn printf(&self) -> String {
+        let escape = |s: &str| s.replace('%', "%%");
+        format!("{}%0{}d{}", escape(&self.before), self.width, escape(&self.after))
+    }
 }
 
 #[cfg(test)]
@@ -130,6 +137,8 @@ mod tests {
         let p = OutputPattern::parse(Path::new("#.exr")).unwrap().unwrap();
         assert_eq!(p.path(3), PathBuf::from("3.exr"));
         assert_eq!(OutputPattern::parse(Path::new("out.png")), Ok(None));
+        let p = OutputPattern::parse(Path::new("100%/f_###.png")).unwrap().unwrap();
+        assert_eq!(p.printf(), "100%%/f_%03d.png");
         assert_eq!(
             OutputPattern::parse(Path::new("a_##_##.png")).unwrap_err(),
             "has more than one run of #, expected one for the frame number (frame_####.png)"

@@ -34,6 +34,7 @@ pub use scene_arg::{file_kind, names_builtin, FileKind};
 
 pub mod frames;
 pub mod limits;
+pub mod video;
 
 /// Memory the film takes per pixel: its sums and squares and the image.
 pub const FILM_BYTES_PER_PIXEL: u64 = 96;
