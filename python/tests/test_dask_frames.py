@@ -258,3 +258,26 @@ def test_make_video_without_ffmpeg_keeps_the_frames(tmp_path, monkeypatch):
     assert sorted(os.listdir(tmp_path)) == ["f_1.png", "f_2.png"]
     with pytest.raises(ValueError, match=r"frame 3 \(.*f_3\.png\) is missing; render it first"):
         lamplight.make_video(tmp_path / "f_#.png", tmp_path / "v.mp4", frames="1-3")
+
+
+def test_denoised_frames_are_the_local_denoised_frames(client, tmp_path, oidn):
+    """Issue 28 on an animation's frames: a denoised frame, rendered as one
+    task or as tiles stitched on a worker (denoised whole there, never tile by
+    tile), is the local denoised render of that frame, and its file is the
+    command line's `--denoise` frame."""
+    scene = tmp_path / "moving.toml"
+    scene.write_text(MOVING.replace("spp = 2", "spp = 4\nintegrator = \"path\""))
+    frames = (2, 4)
+    local = [lamplight.render(str(scene), frame=f, denoise=True, progress=False) for f in frames]
+    noisy = [lamplight.render(str(scene), frame=f, progress=False) for f in frames]
+    assert all(d.tobytes() != n.tobytes() for d, n in zip(local, noisy)), "the denoiser changed nothing: the test would not see it"
+    whole = lamplight.dask.render_frames(str(scene), client, frames=list(frames), tiles=1, denoise=True)
+    tiled = lamplight.dask.render_frames(str(scene), client, frames=list(frames), tiles=3, denoise=True)
+    for f, a, b, c in zip(frames, local, whole, tiled):
+        assert b.tobytes() == a.tobytes(), f"frame {f}: one task per frame"
+        assert c.tobytes() == a.tobytes(), f"frame {f}: tiles stitched and denoised on a worker"
+    done = lamplight.dask.render_frames(str(scene), client, frames=list(frames), tiles=3, denoise=True, out=tmp_path / "d" / "f_####.png")
+    assert done.written == list(frames)
+    for f, a in zip(frames, local):
+        a.save(tmp_path / f"local_{f}.png")
+        assert (tmp_path / "d" / f"f_{f:04d}.png").read_bytes() == (tmp_path / f"local_{f}.png").read_bytes()
