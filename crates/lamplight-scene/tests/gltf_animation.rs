@@ -359,3 +359,42 @@ fn a_frame_renders_as_the_cube_placed_by_hand() {
     let request = SceneRequest::resolve(still.to_str().unwrap()).unwrap();
     assert_eq!(request.animation(), None);
 }
+
+#[test]
+fn a_cube_scaled_to_nothing_is_left_out_and_scene_files_say_they_do_not_play() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut b = Builder::default();
+    b.cube();
+    let times = b.floats(&[0.0, 1.0], "SCALAR");
+    let shrinks = b.floats(&[1.0, 1.0, 1.0, 0.0, 0.0, 0.0], "VEC3");
+    let animation = format!(
+        r#"{{"samplers": [{{"input": {times}, "output": {shrinks}}}], "channels": [{{"sampler": 0, "target": {{"node": 1, "path": "scale"}}}}]}}"#
+    );
+    let path = dir.path().join("shrink.gltf");
+    std::fs::write(&path, b.json("0, 1", r#"{"mesh": 0, "translation": [2, 0, 0]}, {"mesh": 0}"#, &animation, "")).unwrap();
+    let imported = import::load(&path).unwrap();
+    assert_eq!(posed(&path, &imported, 0.5).instances.len(), 2);
+    assert_close(posed(&path, &imported, 0.5).instances[1].transform, trs([0.0; 3], Quat::IDENTITY, 0.5), "half size");
+    let gone = posed(&path, &imported, 1.0);
+    assert_eq!(gone.instances.len(), 1, "the shrunk cube is not drawn");
+    assert_close(gone.instances[0].transform, trs([2.0, 0.0, 0.0], Quat::IDENTITY, 1.0), "the other cube stays");
+    // Frame 24 (1 s) renders with the one cube left.
+    let request = SceneRequest::resolve(path.to_str().unwrap()).unwrap();
+    assert_eq!(request.build_frame(Some(24)).unwrap().scene.objects.len(), 1);
+    // In a scene file's [meshes] the file stands as its nodes place it, and a warning says so.
+    let scene = format!(
+        "[camera]\neye = [0, 2, 8]\nlook_at = [0, 0, 0]\nvfov = 40\n[meshes.box]\nfile = {:?}\n[[objects]]\ntype = \"mesh\"\nmesh = \"box\"\n",
+        path.display().to_string()
+    );
+    let file = lamplight_scene::instantiate::SceneFile::parse(&dir.path().join("s.toml"), &scene).unwrap();
+    let built = file.build_with_warnings().unwrap();
+    assert_eq!(built.scene.objects.len(), 2);
+    assert_eq!(
+        built.warnings,
+        [format!(
+            "{}: glTF animations are not played in a scene file's [meshes]: the nodes stand as the file places them \
+             (render the glTF file itself to play its first animation)",
+            path.display()
+        )]
+    );
+}

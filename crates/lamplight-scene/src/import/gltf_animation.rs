@@ -299,7 +299,12 @@ impl Imported {
             }
             world.push(m);
         }
-        let visible: Vec<bool> = animations.instance_nodes.iter().map(|&n| world[n].determinant() != 0.0).collect();
+        // Instance::new's test for a singular transform (a zero scale).
+        let visible = |m: &Mat4| {
+            let scale = m.x_axis.truncate().length().max(m.y_axis.truncate().length()).max(m.z_axis.truncate().length());
+            m.determinant().abs() > 1e-12 * scale.powi(3)
+        };
+        let visible: Vec<bool> = animations.instance_nodes.iter().map(|&n| visible(&world[n])).collect();
         for (placed, &n) in self.instances.iter_mut().zip(&animations.instance_nodes) {
             placed.transform = world[n];
         }
