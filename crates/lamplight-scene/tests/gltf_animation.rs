@@ -45,7 +45,21 @@ fn box_animated_moves_as_its_keys_say() {
     // (1, 0, 0, 4.49e-11), half a turn about x. 3.70833 s at 24 fps is frame 88.99992: frames 0 to 89.
     let frames = imported.frames().unwrap();
     assert_eq!((frames.start, frames.end, frames.fps), (0, 89, 24.0));
-    assert_eq!(gltf_animation::file_frames(&path), Some(frames));
+    assert_eq!(gltf_animation::file_frames(&path), Some(frames.clone()));
+    // As a GLB (its JSON chunk alone, the buffer still a data URI), whose range is read from the JSON chunk.
+    let dir = tempfile::tempdir().unwrap();
+    let glb = dir.path().join("BoxAnimated.glb");
+    let mut json = std::fs::read(&path).unwrap();
+    json.resize(json.len().next_multiple_of(4), b' ');
+    let mut bytes = b"glTF".to_vec();
+    bytes.extend(2u32.to_le_bytes());
+    bytes.extend((20 + json.len() as u32).to_le_bytes());
+    bytes.extend((json.len() as u32).to_le_bytes());
+    bytes.extend(b"JSON");
+    bytes.extend(&json);
+    std::fs::write(&glb, bytes).unwrap();
+    assert_eq!(gltf_animation::file_frames(&glb), Some(frames.clone()));
+    assert_eq!(import::load(&glb).unwrap().frames(), Some(frames));
     let y_max = f64::from(2.52f32);
     let half_turn = Quat::from_rotation_x(std::f64::consts::PI);
     // (frame, inner box's translation y, its rotation) interpolated by hand from the keys.

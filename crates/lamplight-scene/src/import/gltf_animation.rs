@@ -348,7 +348,7 @@ pub fn file_frames(path: &Path) -> Option<Animation> {
     if ext != "gltf" && ext != "glb" {
         return None;
     }
-    let bytes = super::read_file(path).ok()?;
+    let bytes = if ext == "glb" { glb_json(path)? } else { super::read_file(path).ok()? };
     let gltf::Gltf { document, .. } = gltf::Gltf::from_slice_without_validation(&bytes).ok()?;
     let first = document.animations().next()?;
     let mut end: f64 = 0.0;
@@ -364,4 +364,23 @@ pub fn file_frames(path: &Path) -> Option<Animation> {
         }
     }
     Some(Animation { start: 0, end: frames_to(end, GLTF_FPS), fps: GLTF_FPS, loc: Default::default() })
+}
+
+/// The JSON chunk of the GLB file at `path`, read without the binary chunk
+/// (a model's meshes and images, often most of the file): the 12-byte header
+/// (`glTF`, version, length), then the first chunk's length and type `JSON`
+/// (glTF 2.0 specification, section 4.4).
+fn glb_json(path: &Path) -> Option<Vec<u8>> {
+    use std::io::Read;
+    let len = crate::input::check_regular(path).ok()?;
+    let mut file = std::fs::File::open(path).ok()?;
+    let mut head = [0u8; 20];
+    file.read_exact(&mut head).ok()?;
+    let chunk = u64::from(u32::from_le_bytes(head[12..16].try_into().ok()?));
+    if &head[0..4] != b"glTF" || &head[16..20] != b"JSON" || chunk > len.saturating_sub(20) {
+        return None;
+    }
+    let mut json = vec![0; chunk as usize];
+    file.read_exact(&mut json).ok()?;
+    Some(json)
 }
