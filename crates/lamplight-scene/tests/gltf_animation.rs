@@ -412,3 +412,27 @@ fn a_cube_scaled_to_nothing_is_left_out_and_scene_files_say_they_do_not_play() {
         )]
     );
 }
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig { cases: 64, rng_seed: proptest::test_runner::RngSeed::Fixed(0x29a1), ..Default::default() })]
+
+    /// Mutations of the interpolation file load to an error or to animations
+    /// that pose at any time (and give their frames) without a panic or a
+    /// transform that is not finite.
+    #[test]
+    fn mutated_animations_never_panic(edits in crate::common::edits(), cut in 0usize..8000) {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("m.gltf");
+        std::fs::write(&path, crate::common::mutate(interpolation_test().as_bytes(), &edits, cut)).unwrap();
+        let _ = gltf_animation::file_frames(&path);
+        if let Ok(imported) = import::load(&path) {
+            let _ = imported.frames();
+            for seconds in [-1.0, 0.0, 0.25, 1.0, 1.5, 100.0] {
+                let mut at = imported.clone();
+                if at.pose(&path, 0, seconds).is_ok() {
+                    assert!(at.instances.iter().all(|i| i.transform.is_finite()));
+                }
+            }
+        }
+    }
+}
