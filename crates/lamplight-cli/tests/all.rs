@@ -9,6 +9,7 @@ mod cli;
 mod denoise;
 mod explain;
 mod frames;
+mod gltf_frames;
 mod hardening;
 mod info;
 mod lighting;

@@ -437,8 +437,9 @@ impl Scene {
 }
 
 impl Scene {
-    /// The `[animation]` of an animated scene file or dict.
-    pub fn animation(&self) -> Option<&lamplight_scene::description::Animation> {
+    /// The `[animation]` of an animated scene file or dict, or the frames of
+    /// an animated glTF file's first animation.
+    pub fn animation(&self) -> Option<lamplight_scene::description::Animation> {
         self.request.animation()
     }
 

@@ -23,7 +23,12 @@ use crate::request::{RequestError, SceneRequest, SceneSpec};
 pub fn describe(request: &SceneRequest) -> Result<String, RequestError> {
     let bad = |e: crate::LoadError| RequestError(e.to_string());
     match &request.spec {
-        SceneSpec::Mesh(path) => Ok(describe_imported(path, &import::load(path).map_err(bad)?)),
+        SceneSpec::Mesh(path) => {
+            let mut imported = import::load(path).map_err(bad)?;
+            // Described at its first frame, as a render without --frames draws it.
+            imported.pose_frame(path, 0).map_err(bad)?;
+            Ok(describe_imported(path, &imported))
+        }
         SceneSpec::File(file) => {
             let built = file.build_with_warnings().map_err(bad)?;
             Ok(describe_scene(&file.source.path.display().to_string(), "lamplight scene file", Some(file), &built.scene, &built.warnings))
@@ -153,7 +158,7 @@ fn describe_imported(path: &Path, imported: &Imported) -> String {
     } else {
         lights.join("; ")
     };
-    let rows = [
+    let mut rows = vec![
         (
             "meshes",
             format!(
@@ -169,7 +174,72 @@ fn describe_imported(path: &Path, imported: &Imported) -> String {
         ("cameras", cameras),
         ("lights", lights),
     ];
+    rows.extend(gltf_animation_rows(imported));
     lines(format!("{}: {format} file", path.display()), &rows, &imported.warnings)
+}
+
+/// A glTF file's `animation:` (the frames of the animation a render plays,
+/// its keys' time span, the file's other animations) and `animated:` (each
+/// channel of the one played, on a line of its own).
+fn gltf_animation_rows(imported: &Imported) -> Vec<(&'static str, String)> {
+    use crate::import::gltf_animation::Clip;
+    let Some(clips) = imported.animations.as_ref().map(|a| &a.clips) else { return Vec::new() };
+    let Some(first) = clips.first() else { return Vec::new() };
+    let name = |c: &Clip| match &c.name {
+        Some(n) => format!("animations[{}] {n:?}", c.index),
+        None => format!("animations[{}]", c.index),
+    };
+    let a = first.frames();
+    let (t0, t1) = first.time_span();
+    let mut range = format!(
+        "frames {} to {} ({} at {} fps; {} plays, keys from {} to {} s; described at frame {})",
+        a.start,
+        a.end,
+        plural(a.frame_count() as usize, "frame", "frames"),
+        num(a.fps),
+        name(first),
+        num(t0),
+        num(t1),
+        a.start
+    );
+    if clips.len() > 1 {
+        write!(range, "; also {}", clips[1..].iter().map(name).collect::<Vec<_>>().join(", ")).unwrap();
+    }
+    let mut nodes: Vec<usize> = first.channels.iter().map(|c| c.node).collect();
+    nodes.sort_unstable();
+    nodes.dedup();
+    let channels: Vec<String> = first
+        .channels
+        .iter()
+        .map(|c| {
+            let node = c.node_name.as_ref().map_or(format!("nodes[{}]", c.node), |n| format!("nodes[{}] {n:?}", c.node));
+            let t = &c.track;
+            // glTF's names for the properties.
+            let property = match t.key.as_str() {
+                "translate" => "translation",
+                "rotate" => "rotation",
+                _ => "scale",
+            };
+            let (first, last) = (t.times[0], t.times[t.times.len() - 1]);
+            format!(
+                "{node}: {property} ({}, {} at {} to {} s)",
+                t.interpolation.name(),
+                plural(t.times.len(), "key", "keys"),
+                num(first),
+                num(last)
+            )
+        })
+        .collect();
+    let animated = match channels.is_empty() {
+        true => "nothing".to_string(),
+        false => format!(
+            "{} of {}\n  {}",
+            plural(channels.len(), "channel", "channels"),
+            plural(nodes.len(), "node", "nodes"),
+            channels.join("\n  ")
+        ),
+    };
+    vec![("animation", range), ("animated", animated)]
 }
 
 /// A scene value as it would be written in a scene file (numbers trimmed).

@@ -20,6 +20,7 @@ mod errors;
 mod explain;
 mod fuzz_props;
 mod gltf;
+mod gltf_animation;
 mod golden;
 mod lights;
 mod mesh_lights;

@@ -21,7 +21,7 @@
 //! the crate's `import` would report a missing `.bin` without its JSON path,
 //! and its accessor iterators assume valid lengths (`count - 1` underflows,
 //! `debug_assert`s on strides), while every range here is checked against the
-//! buffer first. Unsupported parts (other primitive modes, textures, skins, animations, morph targets, sparse accessors'
+//! buffer first. Animations are read by [`super::gltf_animation`]. Unsupported parts (other primitive modes, textures, skins, morph targets, sparse accessors'
 //! meshes are errors) are reported once each as warnings.
 
 use std::collections::HashMap;
@@ -56,9 +56,6 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
         images: GltfImages::new(path),
     };
     let mut out = Imported::default();
-    if document.animations().next().is_some() {
-        reader.warnings.once("glTF animations ignored".to_string());
-    }
     if document.extensions_used().any(|e| e == "KHR_materials_volume") {
         reader.warnings.once("glTF KHR_materials_volume ignored: transmission is thin-walled (no refraction, no absorption)".to_string());
     }
@@ -83,9 +80,11 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
     };
     // Depth-first, children in file order, with an explicit stack so deep trees cannot overflow it.
     let mut seen = vec![false; document.nodes().len()];
-    let mut stack: Vec<(gltf::Node, Mat4, String)> =
-        roots.into_iter().rev().map(|n| (n.clone(), Mat4::IDENTITY, "scene.nodes".to_string())).collect();
-    while let Some((node, parent, via)) = stack.pop() {
+    // Each node's place in the tree is kept for the animations (`gltf_animation`).
+    let mut tree = super::gltf_animation::TreeRecorder::default();
+    let mut stack: Vec<(gltf::Node, Mat4, String, Option<usize>)> =
+        roots.into_iter().rev().map(|n| (n.clone(), Mat4::IDENTITY, "scene.nodes".to_string(), None)).collect();
+    while let Some((node, parent, via, parent_place)) = stack.pop() {
         let i = node.index();
         if std::mem::replace(&mut seen[i], true) {
             return Err(LoadError::json(
@@ -99,10 +98,13 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
         if !world.is_finite() {
             return Err(LoadError::json(path, format!("nodes[{i}]"), "the transform is not finite"));
         }
+        let place = tree.add(&node, parent_place, local);
+        let before = (out.instances.len(), out.cameras.len(), out.lights.len());
         reader.node(&node, world, &mut out)?;
+        tree.placed(place, before, &out);
         let children: Vec<gltf::Node> = node.children().collect();
         for (j, child) in children.into_iter().enumerate().rev() {
-            stack.push((child, world, format!("nodes[{i}].children[{j}]")));
+            stack.push((child, world, format!("nodes[{i}].children[{j}]"), Some(place)));
         }
     }
     // Without a scene every node is a root or below one, unless it sits on a cycle.
@@ -113,7 +115,10 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
             format!("node {i} lies on a cycle of children: glTF nodes must form trees"),
         ));
     }
-    out.warnings = reader.warnings.into_vec();
+    let mut warnings = std::mem::take(&mut reader.warnings);
+    let values = |acc: &gltf::Accessor, dims, types: &[DataType]| reader.values(acc, dims, types);
+    out.animations = super::gltf_animation::read(path, &document, tree, &values, &mut warnings)?;
+    out.warnings = warnings.into_vec();
     out.images = reader.images.into_sources();
     Ok(out)
 }

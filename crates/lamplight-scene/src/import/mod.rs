@@ -18,6 +18,7 @@ use lamplight_core::shapes::VertexAttributes;
 use crate::error::LoadError;
 
 mod gltf;
+pub mod gltf_animation;
 mod gltf_images;
 mod gltf_material;
 mod mtl;
@@ -184,6 +185,8 @@ pub struct Imported {
     pub warnings: Vec<String>,
     /// The texture images the materials use, where each came from.
     pub images: Vec<ImageSource>,
+    /// A glTF file's animations and the node tree they move ([`Imported::pose`]).
+    pub animations: Option<gltf_animation::Animations>,
 }
 
 /// Extensions [`load`] understands, lower case.

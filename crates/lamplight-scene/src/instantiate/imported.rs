@@ -52,9 +52,18 @@ pub fn load_with_warnings(path: &Path) -> Result<Built, LoadError> {
 }
 
 /// [`load_with_warnings`] with the front end's `options`; the warnings end
-/// with the note on the lights, if any ([`build_with`]).
+/// with the note on the lights, if any ([`build_with`]). An animated glTF
+/// file is built at its first frame.
 pub fn load_with(path: &Path, options: MeshOptions) -> Result<Built, LoadError> {
-    let imported = import::load(path)?;
+    load_frame(path, options, None)
+}
+
+/// [`load_with`] at frame `frame` of the file's animation (`None`: its first
+/// frame, 0; a glTF file's first animation at 24 fps: [`import::gltf_animation`]).
+/// A file without animations is the same at every frame.
+pub fn load_frame(path: &Path, options: MeshOptions, frame: Option<i64>) -> Result<Built, LoadError> {
+    let mut imported = import::load(path)?;
+    imported.pose_frame(path, frame.unwrap_or(0))?;
     let (scene, note) = build_with(path, &imported, options)?;
     let mut warnings = imported.warnings_of(path);
     warnings.extend(note);

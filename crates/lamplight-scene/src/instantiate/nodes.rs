@@ -285,6 +285,12 @@ impl<'a> Ctx<'a> {
         }
         let imported = import::load(&path).map_err(Err)?;
         self.warnings.extend(imported.warnings_of(&path));
+        if imported.animations.is_some() {
+            // Played only when the file is rendered itself (`import::gltf_animation`).
+            let note = "glTF animations are not played in a scene file's [meshes]: the nodes stand as the file places them \
+                        (render the glTF file itself to play its first animation)";
+            self.warnings.push(format!("{}: {note}", path.display()));
+        }
         let mut parts = Vec::new();
         let mut meshes: HashMap<usize, Arc<TriangleMesh>> = HashMap::new();
         for placed in &imported.instances {

@@ -197,17 +197,20 @@ impl SceneRequest {
                 .map(|scene| Built { scene, warnings: Vec::new() })
                 .map_err(|e| bad(format!("cannot build scene '{}': {e}", b.name))),
             SceneSpec::File(file) => file.build_frame(frame).map_err(|e| bad(e.to_string())),
-            SceneSpec::Mesh(path) => imported::load_with(path, self.mesh).map_err(|e| bad(e.to_string())),
+            SceneSpec::Mesh(path) => imported::load_frame(path, self.mesh, frame).map_err(|e| bad(e.to_string())),
         }
     }
 }
 
 impl SceneRequest {
-    /// The scene's `[animation]`, when it is an animated scene file.
-    pub fn animation(&self) -> Option<&crate::description::Animation> {
+    /// The scene's `[animation]`, when it is an animated scene file, or the
+    /// frames of an animated glTF file's first animation
+    /// ([`crate::import::gltf_animation::file_frames`]).
+    pub fn animation(&self) -> Option<crate::description::Animation> {
         match &self.spec {
-            SceneSpec::File(file) => file.description.animation.as_ref(),
-            _ => None,
+            SceneSpec::File(file) => file.description.animation.clone(),
+            SceneSpec::Mesh(path) => import::gltf_animation::file_frames(path),
+            SceneSpec::Builtin(_) => None,
         }
     }
 }

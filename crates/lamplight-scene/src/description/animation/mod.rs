@@ -31,7 +31,7 @@ pub mod interpolate;
 pub mod track;
 
 pub use interpolate::Interpolation;
-pub use track::{TimeUnit, Track};
+pub use track::{Shape, TimeUnit, Track};
 
 /// The largest frame number (Blender's `MAXFRAME`).
 pub const MAX_FRAME: i64 = 1_048_574;

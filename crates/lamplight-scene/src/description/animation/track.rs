@@ -77,15 +77,50 @@ impl Track {
         p.read(TRACK_PARAMS, &[], |p| read_track(p, &entry.key, &entry.key_loc))
     }
 
+    /// A track made in code (an importer's: glTF's animation channels), with
+    /// `items` written from `values` as [`Track::at`] gives values between
+    /// keys. `times` must be strictly increasing and finite, `values` (and
+    /// `tangents`, for [`Interpolation::CubicSpline`]: each key's in- and
+    /// out-tangent) one per time; the importer checks them first.
+    pub fn new(
+        key: &str,
+        unit: TimeUnit,
+        shape: Shape,
+        interpolation: Interpolation,
+        times: Vec<f64>,
+        values: Vec<[f64; 4]>,
+        tangents: Vec<([f64; 4], [f64; 4])>,
+    ) -> Track {
+        let mut track =
+            Track { key: key.to_string(), key_loc: Loc::Unknown, unit, times, interpolation, shape, values, items: Vec::new(), tangents };
+        track.items = track.values.iter().map(|&v| track.item(v)).collect();
+        track
+    }
+
     /// The value at time `t` (in the track's unit), as the static scene writes it.
     pub fn at(&self, t: f64) -> Item {
-        let (k, s) = match interpolate::segment(&self.times, t) {
-            Segment::Key(k) => return self.items[k].clone(),
-            Segment::Between { k, .. } if self.interpolation == Interpolation::Step => return self.items[k].clone(),
-            Segment::Between { k, s } => (k, s),
-        };
+        match interpolate::segment(&self.times, t) {
+            Segment::Key(k) => self.items[k].clone(),
+            Segment::Between { k, .. } if self.interpolation == Interpolation::Step => self.items[k].clone(),
+            Segment::Between { k, s } => self.item(self.between(k, s)),
+        }
+    }
+
+    /// The value at time `t` as numbers (a unit quaternion `[x, y, z, w]` for rotations).
+    pub fn value(&self, t: f64) -> [f64; 4] {
+        match interpolate::segment(&self.times, t) {
+            Segment::Key(k) => self.values[k],
+            Segment::Between { k, s } => self.between(k, s),
+        }
+    }
+
+    /// The value the fraction `s` (0 < s < 1) of the way from key `k` to key
+    /// `k + 1`, by a linear or cubic-spline track.
+    fn between(&self, k: usize, s: f64) -> [f64; 4] {
         let (a, b) = (self.values[k], self.values[k + 1]);
-        let v = match (self.interpolation, self.shape) {
+        match (self.interpolation, self.shape) {
+            // Each value holds until the next key.
+            (Interpolation::Step, _) => a,
             (Interpolation::Linear, Shape::Rotation) => interpolate::slerp(a, b, s),
             (Interpolation::Linear, _) => interpolate::lerp(a, b, s),
             (Interpolation::CubicSpline, shape) => {
@@ -97,9 +132,7 @@ impl Track {
                     v
                 }
             }
-            (Interpolation::Step, _) => unreachable!("returned above"),
-        };
-        self.item(v)
+        }
     }
 
     /// `v` as the static scene writes a value of this track.
