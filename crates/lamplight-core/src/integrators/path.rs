@@ -28,6 +28,15 @@ use crate::sampling::{Cone, PixelSampler};
 use crate::scene::{Hit, Scene, Sides};
 use crate::Error;
 
+/// What a map left of the unmapped normal `unmapped` where it turned the
+/// shading normal to `mapped` ([`Perturbed`]); `None` where it did not. Kept
+/// out of the path loop: only scenes with maps call it.
+#[cold]
+#[inline(never)]
+fn perturbation(unmapped: Vec3, mapped: Vec3, shadowing: bool) -> Option<Perturbed> {
+    (mapped != unmapped).then(|| Perturbed::new(unmapped, mapped, shadowing))
+}
+
 /// The registry's entry.
 pub const ENTRY: IntegratorEntry = IntegratorEntry {
     name: "path",
@@ -153,6 +162,7 @@ impl PathTracer {
         let p_pick = self.lights.pick_probability();
         let single_light = self.lights.count() <= 1;
         let geometric_sides = scene.settings.sides == Sides::Geometric;
+        let maps = scene.turns_normals();
         for depth in 1..=self.max_depth {
             // This vertex's light and BSDF points (dimensions 1 and 3 of its five),
             // drawn before the ray is traced: the hashing needs no hit and overlaps
@@ -219,7 +229,7 @@ impl PathTracer {
             let wo = frame.to_local(-ray.dir);
             // A normal or bump map turned the normal: Mitsuba's sides and
             // shadowing term ([`crate::materials::map_shadowing`]).
-            let perturbed = (hit.normal != unmapped).then(|| Perturbed::new(unmapped, hit.normal, material.map_shadowing));
+            let perturbed = if maps { perturbation(unmapped, hit.normal, material.map_shadowing) } else { None };
             // Every vertex owns the same five dimensions, so that every sample of a
             // pixel uses dimension k for the same decision; values a vertex does not
             // need are skipped, not computed.
