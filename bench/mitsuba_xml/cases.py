@@ -259,6 +259,7 @@ def write_assets(d):
     _surfaces.write_assets(d)
     _sdf.write_assets(d)
     _textures3.write_assets(d)
+    _rough.write_assets(d)
     with open(os.path.join(d, "included.xml"), "w") as f:
         f.write('<scene version="3.0.0">\n    <default name="inc_r" value="0.7"/>\n'
                 '    <bsdf type="diffuse" id="inc_red"><rgb name="reflectance" value="$inc_r, 0.2, 0.15"/></bsdf>\n</scene>\n')
@@ -293,3 +294,5 @@ from mitsuba_xml import cases_textures3 as _textures3  # noqa: E402  (checkerboa
 CASES += _textures3.CASES
 from mitsuba_xml import cases_aniso as _aniso  # noqa: E402  (anisotropic microfacets, issue 26)
 CASES += _aniso.CASES
+from mitsuba_xml import cases_rough as _rough  # noqa: E402  (textured roughness, normal-mapped conductors, textured thin eta)
+CASES += _rough.CASES

@@ -29,6 +29,7 @@ mod mitsuba_amplification;
 mod mitsuba_bsdfs;
 mod mitsuba_plugins;
 mod mitsuba_principled;
+mod mitsuba_rough_textures;
 mod mitsuba_sdfgrid;
 mod mitsuba_sensors;
 mod mitsuba_textures;

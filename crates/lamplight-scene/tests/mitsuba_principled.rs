@@ -147,12 +147,3 @@ fn principledthin_reads_as_the_thin_sheet() {
     assert!(!m.one_sided);
     assert!(matches!(bsdf_for(m, Vec3::ZERO, false).lobes(), [Lobe::PrincipledThin(_)]));
 }
-
-#[test]
-fn a_textured_thin_eta_is_a_warning_not_silence() {
-    // Mitsuba reads a texture there; lamplight's thin sheet has one index.
-    let (s, warnings) = read(&xml(r#"<bsdf type="principledthin"><texture type="checkerboard" name="eta"/></bsdf>"#));
-    assert_eq!(warnings, ["s.xml:3:54: bsdf \"principledthin\": eta: a texture here is not supported, ignored (1.5 is used)"]);
-    let Some(Model::PrincipledThin(p)) = &s.materials[s.objects[0].material].model else { panic!() };
-    assert_eq!(p.eta, 1.5);
-}

@@ -20,12 +20,22 @@ use super::{CameraSample, Integrator, IntegratorEntry, IntegratorSettings, RayCo
 use crate::bsdfs::{Bsdf, Frame};
 use crate::film::{Filter, FilterSampler};
 use crate::lights::LightSet;
+use crate::materials::map_shadowing::Perturbed;
 use crate::materials::{Reflection, Refraction};
 use crate::math::{Rgb, Vec3};
 use crate::ray::{offset_origin, Ray};
 use crate::sampling::{Cone, PixelSampler};
 use crate::scene::{Hit, Scene, Sides};
 use crate::Error;
+
+/// What a map left of the unmapped normal `unmapped` where it turned the
+/// shading normal to `mapped` ([`Perturbed`]); `None` where it did not. Kept
+/// out of the path loop: only scenes with maps call it.
+#[cold]
+#[inline(never)]
+fn perturbation(unmapped: Vec3, mapped: Vec3, shadowing: bool) -> Option<Perturbed> {
+    (mapped != unmapped).then(|| Perturbed::new(unmapped, mapped, shadowing))
+}
 
 /// The registry's entry.
 pub const ENTRY: IntegratorEntry = IntegratorEntry {
@@ -152,6 +162,7 @@ impl PathTracer {
         let p_pick = self.lights.pick_probability();
         let single_light = self.lights.count() <= 1;
         let geometric_sides = scene.settings.sides == Sides::Geometric;
+        let maps = scene.turns_normals();
         for depth in 1..=self.max_depth {
             // This vertex's light and BSDF points (dimensions 1 and 3 of its five),
             // drawn before the ray is traced: the hashing needs no hit and overlaps
@@ -179,6 +190,7 @@ impl PathTracer {
             } else {
                 cone.width + cone.spread * (hit.point - camera_ray.origin).length()
             };
+            let unmapped = hit.normal;
             let material = &*scene.shade(&mut hit, -ray.dir, footprint);
             trace.path_hit(scene, &hit);
             if material.emits_towards(hit.front_face) {
@@ -215,6 +227,9 @@ impl PathTracer {
             }
             let frame = scene.shading_frame(&hit, bsdf);
             let wo = frame.to_local(-ray.dir);
+            // A normal or bump map turned the normal: Mitsuba's sides and
+            // shadowing term ([`crate::materials::map_shadowing`]).
+            let perturbed = if maps { perturbation(unmapped, hit.normal, material.map_shadowing) } else { None };
             // Every vertex owns the same five dimensions, so that every sample of a
             // pixel uses dimension k for the same decision; values a vertex does not
             // need are skipped, not computed.
@@ -238,7 +253,8 @@ impl PathTracer {
                 (s, wi, offset_origin(hit.point, hit.geometric_normal, wi, hit.t, hit.error))
             });
             if let Some((u_pick, u_light)) = light_values {
-                let contribution = beta * self.sample_light(scene, &hit, bsdf, &frame, wo, u_pick, u_light, counts, trace);
+                let contribution =
+                    beta * self.sample_light(scene, &hit, bsdf, &frame, perturbed.as_ref(), wo, u_pick, u_light, counts, trace);
                 trace.nee_contribution(contribution);
                 radiance += contribution;
             }
@@ -252,6 +268,14 @@ impl PathTracer {
             if (geometric_sides && (wi.dot(hit.geometric_normal) > 0.0) != (s.wi.z > 0.0)) || s.weight == Rgb::ZERO {
                 trace.end(PathEnd::WrongSide);
                 break;
+            }
+            if let Some(p) = &perturbed {
+                let w = p.weight(wi, s.wi.z > 0.0, !geometric_sides);
+                if w == 0.0 {
+                    trace.end(PathEnd::WrongSide);
+                    break;
+                }
+                beta *= w;
             }
             beta *= s.weight;
             trace.bsdf_sample(&s, wi, beta);
@@ -281,6 +305,7 @@ impl PathTracer {
         hit: &Hit,
         bsdf: &Bsdf,
         frame: &Frame,
+        perturbed: Option<&Perturbed>,
         wo: Vec3,
         u_pick: f64,
         u: (f64, f64),
@@ -307,7 +332,10 @@ impl PathTracer {
             trace.nee_miss(NeeMiss::WrongSide);
             return Rgb::ZERO;
         }
-        let f = bsdf.f(wo, wi_local);
+        let mut f = bsdf.f(wo, wi_local);
+        if let Some(p) = perturbed {
+            f *= p.weight(wi, wi_local.z > 0.0, scene.settings.sides == Sides::Shading);
+        }
         if f == Rgb::ZERO {
             trace.nee_miss(NeeMiss::BlackBsdf);
             return Rgb::ZERO;

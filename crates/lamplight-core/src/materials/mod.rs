@@ -11,7 +11,7 @@
 //! [`Refraction`].
 
 /// A material kind's parameter table: its own rows, then the rows every
-/// surface material shares (normal map, bump map and alpha, in that order), so
+/// surface material shares (normal map, map shadowing, bump map and alpha, in that order), so
 /// that the shared rows are written once.
 macro_rules! surface_params {
     ($($own:expr),* $(,)?) => {
@@ -19,6 +19,7 @@ macro_rules! surface_params {
             $($own,)*
             $crate::materials::normal_map::NORMAL_MAP_PARAMS[0],
             $crate::materials::normal_map::NORMAL_MAP_PARAMS[1],
+            $crate::materials::map_shadowing::MAP_SHADOWING_PARAM,
             $crate::materials::bump::BUMP_PARAMS[0],
             $crate::materials::bump::BUMP_PARAMS[1],
             $crate::materials::alpha::ALPHA_PARAMS[0],
@@ -42,9 +43,10 @@ const TWO_SIDED_PARAM: crate::params::Param = crate::params::Param::new(
 );
 
 /// The end of every surface kind's build: the rows of [`surface_params`]
-/// (normal map, bump map, alpha), then [`Material::validate`].
+/// (normal map, map shadowing, bump map, alpha), then [`Material::validate`].
 fn finish_surface(mut m: Material, p: &mut crate::params::Params<'_>, textures: &Textures<'_>) -> crate::params::ParamResult<Material> {
     m.normal_map = normal_map::read(p, textures)?;
+    m.map_shadowing = map_shadowing::read(p)?;
     m.bump = bump::read(p, textures)?;
     m.alpha = alpha::read(p, textures)?;
     m.validate().map_err(|e| p.core_error(e))?;
@@ -65,6 +67,7 @@ pub mod combine;
 pub mod image;
 pub mod image_data;
 pub mod lobes;
+pub mod map_shadowing;
 pub mod normal_map;
 pub mod pbr;
 pub mod phong;
@@ -252,6 +255,9 @@ pub struct Material {
     pub normal_map: Option<Arc<NormalMap>>,
     /// A height map ([`bump`]) that turns the shading normal, applied before the normal map.
     pub bump: Option<Arc<BumpMap>>,
+    /// Whether light reaching a point whose normal a map turned is dimmed by
+    /// Mitsuba's shadowing term ([`map_shadowing`]).
+    pub map_shadowing: bool,
     /// A cut-out mask ([`alpha`]): where it is below its cutoff the surface is not there.
     pub alpha: Option<Arc<alpha::AlphaMask>>,
     /// Two materials mixed by a weight ([`blend`]): the scene shades each hit
@@ -282,6 +288,7 @@ impl Default for Material {
             pbr: None,
             normal_map: None,
             bump: None,
+            map_shadowing: false,
             alpha: None,
             blend: None,
         }

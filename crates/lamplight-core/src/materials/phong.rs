@@ -121,6 +121,7 @@ fn build(p: &mut Params<'_>, textures: &super::Textures<'_>) -> ParamResult<Mate
         pbr: None,
         normal_map: normal_map::read(p, textures)?,
         bump: super::bump::read(p, textures)?,
+        map_shadowing: super::map_shadowing::read(p)?,
         alpha: super::alpha::read(p, textures)?,
         blend: None,
     };

@@ -9,7 +9,7 @@
 //! | `anisotropic` | number or texture | 0 | 0 to 1: as `principled`'s, for both the reflection's and the transmission's roughness |
 //! | `spec_trans` | number or texture | 0 | 0 to 1: the glossy share (reflection and straight-through transmission) |
 //! | `diff_trans` | number or texture | 0 | 0 to 2: the diffuse share that is transmitted (Mitsuba's range) |
-//! | `eta` | number | 1.5 | relative index of the sheet |
+//! | `eta` | number or texture | 1.5 | relative index of the sheet (a texture is read at each hit, as Mitsuba's `eval_1`; its values are kept between [`MIN_ETA`] and [`MAX_ETA`]) |
 //! | `spec_tint` | number or texture | 0 | 0 to 1: tints the glossy reflection towards `C` |
 //! | `sheen`, `sheen_tint` | number or texture | 0, 0 | the sheen lobe's weight and its tint towards `C` |
 //! | `flatness` | number or texture | 0 | 0 to 1: blends the diffuse towards Burley's fake subsurface |
@@ -23,7 +23,7 @@
 use std::sync::Arc;
 
 use super::principled::Scalar;
-use super::textured::scalar_param;
+use super::textured::{scalar_param, Slot};
 use super::{Material, MaterialKind, Model, Texture, Textures, ToBsdf};
 use crate::bsdfs::principled_thin::{PrincipledThin, ThinParams};
 use crate::bsdfs::{Bsdf, Lobe};
@@ -40,7 +40,7 @@ pub const KIND: MaterialKind = Kind {
         Param::new("anisotropic", T::Texture, "0", "0 to 1", "anisotropy, as `principled`'s"),
         Param::new("spec_trans", T::Texture, "0", "0 to 1", "glossy share"),
         Param::new("diff_trans", T::Texture, "0", "0 to 2", "transmitted diffuse share (Mitsuba's range)"),
-        Param::new("eta", T::Number, "1.5", "> 0", "relative index of the sheet"),
+        Param::new("eta", T::ScalarTexture, "1.5", "> 0", "relative index of the sheet (a texture: read at each hit)"),
         Param::new("spec_tint", T::Texture, "0", "0 to 1", "tint of the glossy reflection towards the base colour"),
         Param::new("sheen", T::Texture, "0", "0 to 1", "weight of the sheen lobe"),
         Param::new("sheen_tint", T::Texture, "0", "0 to 1", "tint of the sheen towards the base colour"),
@@ -66,6 +66,22 @@ const SCALARS: [(&str, Scalar, f64, f64); 8] = [
     ("flatness", Scalar::Flatness, 0.0, 1.0),
 ];
 
+/// The smallest index a texture gives the sheet: Mitsuba reads any value;
+/// at 0 or below Fresnel's equations have no meaning, so the slot keeps it here
+/// (and at most [`MAX_ETA`], so that an infinite texel stays finite).
+pub const MIN_ETA: f64 = 1e-3;
+/// The largest index a texture gives the sheet.
+pub const MAX_ETA: f64 = 1e3;
+
+/// The texture slot of `eta` (Mitsuba's `principledthin` reads its `eta`
+/// texture per hit, `m_eta_thin->eval_1`).
+pub const ETA: Slot = Slot::new("principled_thin.eta", |m, v| {
+    if let Some(Model::PrincipledThin(p)) = &mut m.model {
+        // A NaN texel becomes MIN_ETA too (`clamp` would keep the NaN).
+        p.eta = if v.x.is_nan() { MIN_ETA } else { v.x.clamp(MIN_ETA, MAX_ETA) };
+    }
+});
+
 const RATES: [&str; 4] = [
     "specular_reflectance_sampling_rate",
     "specular_transmittance_sampling_rate",
@@ -84,7 +100,10 @@ fn build(p: &mut Params<'_>, textures: &Textures<'_>) -> ParamResult<Material> {
         }
         scalar.set_thin(&mut params, v);
     }
-    params.eta = super::plastic::ior(p, "eta", 1.5)?;
+    params.eta = scalar_param(p, textures, "eta", 1.5, ETA, &mut maps)?;
+    if !(params.eta.is_finite() && params.eta > 0.0) {
+        return Err(p.key_error("eta", format!("must be a positive number, got {}", params.eta)));
+    }
     for (rate, key) in params.rates.iter_mut().zip(RATES) {
         *rate = p.number_or(key, 1.0)?;
         if !(rate.is_finite() && *rate >= 0.0) {

@@ -139,7 +139,7 @@ mod tests {
     /// Slots compare by name, so no two may share one: every slot of every kind.
     #[test]
     fn every_slot_has_its_own_name() {
-        use super::super::{pbr, principled};
+        use super::super::{pbr, principled, principled_thin};
         let mut all = vec![
             Slot::KA,
             Slot::KD,
@@ -152,6 +152,7 @@ mod tests {
         ];
         all.extend([pbr::METALLIC, pbr::SPECULAR, pbr::SPECULAR_COLOR, pbr::TRANSMISSION]);
         all.extend(principled::Scalar::ALL.map(principled::slot));
+        all.push(principled_thin::ETA);
         let mut names: Vec<&str> = all.iter().map(|s| s.name()).collect();
         names.sort_unstable();
         let count = names.len();

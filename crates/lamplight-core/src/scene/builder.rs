@@ -136,6 +136,7 @@ impl SceneBuilder {
             .map(|m| m.is_constant().then(|| [surface_bsdf(m, Vec3::ZERO, false), surface_bsdf(m, Vec3::ZERO, true)]))
             .collect();
         let uses_footprints = self.materials.iter().any(Material::uses_footprint);
+        let turns_normals = self.materials.iter().any(|m| m.normal_map.is_some() || m.bump.is_some());
         let plain = self
             .materials
             .iter()
@@ -151,6 +152,7 @@ impl SceneBuilder {
         Ok(Scene {
             plain,
             uses_footprints,
+            turns_normals,
             bsdfs,
             bvh: Bvh::build_with(&boxes, Costs::OBJECTS),
             bounded,

@@ -79,6 +79,8 @@ pub struct Scene {
     bounded: Vec<PrimRef>,
     /// Some material has a trilinear texture ([`Scene::uses_footprints`]).
     uses_footprints: bool,
+    /// Some material has a normal or a bump map ([`Scene::turns_normals`]).
+    turns_normals: bool,
     /// Per material: whether [`Scene::shade`] can hand it over as it is (constant,
     /// or a colour of the point alone, and no normal map). One byte each, so the
     /// Whitted tracer's test touches no BSDF.
@@ -198,6 +200,14 @@ impl Scene {
     /// that the Whitted tracer follows its camera rays' cones.
     pub fn uses_footprints(&self) -> bool {
         self.uses_footprints
+    }
+
+    /// Whether some material turns shading normals (a normal or bump map), so
+    /// that the path tracer keeps what the map leaves of the unmapped surface
+    /// ([`crate::materials::map_shadowing`]); scenes without maps skip it.
+    #[inline]
+    pub fn turns_normals(&self) -> bool {
+        self.turns_normals
     }
 
     /// The nearest hit of one object in `(0, t_max)`, past its cut-outs.

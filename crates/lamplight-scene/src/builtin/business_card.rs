@@ -165,6 +165,7 @@ pub fn build() -> Result<Scene, Error> {
             pbr: None,
             normal_map: None,
             bump: None,
+            map_shadowing: false,
             alpha: None,
             blend: None,
         })?;

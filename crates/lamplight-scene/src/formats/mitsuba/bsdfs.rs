@@ -7,19 +7,19 @@
 //! | `diffuse` `reflectance` (0.5, colour or texture) | `color = reflectance`, `kd = 1`, `ka = ks = 0` |
 //! | none (Mitsuba's default) | diffuse 0.5; on an emitting shape diffuse 0 (black), as Mitsuba |
 //! | `conductor` `material` (`none`: a perfect mirror) or `eta`, `k` | `kd = 0`, `reflection = { type = "conductor", eta, k }` ([`super::conductors`]: Mitsuba's table, as `scalar_rgb` reduces it) |
-//! | `roughconductor` `alpha` (0.1) or `alpha_u` and `alpha_v` (numbers), `distribution` (`beckmann`) | the same with `roughness = alpha`, or `roughness_u = alpha_u`, `roughness_v = alpha_v` (along and across the surface's `dp/du`, Mitsuba's shading frame), `distribution` |
+//! | `roughconductor` `alpha` (0.1) or `alpha_u` and `alpha_v` (numbers or textures), `distribution` (`beckmann`) | the same with `roughness = alpha`, or `roughness_u = alpha_u`, `roughness_v = alpha_v` (along and across the surface's `dp/du`, Mitsuba's shading frame; a texture is evaluated at each hit), `distribution` |
 //! | `dielectric` `int_ior` (`bk7`), `ext_ior` (`air`): numbers or names | `reflection = { type = "dielectric", ior }`, `refraction = { type = "fresnel", ior }`, `ior = int_ior / ext_ior` |
-//! | `roughdielectric` `alpha` or `alpha_u` and `alpha_v`, `distribution` | the same with `roughness = alpha` or `roughness_u`, `roughness_v`, `distribution` |
+//! | `roughdielectric` `alpha` or `alpha_u` and `alpha_v` (numbers or textures), `distribution` | the same with `roughness = alpha` or `roughness_u`, `roughness_v`, `distribution` |
 //! | `plastic` `diffuse_reflectance` (0.5), `specular_reflectance` (1), `int_ior` (`polypropylene`), `ext_ior` (`air`), `nonlinear` | `plastic` of the same parameters |
-//! | `roughplastic` (the same and `alpha`, `distribution`) | `plastic` with `roughness = alpha`, `distribution` |
+//! | `roughplastic` (the same and `alpha` (a number: a texture is an error), `distribution`) | `plastic` with `roughness = alpha`, `distribution` |
 //! | `thindielectric` `int_ior` (`bk7`), `ext_ior` (`air`) | `thin_dielectric` |
 //! | `twosided` | its nested BSDF; every other one-sided BSDF gets `sided = "front"` ([`super::sided`]) |
 //! | `null` | `alpha = 0`: cut out |
 //! | `mask` `opacity` | the nested BSDF with `alpha = opacity`, `alpha_mode = "blend"` (there with probability `opacity`, as Mitsuba) |
-//! | `normalmap` `normalmap` (a bitmap) | the nested BSDF with `normal_map` |
-//! | `bumpmap` (`scale`, one nested height `<texture>`) | the nested BSDF with `bump`, `bump_scale` |
+//! | `normalmap` `normalmap` (a bitmap), `use_shadowing_function` (true), `flip_invalid_normals` | the nested BSDF with `normal_map`, `map_shadowing` |
+//! | `bumpmap` (`scale`, one nested height `<texture>`, `use_shadowing_function`, `flip_invalid_normals`) | the nested BSDF with `bump`, `bump_scale`, `map_shadowing` |
 //! | `principled` (every parameter, `anisotropic` a number or texture; `eta`, `specular` numbers: a texture there is an error, as in Mitsuba) | `principled` of the same parameters (Mitsuba's own BSDF, `crates/lamplight-core/src/bsdfs/principled.rs`) |
-//! | `principledthin` (every parameter, `anisotropic` a number or texture; `eta` a number: a texture there is a warning, 1.5 is used) | `principled_thin` of the same parameters (`crates/lamplight-core/src/bsdfs/principled_thin.rs`) |
+//! | `principledthin` (every parameter, `anisotropic` and `eta` numbers or textures) | `principled_thin` of the same parameters (`crates/lamplight-core/src/bsdfs/principled_thin.rs`) |
 //!
 //! | `blendbsdf` `weight` (0.5, number or texture), two nested BSDFs | `blend` with `a`, `b` the nested BSDFs as material tables, each one-sided as Mitsuba's (both sides inside a `twosided`) |
 
@@ -27,6 +27,7 @@ use lamplight_core::math::Rgb;
 use lamplight_core::params::{Entry, Item, Loc, ParamError, Value};
 
 use super::properties::{Plugin, PropValue};
+use super::rough::rough;
 use super::textures::{colour_or_texture, number, number_or_texture, scalar_texture, texture};
 use super::xml::El;
 use super::{conductors::CONDUCTORS, entry, num, table, table_of, text, vec3, Ctx};
@@ -139,8 +140,10 @@ fn nested<'a>(ctx: &mut Ctx<'a>, p: &Plugin<'a>) -> Result<Vec<Entry>, ParamErro
 const PRINCIPLED_SCALARS: [&str; 10] =
     ["roughness", "anisotropic", "metallic", "spec_trans", "spec_tint", "sheen", "sheen_tint", "clearcoat", "clearcoat_gloss", "flatness"];
 
-/// The texturable scalars of `principledthin` (lamplight's `principled_thin`, the same names).
-const THIN_SCALARS: [&str; 8] = ["roughness", "anisotropic", "spec_trans", "diff_trans", "spec_tint", "sheen", "sheen_tint", "flatness"];
+/// The texturable scalars of `principledthin` (lamplight's `principled_thin`,
+/// the same names); `eta` too, read per hit as Mitsuba's `eval_1` reads it.
+const THIN_SCALARS: [&str; 9] =
+    ["roughness", "anisotropic", "spec_trans", "diff_trans", "eta", "spec_tint", "sheen", "sheen_tint", "flatness"];
 
 /// `principledthin`: lamplight's `principled_thin` material of the same parameters.
 fn principled_thin<'a>(ctx: &mut Ctx<'a>, p: &mut Plugin<'a>, loc: &Loc) -> Result<Vec<Entry>, ParamError> {
@@ -151,12 +154,7 @@ fn principled_thin<'a>(ctx: &mut Ctx<'a>, p: &mut Plugin<'a>, loc: &Loc) -> Resu
             e.push(entry(key, item));
         }
     }
-    // Mitsuba takes a texture here; lamplight's `principled_thin` has a number.
-    if let Some(o) = p.object("eta") {
-        ctx.warn(&o.loc, format!("{}: eta: a texture here is not supported, ignored (1.5 is used)", p.label));
-    }
     for key in [
-        "eta",
         "specular_reflectance_sampling_rate",
         "specular_transmittance_sampling_rate",
         "diffuse_reflectance_sampling_rate",
@@ -219,51 +217,14 @@ fn ior(p: &mut Plugin<'_>, key: &str, default: &str) -> Result<(f64, Loc), Param
     }
 }
 
-/// The `roughness` (or `roughness_u`, `roughness_v`) and `distribution` entries
-/// of a rough BSDF: `alpha`, or with `anisotropic` (`roughconductor`,
-/// `roughdielectric`) the pair `alpha_u`, `alpha_v` ([`alpha`]), and
-/// `distribution` (Mitsuba's default `beckmann`).
-fn rough(p: &mut Plugin<'_>, anisotropic: bool) -> Result<Vec<Entry>, ParamError> {
-    let (name, dloc) = p.string("distribution")?.unwrap_or(("beckmann".into(), p.el.loc.clone()));
-    if name != "ggx" && name != "beckmann" {
-        return Err(err(&dloc, format!("{}: distribution: expected beckmann or ggx, got \"{name}\"", p.label)));
-    }
-    let mut e = alpha(p, anisotropic)?;
-    e.push(entry("distribution", text(&name, &dloc)));
-    Ok(e)
-}
-
-/// The roughness of a rough BSDF as Mitsuba's `MicrofacetDistribution` reads
-/// it: `alpha` (0.1), or `alpha_u` and `alpha_v` together and never with
-/// `alpha` (Mitsuba's rule). An isotropic pair is lamplight's `roughness`, an
-/// anisotropic one `roughness_u` (along `dp/du`) and `roughness_v`. Numbers only.
-fn alpha(p: &mut Plugin<'_>, anisotropic: bool) -> Result<Vec<Entry>, ParamError> {
-    // Only the sampling changes with it, not the image.
-    let _ = p.boolean("sample_visible")?;
-    let checked = |p: &mut Plugin<'_>, key: &str| {
-        let (a, loc) = number(p, key, 0.1)?;
-        if (0.0..=1.0).contains(&a) {
-            Ok((a, loc))
-        } else {
-            Err(err(&loc, format!("{}: {key}: must be between 0 and 1, got {a}", p.label)))
-        }
-    };
-    if anisotropic && (p.has("alpha_u") || p.has("alpha_v")) {
-        if p.has("alpha") {
-            return Err(err(&p.el.loc, format!("{}: give either alpha or alpha_u and alpha_v, not both (as Mitsuba)", p.label)));
-        }
-        if !(p.has("alpha_u") && p.has("alpha_v")) {
-            return Err(err(&p.el.loc, format!("{}: give both alpha_u and alpha_v (as Mitsuba)", p.label)));
-        }
-        let (u, uloc) = checked(p, "alpha_u")?;
-        let (v, vloc) = checked(p, "alpha_v")?;
-        if u == v {
-            return Ok(vec![entry("roughness", num(u, &uloc))]);
-        }
-        return Ok(vec![entry("roughness_u", num(u, &uloc)), entry("roughness_v", num(v, &vloc))]);
-    }
-    let (a, loc) = checked(p, "alpha")?;
-    Ok(vec![entry("roughness", num(a, &loc))])
+/// The `map_shadowing` entry of a `normalmap` or `bumpmap`: Mitsuba's
+/// `use_shadowing_function` (on by default). Its `flip_invalid_normals` is read
+/// and has no counterpart: lamplight bends a mapped normal that faces away
+/// from the viewer back towards it ([`lamplight_core::materials::normal_map::facing`]).
+fn map_shadowing(p: &mut Plugin<'_>) -> Result<Vec<Entry>, ParamError> {
+    let _ = p.boolean("flip_invalid_normals")?;
+    let (on, loc) = p.boolean("use_shadowing_function")?.unwrap_or((true, p.el.loc.clone()));
+    Ok(vec![entry("map_shadowing", super::boolean(on, &loc))])
 }
 
 /// Warns when the optional `key` (a colour factor lamplight does not have) is not 1.
@@ -355,7 +316,7 @@ pub fn material<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<Vec<Entry>, ParamEr
                 table_of(vec![("type", text("conductor", &eloc)), ("eta", vec3(eta, &eloc)), ("k", vec3(k, &eloc))], &eloc),
             ));
             if p.kind == "roughconductor" {
-                e.extend(rough(&mut p, true)?);
+                e.extend(rough(ctx, &mut p, true, true)?);
             }
             e
         }
@@ -369,7 +330,7 @@ pub fn material<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<Vec<Entry>, ParamEr
             e.push(entry("reflection", table_of(vec![("type", text("dielectric", &iloc)), ("ior", num(eta, &iloc))], &iloc)));
             e.push(entry("refraction", table_of(vec![("type", text("fresnel", &iloc)), ("ior", num(eta, &iloc))], &iloc)));
             if p.kind == "roughdielectric" {
-                e.extend(rough(&mut p, true)?);
+                e.extend(rough(ctx, &mut p, true, true)?);
             }
             e
         }
@@ -397,7 +358,7 @@ pub fn material<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<Vec<Entry>, ParamEr
             }
             if p.kind == "roughplastic" {
                 // Mitsuba's `roughplastic` is isotropic: `alpha` only.
-                e.extend(rough(&mut p, false)?);
+                e.extend(rough(ctx, &mut p, false, false)?);
                 if e.iter().any(|x| x.key == "roughness" && matches!(x.item.value, Value::Number(a) if a == 0.0)) {
                     // lamplight's roughness 0 is the smooth coating; Mitsuba clamps to 1e-4.
                     e.retain(|x| x.key != "roughness");
@@ -447,7 +408,9 @@ pub fn material<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<Vec<Entry>, ParamEr
                 tt.entries.push(entry("color_space", text("linear", &t.loc)));
             }
             let mut e = nested(ctx, &p)?;
+            e.retain(|x| x.key != "normal_map" && x.key != "map_shadowing");
             e.push(entry("normal_map", map));
+            e.extend(map_shadowing(&mut p)?);
             e
         }
         "bumpmap" => {
@@ -470,9 +433,10 @@ pub fn material<'a>(ctx: &mut Ctx<'a>, el: &'a El) -> Result<Vec<Entry>, ParamEr
             }
             let (scale, sloc) = number(&mut p, "scale", 1.0)?;
             let mut e = nested(ctx, &p)?;
-            e.retain(|x| x.key != "bump" && x.key != "bump_scale");
+            e.retain(|x| x.key != "bump" && x.key != "bump_scale" && x.key != "map_shadowing");
             e.push(entry("bump", map));
             e.push(entry("bump_scale", num(scale, &sloc)));
+            e.extend(map_shadowing(&mut p)?);
             e
         }
         "principled" => principled(ctx, &mut p, &loc)?,

@@ -39,6 +39,7 @@ pub mod conductors;
 pub mod emitters;
 pub mod integrators;
 pub mod properties;
+mod rough;
 pub mod sensors;
 pub mod serialized;
 pub mod shapes;
