@@ -340,6 +340,8 @@ pub enum ExrLayer {
     Normal,
     /// The image before denoising (with --denoise).
     Noisy,
+    /// Emitters and sky seen directly: the part --denoise leaves as it is.
+    Emitted,
 }
 
 /// A render request, checked and with every default resolved.
@@ -450,6 +452,7 @@ impl RenderArgs {
                     ExrLayer::Albedo => Layer::Albedo,
                     ExrLayer::Normal => Layer::Normal,
                     ExrLayer::Noisy => Layer::Noisy,
+                    ExrLayer::Emitted => Layer::Emitted,
                 })
                 .collect(),
             denoise: self.denoise.then_some(true),
