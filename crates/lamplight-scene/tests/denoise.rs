@@ -95,7 +95,8 @@ fn a_denoised_cornell_box_is_closer_to_the_converged_one() {
 fn the_kept_device_and_filter_give_the_same_bytes_every_call() {
     let Some(denoiser) = denoise::for_test("the_kept_device_and_filter_give_the_same_bytes_every_call") else { return };
     let r = cornell(24, 4, 3, false, vec![Layer::Albedo, Layer::Normal, Layer::Emitted]);
-    let guides = Guides { albedo: Some(layer(&r, Layer::Albedo)), normal: Some(layer(&r, Layer::Normal)), emitted: Some(layer(&r, Layer::Emitted)) };
+    let guides =
+        Guides { albedo: Some(layer(&r, Layer::Albedo)), normal: Some(layer(&r, Layer::Normal)), emitted: Some(layer(&r, Layer::Emitted)) };
     let first = denoiser.denoise(&r.image, guides, 2).unwrap();
     let small = cornell(8, 4, 3, false, vec![]).image;
     let small_first = denoiser.denoise(&small, Guides::default(), 2).unwrap();

@@ -122,7 +122,8 @@ impl Denoiser {
             let path = if given.is_dir() { given.join(LIBRARY) } else { given };
             // A path, never a name for the loader to search: `lib.so` means ./lib.so.
             let path = std::path::absolute(&path).unwrap_or(path);
-            return open(&path).map_err(|e| DenoiseError(format!("{ENV_VAR}={}: cannot load Open Image Denoise: {e}", Path::new(&value).display())));
+            return open(&path)
+                .map_err(|e| DenoiseError(format!("{ENV_VAR}={}: cannot load Open Image Denoise: {e}", Path::new(&value).display())));
         }
         // The Pythons are asked (a process each) only when the hints fail.
         let asked = std::iter::once(()).flat_map(|()| python_pyoidn_folders());

@@ -185,7 +185,12 @@ impl Oidn {
 
     /// The kept filter for `shape` on a device of `threads` threads, made (and
     /// committed) when none fits, moved to the front of the kept ones.
-    unsafe fn prepare<'k>(&self, kept: &'k mut Option<Kept>, threads: usize, shape: (usize, usize, bool, bool)) -> Result<&'k mut KeptFilter, String> {
+    unsafe fn prepare<'k>(
+        &self,
+        kept: &'k mut Option<Kept>,
+        threads: usize,
+        shape: (usize, usize, bool, bool),
+    ) -> Result<&'k mut KeptFilter, String> {
         if kept.as_ref().is_some_and(|k| k.threads != threads) {
             self.release(kept.take());
         }
@@ -220,7 +225,14 @@ impl Oidn {
             let buffer = |given: bool| if given { vec![0.0f32; floats] } else { Vec::new() };
             k.filters.insert(
                 0,
-                KeptFilter { filter, shape, color: buffer(true), albedo: buffer(with_albedo), normal: buffer(with_normal), output: buffer(true) },
+                KeptFilter {
+                    filter,
+                    shape,
+                    color: buffer(true),
+                    albedo: buffer(with_albedo),
+                    normal: buffer(with_normal),
+                    output: buffer(true),
+                },
             );
             let f = &mut k.filters[0];
             let image = |name: &CStr, data: *mut f32| {
