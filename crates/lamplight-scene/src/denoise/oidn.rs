@@ -158,7 +158,7 @@ impl Oidn {
         // library reads the inputs and writes the output during the execution,
         // which returns before they are read here.
         let result = unsafe {
-            self.prepare(&mut *kept, threads, shape).map(|f| {
+            self.prepare(&mut kept, threads, shape).map(|f| {
                 f.color.copy_from_slice(color);
                 if let Some(albedo) = albedo {
                     f.albedo.copy_from_slice(albedo);
