@@ -38,7 +38,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from ._dask_tasks import _LOCAL_ONLY, _TASK_DEFAULTS, _digest, _options, _worker_scene, send, shipped, tile_windows
+from ._dask_tasks import FEATURE_LAYERS, _LOCAL_ONLY, _TASK_DEFAULTS, _digest, _options, _worker_scene, send, shipped, tile_windows, with_features
 from ._lamplight import Scene, check_video, denoise_array
 from ._render import SceneLike, as_scene, progress_reporter, with_settings
 from .frames import Frames, frame_list, frame_paths, make_video
@@ -108,16 +108,16 @@ def _tile_task(payload, digest: str, camera: Optional[dict], options: Dict[str, 
     if camera is not None:
         scene = scene.with_camera(camera)
     array, _, layers = render_array(scene, window=window, progress=None, **options)
-    return (array, layers["albedo"], layers["normal"]) if "albedo" in layers else array
+    return with_features(array, layers)
 
 
 def _stitch_task(size: Tuple[int, int], windows, denoise: bool, transfer: str, path: Optional[str], *parts):
     """A frame from its tiles, denoised whole (a tile's edge would be a seam), then written."""
     width, height = size
-    out = np.empty((3 if denoise else 1, height, width, 3), dtype=np.float32)
+    out = np.empty((1 + len(FEATURE_LAYERS) if denoise else 1, height, width, 3), dtype=np.float32)
     for (x0, y0, w, h), part in zip(windows, parts):
         out[:, y0 : y0 + h, x0 : x0 + w] = part
-    image = denoise_array(out[0], out[1], out[2], 0) if denoise else out[0]
+    image = denoise_array(out[0], out[1], out[2], 0, out[3]) if denoise else out[0]
     if path is None:
         return image
     _save(image, transfer, path)
@@ -268,7 +268,7 @@ def _run(client, todo: List[_Frame], scenes: List[Scene], paths, overwrite, came
     denoise = settings.get("denoise")
     denoise = bool(first.defaults().get("denoise")) if denoise is None else denoise
     per_frame = _tiles_per_frame(tiles, client, len(todo), first)
-    tiled = dict(settings, denoise=False, exr_layers=["albedo", "normal"]) if denoise and per_frame > 1 else settings
+    tiled = dict(settings, denoise=False, exr_layers=list(FEATURE_LAYERS)) if denoise and per_frame > 1 else settings
     options = {id(s): _options(s, tiled) for s in scenes}
     if camera_path and settings.get("width") is None and settings.get("height") is None:
         options = {k: options[id(scenes[0])] for k in options}  # a camera path keeps one size: the scene's

@@ -169,12 +169,22 @@ def _worker_scene(payload: Union[Scene, _Shipped], digest: str) -> Scene:
     return scene
 
 
+#: The layers a tile brings back for denoising the assembled image: the
+#: denoiser's guides, and the emitted part it leaves as rendered.
+FEATURE_LAYERS = ("albedo", "normal", "emitted")
+
+
+def with_features(array, layers):
+    """A tile's image, with the :data:`FEATURE_LAYERS` after it when they were
+    asked for (a denoised render)."""
+    return (array, *(layers[name] for name in FEATURE_LAYERS)) if "albedo" in layers else array
+
+
 def _render_tile(payload, digest: str, options: Dict[str, Any], window: Tuple[int, int, int, int]):
     from ._lamplight import render_array
 
     array, _, layers = render_array(_worker_scene(payload, digest), window=window, progress=None, **options)
-    # With the denoiser's features asked for (a denoised render), they come back too.
-    return (array, layers["albedo"], layers["normal"]) if "albedo" in layers else array
+    return with_features(array, layers)
 
 
 #: Settings a split render cannot honour: each tile is a window of its own,

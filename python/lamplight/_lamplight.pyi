@@ -252,10 +252,12 @@ def denoise_array(
     albedo: Optional[npt.NDArray[np.float32]] = None,
     normal: Optional[npt.NDArray[np.float32]] = None,
     threads: Optional[int] = None,
+    emitted: Optional[npt.NDArray[np.float32]] = None,
 ) -> npt.NDArray[np.float32]:
     """``color`` denoised by Open Image Denoise's HDR ``RT`` filter, guided by
-    ``albedo`` and ``normal`` of the same shape when given; ``ValueError`` when
-    the library is missing."""
+    ``albedo`` and ``normal`` of the same shape when given; with ``emitted``
+    only ``color - emitted`` is filtered and ``emitted`` added back;
+    ``ValueError`` when the library is missing."""
 
 def frame_range(text: str, name: str) -> Tuple[int, int]:
     """``(start, end)`` of ``"1-48"`` or ``"7"``, as ``--frames`` reads it; the ``ValueError`` names ``name``."""

@@ -35,6 +35,7 @@ from ._dask_tasks import (  # noqa: F401  (the workers' cache and payloads, name
     _LOCAL_ONLY,
     _TASK_DEFAULTS,
     _WORKER_SCENES,
+    FEATURE_LAYERS,
     Tiles,
     _digest,
     _gather,
@@ -86,7 +87,7 @@ def render(
     denoise = settings.get("denoise")
     denoise = bool(s.defaults().get("denoise")) if denoise is None else denoise
     if denoise:
-        settings = dict(settings, denoise=False, exr_layers=["albedo", "normal"])
+        settings = dict(settings, denoise=False, exr_layers=list(FEATURE_LAYERS))
     options = _options(s, settings)
     if s.defaults().get("crop") is not None:
         # Not yet: tiles of a crop did not reproduce the local render's bytes (unresolved).
@@ -101,14 +102,14 @@ def render(
         for i, w in enumerate(windows)
     ]
     parts = _gather(client, futures, progress, "lamplight (dask)", "tile")
-    planes = 3 if denoise else 1
+    planes = 1 + len(FEATURE_LAYERS) if denoise else 1
     out = np.empty((planes, options["height"], options["width"], 3), dtype=np.float32)
     for (x0, y0, w, h), part in zip(windows, parts):
         out[:, y0 : y0 + h, x0 : x0 + w] = part
     image = Image(out[0])
     if denoise:
         # Here, with this machine's cores, as the local render does.
-        image = Image(denoise_array(out[0], out[1], out[2], 0))
+        image = Image(denoise_array(out[0], out[1], out[2], 0, out[3]))
     image.stats = {"tiles": len(windows)}
     return image
 

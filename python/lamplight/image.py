@@ -20,7 +20,7 @@ class Image(np.ndarray):
     ``.png``/``.ppm`` (8-bit sRGB) or ``.exr`` (linear float, exact).
     ``stats`` holds the render's statistics when it came from a render, and
     ``layers`` the extra layers it asked for (``exr_layers``): ``"variance"``,
-    ``"albedo"``, ``"normal"`` and ``"noisy"`` ``(H, W, 3)`` and ``"samples"``
+    ``"albedo"``, ``"normal"``, ``"noisy"`` and ``"emitted"`` ``(H, W, 3)`` and ``"samples"``
     ``(H, W)``, which :meth:`save` writes beside
     the image into an ``.exr`` file. Slices and views keep both; the result of
     arithmetic (``image * 2``, ``a - b``) is new data and has neither.
@@ -98,19 +98,22 @@ def read_exr(path: PathLike) -> Image:
     return Image(_lamplight.read_exr(os.fspath(path)))
 
 
-def denoise(image, albedo=None, normal=None, threads: Optional[int] = None) -> Image:
+def denoise(image, albedo=None, normal=None, threads: Optional[int] = None, emitted=None) -> Image:
     """``image`` (an array ``(H, W, 3)`` of linear radiance) denoised by Intel
     Open Image Denoise's HDR ``RT`` filter, as ``lamplight render --denoise``
     does, guided by ``albedo`` and ``normal`` arrays of the same shape when
     given. For an :class:`Image` of a render they default to its
     ``layers["albedo"]`` and ``layers["normal"]`` (``exr_layers=["albedo",
-    "normal"]``). Needs the library: ``pip install lamplight[denoise]`` (the
+    "normal"]``). ``emitted`` (default ``layers["emitted"]``), the emitters and
+    sky the camera sees directly, is not filtered but added back, as
+    ``render(..., denoise=True)`` does. Needs the library: ``pip install lamplight[denoise]`` (the
     ``pyoidn`` package) or ``LAMPLIGHT_OIDN`` naming it; ``ValueError`` says so
     when it is missing."""
     layers = getattr(image, "layers", {}) or {}
     albedo = layers.get("albedo") if albedo is None else albedo
     normal = layers.get("normal") if normal is None else normal
-    aux = [None if a is None else _plain(a) for a in (albedo, normal)]
-    out = Image(_lamplight.denoise_array(_plain(image), aux[0], aux[1], threads))
+    emitted = layers.get("emitted") if emitted is None else emitted
+    aux = [None if a is None else _plain(a) for a in (albedo, normal, emitted)]
+    out = Image(_lamplight.denoise_array(_plain(image), aux[0], aux[1], threads, aux[2]))
     out.stats = dict(getattr(image, "stats", {}) or {})
     return out

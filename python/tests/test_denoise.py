@@ -39,12 +39,27 @@ def test_denoised_render_equals_the_command_line_and_lamplight_denoise(cli, tmp_
     denoised = lamplight.render("cornell-box", progress=False, denoise=True, **ARGS)
     assert denoised.tobytes() == lamplight.read_exr(out).tobytes()
     assert denoised.stats["denoise_seconds"] > 0
-    noisy = lamplight.render("cornell-box", progress=False, exr_layers=["albedo", "normal"], **ARGS)
+    noisy = lamplight.render("cornell-box", progress=False, exr_layers=["albedo", "normal", "emitted"], **ARGS)
     assert noisy.tobytes() != denoised.tobytes()
-    # The image's own layers guide lamplight.denoise by default.
+    # The image's own layers guide lamplight.denoise by default; the light seen
+    # directly (its `emitted` layer) is added back, not filtered.
     assert lamplight.denoise(noisy, threads=2).tobytes() == denoised.tobytes()
+    emitted = noisy.layers["emitted"]
+    assert emitted.max() > 1 and (denoised >= emitted).all()
     with pytest.raises(ValueError, match=r"^albedo is 2x2, the image 24x24$"):
         lamplight.denoise(noisy, albedo=np.zeros((2, 2, 3), dtype=np.float32))
+
+
+def test_the_kept_denoiser_gives_the_same_bytes_call_after_call(oidn):
+    # The device and filter are kept between calls (the filter per image size):
+    # a call after another of another size, or after many, changes nothing.
+    noisy = lamplight.render("cornell-box", progress=False, exr_layers=["albedo", "normal", "emitted"], **ARGS)
+    first = lamplight.denoise(noisy, threads=2).tobytes()
+    corner = [np.ascontiguousarray(a[:8, :12]) for a in (noisy, *(noisy.layers[k] for k in ("albedo", "normal", "emitted")))]
+    small = lamplight.denoise(*corner[:3], threads=2, emitted=corner[3])
+    assert small.shape == (8, 12, 3)
+    assert [lamplight.denoise(noisy, threads=2).tobytes() for _ in range(3)] == [first] * 3
+    assert lamplight.denoise(*corner[:3], threads=2, emitted=corner[3]).tobytes() == small.tobytes()
 
 
 def test_a_missing_library_is_a_value_error_that_says_where_to_look(tmp_path):

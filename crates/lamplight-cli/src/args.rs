@@ -344,6 +344,8 @@ pub enum ExrLayer {
     Normal,
     /// The image before denoising (with --denoise).
     Noisy,
+    /// Emitters and sky seen directly: the part --denoise leaves as it is.
+    Emitted,
 }
 
 /// A render request, checked and with every default resolved.
@@ -454,6 +456,7 @@ impl RenderArgs {
                     ExrLayer::Albedo => Layer::Albedo,
                     ExrLayer::Normal => Layer::Normal,
                     ExrLayer::Noisy => Layer::Noisy,
+                    ExrLayer::Emitted => Layer::Emitted,
                 })
                 .collect(),
             denoise: self.denoise.then_some(true),

@@ -14,7 +14,7 @@ use crate::args::{count, UsageError};
 /// `lamplight denoise` arguments.
 #[derive(Debug, Args)]
 pub struct DenoiseArgs {
-    /// The noisy image: an .exr file of linear radiance (R, G, B), with `albedo` and `normal` layers if it has them.
+    /// The noisy image: an .exr file of linear radiance (R, G, B), with `albedo`, `normal` and `emitted` layers if it has them.
     #[arg(value_name = "IN.exr")]
     pub input: PathBuf,
     /// The denoised image; the extension picks the format (.exr keeps linear radiance).
@@ -40,11 +40,13 @@ pub fn denoise_command(args: &DenoiseArgs) -> anyhow::Result<()> {
     let seconds = start.elapsed().as_secs_f64();
     image_io::write_image(&args.output, &image)?;
     if !args.quiet {
-        let guides: Vec<&str> = [("albedo", input.albedo.is_some()), ("normal", input.normal.is_some())]
-            .iter()
-            .filter_map(|(name, present)| present.then_some(*name))
-            .collect();
-        let with = if guides.is_empty() { "the image alone".to_string() } else { guides.join(" and ") };
+        let present = [("albedo", input.albedo.is_some()), ("normal", input.normal.is_some()), ("emitted", input.emitted.is_some())];
+        let guides: Vec<&str> = present.iter().filter_map(|(name, present)| present.then_some(*name)).collect();
+        let with = match guides.split_last() {
+            None => "the image alone".to_string(),
+            Some((last, [])) => last.to_string(),
+            Some((last, rest)) => format!("{} and {last}", rest.join(", ")),
+        };
         eprintln!("{}x{} denoised with {with} in {seconds:.2} s -> {}", image.width, image.height, args.output.display());
     }
     Ok(())

@@ -107,7 +107,7 @@ fn denoised_renders_keep_their_layers_and_denoise_again_to_the_same_image() {
         assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     };
     render(&["--denoise", "--exr-layers", "albedo,normal,noisy", "-o", "denoised.exr"]);
-    render(&["--exr-layers", "albedo,normal", "-o", "noisy.exr"]);
+    render(&["--exr-layers", "albedo,normal,emitted", "-o", "noisy.exr"]);
     let (_, _, channels) = read_exr_channels(&d.join("denoised.exr")).unwrap();
     let names: Vec<&str> = channels.iter().map(|(n, _)| n.as_str()).collect();
     assert_eq!(
@@ -119,10 +119,12 @@ fn denoised_renders_keep_their_layers_and_denoise_again_to_the_same_image() {
     for c in ["R", "G", "B"] {
         assert_eq!(get(&channels, &format!("noisy.{c}")), get(&plain, c), "the noisy layer is the render without --denoise");
     }
-    // `lamplight denoise` on the noisy file with its layers gives the render's denoised image.
+    // `lamplight denoise` on the noisy file with its layers gives the render's
+    // denoised image (its `emitted` layer, the light seen directly, left out of the filter).
     let out = lamplight(d, &["denoise", "noisy.exr", "-o", "again.exr", "--threads", "2"], &[]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    assert!(String::from_utf8_lossy(&out.stderr).starts_with("32x32 denoised with albedo and normal in "));
+    let told = String::from_utf8_lossy(&out.stderr);
+    assert!(told.starts_with("32x32 denoised with albedo, normal and emitted in "), "{told}");
     let (again, denoised) = (read_exr(&d.join("again.exr")).unwrap(), read_exr(&d.join("denoised.exr")).unwrap());
     assert_eq!(again.pixels, denoised.pixels);
     assert_ne!(get(&channels, "R"), get(&plain, "R"), "denoising changed the image");

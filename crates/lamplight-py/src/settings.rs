@@ -18,7 +18,7 @@
 //! | `window` | `(x0, y0, w, h)` | four whole numbers |
 //! | `time_limit`, `clamp`, `noise_threshold` | `float` | a number |
 //! | `environment` | path | an `.exr` or `.hdr` file |
-//! | `exr_layers` | list of `str` | `"variance"`, `"samples"`, `"albedo"`, `"normal"`, `"noisy"` |
+//! | `exr_layers` | list of `str` | `"variance"`, `"samples"`, `"albedo"`, `"normal"`, `"noisy"`, `"emitted"` |
 //! | `denoise` | `bool` | Open Image Denoise on the image |
 //! | `antialias` | `bool` or `float` | on, off, or a threshold |
 //! | `memory_budget` | `int` or `str` | bytes, or a size such as `"4G"` ([`lamplight_scene::memory`]) |

@@ -1,4 +1,5 @@
-//! The denoiser's feature layers, `albedo` and `normal`, from a pass of their own.
+//! The denoiser's feature layers, `albedo` and `normal`, and the radiance it
+//! must leave alone, `emitted`, from a pass of their own.
 //!
 //! A denoiser (Open Image Denoise's `RT` filter) keeps edges and textures
 //! sharp when it is given, beside the noisy image, the colour of the surfaces
@@ -24,6 +25,18 @@
 //! - a ray that leaves the scene gives albedo 0 and normal 0; a surface that
 //!   only emits gives albedo 0 and its normal; a delta chain that reaches the
 //!   depth limit ends with the last delta surface's reflectance and normal.
+//!
+//! `emitted` is what the integrators add where the camera ray itself ends: an
+//! emitter's emission seen directly, or the sky (environment or background)
+//! where the ray leaves the scene; 0 where it hits anything else. It is the
+//! very value both integrators add for that sample at depth 1 (same ray, same
+//! shading footprint), so `image - emitted` is the rest of the light, the part
+//! with Monte Carlo noise. The denoiser filters only that and adds `emitted`
+//! back (the split of Cycles' `path_radiance_split_denoising`, whose "clean"
+//! part was emission and background at the first bounce): `emitted` has no
+//! noise but the pixel's coverage, which stratification keeps small, while a
+//! denoiser moves the pixels at a light's edge, whose radiance is many times
+//! that of their neighbours (`BENCHMARKS.md`, "Denoising").
 //!
 //! Each pixel averages its samples in index order (the film's count for it:
 //! adaptive renders too) with the filter weight, the samples' random numbers
@@ -62,6 +75,24 @@ pub struct Features {
     pub albedo: Image,
     /// World-space shading normal there, averaged (not renormalized), in `[-1, 1]`.
     pub normal: Image,
+    /// Radiance of the emitters and the sky the camera rays see directly
+    /// (see the module doc): the part of the image a denoiser leaves alone.
+    pub emitted: Image,
+}
+
+/// What one camera sample gives each feature layer.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SampleFeatures {
+    /// Reflectance at the first non-specular hit.
+    pub albedo: Rgb,
+    /// Shading normal there.
+    pub normal: Vec3,
+    /// Radiance the integrators add where the camera ray ends on an emitter or leaves the scene.
+    pub emitted: Rgb,
+}
+
+impl SampleFeatures {
+    const NOTHING: SampleFeatures = SampleFeatures { albedo: Rgb::ZERO, normal: Vec3::ZERO, emitted: Rgb::ZERO };
 }
 
 /// The feature layers of the render of `scene` with `options` that made
@@ -81,12 +112,14 @@ pub fn render_features(scene: &Scene, options: &RenderOptions, film: &Film) -> R
     let pixels = window.width as usize * window.height as usize;
     let mut albedo = Image::new(window.width, window.height);
     let mut normal = Image::new(window.width, window.height);
+    let mut emitted = Image::new(window.width, window.height);
     let pool = thread_pool(options.threads)?;
     let row = window.width as usize;
+    let rows = albedo.pixels.par_chunks_mut(row).zip(normal.pixels.par_chunks_mut(row)).zip(emitted.pixels.par_chunks_mut(row));
     pool.install(|| {
-        albedo.pixels.par_chunks_mut(row).zip(normal.pixels.par_chunks_mut(row)).enumerate().for_each(|(j, (albedo, normal))| {
+        rows.enumerate().for_each(|(j, ((albedo, normal), emitted))| {
             let fy = j as u32;
-            for (i, (a, n)) in albedo.iter_mut().zip(normal.iter_mut()).enumerate() {
+            for (i, ((a, n), e)) in albedo.iter_mut().zip(normal.iter_mut()).zip(emitted.iter_mut()).enumerate() {
                 let fx = i as u32;
                 let count = film.samples_at(fx, fy);
                 // A one-pass integrator stratifies over the pixel's own count:
@@ -94,41 +127,53 @@ pub fn render_features(scene: &Scene, options: &RenderOptions, film: &Film) -> R
                 // that many samples ([`crate::Antialias`]).
                 let view = if one_pass { View { spp: count.max(1), ..view } } else { view };
                 let (x, y) = (window.x0 + fx, window.y0 + fy);
-                let (sum_a, sum_n) = pixel_features(integrator.as_ref(), &view, max_depth, (x, y), count);
+                let sum = pixel_features(integrator.as_ref(), &view, max_depth, (x, y), count);
                 let inv = if count > 0 { 1.0 / count as f64 } else { 0.0 };
-                *a = (sum_a * inv).clamp(Rgb::ZERO, Rgb::ONE).as_vec3().to_array();
-                *n = (sum_n * inv).clamp(Vec3::splat(-1.0), Vec3::ONE).as_vec3().to_array();
+                *a = (sum.albedo * inv).clamp(Rgb::ZERO, Rgb::ONE).as_vec3().to_array();
+                *n = (sum.normal * inv).clamp(Vec3::splat(-1.0), Vec3::ONE).as_vec3().to_array();
+                // The film's mean is its sum divided by its count in f64, then f32: the same here.
+                *e = (sum.emitted / count.max(1) as f64).as_vec3().to_array();
             }
         });
     });
     debug_assert_eq!(albedo.pixels.len(), pixels);
-    Ok(Features { albedo, normal })
+    Ok(Features { albedo, normal, emitted })
 }
 
-/// The sums over samples `0..count` of pixel `(x, y)` of albedo and normal,
-/// each weighted by its sample's filter weight.
-fn pixel_features(integrator: &dyn Integrator, view: &View, max_depth: u32, (x, y): (u32, u32), count: u32) -> (Rgb, Vec3) {
-    let (mut albedo, mut normal) = (Rgb::ZERO, Vec3::ZERO);
+/// The sums over samples `0..count` of pixel `(x, y)` of each feature, each
+/// sample weighted by its filter weight; `emitted` kept as the film keeps a
+/// sample ([`crate::film::kept`]: the render's clamp, nothing non-finite).
+fn pixel_features(integrator: &dyn Integrator, view: &View, max_depth: u32, (x, y): (u32, u32), count: u32) -> SampleFeatures {
+    let mut sum = SampleFeatures::NOTHING;
     for index in 0..count {
         let camera = integrator.camera_sample(view, x, y, index);
         let mut rng = Rng::for_sample(view.seed ^ FEATURE_SEED, view.pixel_index(x, y), index as u64);
-        let (a, n) = sample_features(view.scene, &camera, max_depth, &mut rng);
-        albedo += a * camera.weight;
-        normal += n * camera.weight;
+        let f = sample_features(view.scene, &camera, max_depth, &mut rng);
+        sum.albedo += f.albedo * camera.weight;
+        sum.normal += f.normal * camera.weight;
+        sum.emitted += crate::film::kept(f.emitted * camera.weight, view.clamp).unwrap_or(Rgb::ZERO);
     }
-    (albedo, normal)
+    sum
 }
 
-/// Albedo and normal of one camera sample: delta surfaces followed to the
-/// first diffuse or glossy hit (see the module doc).
-pub fn sample_features(scene: &Scene, camera: &CameraSample, max_depth: u32, rng: &mut Rng) -> (Rgb, Vec3) {
+/// Albedo and normal of one camera sample, delta surfaces followed to the
+/// first diffuse or glossy hit, and the emission or sky its camera ray sees
+/// (see the module doc).
+pub fn sample_features(scene: &Scene, camera: &CameraSample, max_depth: u32, rng: &mut Rng) -> SampleFeatures {
     let mut ray = camera.ray;
     let mut throughput = Rgb::ONE;
+    let mut emitted = Rgb::ZERO;
     for depth in 1..=max_depth.max(1) {
         // Mitsuba's `hide_emitters`, as the integrators see it.
         let hidden = depth == 1 && scene.settings.hide_emitters;
         let found = if hidden { scene.first_camera_hit(&ray) } else { scene.first_intersect(&ray, f64::INFINITY) };
-        let Some(mut hit) = found else { return (Rgb::ZERO, Vec3::ZERO) };
+        let Some(mut hit) = found else {
+            // The sky both integrators add for a camera ray that leaves the scene.
+            if depth == 1 && !hidden {
+                emitted = scene.settings.environment.as_ref().map_or(scene.settings.background, |env| env.radiance(ray.dir));
+            }
+            return SampleFeatures { emitted, ..SampleFeatures::NOTHING };
+        };
         // The footprint the integrators filter textures over (the path tracer's rule).
         let footprint = if depth == 1 {
             camera.cone.width + camera.cone.spread * hit.t
@@ -136,20 +181,26 @@ pub fn sample_features(scene: &Scene, camera: &CameraSample, max_depth: u32, rng
             camera.cone.width + camera.cone.spread * (hit.point - camera.ray.origin).length()
         };
         let material = &*scene.shade(&mut hit, -ray.dir, footprint);
+        let emits = material.emits_towards(hit.front_face);
+        if depth == 1 && emits {
+            // The emission both integrators add at the camera ray's hit (weight 1).
+            emitted = material.emission;
+        }
         let bsdf: &Bsdf = &scene.bsdf(&hit, material);
+        let normal = hit.normal;
         // An emitter's pixels are its emission, not reflected light: albedo 0
         // marks them, so the denoiser keeps the edge of a light against a
         // ceiling of its own colour and normal.
-        if bsdf.is_black() || material.emits_towards(hit.front_face) {
-            return (Rgb::ZERO, hit.normal);
+        if bsdf.is_black() || emits {
+            return SampleFeatures { albedo: Rgb::ZERO, normal, emitted };
         }
         let frame = scene.shading_frame(&hit, bsdf);
         let wo = frame.to_local(-ray.dir);
         if bsdf.has_smooth_part() || depth == max_depth {
-            return (throughput * reflectance(bsdf, wo, rng), hit.normal);
+            return SampleFeatures { albedo: throughput * reflectance(bsdf, wo, rng), normal, emitted };
         }
         let Some(s) = bsdf.sample(wo, rng.uniform(), (rng.uniform(), rng.uniform())) else {
-            return (Rgb::ZERO, hit.normal);
+            return SampleFeatures { albedo: Rgb::ZERO, normal, emitted };
         };
         // The power the bounce carries: a refraction's weight holds the
         // radiance factor 1 / eta^2, which is not reflectance.
@@ -157,7 +208,7 @@ pub fn sample_features(scene: &Scene, camera: &CameraSample, max_depth: u32, rng
         let wi = frame.to_world(s.wi);
         ray = Ray { origin: offset_origin(hit.point, hit.geometric_normal, wi, hit.t, hit.error), dir: wi };
     }
-    (Rgb::ZERO, Vec3::ZERO)
+    SampleFeatures { emitted, ..SampleFeatures::NOTHING }
 }
 
 /// The directional-hemispherical reflectance of `bsdf` seen from `wo`
@@ -259,6 +310,40 @@ mod tests {
                 render_features(&scene, &options, &film).unwrap()
             };
             assert_eq!(features(1), features(2), "{integrator}, adaptive");
+        }
+    }
+
+    /// `emitted` is, sample for sample, what the integrators add where the
+    /// camera ray ends. A path tracer of depth 1 sees emitters and sky only:
+    /// its render is `emitted` bit for bit (a lamp, a lit grey floor, the sky).
+    /// The Whitted integrator's render of the same scene with a black floor
+    /// (no ambient, nothing reflected) is too.
+    #[test]
+    fn emitted_is_what_the_camera_rays_see_of_emitters_and_sky() {
+        let scene = |floor: Rgb| {
+            let camera = Perspective::look_at(Vec3::new(0.0, 0.5, 4.0), Vec3::ZERO, Vec3::Y, Fov::VerticalDeg(60.0)).unwrap();
+            let mut b = SceneBuilder::new(camera);
+            b.settings.background = Rgb::new(0.2, 0.3, 0.9);
+            let floor = b.material(Material::plastic(floor, 0.0, 1.0, 0.0, 1.0)).unwrap();
+            b.object(Plane::new(Vec3::new(0.0, -1.0, 0.0), Vec3::Y).unwrap(), floor).unwrap();
+            let mut lamp = Material::plastic(Rgb::ZERO, 0.0, 0.0, 0.0, 1.0);
+            lamp.emission = Rgb::new(18.0, 12.0, 6.0);
+            let lamp = b.material(lamp).unwrap();
+            b.object(crate::shapes::Sphere::new(Vec3::new(0.3, 0.2, 0.0), 0.7).unwrap(), lamp).unwrap();
+            b.build().unwrap()
+        };
+        for (integrator, floor, max_depth) in [("path", Rgb::splat(0.6), Some(1)), ("whitted", Rgb::ZERO, None)] {
+            let scene = scene(floor);
+            let options = RenderOptions { width: 16, height: 12, spp: 5, integrator: integrator.parse().unwrap(), ..Default::default() };
+            let (film, _) = crate::render(&scene, &options, &RenderControl::default()).unwrap();
+            let emitted = render_features(&scene, &options, &film).unwrap().emitted;
+            let seeing = RenderOptions { max_depth, ..options.clone() };
+            let (seen, _) = crate::render(&scene, &seeing, &RenderControl::default()).unwrap();
+            assert_eq!(emitted, seen.mean(), "{integrator}");
+            let lamp = emitted.pixels.iter().filter(|p| **p == [18.0, 12.0, 6.0]).count();
+            let sky = emitted.pixels.iter().filter(|p| **p == [0.2, 0.3, 0.9]).count();
+            let floor = emitted.pixels.iter().filter(|p| **p == [0.0; 3]).count();
+            assert!(lamp > 0 && sky > 0 && floor > 0, "{integrator}: lamp {lamp}, sky {sky}, floor {floor} pixels");
         }
     }
 

@@ -11,6 +11,7 @@
 //! | image | none (`R`, `G`, `B`), `combined`, `image` | `R G B` |
 //! | albedo | `albedo` (lamplight, Mitsuba's `aov`), `denoising albedo` (Cycles), `diffcol` | `R G B` |
 //! | normal | `normal` (lamplight, Cycles), `denoising normal` (Cycles), `sh_normal`, `nn` (Mitsuba), `n` | `X Y Z` or `R G B` |
+//! | emitted | `emitted` (lamplight: emitters and sky seen directly, not filtered but added back) | `R G B` |
 //!
 //! A single-channel image (`Y`) is read as grey.
 
@@ -18,12 +19,13 @@ use std::path::Path;
 
 use lamplight_core::film::Image;
 
-use super::{DenoiseError, Denoiser};
+use super::{DenoiseError, Denoiser, Guides};
 use crate::exr_layers::{read_exr_channels, Channels};
 
 const IMAGE_LAYERS: [&str; 3] = ["", "combined", "image"];
 const ALBEDO_LAYERS: [&str; 3] = ["albedo", "denoising albedo", "diffcol"];
 const NORMAL_LAYERS: [&str; 5] = ["normal", "denoising normal", "sh_normal", "nn", "n"];
+const EMITTED_LAYERS: [&str; 1] = ["emitted"];
 
 /// What a file gives the denoiser.
 #[derive(Clone, Debug, PartialEq)]
@@ -34,6 +36,8 @@ pub struct DenoiseInput {
     pub albedo: Option<Image>,
     /// Its normal layer, if the file has one.
     pub normal: Option<Image>,
+    /// Its emitted layer (lamplight's), if the file has one.
+    pub emitted: Option<Image>,
 }
 
 /// Reads the image and its feature layers from the `.exr` file `path`.
@@ -45,7 +49,8 @@ pub fn read_denoise_input(path: &Path) -> Result<DenoiseInput, DenoiseError> {
     })?;
     let albedo = find_layer(&channels, &ALBEDO_LAYERS, &[["R", "G", "B"]], (width, height));
     let normal = find_layer(&channels, &NORMAL_LAYERS, &[["X", "Y", "Z"], ["R", "G", "B"]], (width, height));
-    Ok(DenoiseInput { image, albedo, normal })
+    let emitted = find_layer(&channels, &EMITTED_LAYERS, &[["R", "G", "B"]], (width, height));
+    Ok(DenoiseInput { image, albedo, normal, emitted })
 }
 
 impl DenoiseInput {
@@ -55,7 +60,8 @@ impl DenoiseInput {
     pub fn denoise(&self, denoiser: &Denoiser, threads: usize) -> Result<Image, DenoiseError> {
         let albedo = self.albedo.as_ref().map(|a| clamped(a, 0.0, 1.0));
         let normal = self.normal.as_ref().map(|n| clamped(n, -1.0, 1.0));
-        denoiser.denoise(&self.image, albedo.as_ref(), normal.as_ref(), threads)
+        let guides = Guides { albedo: albedo.as_ref(), normal: normal.as_ref(), emitted: self.emitted.as_ref() };
+        denoiser.denoise(&self.image, guides, threads)
     }
 }
 

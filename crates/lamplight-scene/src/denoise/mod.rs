@@ -24,8 +24,25 @@
 //!    where it is (`importlib.util.find_spec`, which imports nothing).
 //! 3. The system's loader paths (`LD_LIBRARY_PATH`, `/usr/lib`, ...), as an
 //!    installed OIDN is found.
+//!
+//! A library, once loaded, stays for the process's life and is shared by
+//! every later [`Denoiser::load`] that finds it at the same path, with the
+//! device and filter it keeps between calls (`denoise/oidn.rs`: made once,
+//! reused while the image's size is the same, one call at a time).
+//!
+//! **What is filtered.** The image less its `emitted` part, when the render
+//! gives one ([`lamplight_core::Features::emitted`]: emitters and sky seen
+//! directly, which have no Monte Carlo noise), and that part is added back
+//! after; the HDR filter never sees a light's edge, where it moved pixels of
+//! radiance 18 by up to 2 (`BENCHMARKS.md`, "Denoising"). The filter runs in
+//! HDR mode with its own exposure (`inputScale` unset: OIDN scales by the
+//! image's own average), and without `cleanAux`: the features are noise-free
+//! on Lambertian surfaces but estimated (2 samples) on others, and OIDN's
+//! manual warns that noisy features with `cleanAux` leave their noise in the
+//! output.
 
 use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex, PoisonError};
 
 use lamplight_core::film::Image;
 
@@ -72,7 +89,21 @@ pub fn missing_message() -> String {
 
 /// Open Image Denoise, loaded.
 pub struct Denoiser {
-    oidn: oidn::Oidn,
+    oidn: Arc<oidn::Oidn>,
+}
+
+/// Every library this process has loaded, by the path it was loaded from (see the module doc).
+static LOADED: Mutex<Vec<Arc<oidn::Oidn>>> = Mutex::new(Vec::new());
+
+/// The library at `path`: the one loaded before from there, else loaded now.
+fn open(path: &Path) -> Result<Denoiser, String> {
+    let mut loaded = LOADED.lock().unwrap_or_else(PoisonError::into_inner);
+    if let Some(oidn) = loaded.iter().find(|o| o.path == path) {
+        return Ok(Denoiser { oidn: Arc::clone(oidn) });
+    }
+    let oidn = Arc::new(oidn::Oidn::load(path)?);
+    loaded.push(Arc::clone(&oidn));
+    Ok(Denoiser { oidn })
 }
 
 impl std::fmt::Debug for Denoiser {
@@ -91,8 +122,7 @@ impl Denoiser {
             let path = if given.is_dir() { given.join(LIBRARY) } else { given };
             // A path, never a name for the loader to search: `lib.so` means ./lib.so.
             let path = std::path::absolute(&path).unwrap_or(path);
-            return oidn::Oidn::load(&path)
-                .map(|oidn| Denoiser { oidn })
+            return open(&path)
                 .map_err(|e| DenoiseError(format!("{ENV_VAR}={}: cannot load Open Image Denoise: {e}", Path::new(&value).display())));
         }
         // The Pythons are asked (a process each) only when the hints fail.
@@ -100,12 +130,12 @@ impl Denoiser {
         for folder in hints.iter().cloned().chain(asked) {
             let path = folder.join(LIBRARY);
             if path.is_file() {
-                if let Ok(oidn) = oidn::Oidn::load(&path) {
-                    return Ok(Denoiser { oidn });
+                if let Ok(denoiser) = open(&path) {
+                    return Ok(denoiser);
                 }
             }
         }
-        oidn::Oidn::load(Path::new(LIBRARY)).map(|oidn| Denoiser { oidn }).map_err(|_| DenoiseError(missing_message()))
+        open(Path::new(LIBRARY)).map_err(|_| DenoiseError(missing_message()))
     }
 
     /// Where the library was loaded from.
@@ -115,27 +145,58 @@ impl Denoiser {
 
     /// `color` denoised by the HDR `RT` filter, guided by `albedo` and `normal`
     /// (each in its range: albedo `[0, 1]`, normal `[-1, 1]`) when given, on
-    /// `threads` threads (0: all cores). Negative and non-finite values of
-    /// `color`, which a filter with negative lobes can leave and the HDR filter
-    /// does not take, are read as 0.
-    pub fn denoise(&self, color: &Image, albedo: Option<&Image>, normal: Option<&Image>, threads: usize) -> Result<Image, DenoiseError> {
+    /// `threads` threads (0: all cores). With `emitted`, the part of `color`
+    /// that has no noise (emitters and sky seen directly), only `color -
+    /// emitted` is filtered and `emitted` added back (see the module doc).
+    /// Negative and non-finite values, which a filter with negative lobes can
+    /// leave and the HDR filter does not take, are read as 0.
+    pub fn denoise(&self, color: &Image, guides: Guides<'_>, threads: usize) -> Result<Image, DenoiseError> {
         let size = (color.width, color.height);
-        for (name, image) in [("albedo", albedo), ("normal", normal)] {
+        let Guides { albedo, normal, emitted } = guides;
+        for (name, image) in [("albedo", albedo), ("normal", normal), ("emitted", emitted)] {
             if let Some(image) = image.filter(|i| (i.width, i.height) != size) {
                 return Err(DenoiseError(format!("the {name} layer is {}x{}, the image {}x{}", image.width, image.height, size.0, size.1)));
             }
         }
-        let beauty: Vec<f32> = color.pixels.as_flattened().iter().map(|&v| if v.is_finite() && v > 0.0 { v } else { 0.0 }).collect();
+        let plain = |v: f32| if v.is_finite() && v > 0.0 { v } else { 0.0 };
+        let color = color.pixels.as_flattened();
+        let emitted: Option<Vec<f32>> = emitted.map(|e| e.pixels.as_flattened().iter().map(|&v| plain(v)).collect());
+        let beauty: Vec<f32> = match &emitted {
+            Some(e) => color.iter().zip(e).map(|(&c, &e)| plain(plain(c) - e)).collect(),
+            None => color.iter().map(|&v| plain(v)).collect(),
+        };
         fn flat(image: Option<&Image>) -> Option<&[f32]> {
             image.map(|i| i.pixels.as_flattened())
         }
-        let dims = (color.width as usize, color.height as usize);
-        let out = self
+        let dims = (size.0 as usize, size.1 as usize);
+        let mut out = self
             .oidn
             .filter_rt(dims, &beauty, flat(albedo), flat(normal), threads)
             .map_err(|e| DenoiseError(format!("Open Image Denoise ({}): {e}", self.oidn.path.display())))?;
+        if let Some(e) = &emitted {
+            out.iter_mut().zip(e).for_each(|(o, &e)| *o = plain(*o) + e);
+        }
         let pixels = out.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect();
-        Ok(Image { width: color.width, height: color.height, pixels })
+        Ok(Image { width: size.0, height: size.1, pixels })
+    }
+}
+
+/// What guides [`Denoiser::denoise`] beside the image, each of its size when given.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Guides<'a> {
+    /// The albedo feature, in `[0, 1]`.
+    pub albedo: Option<&'a Image>,
+    /// The normal feature, in `[-1, 1]`.
+    pub normal: Option<&'a Image>,
+    /// The noise-free part of the image that is not filtered but added back
+    /// ([`lamplight_core::Features::emitted`]).
+    pub emitted: Option<&'a Image>,
+}
+
+impl<'a> Guides<'a> {
+    /// All three from a render's feature pass.
+    pub fn of(features: &'a lamplight_core::Features) -> Guides<'a> {
+        Guides { albedo: Some(&features.albedo), normal: Some(&features.normal), emitted: Some(&features.emitted) }
     }
 }
 

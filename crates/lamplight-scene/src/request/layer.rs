@@ -18,14 +18,17 @@ pub enum Layer {
     Normal,
     /// The image before denoising (`noisy.R/G/B`), with `--denoise`.
     Noisy,
+    /// The radiance of emitters and sky seen directly (`emitted.R/G/B`,
+    /// [`lamplight_core::Features::emitted`]): the part the denoiser leaves alone.
+    Emitted,
 }
 
 impl Layer {
     /// The layers' names, as `--exr-layers` and Python take them.
-    pub const NAMES: [&'static str; 5] = ["variance", "samples", "albedo", "normal", "noisy"];
+    pub const NAMES: [&'static str; 6] = ["variance", "samples", "albedo", "normal", "noisy", "emitted"];
 
     /// Every layer, in the order of [`Layer::NAMES`].
-    const ALL: [Layer; 5] = [Layer::Variance, Layer::Samples, Layer::Albedo, Layer::Normal, Layer::Noisy];
+    const ALL: [Layer; 6] = [Layer::Variance, Layer::Samples, Layer::Albedo, Layer::Normal, Layer::Noisy, Layer::Emitted];
 
     /// The layer's name, the prefix of its channel names.
     pub fn name(self) -> &'static str {
@@ -39,7 +42,7 @@ impl Layer {
 
     /// Whether the layer comes from the feature pass ([`lamplight_core::render_features`]).
     pub fn is_feature(self) -> bool {
-        matches!(self, Layer::Albedo | Layer::Normal)
+        matches!(self, Layer::Albedo | Layer::Normal | Layer::Emitted)
     }
 
     /// The layer's channels in an `.exr` file, from its image (`samples`: one

@@ -265,7 +265,7 @@ pub struct Request {
     pub window: Option<(u32, u32, u32, u32)>,
     /// An environment map (`.exr`, `.hdr`) lighting the scene.
     pub environment: Option<PathBuf>,
-    /// Extra layers (variance, samples, albedo, normal, noisy).
+    /// Extra layers (variance, samples, albedo, normal, noisy, emitted).
     pub layers: Vec<Layer>,
     /// Denoise the image with Open Image Denoise ([`crate::denoise`]); `None`: as the scene says.
     pub denoise: Option<bool>,

@@ -81,7 +81,7 @@ impl Job {
             let start = std::time::Instant::now();
             let f = features.as_ref().expect("made for the denoiser");
             let clean = denoiser
-                .denoise(&image, Some(&f.albedo), Some(&f.normal), self.options.threads)
+                .denoise(&image, crate::denoise::Guides::of(f), self.options.threads)
                 .map_err(|e| lamplight_core::Error::Render(e.0))?;
             denoise_time = Some(start.elapsed());
             noisy = Some(std::mem::replace(&mut image, clean));
@@ -99,6 +99,7 @@ impl Job {
                     }
                     Layer::Albedo => features.as_ref().expect("made for its layer").albedo.clone(),
                     Layer::Normal => features.as_ref().expect("made for its layer").normal.clone(),
+                    Layer::Emitted => features.as_ref().expect("made for its layer").emitted.clone(),
                     // Asked only with a denoiser (checked when resolved).
                     Layer::Noisy => noisy.take().unwrap_or_else(|| image.clone()),
                 };

@@ -12,7 +12,7 @@ fn a_misspelt_scene_or_layer_names_the_nearest() {
     assert!(err.starts_with("unknown scene \"sphere\" (did you mean 'spheres'? built-in scenes: luxo, "), "{err}");
     assert_eq!(
         "varience".parse::<Layer>().unwrap_err(),
-        "unknown layer \"varience\" (did you mean 'variance'? layers: variance, samples, albedo, normal, noisy)"
+        "unknown layer \"varience\" (did you mean 'variance'? layers: variance, samples, albedo, normal, noisy, emitted)"
     );
 }
 
