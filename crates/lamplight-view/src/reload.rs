@@ -52,7 +52,7 @@ pub fn build(scene: &Arc<SceneRequest>, request: &Request, naming: Naming) -> Re
     let mut warnings = built.warnings;
     // Lights move with the frames: the warnings are this frame's.
     warnings.extend(job.light_warnings(&built.scene));
-    let mut loaded = Loaded::new(built.scene, scene.defaults.clone(), warnings);
+    let mut loaded = Loaded::new(built.scene, scene.defaults, warnings);
     loaded.source = Some(scene.clone());
     loaded.animation = animation;
     loaded.frame = request.frame;

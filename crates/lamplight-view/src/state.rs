@@ -88,17 +88,8 @@ impl App {
     ) -> Arc<App> {
         let loaded = Arc::new(loaded);
         let probed = probe(&loaded, &request);
-        let view = View {
-            loaded,
-            probed,
-            error: None,
-            camera: None,
-            request,
-            playing: false,
-            frame_error: false,
-            generation: 0,
-            reloads: 0,
-        };
+        let view =
+            View { loaded, probed, error: None, camera: None, request, playing: false, frame_error: false, generation: 0, reloads: 0 };
         let app = Arc::new(App {
             token,
             root,

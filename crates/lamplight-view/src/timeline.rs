@@ -216,7 +216,10 @@ mod tests {
         let a = turntable();
         assert_eq!(requested_frame(Some(&a), &json!(13)), Ok(13));
         assert_eq!(requested_frame(Some(&a), &json!(48)), Ok(48));
-        assert_eq!(requested_frame(Some(&a), &json!(49)), Err("frame must be a frame of the scene's animation, from 1 to 48, got 49".into()));
+        assert_eq!(
+            requested_frame(Some(&a), &json!(49)),
+            Err("frame must be a frame of the scene's animation, from 1 to 48, got 49".into())
+        );
         assert_eq!(requested_frame(Some(&a), &json!(0)), Err("frame must be a frame of the scene's animation, from 1 to 48, got 0".into()));
         assert_eq!(requested_frame(Some(&a), &json!(-1)), Err("frame must be a frame number from 0 to 1048574, got -1".into()));
         assert_eq!(requested_frame(Some(&a), &json!(1.5)), Err("frame must be a whole number, got 1.5".into()));
