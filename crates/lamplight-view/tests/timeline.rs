@@ -226,3 +226,21 @@ fn pause_stops_play_and_refines_the_frame_shown() {
     assert_eq!(state(&viewer)["playing"], false);
     final_frame(&viewer, 5);
 }
+
+#[test]
+fn an_animated_gltf_file_has_a_timeline_too() {
+    // Khronos' BoxAnimated: frames 0 to 90 at 24 fps (docs/animation.md, "glTF animations").
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("../lamplight-scene/tests/data/gltf/BoxAnimated/BoxAnimated.gltf");
+    let file = file.display().to_string();
+    let viewer = start(&file, 32);
+    let animation = state(&viewer)["animation"].clone();
+    assert_eq!((animation["start"].clone(), animation["fps"].clone()), (json!(0), json!(24.0)));
+    let end = animation["end"].as_i64().unwrap();
+    assert_eq!(
+        send(&viewer, json!({ "type": "frame", "frame": end + 1 })),
+        Some(format!("frame must be a frame of the scene's animation, from 0 to {end}, got {}", end + 1))
+    );
+    assert_eq!(send(&viewer, json!({ "type": "frame", "frame": 12 })), None);
+    let twelve = final_frame(&viewer, 12);
+    assert!(twelve.image.pixels == rendered(&file, 12, 32).pixels, "frame 12 differs from render's");
+}
