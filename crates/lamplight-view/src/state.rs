@@ -162,10 +162,12 @@ impl App {
         view.generation += 1;
         let wanted =
             Arc::new(Wanted { generation: view.generation, loaded: view.loaded.clone(), camera: view.camera, job, preview: view.playing });
+        // The state first: a frame of this generation (a small one renders in
+        // microseconds) never goes out before the state that announces it.
+        self.publish_state(view);
         if let Some(r) = self.renderer.lock().unwrap_or_else(|p| p.into_inner()).as_ref() {
             r.submit(wanted);
         }
-        self.publish_state(view);
         Ok(())
     }
 

@@ -21,8 +21,7 @@
 //!   from the last frame starts again at the first. Pausing refines the
 //!   frame shown in full.
 
-use std::sync::mpsc::{self, Receiver, RecvTimeoutError, Sender};
-use std::sync::{Mutex, Weak};
+use std::sync::{Arc, Condvar, Mutex, MutexGuard, Weak};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
@@ -56,65 +55,81 @@ pub fn animation_json(animation: Option<&Animation>) -> Value {
     }
 }
 
-/// What the timeline's thread is told.
-enum Command {
-    /// Show this frame (checked), in full.
-    Seek(i64),
-    /// Step through the frames.
-    Play,
-    /// Stop stepping.
-    Pause,
-    /// A frame of this generation was shown (or failed): the next step may start.
-    Shown(u64),
+/// What the page wished last, for the timeline's thread: one slot, not a
+/// queue, so a page that sends frames faster than they build costs nothing
+/// (the renderer's slot does the same for cameras).
+#[derive(Default)]
+struct Wish {
+    /// The newest frame asked for, not yet built.
+    seek: Option<i64>,
+    /// Play (`true`) or pause (`false`), asked after `seek`.
+    play: Option<bool>,
+    /// The newest generation shown (or failed).
+    shown: u64,
+    /// The viewer is stopping.
+    stop: bool,
+}
+
+struct Shared {
+    wish: Mutex<Wish>,
+    wake: Condvar,
+}
+
+impl Shared {
+    fn lock(&self) -> MutexGuard<'_, Wish> {
+        self.wish.lock().unwrap_or_else(|p| p.into_inner())
+    }
+
+    fn change(&self, f: impl FnOnce(&mut Wish)) {
+        f(&mut self.lock());
+        self.wake.notify_one();
+    }
 }
 
 /// The timeline's thread.
 pub struct Timeline {
-    commands: Mutex<Option<Sender<Command>>>,
+    shared: Arc<Shared>,
     thread: Mutex<Option<JoinHandle<()>>>,
 }
 
 impl Timeline {
     /// Starts the thread for `app` (it holds it weakly, so dropping the app ends it).
     pub fn start(app: Weak<App>) -> Timeline {
-        let (tx, rx) = mpsc::channel();
+        let shared = Arc::new(Shared { wish: Mutex::default(), wake: Condvar::new() });
+        let worker = shared.clone();
         let thread = std::thread::Builder::new()
             .name("lamplight-view-timeline".into())
-            .spawn(move || run(&app, &rx))
+            .spawn(move || run(&app, &worker))
             .expect("the operating system refused a thread");
-        Timeline { commands: Mutex::new(Some(tx)), thread: Mutex::new(Some(thread)) }
+        Timeline { shared, thread: Mutex::new(Some(thread)) }
     }
 
-    fn send(&self, command: Command) {
-        if let Some(tx) = self.commands.lock().unwrap_or_else(|p| p.into_inner()).as_ref() {
-            // A thread that ended has nothing left to do with it.
-            let _ = tx.send(command);
-        }
-    }
-
-    /// Shows `frame` next (the newest wins).
+    /// Shows `frame` next (the newest wins); pauses play.
     pub fn seek(&self, frame: i64) {
-        self.send(Command::Seek(frame));
+        self.shared.change(|w| {
+            w.seek = Some(frame);
+            w.play = None;
+        });
     }
 
     /// Starts stepping.
     pub fn play(&self) {
-        self.send(Command::Play);
+        self.shared.change(|w| w.play = Some(true));
     }
 
     /// Stops stepping.
     pub fn pause(&self) {
-        self.send(Command::Pause);
+        self.shared.change(|w| w.play = Some(false));
     }
 
     /// A frame of `generation` is on show (called from the render thread).
     pub fn shown(&self, generation: u64) {
-        self.send(Command::Shown(generation));
+        self.shared.change(|w| w.shown = w.shown.max(generation));
     }
 
     /// Ends the thread and waits for it (a build in flight finishes first).
     pub fn stop(&self) {
-        self.commands.lock().unwrap_or_else(|p| p.into_inner()).take();
+        self.shared.change(|w| w.stop = true);
         let thread = self.thread.lock().unwrap_or_else(|p| p.into_inner()).take();
         if let Some(thread) = thread {
             if thread.thread().id() != std::thread::current().id() {
@@ -130,52 +145,52 @@ impl Drop for Timeline {
     }
 }
 
-fn run(app: &Weak<App>, commands: &Receiver<Command>) {
+fn run(app: &Weak<App>, shared: &Shared) {
     let mut playing = false;
     // The generation of the frame play waits to see shown before the next step.
     let mut waiting_for: Option<u64> = None;
     let mut next_step = Instant::now();
     let mut from_start = false;
     loop {
-        let first = if playing && waiting_for.is_none() {
-            match commands.recv_timeout(next_step.saturating_duration_since(Instant::now())) {
-                Ok(c) => Some(c),
-                Err(RecvTimeoutError::Timeout) => None,
-                Err(RecvTimeoutError::Disconnected) => return,
-            }
-        } else {
-            match commands.recv() {
-                Ok(c) => Some(c),
-                Err(_) => return,
-            }
-        };
-        // Everything waiting at once: of the frames asked for, the newest wins.
-        let mut seek = None;
-        for command in first.into_iter().chain(commands.try_iter()) {
-            match command {
-                Command::Seek(frame) => {
-                    seek = Some(frame);
-                    playing = false;
+        let (seek, play) = {
+            let mut w = shared.lock();
+            loop {
+                if w.stop {
+                    return;
                 }
-                Command::Play => {
-                    playing = true;
+                if waiting_for.is_some_and(|g| w.shown >= g) {
                     waiting_for = None;
-                    next_step = Instant::now();
-                    from_start = true;
                 }
-                Command::Pause => playing = false,
-                Command::Shown(generation) => {
-                    if waiting_for.is_some_and(|w| generation >= w) {
-                        waiting_for = None;
+                if w.seek.is_some() || w.play.is_some() {
+                    break;
+                }
+                if playing && waiting_for.is_none() {
+                    let now = Instant::now();
+                    if now >= next_step {
+                        break;
                     }
+                    w = shared.wake.wait_timeout(w, next_step - now).unwrap_or_else(|p| p.into_inner()).0;
+                } else {
+                    w = shared.wake.wait(w).unwrap_or_else(|p| p.into_inner());
                 }
             }
-        }
+            (w.seek.take(), w.play.take())
+        };
         let Some(app) = app.upgrade() else { return };
         if let Some(frame) = seek {
+            playing = false;
             waiting_for = None;
             app.show_frame(frame);
-            continue;
+        }
+        match play {
+            Some(true) => {
+                playing = true;
+                waiting_for = None;
+                next_step = Instant::now();
+                from_start = true;
+            }
+            Some(false) => playing = false,
+            None => {}
         }
         if playing && waiting_for.is_none() && Instant::now() >= next_step {
             let started = Instant::now();

@@ -206,7 +206,7 @@ fn play_steps_through_previews_at_most_at_fps_and_stops_on_the_last_frame_refine
 
 #[test]
 fn pause_stops_play_and_refines_the_frame_shown() {
-    let (_dir, file) = moving_sphere(2);
+    let (_dir, file) = moving_sphere(1);
     let viewer = start(&file.display().to_string(), 32);
     final_frame(&viewer, 1);
     assert_eq!(send(&viewer, json!({ "type": "play" })), None);
@@ -215,8 +215,8 @@ fn pause_stops_play_and_refines_the_frame_shown() {
     assert_eq!(send(&viewer, json!({ "type": "pause" })), None);
     let refined = final_frame(&viewer, 2);
     assert!(!refined.wanted.preview);
-    // At 2 fps the next step would have come within half a second: none comes.
-    std::thread::sleep(Duration::from_millis(800));
+    // At 1 fps the next step would have come within a second: none comes.
+    std::thread::sleep(Duration::from_millis(1200));
     let s = state(&viewer);
     assert_eq!((s["playing"].clone(), s["frame"].clone()), (json!(false), json!(2)));
     assert!(Arc::ptr_eq(&viewer.app.latest_frame().unwrap(), &refined), "a frame came after the pause");
