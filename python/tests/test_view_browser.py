@@ -364,3 +364,46 @@ def test_requests_without_the_token_foreign_hosts_and_files_are_refused(browser,
     # The browser without the token gets the refusal, not the page.
     browser.get(base + "/")
     assert "forbidden" in browser.find_element(By.TAG_NAME, "body").text
+
+
+@pytest.fixture(scope="module")
+def turntable_viewer(cli):
+    proc = subprocess.Popen(
+        [cli, "view", str(EXAMPLES / "turntable.toml"), "--listen", "127.0.0.1:0", "--width", "160"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    line = proc.stdout.readline()
+    if not line.startswith("lamplight view: http://"):
+        proc.kill()
+        pytest.fail(f"the viewer did not start: {line!r} {proc.stderr.read()}")
+    yield {"url": line.split(": ", 1)[1].strip()}
+    proc.terminate()
+    proc.wait(timeout=10)
+
+
+def test_the_timeline_scrubs_and_plays_an_animated_scene_only(browser, viewer, turntable_viewer):
+    # A static scene shows no timeline.
+    open_page(browser, viewer)
+    assert not browser.find_element(By.ID, "timeline").is_displayed()
+    open_page(browser, turntable_viewer)
+    final_frame(browser)
+    slider = browser.find_element(By.ID, "frame")
+    assert browser.find_element(By.ID, "timeline").is_displayed()
+    assert (slider.get_attribute("min"), slider.get_attribute("max"), slider.get_attribute("value")) == ("1", "48", "1")
+    # Scrubbing to 13 renders frame 13.
+    browser.execute_script("const s = document.getElementById('frame'); s.value = 13; s.dispatchEvent(new Event('input'));")
+    script = "const i = window.lamplight.info; return i && i.last && i.frame === 13 ? i : null;"
+    info = wait_for(browser, lambda d: d.execute_script(script), what="frame 13 refined")
+    assert "frame 13 of 1-48" in browser.find_element(By.ID, "frame_value").text
+    assert browser.find_element(By.ID, "status").text.startswith("frame 13 ·")
+    # Play shows previews and stops on the last frame, refined.
+    browser.find_element(By.ID, "play").click()
+    wait_for(browser, lambda d: hooks(d, "info.preview"), what="a frame of play")
+    assert browser.find_element(By.ID, "play").text == "pause"
+    final_frame(browser, info["generation"])
+    wait_for(browser, lambda d: hooks(d, "info.frame") == 48 and hooks(d, "info.last"), what="the last frame refined")
+    assert hooks(browser, "state.playing") is False
+    assert browser.find_element(By.ID, "play").text == "play"
+    assert slider.get_attribute("value") == "48"

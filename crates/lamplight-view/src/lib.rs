@@ -5,6 +5,7 @@
 //! ([`renderer`]: a quick preview, then refinement, each new camera or setting
 //! cancelling stale work at once), lets the mouse orbit, pan and zoom the
 //! camera ([`camera`]), reloads the scene when its files change ([`reload`]),
+//! scrubs and plays an animated scene's frames ([`timeline`]),
 //! and shows the ray tree of any pixel clicked (the tree of `lamplight
 //! explain`, drawn over the image).
 //!
@@ -31,6 +32,7 @@ pub mod reload;
 pub mod renderer;
 pub mod server;
 pub mod state;
+pub mod timeline;
 pub mod token;
 
 pub use state::App;
@@ -77,6 +79,7 @@ impl Viewer {
         let scene_file = is_file(&scene).then(|| PathBuf::from(&scene));
         // Settings out of bounds stop here, before anything listens.
         let loaded = reload::load(&scene, &request)?;
+        request.frame = loaded.frame;
         let job = request.resolve(&loaded.defaults, lamplight_scene::request::Naming::Flags).map_err(|e| e.0)?;
         request.width = Some(job.options.width);
         request.height = Some(job.options.height);

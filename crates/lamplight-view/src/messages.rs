@@ -8,6 +8,9 @@
 //! | `explain` | `x`, `y` (pixels of the full image) | answers `explain` with the ray tree of `lamplight explain --json` |
 //! | `save` | `name` (`.png`, `.ppm` or `.exr`), `exposure` (stops), `replace` | writes the latest frame into the save folder |
 //! | `save_camera` | `name` (`.toml`), `replace` | writes the camera's `[camera]` table there |
+//! | `frame` | `frame` (a frame of the scene's `[animation] frames`) | renders that frame ([`crate::timeline`]) |
+//! | `play` | | steps through the frames at the preview's size, at most the scene's fps, stopping at the last |
+//! | `pause` | | stops play; the frame shown is refined |
 //!
 //! Saving takes a file name, not a path, into the one save folder
 //! ([`crate::ViewOptions::save_dir`]); a name starting with `.` is refused, and
@@ -60,9 +63,14 @@ pub fn handle(app: &Arc<App>, text: &str, answers: &mpsc::Sender<String>, explai
         "settings" => settings(app, &message),
         "explain" => explain(app, &message, answers.clone(), explainer),
         "save" | "save_camera" => save(app, &message, answers.clone()),
-        other => {
-            Err(lamplight_core::params::unknown("message type", other, &["camera", "reset", "settings", "explain", "save", "save_camera"]))
-        }
+        "frame" => app.seek(&message["frame"]),
+        "play" => app.play(),
+        "pause" => app.pause(),
+        other => Err(lamplight_core::params::unknown(
+            "message type",
+            other,
+            &["camera", "reset", "settings", "explain", "save", "save_camera", "frame", "play", "pause"],
+        )),
     };
     result.err().map(|e| error_reply(&e))
 }

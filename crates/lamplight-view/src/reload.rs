@@ -31,15 +31,32 @@ pub const QUIET: Duration = Duration::from_millis(60);
 /// the mesh files' and then those `lamplight render` gives about its lights
 /// ([`lamplight_scene::request::Job::light_warnings`]: none reaches the view, a
 /// light shut in by geometry, naming what blocks it), probed through the
-/// scene's own camera at the request's image size.
+/// scene's own camera at the request's image size. An animated scene is
+/// built at the request's frame, kept within its `[animation] frames` (a
+/// reload keeps the frame shown, or the nearest one the edited range holds).
 pub fn load(arg: &str, request: &Request) -> Result<Loaded, String> {
     let options = request.mesh_options(MeshOptions::default());
     let scene = SceneRequest::resolve(arg).and_then(|s| s.with_mesh_options(options, Naming::Flags)).map_err(|e| e.0)?;
-    let job = request.resolve(&scene.defaults, Naming::Flags).map_err(|e| e.0)?;
+    build(&Arc::new(scene), request, Naming::Flags)
+}
+
+/// Builds `scene`, read already, at the request's frame (see [`load`]):
+/// the timeline builds each frame it shows this way, through the request
+/// layer's `SceneRequest::instantiate` as `lamplight render --frames` does.
+pub fn build(scene: &Arc<SceneRequest>, request: &Request, naming: Naming) -> Result<Loaded, String> {
+    let animation = scene.animation();
+    let mut request = request.clone();
+    request.frame = animation.as_ref().map(|a| request.frame.unwrap_or(a.start).clamp(a.start, a.end));
+    let job = request.resolve(&scene.defaults, naming).map_err(|e| e.0)?;
     let built = scene.instantiate(&job).map_err(|e| e.0)?;
     let mut warnings = built.warnings;
+    // Lights move with the frames: the warnings are this frame's.
     warnings.extend(job.light_warnings(&built.scene));
-    Ok(Loaded::new(built.scene, scene.defaults, warnings))
+    let mut loaded = Loaded::new(built.scene, scene.defaults, warnings);
+    loaded.source = Some(scene.clone());
+    loaded.animation = animation;
+    loaded.frame = request.frame;
+    Ok(loaded)
 }
 
 /// Whether a change to `path` may change the scene.

@@ -9,7 +9,8 @@
 //! as `lamplight render` would run it, so the final frame is that render's
 //! image. A job that denoises denoises every stage (Cycles' viewport
 //! denoising), each frame reporting the time it added. Every stage is one call of the ordinary render entry
-//! ([`Job::run`]); the viewer adds nothing to the render loop.
+//! ([`Job::run`]); the viewer adds nothing to the render loop. A request
+//! marked [`Wanted::preview`] (play, [`crate::timeline`]) stops after the preview.
 //!
 //! [`Renderer::submit`] replaces the one waiting request (there is never more
 //! than one) and raises the cancel flag of the one in flight, which the render
@@ -25,7 +26,8 @@ use std::time::{Duration, Instant};
 use lamplight_core::camera::Camera;
 use lamplight_core::film::Image;
 use lamplight_core::{RenderControl, RenderOptions, Scene};
-use lamplight_scene::request::{Defaults, Job, Naming};
+use lamplight_scene::description::Animation;
+use lamplight_scene::request::{Defaults, Job, Naming, SceneRequest};
 
 use crate::camera::ViewCamera;
 
@@ -39,12 +41,26 @@ pub struct Loaded {
     pub defaults: Defaults,
     /// Warnings of the files it read.
     pub warnings: Vec<String>,
+    /// The scene as read, to build its other frames from without reading it again.
+    pub source: Option<Arc<SceneRequest>>,
+    /// The scene's `[animation]`; `None`: it is the same at every frame.
+    pub animation: Option<Animation>,
+    /// The frame `scene` was built at (`None` for a static scene).
+    pub frame: Option<i64>,
 }
 
 impl Loaded {
-    /// `scene` with `defaults`.
+    /// `scene` with `defaults`, a static scene of unknown source.
     pub fn new(scene: Scene, defaults: Defaults, warnings: Vec<String>) -> Loaded {
-        Loaded { scene_camera: scene.settings.camera.clone(), scene: Mutex::new(scene), defaults, warnings }
+        Loaded {
+            scene_camera: scene.settings.camera.clone(),
+            scene: Mutex::new(scene),
+            defaults,
+            warnings,
+            source: None,
+            animation: None,
+            frame: None,
+        }
     }
 
     /// The scene, locked (a panic elsewhere leaves it usable: rendering never mutates it).
@@ -63,6 +79,8 @@ pub struct Wanted {
     pub camera: Option<ViewCamera>,
     /// The last stage, as `lamplight render` would run it.
     pub job: Job,
+    /// Render the first stage only (the preview), as play does ([`crate::timeline`]).
+    pub preview: bool,
 }
 
 impl Wanted {
@@ -238,8 +256,11 @@ fn render_loop(shared: &Shared, report: &dyn Fn(Report)) {
         let camera = wanted.camera();
         let control = RenderControl { progress: &|_, _| {}, cancel: Some(&cancel), stop: None };
         let o = &wanted.job.options;
-        let stages = stages(o, preview_divisor(o.width, o.height, per_sample));
+        let mut stages = stages(o, preview_divisor(o.width, o.height, per_sample));
         let count = stages.len();
+        if wanted.preview {
+            stages.truncate(1);
+        }
         for (i, options) in stages.into_iter().enumerate() {
             if cancel.load(Ordering::Relaxed) {
                 break;

@@ -13,7 +13,7 @@
 //!   when the view changes, and each frame as a `frame` message (JSON text)
 //!   followed at once by its pixels (binary: `width * height * 3` little-endian
 //!   `f32`, linear radiance, rows from the top). The page sends `camera`,
-//!   `reset`, `settings`, `explain`, `save` and `save_camera` messages
+//!   `reset`, `settings`, `explain`, `save`, `save_camera`, `frame`, `play` and `pause` messages
 //!   ([`crate::messages`]), at most [`MAX_MESSAGE`] bytes each: a longer one
 //!   closes the WebSocket with code 1009 (message too big).
 
@@ -124,6 +124,10 @@ fn frame_messages(frame: &Frame) -> (String, Vec<u8>) {
         "adaptive": o.adaptive.is_some(),
         "integrator": o.integrator.name,
         "last": frame.last,
+        // The frame of an animated scene this image is of (`null`: a static scene).
+        "frame": frame.wanted.loaded.frame,
+        // Play's frames are previews only (`last` stays false).
+        "preview": frame.wanted.preview,
         "samples_per_second": frame.samples_per_second,
         "latency_ms": frame.latency.as_secs_f64() * 1e3,
         // What denoising added to this frame (absent when it is not denoised).

@@ -2,6 +2,8 @@
 //! error if the files are broken now, the camera and the settings. Every change
 //! makes a new [`Wanted`] for the renderer and a new `state` message for the
 //! pages; both go out through channels that keep only the latest value.
+//! An animated scene's view also holds the frame wanted and whether it plays
+//! ([`crate::timeline`]).
 
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex, MutexGuard};
@@ -13,6 +15,7 @@ use tokio::sync::watch;
 
 use crate::camera::ViewCamera;
 use crate::renderer::{Frame, Loaded, Renderer, Report, Wanted};
+use crate::timeline::{self, Step, Timeline};
 
 /// Samples per pixel the viewer's path tracer takes when neither the page nor
 /// the scene says (`lamplight render` takes 1, a useless preview).
@@ -28,8 +31,14 @@ pub struct View {
     pub error: Option<String>,
     /// The page's camera; `None`: the scene's own.
     pub camera: Option<ViewCamera>,
-    /// The settings (the command line's, then the page's).
+    /// The settings (the command line's, then the page's); its `frame` is
+    /// the frame wanted (`loaded` may still be the one before, while it builds).
     pub request: Request,
+    /// Whether the timeline plays (frames render their preview only).
+    pub playing: bool,
+    /// `error` is a frame's build error (a later frame that builds clears it;
+    /// a file's load error stays until a reload succeeds).
+    pub frame_error: bool,
     /// Of the last request.
     pub generation: u64,
     /// Reloads so far.
@@ -50,6 +59,7 @@ pub struct App {
     pub scene_file: Option<PathBuf>,
     view: Mutex<View>,
     renderer: Mutex<Option<Renderer>>,
+    timeline: Mutex<Option<Timeline>>,
     /// The latest frame.
     pub frames: watch::Sender<Option<Arc<Frame>>>,
     /// The latest `state` message.
@@ -78,7 +88,8 @@ impl App {
     ) -> Arc<App> {
         let loaded = Arc::new(loaded);
         let probed = probe(&loaded, &request);
-        let view = View { loaded, probed, error: None, camera: None, request, generation: 0, reloads: 0 };
+        let view =
+            View { loaded, probed, error: None, camera: None, request, playing: false, frame_error: false, generation: 0, reloads: 0 };
         let app = Arc::new(App {
             token,
             root,
@@ -87,6 +98,7 @@ impl App {
             scene_file,
             view: Mutex::new(view),
             renderer: Mutex::new(None),
+            timeline: Mutex::new(None),
             frames: watch::channel(None).0,
             status: watch::channel(Arc::new(json!({}))).0,
             own_files: Arc::default(),
@@ -94,9 +106,11 @@ impl App {
         let weak = Arc::downgrade(&app);
         let renderer = Renderer::start(move |report| {
             let Some(app) = weak.upgrade() else { return };
-            match report {
+            let generation = match report {
                 Report::Frame(frame) => {
+                    let generation = frame.wanted.generation;
                     app.frames.send_replace(Some(Arc::new(frame)));
+                    generation
                 }
                 Report::Failed(generation, message) => {
                     let mut view = app.lock();
@@ -104,10 +118,14 @@ impl App {
                         view.error = Some(message);
                         app.publish_state(&view);
                     }
+                    generation
                 }
-            }
+            };
+            // Play's next step waits for this.
+            app.with_timeline(|t| t.shown(generation));
         });
         *app.renderer.lock().unwrap_or_else(|p| p.into_inner()) = Some(renderer);
+        *app.timeline.lock().unwrap_or_else(|p| p.into_inner()) = Some(Timeline::start(Arc::downgrade(&app)));
         let mut view = app.lock();
         let first = view.request.clone();
         if let Err(e) = app.submit(&mut view, first) {
@@ -118,9 +136,14 @@ impl App {
         app
     }
 
-    /// Stops the render thread.
+    /// Stops the timeline's and the render thread.
     pub fn stop(&self) {
-        self.renderer.lock().unwrap_or_else(|p| p.into_inner()).take();
+        // Taken out first and dropped (joined) unlocked: the render thread's
+        // reports lock `timeline` while the timeline's thread may be finishing.
+        let timeline = self.timeline.lock().unwrap_or_else(|p| p.into_inner()).take();
+        drop(timeline);
+        let renderer = self.renderer.lock().unwrap_or_else(|p| p.into_inner()).take();
+        drop(renderer);
     }
 
     /// The view, locked.
@@ -137,11 +160,14 @@ impl App {
         }
         view.request = request;
         view.generation += 1;
-        let wanted = Arc::new(Wanted { generation: view.generation, loaded: view.loaded.clone(), camera: view.camera, job });
+        let wanted =
+            Arc::new(Wanted { generation: view.generation, loaded: view.loaded.clone(), camera: view.camera, job, preview: view.playing });
+        // The state first: a frame of this generation (a small one renders in
+        // microseconds) never goes out before the state that announces it.
+        self.publish_state(view);
         if let Some(r) = self.renderer.lock().unwrap_or_else(|p| p.into_inner()).as_ref() {
             r.submit(wanted);
         }
-        self.publish_state(view);
         Ok(())
     }
 
@@ -161,6 +187,10 @@ impl App {
             "error": view.error,
             "reloads": view.reloads,
             "warnings": view.loaded.warnings,
+            // The timeline (docs/view.md): `null` for a static scene, which shows none.
+            "animation": timeline::animation_json(view.loaded.animation.as_ref()),
+            "frame": view.request.frame,
+            "playing": view.playing,
             "settings": {
                 "integrator": r.integrator,
                 "spp": r.spp,
@@ -202,6 +232,10 @@ impl App {
                 view.loaded = Arc::new(loaded);
                 view.probed = probe(&view.loaded, &view.request);
                 view.error = None;
+                view.frame_error = false;
+                // The frame shown, or the nearest one an edited range holds.
+                view.request.frame = view.loaded.frame;
+                view.playing &= view.loaded.animation.is_some();
                 let request = view.request.clone();
                 if let Err(e) = self.submit(&mut view, request) {
                     view.error = Some(e);
@@ -212,6 +246,120 @@ impl App {
                 view.error = Some(e);
                 self.publish_state(&view);
             }
+        }
+    }
+
+    /// Shows the frame the page asks for in `value` (checked at once: see
+    /// [`timeline::requested_frame`]); the timeline's thread builds it, the
+    /// newest winning. Scrubbing pauses play.
+    pub fn seek(&self, value: &Value) -> Result<(), String> {
+        let mut view = self.lock();
+        let frame = timeline::requested_frame(view.loaded.animation.as_ref(), value)?;
+        view.request.frame = Some(frame);
+        view.playing = false;
+        self.publish_state(&view);
+        drop(view);
+        self.with_timeline(|t| t.seek(frame));
+        Ok(())
+    }
+
+    /// Plays the timeline from the frame shown (from the first after the last).
+    pub fn play(&self) -> Result<(), String> {
+        let mut view = self.lock();
+        if view.loaded.animation.is_none() {
+            return Err("play: the scene is not animated (it has no [animation] table), so it has no frames to play".into());
+        }
+        view.playing = true;
+        self.publish_state(&view);
+        drop(view);
+        self.with_timeline(Timeline::play);
+        Ok(())
+    }
+
+    /// Stops play; the frame shown is refined in full.
+    pub fn pause(&self) -> Result<(), String> {
+        self.with_timeline(Timeline::pause);
+        let mut view = self.lock();
+        if !view.playing {
+            return Ok(());
+        }
+        view.playing = false;
+        let request = view.request.clone();
+        self.submit(&mut view, request)
+    }
+
+    fn with_timeline(&self, f: impl FnOnce(&Timeline)) {
+        if let Some(t) = self.timeline.lock().unwrap_or_else(|p| p.into_inner()).as_ref() {
+            f(t);
+        }
+    }
+
+    /// Builds `frame` of the scene (without the view's lock) and shows it:
+    /// the generation rendering it, or `None` when it did not build (the
+    /// error is shown) or a reload replaced the scene meanwhile (the reload
+    /// built the frame wanted itself).
+    pub(crate) fn show_frame(&self, frame: i64) -> Option<u64> {
+        let (source, mut request) = {
+            let view = self.lock();
+            (view.loaded.source.clone()?, view.request.clone())
+        };
+        request.frame = Some(frame);
+        let built = crate::reload::build(&source, &request, Naming::Keywords);
+        let mut view = self.lock();
+        if !view.loaded.source.as_ref().is_some_and(|s| Arc::ptr_eq(s, &source)) {
+            return None;
+        }
+        match built {
+            Ok(loaded) => {
+                view.loaded = Arc::new(loaded);
+                view.probed = probe(&view.loaded, &view.request);
+                if view.frame_error {
+                    view.error = None;
+                    view.frame_error = false;
+                }
+                let request = view.request.clone();
+                match self.submit(&mut view, request) {
+                    Ok(()) => Some(view.generation),
+                    Err(e) => {
+                        view.error = Some(e);
+                        self.publish_state(&view);
+                        None
+                    }
+                }
+            }
+            Err(e) => {
+                view.error = Some(e);
+                view.frame_error = true;
+                self.publish_state(&view);
+                None
+            }
+        }
+    }
+
+    /// One step of play: shows the frame after the one wanted (the first,
+    /// `from_start`, when play starts on the last); at the end of the range
+    /// play stops and the last frame is refined in full.
+    pub(crate) fn step(&self, from_start: bool) -> Step {
+        let (next, fps) = {
+            let mut view = self.lock();
+            let Some(a) = view.loaded.animation.clone().filter(|_| view.playing) else { return Step::End };
+            let current = view.request.frame.unwrap_or(a.start);
+            let next = if from_start && current >= a.end { a.start } else { current + 1 };
+            if next > a.end {
+                view.playing = false;
+                let request = view.request.clone();
+                if let Err(e) = self.submit(&mut view, request) {
+                    view.error = Some(e);
+                    self.publish_state(&view);
+                }
+                return Step::End;
+            }
+            view.request.frame = Some(next);
+            (next, a.fps)
+        };
+        match self.show_frame(next) {
+            Some(generation) => Step::Shown(generation, fps),
+            None => Step::Failed,
         }
     }
 

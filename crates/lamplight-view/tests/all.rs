@@ -7,4 +7,5 @@
 mod doors;
 mod server;
 mod storm;
+mod timeline;
 mod warnings;

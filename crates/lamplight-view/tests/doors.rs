@@ -191,7 +191,7 @@ fn a_million_sample_explanation_records_64() {
     let mut job = frame.wanted.job.clone();
     job.options.spp = 1 << 20;
     let loaded = lamplight_view::reload::load("business-card", &Request::default()).unwrap();
-    let wanted = lamplight_view::renderer::Wanted { generation: 1, loaded: Arc::new(loaded), camera: None, job };
+    let wanted = lamplight_view::renderer::Wanted { generation: 1, loaded: Arc::new(loaded), camera: None, job, preview: false };
     let start = Instant::now();
     let tree = wanted.explain(16, 16, Arc::new(AtomicBool::new(false))).unwrap();
     eprintln!("1,048,576 samples explained in {:?}", start.elapsed());

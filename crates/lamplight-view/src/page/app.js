@@ -71,6 +71,7 @@ function applyState(m) {
     list.replaceChildren(...warnings.map((w) => { const li = document.createElement("li"); li.textContent = "warning: " + w; return li; }));
   }
   list.hidden = warnings.length === 0;
+  showTimeline(m);
   if (canvas.width !== m.settings.width || canvas.height !== m.settings.height) {
     canvas.width = m.settings.width; canvas.height = m.settings.height;
   }
@@ -109,7 +110,7 @@ function showFrame() {
   ctx.drawImage(scratch, 0, 0, canvas.width, canvas.height);
   const rate = info.samples_per_second >= 1e6 ? (info.samples_per_second / 1e6).toFixed(2) + " M" : (info.samples_per_second / 1e3).toFixed(1) + " k";
   const target = info.adaptive ? "adaptive" : info.target_spp;
-  $("status").textContent = `${info.width}x${info.height} · spp ${info.spp}/${target} · ${rate} samples/s · ${info.latency_ms.toFixed(0)} ms${info.denoise_ms != null ? ` · denoise +${info.denoise_ms.toFixed(0)} ms` : ""}${info.last ? " · done" : ""}`;
+  $("status").textContent = `${info.frame != null ? `frame ${info.frame} · ` : ""}${info.width}x${info.height} · spp ${info.spp}/${target} · ${rate} samples/s · ${info.latency_ms.toFixed(0)} ms${info.denoise_ms != null ? ` · denoise +${info.denoise_ms.toFixed(0)} ms` : ""}${info.last ? " · done" : ""}${info.preview ? " · playing (preview)" : ""}`;
   for (const w of waiters.splice(0)) w();
   reexplainIfStale(info, dragging);
 }
@@ -220,6 +221,32 @@ let lastSave = null;
 const save = (m) => { lastSave = m; send(m); };
 $("save").onclick = () => save({ type: "save", name: $("save_name").value, exposure });
 $("save_camera").onclick = () => save({ type: "save_camera", name: $("camera_name").value });
+
+// ---- the timeline of an animated scene: a slider over its frames, play/pause
+let scrubbing = false, frameQueued = false;
+function showTimeline(m) {
+  const a = m.animation, slider = $("frame");
+  $("timeline").hidden = !a;
+  if (!a) return;
+  slider.min = a.start; slider.max = a.end;
+  // The server's frame, unless the slider is in the user's hand.
+  if (!scrubbing) slider.value = m.frame;
+  $("frame_value").textContent = `frame ${scrubbing ? slider.value : m.frame} of ${a.start}-${a.end} · ${a.fps} fps`;
+  $("play").textContent = m.playing ? "pause" : "play";
+}
+// The newest frame wins on the server too; one message per animation frame of the page is plenty.
+function sendFrame() {
+  if (frameQueued) return;
+  frameQueued = true;
+  requestAnimationFrame(() => { frameQueued = false; send({ type: "frame", frame: +$("frame").value }); });
+}
+$("frame").addEventListener("pointerdown", () => { scrubbing = true; });
+window.addEventListener("pointerup", () => { scrubbing = false; });
+$("frame").addEventListener("input", () => {
+  if (state && state.animation) $("frame_value").textContent = `frame ${$("frame").value} of ${state.animation.start}-${state.animation.end} · ${state.animation.fps} fps`;
+  sendFrame();
+});
+$("play").onclick = () => send({ type: state && state.playing ? "pause" : "play" });
 
 // ---- the pixel inspector (inspector.js)
 hooks.explainPixel = (x, y) => explainPixel(x, y);
