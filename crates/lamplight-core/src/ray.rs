@@ -2,20 +2,41 @@
 
 use crate::math::{max_abs, Vec3};
 
-/// A half line `origin + dir * t`, `t > 0`. `dir` is a unit vector for every ray
-/// the renderer makes, so `t` is a distance.
+/// A half line `origin + dir * t`, `t > 0`, at an instant `time`. `dir` is a
+/// unit vector for every ray the renderer makes, so `t` is a distance.
+///
+/// `time` is where in the shutter the ray was sent, in frames from the frame
+/// being rendered (0: the frame itself). A camera sample draws it once
+/// ([`crate::integrators::View::shutter`]) and every ray of its path keeps
+/// it ([`Ray::spawn`]): only moving shapes ([`crate::shapes::MovingInstance`])
+/// read it, and everything else stands as it is at the frame.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ray {
     /// Start point.
     pub origin: Vec3,
     /// Unit direction.
     pub dir: Vec3,
+    /// The instant, in frames from the rendered frame.
+    pub time: f64,
 }
 
 impl Ray {
-    /// A ray from `origin` along `dir` (normalized here).
+    /// A ray at time 0 from `origin` along `dir` (normalized here).
     pub fn new(origin: Vec3, dir: Vec3) -> Ray {
-        Ray { origin, dir: dir.normalize() }
+        Ray::unit(origin, dir.normalize())
+    }
+
+    /// A ray at time 0 from `origin` along `dir`, a unit vector already.
+    #[inline]
+    pub const fn unit(origin: Vec3, dir: Vec3) -> Ray {
+        Ray { origin, dir, time: 0.0 }
+    }
+
+    /// A ray of the same path from `origin` along the unit `dir`: a shadow,
+    /// reflected or refracted ray keeps the camera sample's instant.
+    #[inline]
+    pub const fn spawn(&self, origin: Vec3, dir: Vec3) -> Ray {
+        Ray { origin, dir, time: self.time }
     }
 
     /// The point at parameter `t`: `origin + dir * t`.

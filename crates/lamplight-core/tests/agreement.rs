@@ -149,7 +149,7 @@ fn whitted_lights_an_area_lit_scene_with_soft_shadows() {
         (0..200)
             .map(|i| {
                 let p = Vec3::new(-1.5 + 4.0 * i as f64 / 200.0, 0.01, 0.316) + moved.unwrap_or(Vec3::ZERO);
-                let ray = lamplight_core::ray::Ray { origin: p, dir: -Vec3::Y };
+                let ray = lamplight_core::ray::Ray::unit(p, -Vec3::Y);
                 let mut counts = integrators::RayCounts::default();
                 a.trace(&with, &ray, &mut counts).x / b.trace(&without, &ray, &mut counts).x
             })

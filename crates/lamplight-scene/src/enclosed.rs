@@ -75,7 +75,7 @@ pub fn enclosed_light_warnings(scene: &Scene, camera: &dyn Camera, width: u32, h
             cast += 1;
             let origin = offset_origin(hit.point, hit.geometric_normal, s.wi, hit.t, hit.error);
             let distance = s.distance - (origin - hit.point).length();
-            if scene.transmittance(origin, s.wi, distance, own) != Rgb::ZERO {
+            if scene.transmittance(&hit.spawn(origin, s.wi), distance, own) != Rgb::ZERO {
                 reached = true;
                 break;
             }
@@ -118,7 +118,7 @@ fn message(scene: &Scene, index: usize, cast: usize, blockers: &[(Option<usize>,
 fn first_opaque(scene: &Scene, mut origin: Vec3, dir: Vec3, distance: f64, own: Option<usize>) -> Option<usize> {
     let mut remaining = distance;
     for _ in 0..MAX_CROSSINGS {
-        let hit: Hit = scene.first_intersect(&Ray { origin, dir }, remaining)?;
+        let hit: Hit = scene.first_intersect(&Ray::unit(origin, dir), remaining)?;
         if Some(hit.object) == own {
             return None;
         }

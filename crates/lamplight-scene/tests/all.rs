@@ -34,6 +34,7 @@ mod mitsuba_sdfgrid;
 mod mitsuba_sensors;
 mod mitsuba_textures;
 mod mitsuba_wrappers;
+mod motion_blur;
 mod native;
 mod obj;
 mod path_convergence;

@@ -62,7 +62,8 @@ fn shadow_rays_pass_a_blended_surface_with_probability_one_minus_alpha() {
     for i in 0..n {
         // Upwards from the back quad through the front one, from many points.
         let x = (i as f64 + 0.5) / n as f64 * 4.0;
-        passed += scene.transmittance(Vec3::new(x, 1.0, 0.5), Vec3::new(0.01, 0.0, 1.0).normalize(), 5.0, None);
+        passed +=
+            scene.transmittance(&lamplight_core::ray::Ray::unit(Vec3::new(x, 1.0, 0.5), Vec3::new(0.01, 0.0, 1.0).normalize()), 5.0, None);
     }
     let mean = passed.x / n as f64;
     // Binomial sd sqrt(0.21 / 4000) = 0.0072; 5 sd.

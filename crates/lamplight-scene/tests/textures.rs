@@ -220,8 +220,14 @@ fn cut_outs_let_camera_and_shadow_rays_through() {
     }
     // Shadow rays from the glowing quad's surface upwards: through the hole, blocked elsewhere.
     use lamplight_core::math::Vec3;
-    assert_eq!(scene.transmittance(Vec3::new(0.5, 1.0, 0.5), Vec3::Z, 5.0, None), lamplight_core::math::Rgb::ONE);
-    assert_eq!(scene.transmittance(Vec3::new(3.5, 1.0, 0.5), Vec3::Z, 5.0, None), lamplight_core::math::Rgb::ZERO);
+    assert_eq!(
+        scene.transmittance(&lamplight_core::ray::Ray::unit(Vec3::new(0.5, 1.0, 0.5), Vec3::Z), 5.0, None),
+        lamplight_core::math::Rgb::ONE
+    );
+    assert_eq!(
+        scene.transmittance(&lamplight_core::ray::Ray::unit(Vec3::new(3.5, 1.0, 0.5), Vec3::Z), 5.0, None),
+        lamplight_core::math::Rgb::ZERO
+    );
 }
 
 /// Root-mean-square difference of two images over the rows `rows`.

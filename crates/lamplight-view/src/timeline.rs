@@ -223,7 +223,7 @@ mod tests {
     use lamplight_scene::description::animation::Animation;
 
     fn turntable() -> Animation {
-        Animation { start: 1, end: 48, fps: 24.0, loc: Default::default() }
+        Animation { start: 1, end: 48, fps: 24.0, shutter: (0.0, 0.0), loc: Default::default() }
     }
 
     #[test]

@@ -261,7 +261,7 @@ mod tests {
     /// The `f64` kernel's nearest distance, for the precision check.
     fn brute_f64(v: &[[f32; 3]], f: &[[u32; 3]], o: [f32; 3], d: [f32; 3]) -> f64 {
         let to = |p: [f32; 3]| Vec3::new(p[0].into(), p[1].into(), p[2].into());
-        let ray = WatertightRay::new(&Ray { origin: to(o), dir: to(d) });
+        let ray = WatertightRay::new(&Ray::unit(to(o), to(d)));
         f.iter()
             .filter_map(|t| intersect_triangle(&ray, to(v[t[0] as usize]), to(v[t[1] as usize]), to(v[t[2] as usize]), 0.0, f64::INFINITY))
             .map(|h| h.t)

@@ -27,7 +27,7 @@ const ROUNDING_ULPS: f64 = 32.0;
 
 /// The unit-direction ray the scene traces.
 fn unit_ray<T: Float>(ray: &BatchRay<T>) -> Ray {
-    Ray { origin: Vec3::from_array(ray.origin.map(T::to_f64)), dir: Vec3::from_array(ray.dir.map(T::to_f64)) / ray.length() }
+    Ray::unit(Vec3::from_array(ray.origin.map(T::to_f64)), Vec3::from_array(ray.dir.map(T::to_f64)) / ray.length())
 }
 
 impl BatchTarget for Scene {

@@ -95,7 +95,7 @@ impl Camera for Orthographic {
     fn ray(&self, x: f64, y: f64, width: u32, height: u32, _lens: (f64, f64)) -> Ray {
         let (hw, hh) = self.half_extents(aspect(width, height));
         let (alpha, beta) = film_ndc(x, y, width, height);
-        Ray { origin: self.eye + self.right * (alpha * hw) + self.up * (beta * hh), dir: self.dir }
+        Ray::unit(self.eye + self.right * (alpha * hw) + self.up * (beta * hh), self.dir)
     }
 }
 

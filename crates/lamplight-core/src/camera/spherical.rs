@@ -69,7 +69,7 @@ impl Camera for Spherical {
         let (sin_phi, cos_phi) = (alpha * PI).sin_cos();
         let (sin_theta, cos_theta) = (beta * FRAC_PI_2).sin_cos();
         let dir = (self.right * sin_phi + self.forward * cos_phi) * cos_theta + self.up * sin_theta;
-        Ray { origin: self.eye, dir: dir.normalize() }
+        Ray::unit(self.eye, dir.normalize())
     }
 }
 

@@ -171,7 +171,7 @@ impl RayTree {
                 Flat {
                     node: RayNode {
                         kind: RayKind::Camera,
-                        ray: Ray { origin: Default::default(), dir: Default::default() },
+                        ray: Ray::unit(Default::default(), Default::default()),
                         depth: 0,
                         weight: Rgb::ZERO,
                         inside: false,
@@ -209,7 +209,7 @@ fn blockers(scene: &Scene, ray: &Ray, length: f64, own: Option<usize>) -> Vec<Ob
     let mut origin = ray.origin;
     let mut remaining = length;
     for _ in 0..64 {
-        let Some(h) = scene.first_intersect(&Ray { origin, dir: ray.dir }, remaining) else { break };
+        let Some(h) = scene.first_intersect(&ray.spawn(origin, ray.dir), remaining) else { break };
         if Some(h.object) == own {
             break;
         }

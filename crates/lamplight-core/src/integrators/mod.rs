@@ -79,6 +79,11 @@ pub struct View<'a> {
     pub seed: u64,
     /// Whether the camera takes a lens sample (asked once per render, not per ray).
     pub lens: bool,
+    /// The shutter, `(open, close)` in frames, when some shape moves
+    /// ([`Scene::shutter`]): each camera sample then draws its instant
+    /// uniformly in it, after the lens sample, and every ray of its path keeps
+    /// it ([`Ray::time`]). `None`: no time is drawn and rays are at time 0.
+    pub shutter: Option<(f64, f64)>,
     /// The camera's [`Camera::pixel_offset`] (asked once per render).
     pub pixel_offset: f64,
     /// Largest channel a sample keeps ([`crate::RenderOptions::clamp`]; infinite: no clamp).
@@ -101,6 +106,7 @@ impl<'a> View<'a> {
             spp,
             seed,
             lens: camera.uses_lens_sample(),
+            shutter: scene.shutter(),
             pixel_offset: camera.pixel_offset(),
             clamp: f64::INFINITY,
             sample_bounds: [0.0, 0.0, width as f64, height as f64],
@@ -115,6 +121,12 @@ impl<'a> View<'a> {
         let x = self.camera.ray(fx + 1.0, fy, self.width, self.height, lens);
         let y = self.camera.ray(fx, fy + 1.0, self.width, self.height, lens);
         Cone::of_neighbours(ray, &x, &y, self.spp)
+    }
+
+    /// The instant of shutter position `u` in `[0, 1)`.
+    #[inline]
+    pub fn instant(shutter: (f64, f64), u: f64) -> f64 {
+        shutter.0 + (shutter.1 - shutter.0) * u
     }
 
     /// The same view with samples drawn only inside `crop` (`None`: the whole image).

@@ -77,16 +77,16 @@ pub fn power_heuristic(a: f64, b: f64) -> f64 {
     }
 }
 
-/// True when nothing lies on the segment from `origin` along `dir` before
-/// `distance`, except object `own` (the light's own body), where the ray may end.
+/// True when nothing lies on the segment from `ray.origin` along `ray.dir` before
+/// `distance` (at `ray.time`), except object `own` (the light's own body), where the ray may end.
 /// Surfaces that scatter nothing and let shadows through (a bulb's glow around its
 /// point light) are passed; every other surface blocks, glass included.
-pub fn unoccluded(scene: &Scene, origin: Vec3, dir: Vec3, distance: f64, own: Option<usize>) -> bool {
-    let mut origin = origin;
+pub fn unoccluded(scene: &Scene, ray: &Ray, distance: f64, own: Option<usize>) -> bool {
+    let (mut origin, dir) = (ray.origin, ray.dir);
     let mut remaining = distance;
     // Each pass moves past one surface; a bound keeps pathological stacks finite.
     for _ in 0..64 {
-        let Some(h) = scene.first_intersect(&Ray { origin, dir }, remaining) else { return true };
+        let Some(h) = scene.first_intersect(&ray.spawn(origin, dir), remaining) else { return true };
         if Some(h.object) == own {
             return true;
         }
@@ -299,7 +299,7 @@ impl PathTracer {
                 trace.survived(survive, beta);
             }
             counts.secondary += 1;
-            ray = Ray { origin, dir: wi };
+            ray = hit.spawn(origin, wi);
         }
         radiance
     }
@@ -354,12 +354,12 @@ impl PathTracer {
         let visible = if self.all_opaque {
             // Any hit blocks; the scene's query ends the ray at the light's own object.
             let transmittance = match own {
-                Some(own) if ends_on_own => scene.transmittance_to_surface(origin, wi, remaining, own),
-                _ => scene.transmittance(origin, wi, remaining, own),
+                Some(own) if ends_on_own => scene.transmittance_to_surface(&hit.spawn(origin, wi), remaining, own),
+                _ => scene.transmittance(&hit.spawn(origin, wi), remaining, own),
             };
             transmittance != Rgb::ZERO
         } else {
-            unoccluded(scene, origin, wi, remaining, own)
+            unoccluded(scene, &hit.spawn(origin, wi), remaining, own)
         };
         if !visible {
             trace.nee_miss(NeeMiss::Blocked);
@@ -385,7 +385,8 @@ impl Integrator for PathTracer {
     /// Sample `index` of a pixel uses the Sobol point `index` scrambled for that
     /// pixel ([`PixelSampler`]): its first 2D dimension places the sample by the
     /// filter around the pixel centre, the next one is the lens sample (only for a
-    /// camera that takes one), and the path's vertices use the rest. Its passes
+    /// camera that takes one), then the instant in the shutter (only when a shape
+    /// moves, [`View::shutter`]), and the path's vertices use the rest. Its passes
     /// double, so a render of `2N` samples continues one of `N`.
     #[inline(always)]
     fn sample(&self, view: &View, x: u32, y: u32, index: u32, counts: &mut RayCounts) -> Rgb {
@@ -435,7 +436,10 @@ impl PathTracer {
         let ((dx, dy), weight) = self.filter.sample_in(sampler.get_2d(), lo, hi);
         let lens = if view.lens { sampler.get_2d() } else { (0.5, 0.5) };
         let (fx, fy) = (x as f64 + 0.5 + dx, y as f64 + 0.5 + dy);
-        let ray = view.camera.ray(fx, fy, view.width, view.height, lens);
+        let mut ray = view.camera.ray(fx, fy, view.width, view.height, lens);
+        if let Some(shutter) = view.shutter {
+            ray.time = View::instant(shutter, sampler.get_1d());
+        }
         let cone = if view.scene.uses_footprints() { view.pixel_cone(&ray, fx, fy, lens) } else { Cone::default() };
         (CameraSample { ray, cone, weight }, sampler)
     }

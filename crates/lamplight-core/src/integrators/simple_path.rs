@@ -52,7 +52,7 @@ impl SimplePath {
                 break;
             }
             beta *= s.weight;
-            ray = Ray { origin: offset_origin(hit.point, hit.geometric_normal, wi, hit.t, hit.error), dir: wi };
+            ray = hit.spawn(offset_origin(hit.point, hit.geometric_normal, wi, hit.t, hit.error), wi);
         }
         radiance
     }

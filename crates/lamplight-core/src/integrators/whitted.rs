@@ -80,7 +80,8 @@ impl Integrator for Whitted {
     /// One sample: a single sample per pixel sits at the camera's pixel offset;
     /// `n > 1` samples are stratified over the pixel ([`stratified_2d`], strata
     /// shifted by `pixel_offset - 0.5`) and jittered by the sample's own generator,
-    /// which then draws the lens sample if the camera takes one.
+    /// which then draws the lens sample if the camera takes one, and the instant
+    /// in the shutter if a shape moves ([`View::shutter`]).
     #[inline(always)]
     fn sample(&self, view: &View, x: u32, y: u32, index: u32, counts: &mut RayCounts) -> Rgb {
         self.sample_with(view, x, y, index, counts, &mut NoTrace)
@@ -119,7 +120,10 @@ fn camera_sample_from(view: &View, x: u32, y: u32, index: u32, uniform: &mut imp
     };
     let lens = if view.lens { (uniform(), uniform()) } else { (0.5, 0.5) };
     let (fx, fy) = (x as f64 + dx, y as f64 + dy);
-    let ray = view.camera.ray(fx, fy, view.width, view.height, lens);
+    let mut ray = view.camera.ray(fx, fy, view.width, view.height, lens);
+    if let Some(shutter) = view.shutter {
+        ray.time = View::instant(shutter, uniform());
+    }
     let cone = if view.scene.uses_footprints() { view.pixel_cone(&ray, fx, fy, lens) } else { Cone::default() };
     CameraSample { ray, cone, weight: 1.0 }
 }
@@ -220,13 +224,13 @@ impl Whitted {
             for (dir, w) in smooth_directions(&ray, &hit, material, trace) {
                 let w = weight * w;
                 if max_component(w) <= self.min_weight {
-                    trace.branch(&Ray { origin: hit.point, dir }, w, depth + 1, false);
+                    trace.branch(&hit.spawn(hit.point, dir), w, depth + 1, false);
                     continue;
                 }
                 counts.secondary += 1;
                 let origin = offset_origin(hit.point, hit.geometric_normal, dir, hit.t, hit.error);
-                trace.branch(&Ray { origin, dir }, w, depth + 1, true);
-                work[pending].write(Pending { ray: Ray { origin, dir }, weight: w, depth: depth + 1, width });
+                trace.branch(&hit.spawn(origin, dir), w, depth + 1, true);
+                work[pending].write(Pending { ray: hit.spawn(origin, dir), weight: w, depth: depth + 1, width });
                 pending += 1;
             }
         }
@@ -317,9 +321,9 @@ fn lit_by<T: WhittedTrace + ?Sized>(
     counts.shadow += 1;
     let origin = offset_origin(hit.point, hit.geometric_normal, wi, hit.t, hit.error);
     let remaining = distance - (origin - hit.point).length();
-    let visible = scene.transmittance(origin, wi, remaining, own);
+    let visible = scene.transmittance(&hit.spawn(origin, wi), remaining, own);
     let mut told = |radiance: Rgb| {
-        let shadow = Ray { origin, dir: wi };
+        let shadow = hit.spawn(origin, wi);
         let term = LightTerm {
             wi,
             distance,

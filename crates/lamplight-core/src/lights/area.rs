@@ -248,7 +248,7 @@ mod tests {
                 if let Some(s) = light.sample(Vec3::ZERO, u) {
                     // Only points seen from x (the near cap) count: they are the ones
                     // whose direction back to x is within the visible cap.
-                    let hit = light.shape.intersect(&crate::ray::Ray { origin: Vec3::ZERO, dir: s.wi }, 0.0, f64::INFINITY).unwrap();
+                    let hit = light.shape.intersect(&crate::ray::Ray::unit(Vec3::ZERO, s.wi), 0.0, f64::INFINITY).unwrap();
                     if (hit.t - s.distance).abs() < 1e-9 {
                         omega += 1.0 / s.pdf;
                     }
@@ -271,7 +271,7 @@ mod tests {
         let x = Vec3::new(0.7, 1.5, 0.9);
         for i in 0..20 {
             let s = light.sample(x, ((i as f64 * 0.37).fract(), (i as f64 * 0.61).fract())).unwrap();
-            let hit = light.shape.intersect(&crate::ray::Ray { origin: x, dir: s.wi }, 0.0, f64::INFINITY).unwrap();
+            let hit = light.shape.intersect(&crate::ray::Ray::unit(x, s.wi), 0.0, f64::INFINITY).unwrap();
             assert!((hit.t - s.distance).abs() < 1e-9);
             assert!(
                 (light.pdf(s.wi, hit.t, hit.normal) - s.pdf).abs() < 1e-9 * s.pdf,

@@ -51,7 +51,7 @@ use crate::bsdfs::Bsdf;
 use crate::film::{Film, Image};
 use crate::integrators::{CameraSample, Integrator, Schedule, View};
 use crate::math::{Rgb, Vec3};
-use crate::ray::{offset_origin, Ray};
+use crate::ray::offset_origin;
 use crate::sampling::Rng;
 use crate::scene::Scene;
 use crate::Error;
@@ -206,7 +206,7 @@ pub fn sample_features(scene: &Scene, camera: &CameraSample, max_depth: u32, rng
         // radiance factor 1 / eta^2, which is not reflectance.
         throughput *= s.weight * (s.eta * s.eta);
         let wi = frame.to_world(s.wi);
-        ray = Ray { origin: offset_origin(hit.point, hit.geometric_normal, wi, hit.t, hit.error), dir: wi };
+        ray = hit.spawn(offset_origin(hit.point, hit.geometric_normal, wi, hit.t, hit.error), wi);
     }
     SampleFeatures { emitted, ..SampleFeatures::NOTHING }
 }
@@ -235,6 +235,7 @@ mod tests {
     use super::*;
     use crate::camera::{Fov, Perspective};
     use crate::materials::Material;
+    use crate::ray::Ray;
     use crate::shapes::Plane;
     use crate::{RenderControl, SceneBuilder};
 

@@ -54,6 +54,11 @@ impl SceneBuilder {
         set_name(&mut self.names.materials, material, name);
     }
 
+    /// Material `index` as added ([`SceneBuilder::material`]), if there is one.
+    pub fn material_at(&self, index: usize) -> Option<&Material> {
+        self.materials.get(index)
+    }
+
     /// Adds a material after checking its numbers; returns its index. A
     /// blend's components are added first, as materials of their own, which
     /// [`Scene::shade`] picks from per hit.
@@ -136,6 +141,7 @@ impl SceneBuilder {
             .map(|m| m.is_constant().then(|| [surface_bsdf(m, Vec3::ZERO, false), surface_bsdf(m, Vec3::ZERO, true)]))
             .collect();
         let uses_footprints = self.materials.iter().any(Material::uses_footprint);
+        let moves = self.objects.iter().any(|o| o.shape.moves());
         let turns_normals = self.materials.iter().any(|m| m.normal_map.is_some() || m.bump.is_some());
         let plain = self
             .materials
@@ -152,6 +158,7 @@ impl SceneBuilder {
         Ok(Scene {
             plain,
             uses_footprints,
+            moves,
             turns_normals,
             bsdfs,
             bvh: Bvh::build_with(&boxes, Costs::OBJECTS),

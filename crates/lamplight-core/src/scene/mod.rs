@@ -59,6 +59,17 @@ pub struct Hit {
     pub error: f64,
     /// Triangle index within a mesh object (see [`crate::shapes::SurfaceHit::primitive`]).
     pub primitive: Option<u32>,
+    /// The instant of the ray that found it ([`Ray::time`]).
+    pub time: f64,
+}
+
+impl Hit {
+    /// A ray leaving this hit from `origin` along the unit `dir`, at the
+    /// instant of the ray that found it ([`Ray::spawn`]).
+    #[inline]
+    pub const fn spawn(&self, origin: Vec3, dir: Vec3) -> Ray {
+        Ray { origin, dir, time: self.time }
+    }
 }
 
 /// Everything the integrators need; immutable and shared across threads.
@@ -79,6 +90,8 @@ pub struct Scene {
     bounded: Vec<PrimRef>,
     /// Some material has a trilinear texture ([`Scene::uses_footprints`]).
     uses_footprints: bool,
+    /// Some shape moves during the shutter ([`Scene::shutter`]).
+    moves: bool,
     /// Some material has a normal or a bump map ([`Scene::turns_normals`]).
     turns_normals: bool,
     /// Per material: whether [`Scene::shade`] can hand it over as it is (constant,
@@ -176,6 +189,7 @@ impl Scene {
             material: self.objects[object].material,
             error: h.error,
             primitive: h.primitive,
+            time: ray.time,
         })
     }
 
@@ -191,9 +205,17 @@ impl Scene {
             if !self.settings.hide_emitters || !self.materials[hit.material].emits() {
                 return Some(hit);
             }
-            ray = Ray { origin: crate::ray::offset_origin(hit.point, hit.geometric_normal, ray.dir, hit.t, hit.error), dir: ray.dir };
+            ray = ray.spawn(crate::ray::offset_origin(hit.point, hit.geometric_normal, ray.dir, hit.t, hit.error), ray.dir);
         }
         None
+    }
+
+    /// The shutter interval camera samples draw their instant from
+    /// ([`SceneSettings::shutter`]): `None` when no shape moves, so that a still
+    /// scene draws no time and renders as it did without motion blur.
+    pub fn shutter(&self) -> Option<(f64, f64)> {
+        let (open, close) = self.settings.shutter;
+        (self.moves && close > open).then_some((open, close))
     }
 
     /// Whether some material reads a footprint (a trilinear image texture), so
@@ -226,7 +248,7 @@ impl Scene {
     /// The surface coordinates of `hit` ([`Shape::surface_coords`]), computed
     /// now: only materials that read them ask.
     pub fn surface_coords(&self, hit: &Hit) -> crate::shapes::SurfaceCoords {
-        self.objects[hit.object].shape.surface_coords(hit.point, self.shape_outward(hit), hit.primitive)
+        self.objects[hit.object].shape.surface_coords_at(hit.point, self.shape_outward(hit), hit.primitive, hit.time)
     }
 
     /// The shape's own outward geometric normal at `hit` (before any
@@ -253,8 +275,8 @@ impl Scene {
         out
     }
 
-    /// Fraction of light that travels from `origin` a distance `distance` along the
-    /// unit `dir` (a shadow ray): 0 if an opaque object lies in between, the product
+    /// Fraction of light that travels from `ray.origin` a distance `distance` along the
+    /// unit `ray.dir` (a shadow ray, at `ray.time`): 0 if an opaque object lies in between, the product
     /// of the crossed surfaces' `shadow_transmittance` otherwise.
     ///
     /// Object `ignore` is a light's own body (a bulb, or Heckbert's emitting
@@ -262,32 +284,31 @@ impl Scene {
     /// ray ends there. Neither the object nor anything inside it or behind its
     /// near surface shadows the light, as in Heckbert's test "the first sphere hit
     /// towards the light is the light".
-    pub fn transmittance(&self, origin: Vec3, dir: Vec3, distance: f64, ignore: Option<usize>) -> Rgb {
-        let ray = Ray { origin, dir };
+    pub fn transmittance(&self, ray: &Ray, distance: f64, ignore: Option<usize>) -> Rgb {
         // The light is seen where the ray first meets its own object: the ray ends there.
         let own = ignore.and_then(|i| self.objects.get(i));
-        let distance = own.and_then(|o| o.shape.intersect(&ray, 0.0, distance)).map_or(distance, |h| h.t);
-        self.transmittance_to(origin, dir, distance, ignore)
+        let distance = own.and_then(|o| o.shape.intersect(ray, 0.0, distance)).map_or(distance, |h| h.t);
+        self.transmittance_to(ray, distance, ignore)
     }
 
     /// [`Scene::transmittance`] along a segment already known to end where it first
     /// meets object `own`: a point sampled on the facing side of a convex emitter
     /// ([`Shape::is_convex`]) is that first meeting, so the search is skipped.
-    pub fn transmittance_to_surface(&self, origin: Vec3, dir: Vec3, distance: f64, own: usize) -> Rgb {
-        self.transmittance_to(origin, dir, distance, Some(own))
+    pub fn transmittance_to_surface(&self, ray: &Ray, distance: f64, own: usize) -> Rgb {
+        self.transmittance_to(ray, distance, Some(own))
     }
 
     /// Transmittance over `(0, distance)`, object `ignore` left out.
-    fn transmittance_to(&self, origin: Vec3, dir: Vec3, distance: f64, ignore: Option<usize>) -> Rgb {
-        let ray = Ray { origin, dir };
+    fn transmittance_to(&self, ray: &Ray, distance: f64, ignore: Option<usize>) -> Rgb {
+        let (origin, dir) = (ray.origin, ray.dir);
         let ignore = ignore.map_or(u32::MAX, |i| i as u32);
         let blocks = |prim: &PrimRef| -> bool {
             prim.opaque
                 && prim.object != ignore
                 && if prim.masked {
-                    self.hit_object(prim, &ray, distance).is_some()
+                    self.hit_object(prim, ray, distance).is_some()
                 } else {
-                    self.objects[prim.object as usize].shape.intersect_p(&ray, 0.0, distance)
+                    self.objects[prim.object as usize].shape.intersect_p(ray, 0.0, distance)
                 }
         };
         if self.unbounded.iter().any(blocks) {
@@ -310,7 +331,7 @@ impl Scene {
             }
             let mut t_min = 0.0;
             // Each crossing moves t_min forward by at least the relative offset, so the loop ends.
-            while let Some(h) = self.objects[i].shape.intersect(&ray, t_min, distance) {
+            while let Some(h) = self.objects[i].shape.intersect(ray, t_min, distance) {
                 result *= filter;
                 t_min = h.t + OFFSET_SCALE * (max_abs(ray.at(h.t)) + h.t) + 4.0 * h.error;
                 if result == Rgb::ZERO {
@@ -401,14 +422,14 @@ mod tests {
         // From (5, 0, 0) towards the centre: the bulb's surface at distance 3 comes
         // before the inner ball (distance 3.5 to 4.5): the light is seen.
         let from_right = Vec3::new(5.0, 0.0, 0.0);
-        assert_eq!(scene.transmittance(from_right, -Vec3::X, 5.0, Some(0)), Rgb::ONE);
+        assert_eq!(scene.transmittance(&Ray::unit(from_right, -Vec3::X), 5.0, Some(0)), Rgb::ONE);
         // Without an own object, the bulb itself blocks.
-        assert_eq!(scene.transmittance(from_right, -Vec3::X, 5.0, None), Rgb::ZERO);
+        assert_eq!(scene.transmittance(&Ray::unit(from_right, -Vec3::X), 5.0, None), Rgb::ZERO);
         // Outside the bulb, occluders still count: the ball at x = -4 blocks from x = -6.
-        assert_eq!(scene.transmittance(Vec3::new(-6.0, 0.0, 0.0), Vec3::X, 6.0, Some(0)), Rgb::ZERO);
+        assert_eq!(scene.transmittance(&Ray::unit(Vec3::new(-6.0, 0.0, 0.0), Vec3::X), 6.0, Some(0)), Rgb::ZERO);
         // A ray that starts inside the bulb meets it only beyond the light: it is not
         // cut short, so the inner ball still shadows a point behind it.
-        assert_eq!(scene.transmittance(Vec3::new(1.8, 0.0, 0.0), -Vec3::X, 1.8, Some(0)), Rgb::ZERO);
-        assert_eq!(scene.transmittance(Vec3::new(0.0, 1.5, 0.0), -Vec3::Y, 1.5, Some(0)), Rgb::ONE);
+        assert_eq!(scene.transmittance(&Ray::unit(Vec3::new(1.8, 0.0, 0.0), -Vec3::X), 1.8, Some(0)), Rgb::ZERO);
+        assert_eq!(scene.transmittance(&Ray::unit(Vec3::new(0.0, 1.5, 0.0), -Vec3::Y), 1.5, Some(0)), Rgb::ONE);
     }
 }

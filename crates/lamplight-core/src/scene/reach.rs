@@ -89,7 +89,7 @@ fn visible(scene: &Scene, hit: &Hit, wi: Vec3, distance: f64, own: Option<usize>
         return false;
     }
     let origin = offset_origin(hit.point, hit.geometric_normal, wi, hit.t, hit.error);
-    scene.transmittance(origin, wi, distance - (origin - hit.point).length(), own) != Rgb::ZERO
+    scene.transmittance(&hit.spawn(origin, wi), distance - (origin - hit.point).length(), own) != Rgb::ZERO
 }
 
 #[cfg(test)]

@@ -37,6 +37,11 @@ pub struct SceneSettings {
     /// Which normal decides the side of a hit when a shading normal and the
     /// geometry disagree ([`Sides`]); [`Sides::Geometric`] by default.
     pub sides: Sides,
+    /// The instants the shutter is open, `(open, close)` in frames from the
+    /// rendered frame, for motion blur: each camera sample of a scene with a
+    /// moving shape ([`crate::shapes::MovingInstance`]) takes a time uniformly
+    /// between them ([`crate::integrators::View::shutter`]). `(0, 0)` by default.
+    pub shutter: (f64, f64),
 }
 
 /// Which normal decides a hit's side (front or back: whether a one-sided
@@ -74,6 +79,7 @@ impl SceneSettings {
             rr_depth: 4,
             hide_emitters: false,
             sides: Sides::Geometric,
+            shutter: (0.0, 0.0),
         }
     }
 

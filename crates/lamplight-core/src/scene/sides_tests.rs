@@ -20,7 +20,7 @@ fn leaning(sides: Sides) -> (Scene, Ray) {
     let mesh = TriangleMesh::new(positions, vec![[0, 1, 2]], Some(vec![lean; 3])).unwrap();
     builder.object(mesh, one_sided).unwrap();
     let dir = Vec3::new(30f64.to_radians().cos(), 0.0, -30f64.to_radians().sin());
-    (builder.build().unwrap(), Ray { origin: Vec3::new(0.0, 0.0, 0.0) - dir * 4.0, dir })
+    (builder.build().unwrap(), Ray::unit(Vec3::new(0.0, 0.0, 0.0) - dir * 4.0, dir))
 }
 
 #[test]
@@ -45,7 +45,7 @@ fn shading_sides_see_the_back_of_a_one_sided_material_as_mitsuba_does() {
     assert_eq!(hit.geometric_normal, Vec3::Z);
     assert!(crate::scene::surface_bsdf(&scene.materials[hit.material], hit.point, hit.front_face).is_black(), "one-sided: black");
     // Where the shading normal faces the ray both conventions agree.
-    let straight = Ray { origin: Vec3::new(0.0, 0.0, 4.0), dir: Vec3::new(0.0, 0.0, -1.0) };
+    let straight = Ray::unit(Vec3::new(0.0, 0.0, 4.0), Vec3::new(0.0, 0.0, -1.0));
     let a = scene.first_intersect(&straight, f64::INFINITY).unwrap();
     let b = leaning(Sides::Geometric).0.first_intersect(&straight, f64::INFINITY).unwrap();
     assert_eq!(a, b);

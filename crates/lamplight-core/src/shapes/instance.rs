@@ -103,7 +103,7 @@ impl Instance {
         if !(length > 0.0 && length.is_finite()) {
             return None;
         }
-        Some((Ray { origin: self.object_from_world.transform_point3(ray.origin), dir: dir / length }, length))
+        Some((Ray::unit(self.object_from_world.transform_point3(ray.origin), dir / length), length))
     }
 }
 

@@ -28,6 +28,7 @@ pub mod disk_uv;
 mod implicit;
 mod instance;
 mod mesh;
+pub mod moving;
 pub mod plane;
 pub mod quadric;
 pub mod sdf_grid;
@@ -40,6 +41,7 @@ pub use cuboid::Cuboid;
 pub use implicit::{GradientFn, Implicit, ImplicitFn};
 pub use instance::{placed, Instance};
 pub use mesh::{TriangleMesh, VertexAttributes};
+pub use moving::MovingInstance;
 pub use plane::{Disk, Plane, Rectangle};
 pub use quadric::{Clip, Quadric, Sheets};
 pub use sdf_grid::SdfGrid;
@@ -134,6 +136,20 @@ pub trait Shape: Send + Sync + std::fmt::Debug {
     fn surface_coords(&self, p: Vec3, n: Vec3, primitive: Option<u32>) -> SurfaceCoords {
         let _ = (p, primitive);
         SurfaceCoords::unparametrized(n)
+    }
+
+    /// [`Shape::surface_coords`] of a hit made by a ray at `time`
+    /// ([`Ray::time`]): a moving shape ([`MovingInstance`]) maps the point back to
+    /// where it stood then; every other shape ignores `time`.
+    fn surface_coords_at(&self, p: Vec3, n: Vec3, primitive: Option<u32>, time: f64) -> SurfaceCoords {
+        let _ = time;
+        self.surface_coords(p, n, primitive)
+    }
+
+    /// True for a shape that moves while the shutter is open ([`MovingInstance`]):
+    /// the integrators then give each camera sample an instant.
+    fn moves(&self) -> bool {
+        false
     }
 
     /// What the shape noticed while rendering that the user should know (an

@@ -150,7 +150,7 @@ mod tests {
         let above = focus + Vec3::new(0.0, 1.0, 0.0);
         let visible = |p: Vec3| {
             let to = focus - p;
-            scene.transmittance(p, to.normalize(), to.length(), None)
+            scene.transmittance(&lamplight_core::ray::Ray::unit(p, to.normalize()), to.length(), None)
         };
         assert_eq!(visible(below), Rgb::ONE, "the bulb casts no shadow, the shade opens downwards");
         assert_eq!(visible(above), Rgb::ZERO, "the shade's back blocks the light");

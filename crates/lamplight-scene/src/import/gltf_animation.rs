@@ -102,7 +102,7 @@ impl Clip {
 
     /// Its frames at [`GLTF_FPS`] (module doc): 0 to the frame of its last key, rounded up.
     pub fn frames(&self) -> Animation {
-        Animation { start: 0, end: frames_to(self.time_span().1, GLTF_FPS), fps: GLTF_FPS, loc: Default::default() }
+        Animation { start: 0, end: frames_to(self.time_span().1, GLTF_FPS), fps: GLTF_FPS, shutter: (0.0, 0.0), loc: Default::default() }
     }
 }
 
@@ -363,7 +363,7 @@ pub fn file_frames(path: &Path) -> Option<Animation> {
             _ => return super::load(path).ok()?.frames(),
         }
     }
-    Some(Animation { start: 0, end: frames_to(end, GLTF_FPS), fps: GLTF_FPS, loc: Default::default() })
+    Some(Animation { start: 0, end: frames_to(end, GLTF_FPS), fps: GLTF_FPS, shutter: (0.0, 0.0), loc: Default::default() })
 }
 
 /// The JSON chunk of the GLB file at `path`, read without the binary chunk

@@ -19,6 +19,7 @@ pub mod environment;
 pub mod implicit;
 pub mod imported;
 mod materials;
+mod motion;
 mod nodes;
 pub mod studio;
 pub(crate) mod transform;
@@ -405,10 +406,22 @@ pub fn build_frame(desc: &SceneDescription, source: &Source, frame: Option<i64>)
     let frame = frame.unwrap_or(animation.start);
     let in_frame = |e: LoadError| LoadError { message: format!("frame {frame}: {}", e.message), ..e };
     let at = desc.at_frame(frame as f64).map_err(|e| in_frame(source.param_error(e)))?;
-    build_static(&at, source).map_err(in_frame)
+    let shutter = motion::instants(desc, frame).map_err(|e| in_frame(source.param_error(e)))?;
+    build_at(&at, source, &shutter, animation.shutter).map_err(in_frame)
 }
 
 fn build_static(desc: &SceneDescription, source: &Source) -> Result<Built, LoadError> {
+    build_at(desc, source, &[], (0.0, 0.0))
+}
+
+/// Builds the static description `desc`, its shapes moving as the
+/// descriptions of the shutter's instants place them ([`motion`]).
+fn build_at(
+    desc: &SceneDescription,
+    source: &Source,
+    instants: &[(f64, SceneDescription)],
+    shutter: (f64, f64),
+) -> Result<Built, LoadError> {
     let settings = settings(desc, source)?;
     // Each build counts afresh (a reload, another Python `Scene`); the limit
     // is the job's ([`crate::request::SceneRequest::instantiate`]).
@@ -426,6 +439,7 @@ fn build_static(desc: &SceneDescription, source: &Source) -> Result<Built, LoadE
     builder.settings.sides = settings.sides;
     builder.settings.rr_depth = settings.rr_depth;
     builder.settings.min_weight = settings.min_weight;
+    builder.settings.shutter = shutter;
     // Texture files are found beside the scene file, and decoded once each,
     // whether a material or a light reads them.
     let images = crate::texture_files::ImageFiles::new(&dir);
@@ -435,7 +449,7 @@ fn build_static(desc: &SceneDescription, source: &Source) -> Result<Built, LoadE
         builder.name_material(index, name);
     }
     let mut warnings = source.warnings.clone();
-    warnings.extend(nodes::add_all(desc, source, &mut builder, materials, &textures)?);
+    warnings.extend(nodes::add_all(desc, source, &mut builder, materials, &textures, instants)?);
     let objects = builder.object_count() as u64;
     crate::memory::reserve(objects * BVH_BYTES_PER_OBJECT, || format!("the scene's BVH over {objects} objects"))
         .map_err(|e| LoadError::file(&source.path, e.to_string()))?;

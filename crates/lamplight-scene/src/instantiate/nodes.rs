@@ -47,6 +47,10 @@ struct Ctx<'a> {
     stack: Vec<String>,
     /// The mesh files' warnings, `FILE: what`.
     warnings: Vec<String>,
+    /// The shapes' transforms over the shutter, for motion blur.
+    motion: Option<super::motion::Motion>,
+    /// Shape and mesh nodes placed so far ([`super::motion::Motion::keys`]).
+    leaf: usize,
 }
 
 /// Adds every top-level node of `desc` to `builder`; returns the warnings of
@@ -57,6 +61,7 @@ pub(super) fn add_all(
     builder: &mut SceneBuilder,
     materials: BTreeMap<String, usize>,
     textures: &Textures<'_>,
+    shutter: &[(f64, SceneDescription)],
 ) -> Result<Vec<String>, LoadError> {
     let mut ctx = Ctx {
         desc,
@@ -70,6 +75,8 @@ pub(super) fn add_all(
         lights: Vec::new(),
         stack: Vec::new(),
         warnings: Vec::new(),
+        motion: None,
+        leaf: 0,
     };
     // Count first, so that exponential instancing fails at once instead of
     // after allocating millions of objects.
@@ -81,6 +88,7 @@ pub(super) fn add_all(
             return Err(source.error(&node.params.loc, message));
         }
     }
+    ctx.motion = super::motion::Motion::new(shutter).map_err(|e| source.param_error(e))?;
     for node in &desc.objects {
         ctx.node(node, Mat4::IDENTITY, None, 0)?;
     }
@@ -175,12 +183,14 @@ impl<'a> Ctx<'a> {
                     return Err(self.fail(p.key_error("part", message)));
                 }
                 let chosen = asset.iter().enumerate().filter(|(i, _)| part.is_none_or(|k| k as usize == *i));
+                let keys = self.motion_keys(&m);
                 for (_, (mesh, placement, imported)) in chosen {
-                    let shape = placed(mesh.clone(), &(m * *placement)).map_err(|e| self.fail(p.core_error(e)))?;
                     let material = match (material, *imported) {
                         (Some(m), _) | (None, Some(m)) => m,
                         (None, None) => self.default_material().map_err(|e| self.fail(p.error(e)))?,
                     };
+                    let shape = placed(mesh.clone(), &(m * *placement)).map_err(|e| self.fail(p.core_error(e)))?;
+                    let shape = self.moved(shape, material, keys.as_ref()).map_err(|e| self.fail(p.core_error(e)))?;
                     self.place(shape, material, reversed, n).map_err(|e| self.fail(p.error(e)))?;
                 }
             }
@@ -191,12 +201,33 @@ impl<'a> Ctx<'a> {
                     Some(m) => m,
                     None => self.default_material().map_err(|e| self.fail(p.error(e)))?,
                 };
+                let keys = self.motion_keys(&m);
                 for shape in made {
+                    let shape = self.moved(shape, material, keys.as_ref()).map_err(|e| self.fail(p.core_error(e)))?;
                     self.place(shape, material, reversed, n).map_err(|e| self.fail(p.error(e)))?;
                 }
             }
         }
         p.finish().map_err(|e| self.fail(e))
+    }
+
+    /// The motion keys of the next shape or mesh node, which stands at `m`
+    /// at the frame (motion blur, [`super::motion`]).
+    fn motion_keys(&mut self, m: &Mat4) -> Option<Vec<(f64, Mat4)>> {
+        let leaf = self.leaf;
+        self.leaf += 1;
+        self.motion.as_ref()?.keys(leaf, m)
+    }
+
+    /// `shape` moving by `keys`; an emitting one stays where it is at the frame.
+    fn moved(
+        &self,
+        shape: Arc<dyn Shape>,
+        material: usize,
+        keys: Option<&Vec<(f64, Mat4)>>,
+    ) -> Result<Arc<dyn Shape>, lamplight_core::Error> {
+        let emits = self.builder.material_at(material).is_some_and(Material::emits);
+        super::motion::wrap(shape, keys.filter(|_| !emits))
     }
 
     fn place(&mut self, shape: Arc<dyn Shape>, material: usize, reversed: bool, n: &Node) -> Result<(), String> {

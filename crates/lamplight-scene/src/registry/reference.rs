@@ -24,7 +24,7 @@ pub fn reference() -> String {
     section(
         &mut out,
         "`[animation]`",
-        "the frame range and rate of an animated scene (see docs/animation.md)",
+        "the frame range and rate of an animated scene, and its shutter (see docs/animation.md)",
         crate::description::animation::ANIMATION_PARAMS,
     );
     section(

@@ -108,23 +108,23 @@ fn rays_in_a_face_plane_or_along_an_edge_are_deterministic() {
     // through the -z face.
     for dir in [Vec3::Z, Vec3::new(-0.0, -0.0, 1.0), Vec3::new(0.0, -0.0, 1.0)] {
         for origin in [Vec3::new(1.0, 0.0, -5.0), Vec3::new(-1.0, 0.3, -5.0), Vec3::new(1.0, 1.0, -5.0), Vec3::new(-1.0, -1.0, -5.0)] {
-            let hit = b.intersect(&Ray { origin, dir }, 0.0, INF).unwrap();
+            let hit = b.intersect(&Ray::unit(origin, dir), 0.0, INF).unwrap();
             assert_eq!((hit.t, hit.normal), (4.0, -Vec3::Z), "{origin} along {dir}");
             assert!(hit.normal.is_finite());
             // From inside the face plane, already within the box's z range: the exit.
-            let inside = b.intersect(&Ray { origin: Vec3::new(origin.x, origin.y, 0.0), dir }, 0.0, INF).unwrap();
+            let inside = b.intersect(&Ray::unit(Vec3::new(origin.x, origin.y, 0.0), dir), 0.0, INF).unwrap();
             assert_eq!((inside.t, inside.normal), (1.0, Vec3::Z));
         }
         // In the plane of a face but beside it: a miss, not a NaN.
-        assert!(b.intersect(&Ray { origin: Vec3::new(1.0, 2.0, -5.0), dir }, 0.0, INF).is_none());
-        assert!(b.intersect(&Ray { origin: Vec3::new(1.0 + 1e-12, 0.0, -5.0), dir }, 0.0, INF).is_none());
-        assert!(b.intersect(&Ray { origin: Vec3::new(1.0 - 1e-12, 0.0, -5.0), dir }, 0.0, INF).is_some());
+        assert!(b.intersect(&Ray::unit(Vec3::new(1.0, 2.0, -5.0), dir), 0.0, INF).is_none());
+        assert!(b.intersect(&Ray::unit(Vec3::new(1.0 + 1e-12, 0.0, -5.0), dir), 0.0, INF).is_none());
+        assert!(b.intersect(&Ray::unit(Vec3::new(1.0 - 1e-12, 0.0, -5.0), dir), 0.0, INF).is_some());
     }
     // Along a face in x (non-zero x component): enters through the -x face.
     let along = b.intersect(&Ray::new(Vec3::new(-5.0, 1.0, 1.0), Vec3::X), 0.0, INF).unwrap();
     assert_eq!((along.t, along.normal), (4.0, -Vec3::X));
     // Through a corner exactly: entry planes x, y and z all at t = 1; the x slab wins the tie.
-    let corner = b.intersect(&Ray { origin: Vec3::splat(-2.0), dir: Vec3::splat(1.0) }, 0.0, INF).unwrap();
+    let corner = b.intersect(&Ray::unit(Vec3::splat(-2.0), Vec3::splat(1.0)), 0.0, INF).unwrap();
     assert_eq!((corner.t, corner.normal), (1.0, -Vec3::X));
 }
 
@@ -201,7 +201,7 @@ fn area_samples_lie_on_the_surface_with_outward_normals_and_faces_by_area() {
             assert!((local[axis] - plane).abs() < 1e-12, "{local} on face {face}");
             assert!((normal - faces[face].normal()).length() < 1e-12, "outward normal of face {face}");
             // A ray back along the normal from just outside meets the box at p.
-            let hit = c.intersect(&Ray { origin: p + normal * 1e-3, dir: -normal }, 0.0, INF).unwrap();
+            let hit = c.intersect(&Ray::unit(p + normal * 1e-3, -normal), 0.0, INF).unwrap();
             assert!((hit.t - 1e-3).abs() < 1e-9 && hit.normal == normal);
             counts[face] += 1;
         }
@@ -226,7 +226,7 @@ fn emitting_box_light_integrates_the_solid_angle_of_its_visible_face() {
     for i in 0..n {
         for j in 0..n {
             if let Some(s) = light.sample(x, ((i as f64 + 0.5) / n as f64, (j as f64 + 0.5) / n as f64)) {
-                let hit = light.shape.intersect(&Ray { origin: x, dir: s.wi }, 0.0, INF).unwrap();
+                let hit = light.shape.intersect(&Ray::unit(x, s.wi), 0.0, INF).unwrap();
                 assert!((hit.t - s.distance).abs() < 1e-9, "a front-facing point of a convex box is visible");
                 assert!((light.pdf(s.wi, hit.t, hit.normal) - s.pdf).abs() < 1e-9 * s.pdf);
                 omega += 1.0 / s.pdf;

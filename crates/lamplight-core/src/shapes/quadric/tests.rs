@@ -78,8 +78,8 @@ fn cylinder_side_hit_and_rays_along_the_axis() {
         let tilted = Quadric::cylinder(base, axis, 0.5).unwrap();
         let (u, v) = crate::math::orthonormal_basis(axis);
         let origin = base + (u * rng.uniform() + v * rng.uniform()) * 0.3 + axis * (4.0 * rng.uniform() - 2.0);
-        assert!(tilted.intersect(&Ray { origin, dir: axis }, 0.0, INF).is_none());
-        assert!(tilted.intersect(&Ray { origin, dir: -axis }, 0.0, INF).is_none());
+        assert!(tilted.intersect(&Ray::unit(origin, axis), 0.0, INF).is_none());
+        assert!(tilted.intersect(&Ray::unit(origin, -axis), 0.0, INF).is_none());
     }
 }
 

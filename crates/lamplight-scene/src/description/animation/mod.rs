@@ -48,7 +48,17 @@ pub const ANIMATION_PARAMS: &[Param] = &[
         "the frames of the animation, both included: what `--frames` renders by default, and where `seconds` count from (second 0 is frame `start`)",
     ),
     Param::new("fps", T::Number, "24", "frames per second, > 0, at most 1000", "frame rate: converts keys given in `seconds` to frames"),
+    Param::new(
+        "shutter",
+        T::Array,
+        "[0, 0]",
+        "[open, close] in frames from the frame, open <= close, each within ±1000",
+        "motion blur: each camera sample takes an instant in `[frame + open, frame + close]` and sees moving objects there (`[0, 0]`: none; Blender's default 0.5 is `[-0.25, 0.25]`)",
+    ),
 ];
+
+/// The largest `|open|` or `|close|` of a shutter, in frames.
+pub const MAX_SHUTTER: f64 = 1000.0;
 
 /// The keys of one `animate.KEY` table.
 pub const TRACK_PARAMS: &[Param] = &[
@@ -87,6 +97,9 @@ pub struct Animation {
     pub end: i64,
     /// Frames per second.
     pub fps: f64,
+    /// The shutter `(open, close)` in frames from the frame (`(0, 0)`: no
+    /// motion blur).
+    pub shutter: (f64, f64),
     /// Where the table is.
     pub loc: Loc,
 }
@@ -117,7 +130,16 @@ impl Animation {
             if !(fps > 0.0 && fps <= MAX_FPS) {
                 return Err(p.key_error("fps", format!("must be a positive number of frames per second, at most {MAX_FPS}, got {fps}")));
             }
-            Ok(Animation { start, end, fps, loc: table.loc.clone() })
+            let shutter = match p.pair("shutter")? {
+                None => (0.0, 0.0),
+                Some([open, close]) if open <= close && open.abs() <= MAX_SHUTTER && close.abs() <= MAX_SHUTTER => (open, close),
+                Some([open, close]) => {
+                    return Err(
+                        p.key_error("shutter", format!("[{open}, {close}] must have open <= close, both within ±{MAX_SHUTTER} frames"))
+                    )
+                }
+            };
+            Ok(Animation { start, end, fps, shutter, loc: table.loc.clone() })
         })
     }
 
