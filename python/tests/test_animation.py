@@ -70,3 +70,30 @@ def test_dict_errors_name_the_key_path():
         lamplight.Scene(bad)
     with pytest.raises(ValueError, match="frame must be a frame number from 0 to 1048574, got -1"):
         lamplight.render(DICT, frame=-1, progress=False)
+
+
+def test_a_dict_takes_the_shutter_as_a_file_does(cli, tmp_path):
+    """Motion blur from a dict: `"shutter"` in `"animation"` blurs the moving
+    sphere as the file's key does (the same numbers as the command line), a
+    closed shutter is the frame without blur, and a bad one gives the file's error."""
+    import copy
+
+    blurred = copy.deepcopy(DICT)
+    blurred["animation"]["shutter"] = [-0.5, 0.5]
+    blurred["render"]["spp"] = 16
+    path = tmp_path / "blurred.toml"
+    path.write_text(TOML.replace("frames = [1, 5]\n[render]", "frames = [1, 5]\nshutter = [-0.5, 0.5]\n[render]").replace("spp = 1", "spp = 16"))
+    subprocess.run([cli, "render", str(path), "--frames", "3", "-o", str(tmp_path / "b3.exr"), "--quiet"], check=True)
+    expected = lamplight.read_exr(tmp_path / "b3.exr")
+    image = lamplight.render(blurred, frame=3, progress=False)
+    assert image.tobytes() == expected.tobytes(), f"max difference {np.abs(image - expected).max()}"
+    sharp = copy.deepcopy(DICT)
+    sharp["render"]["spp"] = 16
+    closed = copy.deepcopy(sharp)
+    closed["animation"]["shutter"] = [0, 0]
+    assert lamplight.render(closed, frame=3, progress=False).tobytes() == lamplight.render(sharp, frame=3, progress=False).tobytes()
+    assert image.tobytes() != lamplight.render(sharp, frame=3, progress=False).tobytes()
+    bad = copy.deepcopy(DICT)
+    bad["animation"]["shutter"] = [1, 0]
+    with pytest.raises(lamplight.SceneError, match=r"animation: shutter: \[1, 0\] must have open <= close, both within ±1000 frames"):
+        lamplight.render(bad, frame=3, progress=False)

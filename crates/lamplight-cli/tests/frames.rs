@@ -202,3 +202,29 @@ fn an_interrupted_sequence_resumes_where_it_stopped() {
     }
     assert!(interrupted > 0, "no sequence lasted 100 ms: the signal was never handled");
 }
+
+/// `[animation] shutter`: `info` says the shutter, and a frame rendered with
+/// it is blurred (differs from the frame without), the same bytes alone and in
+/// a sequence, while a closed shutter gives the unblurred frame's bytes.
+#[test]
+fn a_shutter_blurs_frames_and_info_says_so() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    scene(d);
+    let with = |shutter: &str| MOVING.replace("fps = 12\n", &format!("fps = 12\nshutter = {shutter}\n")).replace("spp = 1\n", "spp = 16\n");
+    fs::write(d.join("blurred.toml"), with("[-0.5, 0.5]")).unwrap();
+    fs::write(d.join("closed.toml"), with("[0, 0]")).unwrap();
+    fs::write(d.join("sharp.toml"), MOVING.replace("spp = 1\n", "spp = 16\n")).unwrap();
+    let out = lamplight(d, &["info", "blurred.toml"]);
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("\nshutter:    [-0.5, 0.5] frames around each frame: moving shapes are motion-blurred\n"), "{text}");
+    assert!(!String::from_utf8(lamplight(d, &["info", "closed.toml"]).stdout).unwrap().contains("shutter:"));
+    ok(d, &["render", "blurred.toml", "--frames", "2-3", "-o", "b_#.png", "-q"]);
+    ok(d, &["render", "blurred.toml", "--frames", "3", "-o", "b_alone.png", "-q"]);
+    ok(d, &["render", "closed.toml", "--frames", "3", "-o", "c.png", "-q"]);
+    ok(d, &["render", "sharp.toml", "--frames", "3", "-o", "s.png", "-q"]);
+    let read = |n: &str| fs::read(d.join(n)).unwrap();
+    assert_eq!(read("b_alone.png"), read("b_3.png"), "a blurred frame alone and in a sequence");
+    assert_eq!(read("c.png"), read("s.png"), "a closed shutter is the frame without blur");
+    assert_ne!(read("b_3.png"), read("s.png"), "an open shutter blurs the moving ball");
+}

@@ -385,5 +385,10 @@ fn animation_rows(desc: &crate::description::SceneDescription) -> Vec<(&'static 
         // One line per node, indented as the warnings are.
         false => format!("{} of {}\n  {}", plural(keys, "key", "keys"), plural(nodes.len(), "node", "nodes"), nodes.join("\n  ")),
     };
-    vec![("animation", range), ("animated", animated)]
+    let mut rows = vec![("animation", range), ("animated", animated)];
+    let (open, close) = a.shutter;
+    if close > open {
+        rows.push(("shutter", format!("[{}, {}] frames around each frame: moving shapes are motion-blurred", num(open), num(close))));
+    }
+    rows
 }
