@@ -26,8 +26,9 @@ pub fn describe(request: &SceneRequest) -> Result<String, RequestError> {
         SceneSpec::Mesh(path) => {
             let mut imported = import::load(path).map_err(bad)?;
             // Described at its first frame, as a render without --frames draws it.
-            imported.pose_frame(path, 0).map_err(bad)?;
-            Ok(describe_imported(path, &imported))
+            let clip = request.mesh.animation.unwrap_or(0);
+            imported.pose_clip_frame(path, clip, 0).map_err(bad)?;
+            Ok(describe_imported(path, &imported, clip))
         }
         SceneSpec::File(file) => {
             let built = file.build_with_warnings().map_err(bad)?;
@@ -89,7 +90,7 @@ fn lines(head: String, rows: &[(&str, String)], warnings: &[String]) -> String {
     out
 }
 
-fn describe_imported(path: &Path, imported: &Imported) -> String {
+fn describe_imported(path: &Path, imported: &Imported, clip: usize) -> String {
     let ext = path.extension().and_then(|e| e.to_str()).unwrap_or_default().to_ascii_lowercase();
     let format = match ext.as_str() {
         "obj" => "OBJ",
@@ -174,24 +175,25 @@ fn describe_imported(path: &Path, imported: &Imported) -> String {
         ("cameras", cameras),
         ("lights", lights),
     ];
-    rows.extend(gltf_animation_rows(imported));
+    rows.extend(gltf_animation_rows(imported, clip));
     lines(format!("{}: {format} file", path.display()), &rows, &imported.warnings)
 }
 
 /// A glTF file's `animation:` (the frames of the animation a render plays,
-/// its keys' time span, the file's other animations) and `animated:` (each
-/// channel of the one played, on a line of its own).
-fn gltf_animation_rows(imported: &Imported) -> Vec<(&'static str, String)> {
+/// its keys' time span), `animations:` (every animation of the file, when it
+/// has several, the one playing marked) and `animated:` (each channel of the
+/// one played, on a line of its own).
+fn gltf_animation_rows(imported: &Imported, clip: usize) -> Vec<(&'static str, String)> {
     use crate::import::gltf_animation::Clip;
     let Some(clips) = imported.animations.as_ref().map(|a| &a.clips) else { return Vec::new() };
-    let Some(first) = clips.first() else { return Vec::new() };
+    let Some(first) = clips.get(clip) else { return Vec::new() };
     let name = |c: &Clip| match &c.name {
         Some(n) => format!("animations[{}] {n:?}", c.index),
         None => format!("animations[{}]", c.index),
     };
     let a = first.frames();
     let (t0, t1) = first.time_span();
-    let mut range = format!(
+    let range = format!(
         "frames {} to {} ({} at {} fps; {} plays, keys from {} to {} s; described at frame {})",
         a.start,
         a.end,
@@ -202,8 +204,15 @@ fn gltf_animation_rows(imported: &Imported) -> Vec<(&'static str, String)> {
         num(t1),
         a.start
     );
+    let mut listed = Vec::new();
     if clips.len() > 1 {
-        write!(range, "; also {}", clips[1..].iter().map(name).collect::<Vec<_>>().join(", ")).unwrap();
+        let row = |c: &Clip| {
+            let (_, end) = c.time_span();
+            let title = c.name.as_ref().map_or("(unnamed)".to_string(), |n| format!("{n:?}"));
+            let mark = if c.index == first.index { "  (plays)" } else { "" };
+            format!("{} {title}, {} s{mark}", c.index, num(end))
+        };
+        listed.push(("animations", format!("{}\n  {}", clips.len(), clips.iter().map(row).collect::<Vec<_>>().join("\n  "))));
     }
     let mut nodes: Vec<usize> = first.channels.iter().map(|c| c.node).collect();
     nodes.sort_unstable();
@@ -239,7 +248,10 @@ fn gltf_animation_rows(imported: &Imported) -> Vec<(&'static str, String)> {
             channels.join("\n  ")
         ),
     };
-    vec![("animation", range), ("animated", animated)]
+    let mut rows = vec![("animation", range)];
+    rows.extend(listed);
+    rows.push(("animated", animated));
+    rows
 }
 
 /// A scene value as it would be written in a scene file (numbers trimmed).

@@ -21,6 +21,7 @@ mod explain;
 mod fuzz_props;
 mod gltf;
 mod gltf_animation;
+mod gltf_animation_choice;
 mod golden;
 mod lights;
 mod mesh_lights;

@@ -39,6 +39,10 @@ pub struct MeshOptions {
     pub smooth: bool,
     /// Whether a file with lights of its own keeps the viewer's lights too.
     pub auto_lights: AutoLights,
+    /// The glTF animation that plays, an index into the file's `animations`
+    /// (`--animation`, resolved by [`import::gltf_choice::resolve`]); `None`:
+    /// the first, with a note when the file has several.
+    pub animation: Option<usize>,
 }
 
 /// Reads the mesh file at `path` and builds a scene (for any image size).
@@ -59,11 +63,14 @@ pub fn load_with(path: &Path, options: MeshOptions) -> Result<Built, LoadError> 
 }
 
 /// [`load_with`] at frame `frame` of the file's animation (`None`: its first
-/// frame, 0; a glTF file's first animation at 24 fps: [`import::gltf_animation`]).
-/// A file without animations is the same at every frame.
+/// frame, 0; a glTF file's animation [`MeshOptions::animation`] at 24 fps:
+/// [`import::gltf_animation`]). A file without animations is the same at every frame.
 pub fn load_frame(path: &Path, options: MeshOptions, frame: Option<i64>) -> Result<Built, LoadError> {
     let mut imported = import::load(path)?;
-    imported.pose_frame(path, frame.unwrap_or(0))?;
+    imported.pose_clip_frame(path, options.animation.unwrap_or(0), frame.unwrap_or(0))?;
+    if options.animation.is_none() {
+        imported.warnings.extend(imported.several_animations_note());
+    }
     let (scene, note) = build_with(path, &imported, options)?;
     let mut warnings = imported.warnings_of(path);
     warnings.extend(note);
