@@ -347,10 +347,43 @@ fn describe_scene(name: &str, what: &str, file: Option<&SceneFile>, scene: &Scen
         ("lights", lights),
         ("background", rgb(scene.settings.background)),
     ];
-    if let Some(desc) = file.map(|f| &f.description) {
-        rows.extend(animation_rows(desc));
+    if let Some(file) = file {
+        rows.extend(animation_rows(&file.description));
+        rows.extend(gltf_mesh_rows(file));
     }
     lines(format!("{name}: {what}"), &rows, warnings)
+}
+
+/// `gltf anim:`, one line per `[meshes]` glTF file with animations: the one
+/// that plays at the scene's time (`[meshes.NAME] animation`), or the rest
+/// pose, and the file's animations.
+fn gltf_mesh_rows(file: &SceneFile) -> Vec<(&'static str, String)> {
+    use crate::import::gltf_choice::{self, AnimationChoice};
+    let mut lines = Vec::new();
+    for mesh in &file.description.meshes {
+        let Some(Value::String(name)) = mesh.value.get("file").map(|e| &e.item.value) else { continue };
+        let path = file.source.dir().join(name);
+        let Some(clips) = gltf_choice::file_clips(&path).ok().filter(|c| !c.is_empty() && gltf_choice::is_gltf(&path)) else { continue };
+        let choice = match mesh.value.get("animation").map(|e| &e.item.value) {
+            Some(Value::Bool(false)) => None,
+            Some(Value::String(n)) => Some(AnimationChoice::Name(n.clone())),
+            Some(Value::Integer(i)) => Some(AnimationChoice::Index(*i as usize)),
+            _ => Some(AnimationChoice::Index(0)),
+        };
+        let plays = match choice.map(|c| gltf_choice::resolve(&path, &c, "animation")) {
+            None => "the rest pose (animation = false)".to_string(),
+            Some(Ok(i)) => {
+                let end = gltf_choice::file_clip_end(&path, i).map_or(String::new(), |e| format!(", keys to {} s", num(e)));
+                format!("animations[{i}]{} plays{end}", clips[i].name.as_ref().map_or(String::new(), |n| format!(" {n:?}")))
+            }
+            Some(Err(_)) => continue,
+        };
+        lines.push(format!("mesh {:?} ({name}): {plays}; the file has {}", mesh.name, gltf_choice::listing(&clips)));
+    }
+    match lines.is_empty() {
+        true => Vec::new(),
+        false => vec![("gltf anim", lines.join("\n  "))],
+    }
 }
 
 /// `animation:` (the range, the rate and the length; the scene as built above

@@ -369,7 +369,7 @@ fn a_frame_renders_as_the_cube_placed_by_hand() {
 }
 
 #[test]
-fn a_cube_scaled_to_nothing_is_left_out_and_scene_files_say_they_do_not_play() {
+fn a_cube_scaled_to_nothing_is_left_out_and_a_scene_file_without_animation_says_so() {
     let dir = tempfile::tempdir().unwrap();
     let mut b = Builder::default();
     b.cube();
@@ -389,7 +389,7 @@ fn a_cube_scaled_to_nothing_is_left_out_and_scene_files_say_they_do_not_play() {
     // Frame 24 (1 s) renders with the one cube left.
     let request = SceneRequest::resolve(path.to_str().unwrap()).unwrap();
     assert_eq!(request.build_frame(Some(24)).unwrap().scene.objects.len(), 1);
-    // In a scene file's [meshes] the file stands as its nodes place it, and a warning says so.
+    // In a scene file's [meshes] without [animation] the file stands at its time 0, and a warning says so.
     let scene = format!(
         "[camera]\neye = [0, 2, 8]\nlook_at = [0, 0, 0]\nvfov = 40\n[meshes.box]\nfile = {:?}\n[[objects]]\ntype = \"mesh\"\nmesh = \"box\"\n",
         path.display().to_string()
@@ -400,8 +400,8 @@ fn a_cube_scaled_to_nothing_is_left_out_and_scene_files_say_they_do_not_play() {
     assert_eq!(
         built.warnings,
         [format!(
-            "{}: glTF animations are not played in a scene file's [meshes]: the nodes stand as the file places them \
-             (render the glTF file itself to play its first animation)",
+            "{}: the scene has no [animation], so the glTF animation stands at its time 0: add [animation] (frames = [START, END], fps) \
+             to play it, or give the mesh `animation = false` for the rest pose",
             path.display()
         )]
     );

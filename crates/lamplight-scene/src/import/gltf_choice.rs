@@ -118,6 +118,13 @@ pub fn file_frames(path: &Path) -> Option<Animation> {
 /// `None` for other files, files without that animation, and files that
 /// cannot be read (the render reports those).
 pub fn file_clip_frames(path: &Path, clip: usize) -> Option<Animation> {
+    let end = file_clip_end(path, clip)?;
+    Some(Animation { start: 0, end: frames_to(end, GLTF_FPS), fps: GLTF_FPS, loc: Default::default() })
+}
+
+/// The time of the last key of animation `clip` of the glTF file at `path`,
+/// in seconds ([`file_clip_frames`]).
+pub fn file_clip_end(path: &Path, clip: usize) -> Option<f64> {
     if !is_gltf(path) {
         return None;
     }
@@ -132,10 +139,10 @@ pub fn file_clip_frames(path: &Path, clip: usize) -> Option<Animation> {
         match max {
             Some(m) if m.is_finite() => end = end.max(m),
             // An input without its `max`: read the whole file.
-            _ => return super::load(path).ok()?.clip_frames(clip),
+            _ => return Some(super::load(path).ok()?.animations?.clips.get(clip)?.time_span().1),
         }
     }
-    Some(Animation { start: 0, end: frames_to(end, GLTF_FPS), fps: GLTF_FPS, loc: Default::default() })
+    Some(end)
 }
 
 /// The JSON chunk of the GLB file at `path`, read without the binary chunk
