@@ -22,6 +22,7 @@ mod fuzz_props;
 mod gltf;
 mod gltf_animation;
 mod gltf_animation_choice;
+mod gltf_animation_convert;
 mod gltf_animation_scene;
 mod golden;
 mod lights;

@@ -52,6 +52,24 @@ pub struct Animations {
     pub clips: Vec<Clip>,
 }
 
+impl Animations {
+    /// Whether animation `clip` moves a camera or a light of the file (a
+    /// channel on its node or on one above it).
+    pub fn moves_cameras_or_lights(&self, clip: usize) -> bool {
+        let Some(clip) = self.clips.get(clip) else { return false };
+        let moved = |mut n: usize| loop {
+            if clip.channels.iter().any(|c| c.tree == n) {
+                return true;
+            }
+            match self.nodes[n].parent {
+                Some(p) => n = p,
+                None => return false,
+            }
+        };
+        self.camera_nodes.iter().chain(&self.light_nodes).any(|&n| moved(n))
+    }
+}
+
 /// One node of the walked tree.
 #[derive(Clone, Debug, PartialEq)]
 struct TreeNode {

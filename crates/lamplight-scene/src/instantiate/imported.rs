@@ -67,14 +67,30 @@ pub fn load_with(path: &Path, options: MeshOptions) -> Result<Built, LoadError> 
 /// [`import::gltf_animation`]). A file without animations is the same at every frame.
 pub fn load_frame(path: &Path, options: MeshOptions, frame: Option<i64>) -> Result<Built, LoadError> {
     let mut imported = import::load(path)?;
+    let framing = first_frame_sphere(path, &mut imported, options.animation.unwrap_or(0))?;
     imported.pose_clip_frame(path, options.animation.unwrap_or(0), frame.unwrap_or(0))?;
     if options.animation.is_none() {
         imported.warnings.extend(imported.several_animations_note());
     }
-    let (scene, note) = build_with(path, &imported, options)?;
+    let (scene, note) = build_framed(path, &imported, options, framing)?;
     let mut warnings = imported.warnings_of(path);
     warnings.extend(note);
     Ok(Built { scene, warnings })
+}
+
+/// What the viewer's camera of an animated file frames: every placed vertex
+/// at frame 0 of animation `clip`, so that the camera and its lights hold
+/// still while the model moves (`lamplight convert` writes the same camera);
+/// `None` for a file without animations. `imported` is left as it was read.
+pub fn first_frame_sphere(path: &Path, imported: &mut Imported, clip: usize) -> Result<Option<viewer::Sphere>, LoadError> {
+    if imported.animations.is_none() {
+        return Ok(None);
+    }
+    let (instances, cameras, lights) = (imported.instances.clone(), imported.cameras.clone(), imported.lights.clone());
+    imported.pose_clip_frame(path, clip, 0)?;
+    let sphere = world_sphere(imported);
+    (imported.instances, imported.cameras, imported.lights) = (instances, cameras, lights);
+    Ok(sphere)
 }
 
 /// Builds a scene from what an importer read from `path`.
@@ -85,7 +101,17 @@ pub fn build(path: &Path, imported: &Imported) -> Result<Scene, LoadError> {
 /// [`build`] with `options`, and a note when the viewer's lights were kept
 /// beside the file's because these reach too little of the view (module doc).
 pub fn build_with(path: &Path, imported: &Imported, options: MeshOptions) -> Result<(Scene, Option<String>), LoadError> {
-    let parts = Parts::new(path, imported, options.smooth)?;
+    build_framed(path, imported, options, None)
+}
+
+/// [`build_with`], the viewer's camera framing `framing` when given ([`first_frame_sphere`]).
+fn build_framed(
+    path: &Path,
+    imported: &Imported,
+    options: MeshOptions,
+    framing: Option<viewer::Sphere>,
+) -> Result<(Scene, Option<String>), LoadError> {
+    let parts = Parts::new(path, imported, options.smooth, framing)?;
     let decided = decide(&parts, options.auto_lights)?;
     let scene = match decided.own {
         Some(scene) if !decided.viewer_lights => scene,
@@ -97,7 +123,7 @@ pub fn build_with(path: &Path, imported: &Imported, options: MeshOptions) -> Res
 /// Whether the scene [`build_with`] makes of `imported` has the viewer's
 /// lights, and its note (for `lamplight convert`, which writes them out).
 pub fn viewer_lights(path: &Path, imported: &Imported, auto_lights: AutoLights) -> Result<(bool, Option<String>), LoadError> {
-    let parts = Parts::new(path, imported, false)?;
+    let parts = Parts::new(path, imported, false, None)?;
     let decided = decide(&parts, auto_lights)?;
     Ok((decided.viewer_lights, decided.note))
 }
@@ -149,7 +175,7 @@ struct Parts<'a> {
 }
 
 impl<'a> Parts<'a> {
-    fn new(path: &'a Path, imported: &'a Imported, smooth: bool) -> Result<Parts<'a>, LoadError> {
+    fn new(path: &'a Path, imported: &'a Imported, smooth: bool, framing: Option<viewer::Sphere>) -> Result<Parts<'a>, LoadError> {
         let fail = |e: lamplight_core::Error| LoadError::file(path, e.to_string());
         let mut meshes = Vec::with_capacity(imported.meshes.len());
         for data in &imported.meshes {
@@ -168,7 +194,7 @@ impl<'a> Parts<'a> {
                 return Err(LoadError::file(path, format!("instance of missing mesh {}", placed.mesh)));
             }
         }
-        let sphere = world_sphere(imported).ok_or_else(|| LoadError::file(path, "has no geometry to render"))?;
+        let sphere = framing.or_else(|| world_sphere(imported)).ok_or_else(|| LoadError::file(path, "has no geometry to render"))?;
         let (eye, target, camera): (Vec3, Vec3, Arc<dyn Camera>) = match imported.cameras.first() {
             Some(c) => match c.projection {
                 ImportedProjection::Perspective { vfov_deg } => {

@@ -1,0 +1,57 @@
+//! `lamplight convert` of an animated glTF file: the TOML gets `[animation]`
+//! (frames 0 to the animation's last key at 24 fps) and its `[meshes]` entry
+//! plays the file's animation at the scene's time, so each frame of the
+//! converted scene renders to the bytes of the file's own frame: Khronos'
+//! BoxAnimated and the InterpolationTest-like file of `gltf_animation.rs`, at
+//! frames 0, 15, 45 and 89 (89 past the latter's last key: the end values hold).
+
+use std::path::Path;
+
+use lamplight_core::RenderControl;
+use lamplight_scene::request::{Naming, Request, SceneRequest};
+
+use crate::gltf_animation::{box_animated, interpolation_test};
+
+/// The sRGB bytes of frame `frame` of `path` at 24 x 16 by `integrator`.
+fn render(path: &Path, frame: i64, integrator: &str, spp: u32) -> Vec<u8> {
+    let scene = SceneRequest::resolve(path.to_str().unwrap()).unwrap();
+    let request = Request {
+        width: Some(24),
+        height: Some(16),
+        spp: Some(spp),
+        integrator: Some(integrator.to_string()),
+        threads: Some(2),
+        frame: Some(frame),
+        ..Request::default()
+    };
+    let job = request.resolve(&scene.defaults, Naming::Flags).unwrap();
+    let built = scene.build_frame(job.frame).unwrap().scene;
+    job.run(&built, &RenderControl::default()).unwrap().image.to_srgb8()
+}
+
+fn assert_frames_match(input: &Path, output: &Path, frames: &str) {
+    let converted = lamplight_scene::convert::convert(input, output, &[]).unwrap();
+    std::fs::write(output, &converted.toml).unwrap();
+    assert!(converted.toml.contains(frames), "{}", converted.toml);
+    for frame in [0, 15, 45, 89] {
+        let (a, b) = (render(input, frame, "whitted", 1), render(output, frame, "whitted", 1));
+        assert!(a == b, "{}: frame {frame} of the file and of its conversion differ", input.display());
+    }
+    let (a, b) = (render(input, 45, "path", 2), render(output, 45, "path", 2));
+    assert!(a == b, "{}: the path tracer's frame 45 differs", input.display());
+    assert!(render(output, 0, "whitted", 1) != render(output, 45, "whitted", 1), "the converted scene moves");
+}
+
+#[test]
+fn box_animated_converts_to_the_same_frames() {
+    let dir = tempfile::tempdir().unwrap();
+    assert_frames_match(&box_animated(), &dir.path().join("box.toml"), "animation = { frames = [0, 89], fps = 24 }\n");
+}
+
+#[test]
+fn the_interpolation_file_converts_to_the_same_frames() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("interpolation.gltf");
+    std::fs::write(&input, interpolation_test()).unwrap();
+    assert_frames_match(&input, &dir.path().join("interpolation.toml"), "animation = { frames = [0, 48], fps = 24 }\n");
+}
