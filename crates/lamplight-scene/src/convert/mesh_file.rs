@@ -20,8 +20,8 @@
 //!   animation's last key at 24 fps, as rendering the file plays it): its
 //!   `[meshes]` entry plays that animation at the scene's time, so each frame
 //!   renders as the file's own frame; the camera and lights are written where
-//!   they stand at frame 0 (the viewer's camera frames frame 0, as rendering
-//!   the file does).
+//!   they stand at frame 0 (the viewer's camera frames everything the
+//!   animation reaches, as rendering the file does).
 
 use std::path::Path;
 
@@ -41,7 +41,7 @@ pub(super) fn convert(input: &Path, output: &Path) -> Result<super::Converted, L
     let fail = |m: String| LoadError::file(input, format!("cannot convert: {m}"));
     // An animated glTF file: written at frame 0 of its first animation, which
     // its `[meshes]` entry plays at the scene's time (`[animation]`, 24 fps).
-    let framing = imported::first_frame_sphere(input, &mut imported, 0)?;
+    let framing = imported::animation_sphere(input, &mut imported, 0)?;
     let animation = imported.clip_frames(0);
     imported.pose_clip_frame(input, 0, 0)?;
     let out_dir = super::absolute(output.parent().unwrap_or(Path::new("")));

@@ -67,7 +67,7 @@ pub fn load_with(path: &Path, options: MeshOptions) -> Result<Built, LoadError> 
 /// [`import::gltf_animation`]). A file without animations is the same at every frame.
 pub fn load_frame(path: &Path, options: MeshOptions, frame: Option<i64>) -> Result<Built, LoadError> {
     let mut imported = import::load(path)?;
-    let framing = first_frame_sphere(path, &mut imported, options.animation.unwrap_or(0))?;
+    let framing = animation_sphere(path, &mut imported, options.animation.unwrap_or(0))?;
     imported.pose_clip_frame(path, options.animation.unwrap_or(0), frame.unwrap_or(0))?;
     if options.animation.is_none() {
         imported.warnings.extend(imported.several_animations_note());
@@ -78,19 +78,41 @@ pub fn load_frame(path: &Path, options: MeshOptions, frame: Option<i64>) -> Resu
     Ok(Built { scene, warnings })
 }
 
-/// What the viewer's camera of an animated file frames: every placed vertex
-/// at frame 0 of animation `clip`, so that the camera and its lights hold
-/// still while the model moves (`lamplight convert` writes the same camera);
-/// `None` for a file without animations. `imported` is left as it was read.
-pub fn first_frame_sphere(path: &Path, imported: &mut Imported, clip: usize) -> Result<Option<viewer::Sphere>, LoadError> {
-    if imported.animations.is_none() {
-        return Ok(None);
-    }
+/// What the viewer's camera of an animated file frames: the corners of each
+/// placed mesh's bounds at every frame of animation `clip` (at most 257
+/// frames, evenly spaced), so that the camera and its lights hold still and
+/// see everything the animation reaches (`lamplight convert` writes the same
+/// camera); `None` for a file without animations. `imported` is left as it was read.
+pub fn animation_sphere(path: &Path, imported: &mut Imported, clip: usize) -> Result<Option<viewer::Sphere>, LoadError> {
+    let Some(frames) = imported.clip_frames(clip) else { return Ok(None) };
+    let bounds: Vec<Option<(Vec3, Vec3)>> = imported
+        .meshes
+        .iter()
+        .map(|m| {
+            let first = *m.positions.first()?;
+            Some(m.positions.iter().fold((first, first), |(lo, hi), p| (lo.min(*p), hi.max(*p))))
+        })
+        .collect();
     let (instances, cameras, lights) = (imported.instances.clone(), imported.cameras.clone(), imported.lights.clone());
-    imported.pose_clip_frame(path, clip, 0)?;
-    let sphere = world_sphere(imported);
+    let step = (frames.end / 256).max(1);
+    let mut corners = Vec::new();
+    for frame in (0..=frames.end).step_by(step as usize).chain([frames.end]) {
+        imported.instances.clone_from(&instances);
+        imported.pose_clip_frame(path, clip, frame)?;
+        for placed in &imported.instances {
+            let Some(Some((lo, hi))) = bounds.get(placed.mesh) else { continue };
+            for i in 0..8 {
+                let corner = Vec3::new(
+                    if i & 1 == 0 { lo.x } else { hi.x },
+                    if i & 2 == 0 { lo.y } else { hi.y },
+                    if i & 4 == 0 { lo.z } else { hi.z },
+                );
+                corners.push(placed.transform.transform_point3(corner));
+            }
+        }
+    }
     (imported.instances, imported.cameras, imported.lights) = (instances, cameras, lights);
-    Ok(sphere)
+    Ok(viewer::bounding_sphere(corners.into_iter()))
 }
 
 /// Builds a scene from what an importer read from `path`.
@@ -104,7 +126,7 @@ pub fn build_with(path: &Path, imported: &Imported, options: MeshOptions) -> Res
     build_framed(path, imported, options, None)
 }
 
-/// [`build_with`], the viewer's camera framing `framing` when given ([`first_frame_sphere`]).
+/// [`build_with`], the viewer's camera framing `framing` when given ([`animation_sphere`]).
 fn build_framed(
     path: &Path,
     imported: &Imported,
