@@ -63,6 +63,10 @@ pub struct ConvertArgs {
     /// Set the scene parameter $NAME (Mitsuba XML), as `mitsuba -D`; repeatable.
     #[arg(short = 'D', value_name = "NAME=VALUE", value_parser = define)]
     pub define: Vec<(String, String)>,
+    /// A glTF file (.gltf, .glb) with several animations: write this one, by name (`Walk`) or index (`2`), as the
+    /// scene's [animation] frames and its mesh's `animation` key [default: the first].
+    #[arg(long, value_name = "NAME|INDEX")]
+    pub animation: Option<AnimationChoice>,
 }
 
 /// `NAME=VALUE` of `-D`.

@@ -68,7 +68,8 @@ fn run() -> anyhow::Result<()> {
 }
 
 fn convert_command(args: &args::ConvertArgs) -> anyhow::Result<()> {
-    let converted = lamplight_scene::convert::convert(&args.input, &args.output, &args.define).map_err(|e| UsageError(e.to_string()))?;
+    let converted = lamplight_scene::convert::convert_with(&args.input, &args.output, &args.define, args.animation.as_ref())
+        .map_err(|e| UsageError(e.to_string()))?;
     print_warnings(&converted.warnings);
     for (path, bytes) in &converted.files {
         if let Some(dir) = path.parent() {

@@ -55,3 +55,36 @@ fn the_interpolation_file_converts_to_the_same_frames() {
     std::fs::write(&input, interpolation_test()).unwrap();
     assert_frames_match(&input, &dir.path().join("interpolation.toml"), "animation = { frames = [0, 48], fps = 24 }\n");
 }
+
+#[test]
+fn a_chosen_animation_converts_to_the_same_frames() {
+    use lamplight_scene::request::AnimationChoice;
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("clips.gltf");
+    std::fs::write(&input, crate::gltf_animation_choice::clips_file(None)).unwrap();
+    let output = dir.path().join("walk.toml");
+    let walk = AnimationChoice::Name("Walk".into());
+    let converted = lamplight_scene::convert::convert_with(&input, &output, &[], Some(&walk)).unwrap();
+    std::fs::write(&output, &converted.toml).unwrap();
+    assert!(converted.toml.contains("animation = { frames = [0, 48], fps = 24 }\n"), "{}", converted.toml);
+    assert!(converted.toml.contains("animation = 1\n"), "the mesh plays Walk: {}", converted.toml);
+    assert!(converted.warnings.is_empty(), "{:?}", converted.warnings);
+    let direct = SceneRequest::resolve(input.to_str().unwrap()).unwrap().with_animation(Some(&walk), Naming::Flags).unwrap();
+    let toml = SceneRequest::resolve(output.to_str().unwrap()).unwrap();
+    let job = Request { width: Some(24), height: Some(16), spp: Some(1), threads: Some(2), ..Request::default() }
+        .resolve(&toml.defaults, Naming::Flags)
+        .unwrap();
+    for frame in [0, 15, 45] {
+        let render =
+            |r: &SceneRequest| job.run(&r.build_frame(Some(frame)).unwrap().scene, &RenderControl::default()).unwrap().image.to_srgb8();
+        assert!(render(&direct) == render(&toml), "frame {frame} of Walk and of its conversion differ");
+    }
+    let jog = AnimationChoice::Name("Jog".into());
+    assert_eq!(
+        lamplight_scene::convert::convert_with(&input, &output, &[], Some(&jog)).unwrap_err().to_string(),
+        format!(
+            "{}: --animation \"Jog\" names no animation of the file: it has animations 0 \"Survey\", 1 \"Walk\", 2 \"Run\"",
+            input.display()
+        )
+    );
+}

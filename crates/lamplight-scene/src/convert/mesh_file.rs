@@ -35,15 +35,17 @@ use crate::import::{self, ImportedLight, ImportedProjection};
 use crate::instantiate::{imported, studio, viewer};
 
 /// The scene table of the mesh file `input` for a TOML written to `output`,
-/// the warnings, and the image files to extract (absolute path, bytes).
-pub(super) fn convert(input: &Path, output: &Path) -> Result<super::Converted, LoadError> {
+/// the warnings, and the image files to extract (absolute path, bytes);
+/// `clip` is the glTF animation chosen (`None`: the first).
+pub(super) fn convert(input: &Path, output: &Path, clip: Option<usize>) -> Result<super::Converted, LoadError> {
     let mut imported = import::load(input)?;
     let fail = |m: String| LoadError::file(input, format!("cannot convert: {m}"));
     // An animated glTF file: written at frame 0 of its first animation, which
     // its `[meshes]` entry plays at the scene's time (`[animation]`, 24 fps).
-    let framing = imported::animation_sphere(input, &mut imported, 0)?;
-    let animation = imported.clip_frames(0);
-    imported.pose_clip_frame(input, 0, 0)?;
+    let index = clip.unwrap_or(0);
+    let framing = imported::animation_sphere(input, &mut imported, index)?;
+    let animation = imported.clip_frames(index);
+    imported.pose_clip_frame(input, index, 0)?;
     let out_dir = super::absolute(output.parent().unwrap_or(Path::new("")));
     let stem = output.file_stem().map_or("scene".into(), |s| s.to_string_lossy().into_owned());
     let mesh_name = input.file_stem().map_or("mesh".into(), |s| s.to_string_lossy().into_owned());
@@ -143,7 +145,11 @@ pub(super) fn convert(input: &Path, output: &Path) -> Result<super::Converted, L
     };
     root.push(("materials", Value::Table(materials)));
     let file = relative_to(&out_dir, &super::absolute_file(input));
-    let mesh = table(vec![("file", Value::String(file))]);
+    let mut mesh = vec![("file", Value::String(file))];
+    if let Some(i) = clip.filter(|&i| i > 0) {
+        mesh.push(("animation", Value::Integer(i as i64)));
+    }
+    let mesh = table(mesh);
     root.push(("meshes", Value::Table(table(vec![(mesh_name.as_str(), Value::Table(mesh))]))));
     root.push(("objects", Value::Array(objects)));
 
@@ -154,7 +160,10 @@ pub(super) fn convert(input: &Path, output: &Path) -> Result<super::Converted, L
     let toml = crate::formats::native_writer::write(&table(root), &header);
     let mut warnings = imported.warnings_of(input);
     warnings.extend(note);
-    if imported.animations.as_ref().is_some_and(|a| a.moves_cameras_or_lights(0)) {
+    if clip.is_none() {
+        warnings.extend(imported.several_animations_note());
+    }
+    if imported.animations.as_ref().is_some_and(|a| a.moves_cameras_or_lights(index)) {
         let m = "its animation moves a camera or a light, which the scene file places where they stand at frame 0 (only the meshes play)";
         warnings.push(format!("{}: {m}", input.display()));
     }
