@@ -64,7 +64,7 @@ pub struct ConvertArgs {
     #[arg(short = 'D', value_name = "NAME=VALUE", value_parser = define)]
     pub define: Vec<(String, String)>,
     /// A glTF file (.gltf, .glb) with several animations: write this one, by name (`Walk`) or index (`2`), as the
-    /// scene's [animation] frames and its mesh's `animation` key [default: the first].
+    /// scene's `[animation]` frames and its mesh's `animation` key [default: the first].
     #[arg(long, value_name = "NAME|INDEX")]
     pub animation: Option<AnimationChoice>,
 }
