@@ -88,3 +88,30 @@ fn a_chosen_animation_converts_to_the_same_frames() {
         )
     );
 }
+
+/// A part its animation scales to nothing keeps its `part = i`: the converted
+/// scene leaves it out of the frames where the file's own render does.
+#[test]
+fn a_part_scaled_to_nothing_converts_to_the_same_frames() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut b = crate::gltf_animation::Builder::default();
+    b.cube();
+    let times = b.floats(&[0.0, 1.0], "SCALAR");
+    let shrinks = b.floats(&[1.0, 1.0, 1.0, 0.0, 0.0, 0.0], "VEC3");
+    let animation = format!(
+        r#"{{"samplers": [{{"input": {times}, "output": {shrinks}}}], "channels": [{{"sampler": 0, "target": {{"node": 0, "path": "scale"}}}}]}}"#
+    );
+    let input = dir.path().join("shrink.gltf");
+    // Node 0 (part 0) shrinks away by 1 s (frame 24); node 1 (part 1) stands beside it.
+    std::fs::write(&input, b.json("0, 1", r#"{"mesh": 0}, {"mesh": 0, "translation": [2, 0, 0]}"#, &animation, "")).unwrap();
+    let output = dir.path().join("shrink.toml");
+    let converted = lamplight_scene::convert::convert(&input, &output, &[]).unwrap();
+    std::fs::write(&output, &converted.toml).unwrap();
+    assert!(converted.toml.contains("part = 1"), "{}", converted.toml);
+    for frame in [0, 12, 24] {
+        let (a, b) = (render(&input, frame, "whitted", 1), render(&output, frame, "whitted", 1));
+        assert!(a == b, "frame {frame} of the file and of its conversion differ");
+    }
+    let toml = SceneRequest::resolve(output.to_str().unwrap()).unwrap();
+    assert_eq!(toml.build_frame(Some(24)).unwrap().scene.objects.len(), 1, "part 0 is gone at frame 24");
+}

@@ -289,8 +289,18 @@ impl Imported {
     /// doc. A file without animations, or a `clip` it does not have, stays as read.
     /// A mesh whose node is scaled to nothing (an animation hiding it) is left out.
     pub fn pose(&mut self, path: &Path, clip: usize, seconds: f64) -> Result<(), LoadError> {
-        let Some(animations) = &self.animations else { return Ok(()) };
-        let Some(clip) = animations.clips.get(clip) else { return Ok(()) };
+        let visible = self.pose_all(path, clip, seconds)?;
+        let mut keep = visible.into_iter();
+        self.instances.retain(|_| keep.next().unwrap_or(true));
+        Ok(())
+    }
+
+    /// [`Imported::pose`] keeping every instance: whether each is visible (not
+    /// scaled to nothing), for a scene file's `part = i` to keep its meaning.
+    pub fn pose_all(&mut self, path: &Path, clip: usize, seconds: f64) -> Result<Vec<bool>, LoadError> {
+        let all = vec![true; self.instances.len()];
+        let Some(animations) = &self.animations else { return Ok(all) };
+        let Some(clip) = animations.clips.get(clip) else { return Ok(all) };
         let mut locals: Vec<Option<(Vec3, Quat, Vec3)>> = vec![None; animations.nodes.len()];
         for channel in &clip.channels {
             let node = &animations.nodes[channel.tree];
@@ -338,9 +348,7 @@ impl Imported {
                 ImportedLight::Spot { position, direction, .. } => (*position, *direction) = (origin, forward),
             }
         }
-        let mut keep = visible.into_iter();
-        self.instances.retain(|_| keep.next().unwrap_or(true));
-        Ok(())
+        Ok(visible)
     }
 
     /// [`Imported::pose`] at frame `frame` of the first animation at [`GLTF_FPS`] (module doc).

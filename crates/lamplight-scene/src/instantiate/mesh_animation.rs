@@ -8,6 +8,7 @@
 
 use std::path::Path;
 
+use lamplight_core::math::Mat4;
 use lamplight_core::params::{ParamResult, Params, Value};
 
 use crate::import::gltf_choice::{self, AnimationChoice, ClipSummary};
@@ -39,9 +40,14 @@ pub(super) fn read(p: &mut Params<'_>) -> ParamResult<MeshClip> {
     }
 }
 
+/// A part's placement that says it is hidden at this frame (its node scaled
+/// to nothing): kept, so that `part = i` names the same part at every frame.
+pub(super) const HIDDEN: Mat4 = Mat4::ZERO;
+
 /// Poses `imported` (read from `path`, named by `file` in the scene) as
 /// `clip` has it at the scene's `seconds` (`None`: the scene has no
-/// `[animation]`); `Ok` with a warning, if any, or the error's message.
+/// `[animation]`), every instance kept: one hidden at this time is placed by
+/// [`HIDDEN`]. `Ok` with a warning, if any, or the error's message.
 pub(super) fn pose(
     imported: &mut Imported,
     path: &Path,
@@ -70,7 +76,10 @@ pub(super) fn pose(
             found.ok_or_else(|| format!("animation {choice} {problem}: file \"{file}\" has animations {}", gltf_choice::listing(&clips)))?
         }
     };
-    imported.pose(path, index, seconds.unwrap_or(0.0)).map_err(|e| e.message)?;
+    let visible = imported.pose_all(path, index, seconds.unwrap_or(0.0)).map_err(|e| e.message)?;
+    for (placed, _) in imported.instances.iter_mut().zip(visible).filter(|(_, v)| !v) {
+        placed.transform = HIDDEN;
+    }
     Ok(seconds.is_none().then(|| {
         format!(
             "{}: the scene has no [animation], so the glTF animation stands at its time 0: add [animation] (frames = [START, END], fps) \

@@ -184,7 +184,8 @@ impl<'a> Ctx<'a> {
                     return Err(self.fail(p.key_error("part", message)));
                 }
                 let chosen = asset.iter().enumerate().filter(|(i, _)| part.is_none_or(|k| k as usize == *i));
-                for (_, (mesh, placement, imported)) in chosen {
+                // A part its glTF animation hides at this frame ([`mesh_animation::HIDDEN`]).
+                for (_, (mesh, placement, imported)) in chosen.filter(|(_, part)| part.1 != mesh_animation::HIDDEN) {
                     let shape = placed(mesh.clone(), &(m * *placement)).map_err(|e| self.fail(p.core_error(e)))?;
                     let material = match (material, *imported) {
                         (Some(m), _) | (None, Some(m)) => m,
