@@ -220,6 +220,9 @@ def render_frames(
     :class:`FramesFailed` names it with its error once they are done. Other
     arguments are as for :func:`lamplight.dask.render`.
     """
+    if settings.get("animation") is not None and isinstance(scenes, (str, os.PathLike)):
+        # The frames follow the glTF animation chosen, as `lamplight render --animation`'s do.
+        scenes = Scene.from_file(os.fspath(scenes), animation=settings["animation"])
     jobs, scenes_used, animated = _jobs(scenes, cameras, frames, base_dir)
     if (out is not None or video is not None) and not animated:
         raise TypeError("out= and video= write the frames of one animated scene; a list of scenes or a camera path comes back as images")

@@ -30,7 +30,13 @@ class Scene:
     def builtin(name: str) -> "Scene":
         """The built-in scene ``name`` (see :func:`builtin_names`)."""
     @staticmethod
-    def from_file(path: _Path, *, smooth: Optional[bool] = None, keep_auto_lights: Optional[Union[bool, str]] = None) -> "Scene":
+    def from_file(
+        path: _Path,
+        *,
+        smooth: Optional[bool] = None,
+        keep_auto_lights: Optional[Union[bool, str]] = None,
+        animation: Optional[Union[str, int]] = None,
+    ) -> "Scene":
         """A scene file (``.toml``, read now) or a mesh file (read when built).
         A mesh file takes the settings that decide how it is built (the
         settings table's build keywords), which a render's own override."""
@@ -100,6 +106,7 @@ class Scene:
         smooth: Optional[bool] = None,
         keep_auto_lights: Optional[Union[bool, str]] = None,
         frame: Optional[int] = None,
+        animation: Optional[Union[str, int]] = None,
         # END settings
     ) -> Dict[str, Any]:
         """Why pixel ``(x, y)`` of the render these settings make has its colour.
@@ -192,6 +199,7 @@ def render_array(
     smooth: Optional[bool] = None,
     keep_auto_lights: Optional[Union[bool, str]] = None,
     frame: Optional[int] = None,
+    animation: Optional[Union[str, int]] = None,
     # END settings
 ) -> Tuple[npt.NDArray[np.float32], Dict[str, Any], Dict[str, npt.NDArray[np.float32]]]:
     """The render under :func:`lamplight.render`: a float32 array ``(h, w, 3)``,
@@ -224,6 +232,7 @@ def resolve_settings(
     smooth: Optional[bool] = None,
     keep_auto_lights: Optional[Union[bool, str]] = None,
     frame: Optional[int] = None,
+    animation: Optional[Union[str, int]] = None,
     # END settings
 ) -> Tuple[int, int, int, str, int]:
     """``(width, height, spp, integrator, seed)`` a render with these settings would

@@ -39,7 +39,7 @@ def as_scene(scene: SceneLike, base_dir: Optional[Union[str, "os.PathLike[str]"]
 RENDER_KEYWORDS: Tuple[Tuple[str, str, bool], ...] = tuple(_lamplight.render_keywords())
 
 #: The settings of the table that decide how a mesh file rendered directly is
-#: built (``smooth``, ``keep_auto_lights``): :func:`load` takes them too.
+#: built (``smooth``, ``keep_auto_lights``, ``animation``): :func:`load` takes them too.
 BUILD_KEYWORDS: Tuple[str, ...] = tuple(_lamplight.build_keywords())
 
 
@@ -50,7 +50,9 @@ def load(path: Union[str, "os.PathLike[str]"], **settings: Any) -> Scene:
     ``smooth=True`` shades its meshes without normals smooth, as
     ``lamplight render --smooth``; ``keep_auto_lights`` (``True``, ``False``
     or ``"auto"``, the default) keeps the automatic lights of a bare model
-    beside the file's own, as ``--keep-auto-lights``."""
+    beside the file's own, as ``--keep-auto-lights``; ``animation`` (a name
+    or an index) chooses which animation of a glTF file plays, as
+    ``--animation``, and the scene's frames follow it."""
     for key in settings:
         if key not in BUILD_KEYWORDS:
             near = difflib.get_close_matches(key, BUILD_KEYWORDS, n=1)

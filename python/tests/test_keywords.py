@@ -50,6 +50,7 @@ SAMPLES = {
     # are refused there; test_mesh_options.py renders them on one).
     "smooth": False,
     "keep_auto_lights": "auto",
+    "animation": None,  # a glTF file's: test_gltf_animation.py
 }
 
 

@@ -43,10 +43,10 @@ def write_ball(path):
 def test_smooth_and_keep_auto_lights_are_rows_of_the_settings_table():
     names = [name for name, _, _ in RENDER_KEYWORDS]
     assert "smooth" in names and "keep_auto_lights" in names
-    assert BUILD_KEYWORDS == ("smooth", "keep_auto_lights")
+    assert BUILD_KEYWORDS == ("smooth", "keep_auto_lights", "animation")
     import inspect
 
-    assert list(inspect.signature(lamplight.load).parameters) == ["path", "smooth", "keep_auto_lights"]
+    assert list(inspect.signature(lamplight.load).parameters) == ["path", "smooth", "keep_auto_lights", "animation"]
 
 
 def test_smooth_renders_what_the_command_line_s_smooth_renders(cli, tmp_path):

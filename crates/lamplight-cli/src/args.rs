@@ -13,7 +13,7 @@ use lamplight_scene::builtin;
 use lamplight_scene::image_io::Format;
 use lamplight_scene::image_io::Transfer;
 use lamplight_scene::request::{
-    AntialiasRequest, AutoLights, DisplayTransform, Job, Layer, MeshOptions, Naming, Request, RequestError, SceneRequest,
+    AnimationChoice, AntialiasRequest, AutoLights, DisplayTransform, Job, Layer, MeshOptions, Naming, Request, RequestError, SceneRequest,
 };
 
 /// The `lamplight` command line.
@@ -63,6 +63,10 @@ pub struct ConvertArgs {
     /// Set the scene parameter $NAME (Mitsuba XML), as `mitsuba -D`; repeatable.
     #[arg(short = 'D', value_name = "NAME=VALUE", value_parser = define)]
     pub define: Vec<(String, String)>,
+    /// A glTF file (.gltf, .glb) with several animations: write this one, by name (`Walk`) or index (`2`), as the
+    /// scene's `[animation]` frames and its mesh's `animation` key [default: the first].
+    #[arg(long, value_name = "NAME|INDEX")]
+    pub animation: Option<AnimationChoice>,
 }
 
 /// `NAME=VALUE` of `-D`.
@@ -172,6 +176,10 @@ pub struct SceneArgs {
     /// A mesh file (.obj, .ply, .gltf, .glb) with lights of its own: keep the automatic lights a bare model gets (a neutral studio, key, fill and rim) `on` always, `off` never, or `auto` when the file's lights reach less than a quarter of what the camera sees (a light shut inside the model); a note says when they are kept. `--keep-auto-lights` alone is `on` [default: auto].
     #[arg(long, value_name = "on|off|auto", num_args = 0..=1, default_missing_value = "on", value_parser = auto_lights)]
     pub keep_auto_lights: Option<AutoLights>,
+    /// A glTF file (.gltf, .glb) with several animations: play this one, by name (`Walk`) or index (`2`) as `lamplight info`
+    /// lists them; the frames follow it [default: the first]. In a scene file, a glTF mesh's `animation` key chooses it.
+    #[arg(long, value_name = "NAME|INDEX")]
+    pub animation: Option<AnimationChoice>,
 }
 
 impl SceneArgs {
@@ -200,13 +208,15 @@ impl SceneArgs {
             smooth: self.smooth.then_some(true),
             keep_auto_lights: self.keep_auto_lights,
             frame: None,
+            animation: self.animation.clone(),
         }
     }
 
     /// The scene these flags name, with the mesh file options they give.
     pub fn scene_request(&self) -> Result<SceneRequest, UsageError> {
         let options = self.request(0).mesh_options(MeshOptions::default());
-        Ok(SceneRequest::resolve_with(&self.scene, &self.define)?.with_mesh_options(options, Naming::Flags)?)
+        let scene = SceneRequest::resolve_with(&self.scene, &self.define)?.with_mesh_options(options, Naming::Flags)?;
+        Ok(scene.with_animation(self.animation.as_ref(), Naming::Flags)?)
     }
 
     /// Starts the memory budget ([`lamplight_scene::memory`]) before the scene
@@ -329,6 +339,10 @@ pub struct InfoArgs {
     /// Scene file (.toml, Mitsuba 3 .xml), mesh file (.obj, .ply, .gltf, .glb) or built-in scene name.
     #[arg(value_name = "FILE")]
     pub file: String,
+    /// A glTF file (.gltf, .glb) with several animations: play this one, by name (`Walk`) or index (`2`) as `lamplight info`
+    /// lists them; the frames follow it [default: the first]. In a scene file, a glTF mesh's `animation` key chooses it.
+    #[arg(long, value_name = "NAME|INDEX")]
+    pub animation: Option<AnimationChoice>,
 }
 
 /// An extra layer of the .exr output.

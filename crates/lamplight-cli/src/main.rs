@@ -58,7 +58,7 @@ fn run() -> anyhow::Result<()> {
     match parse_args()?.command {
         Command::Render(render_args) => render_command(render_args.validate()?),
         Command::List => list_command(),
-        Command::Info(info_args) => info_command(&info_args.file),
+        Command::Info(info_args) => info_command(&info_args.file, info_args.animation.as_ref()),
         Command::Raycast(raycast_args) => raycast::raycast_command(raycast_args),
         Command::Explain(explain_args) => explain_command(explain_args.validate()?),
         Command::Convert(convert_args) => convert_command(&convert_args),
@@ -68,7 +68,8 @@ fn run() -> anyhow::Result<()> {
 }
 
 fn convert_command(args: &args::ConvertArgs) -> anyhow::Result<()> {
-    let converted = lamplight_scene::convert::convert(&args.input, &args.output, &args.define).map_err(|e| UsageError(e.to_string()))?;
+    let converted = lamplight_scene::convert::convert_with(&args.input, &args.output, &args.define, args.animation.as_ref())
+        .map_err(|e| UsageError(e.to_string()))?;
     print_warnings(&converted.warnings);
     for (path, bytes) in &converted.files {
         if let Some(dir) = path.parent() {
@@ -128,8 +129,9 @@ fn list_command() -> anyhow::Result<()> {
     Ok(())
 }
 
-fn info_command(file: &str) -> anyhow::Result<()> {
-    let scene = request::SceneRequest::resolve(file).map_err(UsageError::from)?;
+fn info_command(file: &str, animation: Option<&request::AnimationChoice>) -> anyhow::Result<()> {
+    let scene =
+        request::SceneRequest::resolve(file).and_then(|s| s.with_animation(animation, request::Naming::Flags)).map_err(UsageError::from)?;
     let text = lamplight_scene::info::describe(&scene).map_err(UsageError::from)?;
     let mut out = io::stdout().lock();
     out.write_all(text.as_bytes())?;

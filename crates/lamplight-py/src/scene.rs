@@ -92,6 +92,13 @@ impl Scene {
         Ok(self)
     }
 
+    /// The scene playing the glTF animation `choice` names (`animation=`);
+    /// a `ValueError` for a name or index the file lacks, or a scene that is not a glTF file.
+    fn with_animation(mut self, choice: Option<&request::AnimationChoice>) -> PyResult<Scene> {
+        self.request = self.request.with_animation(choice, Naming::Keywords).map_err(|e| PyValueError::new_err(e.0))?;
+        Ok(self)
+    }
+
     /// Refuses mesh file `options` other than the default for a scene that is not a mesh file.
     fn check_mesh_options(&self, options: MeshOptions) -> PyResult<()> {
         let is_mesh = matches!(self.request.spec, SceneSpec::Mesh(_));
@@ -222,7 +229,8 @@ impl Scene {
     #[pyo3(signature = (path, **settings))]
     fn from_file(path: PathBuf, settings: Option<&Bound<'_, PyDict>>) -> PyResult<Scene> {
         let options = crate::settings::mesh_options(settings, "from_file")?;
-        Scene::read_file(path)?.with_mesh(options)
+        let animation = crate::settings::animation_choice(settings, "from_file")?;
+        Scene::read_file(path)?.with_mesh(options)?.with_animation(animation.as_ref())
     }
 
     /// Scene text in the native TOML format; relative mesh paths resolve against
@@ -410,7 +418,7 @@ impl Scene {
     fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(PyObject, Bound<'py, PyTuple>)> {
         let from_state = py.import("lamplight._lamplight")?.getattr("scene_from_state")?.unbind();
         let camera = self.camera(py)?;
-        let mesh = (self.request.mesh.smooth, self.request.mesh.auto_lights.name());
+        let mesh = (self.request.mesh.smooth, self.request.mesh.auto_lights.name(), self.request.mesh.animation);
         let state = match (&self.request.spec, &self.dict) {
             (SceneSpec::Builtin(b), _) => ("builtin", b.name.into_pyobject(py)?.into_any().unbind(), None, camera, mesh),
             (SceneSpec::File(file), Some(dict)) => ("dict", dict.clone_ref(py), Some(file.source.dir()), camera, mesh),
@@ -438,7 +446,7 @@ impl Scene {
 
 impl Scene {
     /// The `[animation]` of an animated scene file or dict, or the frames of
-    /// an animated glTF file's first animation.
+    /// the animation of a glTF file that plays (its first unless `animation=` chose one).
     pub fn animation(&self) -> Option<lamplight_scene::description::Animation> {
         self.request.animation()
     }
@@ -469,8 +477,12 @@ impl Scene {
     /// animated scene), or a fresh one of the job's frame, or lit by its
     /// environment map.
     pub fn core_for(&self, py: Python<'_>, job: &lamplight_scene::request::Job, request: &Request) -> PyResult<Arc<CoreScene>> {
-        let options = request.mesh_options(self.request.mesh);
+        let mut options = request.mesh_options(self.request.mesh);
         self.check_mesh_options(options)?;
+        if let Some(choice) = &request.animation {
+            let chosen = self.request.clone().with_animation(Some(choice), Naming::Keywords);
+            options.animation = chosen.map_err(|e| PyValueError::new_err(e.0))?.mesh.animation;
+        }
         let other_frame = match (self.animation(), job.frame) {
             (Some(a), Some(frame)) => frame != a.start,
             _ => false,
@@ -495,14 +507,14 @@ fn warn_each(py: Python<'_>, warnings: &[String]) -> PyResult<()> {
 }
 
 /// The pickled state of a [`Scene`]: kind, payload, path, camera and mesh file options.
-type State<'py> = (String, Bound<'py, PyAny>, Option<PathBuf>, Option<Bound<'py, PyAny>>, (bool, String));
+type State<'py> = (String, Bound<'py, PyAny>, Option<PathBuf>, Option<Bound<'py, PyAny>>, (bool, String, Option<usize>));
 
-/// Rebuilds a pickled [`Scene`] from `(kind, payload, path, camera, (smooth, keep_auto_lights))`.
+/// Rebuilds a pickled [`Scene`] from `(kind, payload, path, camera, (smooth, keep_auto_lights, animation))`.
 #[pyfunction]
 pub fn scene_from_state(py: Python<'_>, state: &Bound<'_, PyTuple>) -> PyResult<Scene> {
-    let (kind, payload, path, camera, (smooth, auto_lights)): State<'_> = state.extract()?;
+    let (kind, payload, path, camera, (smooth, auto_lights, animation)): State<'_> = state.extract()?;
     let auto_lights = auto_lights.parse().map_err(PyValueError::new_err)?;
-    let mesh = MeshOptions { smooth, auto_lights };
+    let mesh = MeshOptions { smooth, auto_lights, animation };
     let scene = match kind.as_str() {
         "builtin" => Scene::builtin(&payload.extract::<String>()?)?,
         "file" => {

@@ -25,14 +25,15 @@
 //! | `frame` | `int` | the frame of an animated scene, 0 to 1048574 (default: its first) |
 //! | `smooth` | `bool` | a mesh file's meshes without normals smooth (`--smooth`) |
 //! | `keep_auto_lights` | `bool` or `str` | `True`, `False` or `"auto"` (`--keep-auto-lights on`, `off`, `auto`) |
+//! | `animation` | `str` or `int` | the glTF animation that plays, by name or index (`--animation`) |
 //!
-//! The last two ([`BUILD_KEYWORDS`]) decide how a mesh file rendered directly
+//! The last three ([`BUILD_KEYWORDS`]) decide how a mesh file rendered directly
 //! is built: `lamplight.load` and `Scene.from_file` take them too, as the
 //! scene's own, which a render's keywords override.
 
 use std::path::PathBuf;
 
-use lamplight_scene::request::{limits, AutoLights, Layer, MeshOptions, Request};
+use lamplight_scene::request::{limits, AnimationChoice, AutoLights, Layer, MeshOptions, Request};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
@@ -101,6 +102,25 @@ fn flag(name: &str, value: &Bound<'_, PyAny>) -> PyResult<bool> {
         .downcast::<pyo3::types::PyBool>()
         .map(|b| b.is_true())
         .map_err(|_| PyTypeError::new_err(format!("{name} must be True or False, got {}", type_name(value))))
+}
+
+/// `animation`: a name (`str`) or an index (`int`, not a `bool`).
+fn animation(value: &Bound<'_, PyAny>) -> PyResult<AnimationChoice> {
+    let wrong = || PyTypeError::new_err(format!("animation must be an animation's name (str) or index (int), got {}", type_name(value)));
+    if value.is_instance_of::<pyo3::types::PyBool>() {
+        return Err(wrong());
+    }
+    if let Ok(name) = value.downcast::<PyString>() {
+        let name = name.to_str()?;
+        if name.is_empty() {
+            return Err(PyValueError::new_err("animation must be an animation's name or index, got an empty string"));
+        }
+        return Ok(AnimationChoice::Name(name.to_string()));
+    }
+    let index: i128 = value.extract().map_err(|_| wrong())?;
+    usize::try_from(index)
+        .map(AnimationChoice::Index)
+        .map_err(|_| PyValueError::new_err(format!("animation must be a name or an index from 0, got {index}")))
 }
 
 /// `keep_auto_lights`: `True` (on), `False` (off) or `"auto"` (also `"on"`, `"off"`).
@@ -256,11 +276,17 @@ pub const KEYWORDS: &[Keyword] = &[
         takes: Takes::Both,
         read: |r, v| set(&mut r.frame, whole("frame", Some(v), 0, lamplight_scene::request::frames::MAX_FRAME as i128, "")),
     },
+    Keyword {
+        name: "animation",
+        annotation: "Optional[Union[str, int]]",
+        takes: Takes::Both,
+        read: |r, v| set(&mut r.animation, animation(v).map(Some)),
+    },
 ];
 
 /// The keywords that decide how a mesh file is built ([`MeshOptions`]), which
 /// `lamplight.load` and `Scene.from_file` take as well as the renders.
-pub const BUILD_KEYWORDS: &[&str] = &["smooth", "keep_auto_lights"];
+pub const BUILD_KEYWORDS: &[&str] = &["smooth", "keep_auto_lights", "animation"];
 
 /// The mesh file options the keywords `settings` give for `call` (`load`,
 /// `Scene.from_file`): only [`BUILD_KEYWORDS`], read by their rows of [`KEYWORDS`].
@@ -276,6 +302,14 @@ pub fn mesh_options(settings: Option<&Bound<'_, PyDict>>, call: &str) -> PyResul
         }
     }
     Ok(request(Some(settings), call, false)?.mesh_options(MeshOptions::default()))
+}
+
+/// The glTF animation the keywords `settings` choose for `call` (`animation=`), if any.
+pub fn animation_choice(settings: Option<&Bound<'_, PyDict>>, call: &str) -> PyResult<Option<AnimationChoice>> {
+    match settings {
+        Some(settings) => Ok(request(Some(settings), call, false)?.animation),
+        None => Ok(None),
+    }
 }
 
 /// The names of [`BUILD_KEYWORDS`], for the Python wrapper of `load`.

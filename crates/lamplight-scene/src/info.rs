@@ -26,8 +26,9 @@ pub fn describe(request: &SceneRequest) -> Result<String, RequestError> {
         SceneSpec::Mesh(path) => {
             let mut imported = import::load(path).map_err(bad)?;
             // Described at its first frame, as a render without --frames draws it.
-            imported.pose_frame(path, 0).map_err(bad)?;
-            Ok(describe_imported(path, &imported))
+            let clip = request.mesh.animation.unwrap_or(0);
+            imported.pose_clip_frame(path, clip, 0).map_err(bad)?;
+            Ok(describe_imported(path, &imported, clip))
         }
         SceneSpec::File(file) => {
             let built = file.build_with_warnings().map_err(bad)?;
@@ -89,7 +90,7 @@ fn lines(head: String, rows: &[(&str, String)], warnings: &[String]) -> String {
     out
 }
 
-fn describe_imported(path: &Path, imported: &Imported) -> String {
+fn describe_imported(path: &Path, imported: &Imported, clip: usize) -> String {
     let ext = path.extension().and_then(|e| e.to_str()).unwrap_or_default().to_ascii_lowercase();
     let format = match ext.as_str() {
         "obj" => "OBJ",
@@ -174,24 +175,25 @@ fn describe_imported(path: &Path, imported: &Imported) -> String {
         ("cameras", cameras),
         ("lights", lights),
     ];
-    rows.extend(gltf_animation_rows(imported));
+    rows.extend(gltf_animation_rows(imported, clip));
     lines(format!("{}: {format} file", path.display()), &rows, &imported.warnings)
 }
 
 /// A glTF file's `animation:` (the frames of the animation a render plays,
-/// its keys' time span, the file's other animations) and `animated:` (each
-/// channel of the one played, on a line of its own).
-fn gltf_animation_rows(imported: &Imported) -> Vec<(&'static str, String)> {
+/// its keys' time span), `animations:` (every animation of the file, when it
+/// has several, the one playing marked) and `animated:` (each channel of the
+/// one played, on a line of its own).
+fn gltf_animation_rows(imported: &Imported, clip: usize) -> Vec<(&'static str, String)> {
     use crate::import::gltf_animation::Clip;
     let Some(clips) = imported.animations.as_ref().map(|a| &a.clips) else { return Vec::new() };
-    let Some(first) = clips.first() else { return Vec::new() };
+    let Some(first) = clips.get(clip) else { return Vec::new() };
     let name = |c: &Clip| match &c.name {
         Some(n) => format!("animations[{}] {n:?}", c.index),
         None => format!("animations[{}]", c.index),
     };
     let a = first.frames();
     let (t0, t1) = first.time_span();
-    let mut range = format!(
+    let range = format!(
         "frames {} to {} ({} at {} fps; {} plays, keys from {} to {} s; described at frame {})",
         a.start,
         a.end,
@@ -202,8 +204,15 @@ fn gltf_animation_rows(imported: &Imported) -> Vec<(&'static str, String)> {
         num(t1),
         a.start
     );
+    let mut listed = Vec::new();
     if clips.len() > 1 {
-        write!(range, "; also {}", clips[1..].iter().map(name).collect::<Vec<_>>().join(", ")).unwrap();
+        let row = |c: &Clip| {
+            let (_, end) = c.time_span();
+            let title = c.name.as_ref().map_or("(unnamed)".to_string(), |n| format!("{n:?}"));
+            let mark = if c.index == first.index { "  (plays)" } else { "" };
+            format!("{} {title}, {} s{mark}", c.index, num(end))
+        };
+        listed.push(("animations", format!("{}\n  {}", clips.len(), clips.iter().map(row).collect::<Vec<_>>().join("\n  "))));
     }
     let mut nodes: Vec<usize> = first.channels.iter().map(|c| c.node).collect();
     nodes.sort_unstable();
@@ -239,7 +248,10 @@ fn gltf_animation_rows(imported: &Imported) -> Vec<(&'static str, String)> {
             channels.join("\n  ")
         ),
     };
-    vec![("animation", range), ("animated", animated)]
+    let mut rows = vec![("animation", range)];
+    rows.extend(listed);
+    rows.push(("animated", animated));
+    rows
 }
 
 /// A scene value as it would be written in a scene file (numbers trimmed).
@@ -335,10 +347,43 @@ fn describe_scene(name: &str, what: &str, file: Option<&SceneFile>, scene: &Scen
         ("lights", lights),
         ("background", rgb(scene.settings.background)),
     ];
-    if let Some(desc) = file.map(|f| &f.description) {
-        rows.extend(animation_rows(desc));
+    if let Some(file) = file {
+        rows.extend(animation_rows(&file.description));
+        rows.extend(gltf_mesh_rows(file));
     }
     lines(format!("{name}: {what}"), &rows, warnings)
+}
+
+/// `gltf anim:`, one line per `[meshes]` glTF file with animations: the one
+/// that plays at the scene's time (`[meshes.NAME] animation`), or the rest
+/// pose, and the file's animations.
+fn gltf_mesh_rows(file: &SceneFile) -> Vec<(&'static str, String)> {
+    use crate::import::gltf_choice::{self, AnimationChoice};
+    let mut lines = Vec::new();
+    for mesh in &file.description.meshes {
+        let Some(Value::String(name)) = mesh.value.get("file").map(|e| &e.item.value) else { continue };
+        let path = file.source.dir().join(name);
+        let Some(clips) = gltf_choice::file_clips(&path).ok().filter(|c| !c.is_empty() && gltf_choice::is_gltf(&path)) else { continue };
+        let choice = match mesh.value.get("animation").map(|e| &e.item.value) {
+            Some(Value::Bool(false)) => None,
+            Some(Value::String(n)) => Some(AnimationChoice::Name(n.clone())),
+            Some(Value::Integer(i)) => Some(AnimationChoice::Index(*i as usize)),
+            _ => Some(AnimationChoice::Index(0)),
+        };
+        let plays = match choice.map(|c| gltf_choice::resolve(&path, &c, "animation")) {
+            None => "the rest pose (animation = false)".to_string(),
+            Some(Ok(i)) => {
+                let end = gltf_choice::file_clip_end(&path, i).map_or(String::new(), |e| format!(", keys to {} s", num(e)));
+                format!("animations[{i}]{} plays{end}", clips[i].name.as_ref().map_or(String::new(), |n| format!(" {n:?}")))
+            }
+            Some(Err(_)) => continue,
+        };
+        lines.push(format!("mesh {:?} ({name}): {plays}; the file has {}", mesh.name, gltf_choice::listing(&clips)));
+    }
+    match lines.is_empty() {
+        true => Vec::new(),
+        false => vec![("gltf anim", lines.join("\n  "))],
+    }
 }
 
 /// `animation:` (the range, the rate and the length; the scene as built above

@@ -15,7 +15,7 @@ use lamplight_core::{render_image, RenderControl, RenderOptions};
 use lamplight_scene::import::{self, gltf_animation, Imported};
 use lamplight_scene::request::SceneRequest;
 
-fn box_animated() -> PathBuf {
+pub(crate) fn box_animated() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/gltf/BoxAnimated/BoxAnimated.gltf")
 }
 
@@ -26,12 +26,12 @@ fn posed(path: &Path, imported: &Imported, seconds: f64) -> Imported {
     out
 }
 
-fn assert_close(got: Mat4, want: Mat4, what: &str) {
+pub(crate) fn assert_close(got: Mat4, want: Mat4, what: &str) {
     let diff = (got - want).to_cols_array().iter().fold(0.0f64, |m, x| m.max(x.abs()));
     assert!(diff < 1e-6, "{what}: got {got}, expected {want} (largest difference {diff})");
 }
 
-fn trs(t: [f64; 3], r: Quat, s: f64) -> Mat4 {
+pub(crate) fn trs(t: [f64; 3], r: Quat, s: f64) -> Mat4 {
     Mat4::from_scale_rotation_translation(Vec3::splat(s), r, Vec3::from_array(t))
 }
 
@@ -109,7 +109,7 @@ fn box_animated_info_lists_its_animation() {
 
 /// A glTF file written by the test: a unit cube and the accessors added.
 #[derive(Default)]
-struct Builder {
+pub(crate) struct Builder {
     buffer: Vec<u8>,
     views: Vec<String>,
     accessors: Vec<String>,
@@ -117,7 +117,7 @@ struct Builder {
 
 impl Builder {
     /// An accessor of `values` (`ty`: SCALAR, VEC3, VEC4); scalars get their min and max.
-    fn floats(&mut self, values: &[f64], ty: &str) -> usize {
+    pub(crate) fn floats(&mut self, values: &[f64], ty: &str) -> usize {
         let width = match ty {
             "SCALAR" => 1,
             "VEC3" => 3,
@@ -143,7 +143,7 @@ impl Builder {
     }
 
     /// The cube's POSITION and indices accessors (-0.5 to 0.5 on each axis).
-    fn cube(&mut self) -> (usize, usize) {
+    pub(crate) fn cube(&mut self) -> (usize, usize) {
         let corners: Vec<f64> = (0..8).flat_map(|i| [0, 1, 2].map(|a| if i >> a & 1 == 1 { 0.5 } else { -0.5 })).collect();
         let bytes: Vec<u8> = corners.iter().flat_map(|&x| (x as f32).to_le_bytes()).collect();
         let positions =
@@ -155,7 +155,7 @@ impl Builder {
     }
 
     /// The file: the scene's `roots`, `nodes`, `animations` (JSON arrays' insides) and the rest as given.
-    fn json(&self, roots: &str, nodes: &str, animations: &str, extra: &str) -> String {
+    pub(crate) fn json(&self, roots: &str, nodes: &str, animations: &str, extra: &str) -> String {
         let data = base64::engine::general_purpose::STANDARD.encode(&self.buffer);
         format!(
             r#"{{"asset": {{"version": "2.0"}}, "scene": 0, "scenes": [{{"nodes": [{roots}]}}],
@@ -182,7 +182,7 @@ fn about_y(deg: f64) -> [f64; 4] {
 /// rotation, scale), nodes 0 to 8 in that order (mode-major), and a parent
 /// (node 9) moving up 10 in 1 s with a child cube (node 10) 1 to its right.
 /// A second animation and a morph-weights channel check the warnings.
-fn interpolation_test() -> String {
+pub(crate) fn interpolation_test() -> String {
     let mut b = Builder::default();
     b.cube();
     let t012 = b.floats(&[0.0, 1.0, 2.0], "SCALAR");
@@ -235,13 +235,7 @@ fn every_interpolation_mode_gives_its_analytic_transform() {
     let path = dir.path().join("interpolation.gltf");
     std::fs::write(&path, interpolation_test()).unwrap();
     let imported = import::load(&path).unwrap();
-    assert_eq!(
-        imported.warnings,
-        [
-            "glTF animation of morph target weights ignored: morph targets are not supported",
-            "glTF file has 2 animations: the first is played (lamplight info lists them)"
-        ]
-    );
+    assert_eq!(imported.warnings, ["glTF animation of morph target weights ignored: morph targets are not supported"]);
     // The longest channel ends at 2 s: frames 0 to 48 at 24 fps.
     assert_eq!(imported.frames().map(|a| (a.start, a.end)), Some((0, 48)));
     assert_eq!(gltf_animation::file_frames(&path).map(|a| (a.start, a.end)), Some((0, 48)));
@@ -375,7 +369,7 @@ fn a_frame_renders_as_the_cube_placed_by_hand() {
 }
 
 #[test]
-fn a_cube_scaled_to_nothing_is_left_out_and_scene_files_say_they_do_not_play() {
+fn a_cube_scaled_to_nothing_is_left_out_and_a_scene_file_without_animation_says_so() {
     let dir = tempfile::tempdir().unwrap();
     let mut b = Builder::default();
     b.cube();
@@ -395,7 +389,7 @@ fn a_cube_scaled_to_nothing_is_left_out_and_scene_files_say_they_do_not_play() {
     // Frame 24 (1 s) renders with the one cube left.
     let request = SceneRequest::resolve(path.to_str().unwrap()).unwrap();
     assert_eq!(request.build_frame(Some(24)).unwrap().scene.objects.len(), 1);
-    // In a scene file's [meshes] the file stands as its nodes place it, and a warning says so.
+    // In a scene file's [meshes] without [animation] the file stands at its time 0, and a warning says so.
     let scene = format!(
         "[camera]\neye = [0, 2, 8]\nlook_at = [0, 0, 0]\nvfov = 40\n[meshes.box]\nfile = {:?}\n[[objects]]\ntype = \"mesh\"\nmesh = \"box\"\n",
         path.display().to_string()
@@ -406,8 +400,8 @@ fn a_cube_scaled_to_nothing_is_left_out_and_scene_files_say_they_do_not_play() {
     assert_eq!(
         built.warnings,
         [format!(
-            "{}: glTF animations are not played in a scene file's [meshes]: the nodes stand as the file places them \
-             (render the glTF file itself to play its first animation)",
+            "{}: the scene has no [animation], so the glTF animation stands at its time 0: add [animation] (frames = [START, END], fps) \
+             to play it, or give the mesh `animation = false` for the rest pose",
             path.display()
         )]
     );

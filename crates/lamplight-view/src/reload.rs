@@ -33,10 +33,14 @@ pub const QUIET: Duration = Duration::from_millis(60);
 /// light shut in by geometry, naming what blocks it), probed through the
 /// scene's own camera at the request's image size. An animated scene is
 /// built at the request's frame, kept within its `[animation] frames` (a
-/// reload keeps the frame shown, or the nearest one the edited range holds).
+/// reload keeps the frame shown, or the nearest one the edited range holds);
+/// a glTF file plays the animation `--animation` chose.
 pub fn load(arg: &str, request: &Request) -> Result<Loaded, String> {
     let options = request.mesh_options(MeshOptions::default());
-    let scene = SceneRequest::resolve(arg).and_then(|s| s.with_mesh_options(options, Naming::Flags)).map_err(|e| e.0)?;
+    let scene = SceneRequest::resolve(arg)
+        .and_then(|s| s.with_mesh_options(options, Naming::Flags))
+        .and_then(|s| s.with_animation(request.animation.as_ref(), Naming::Flags))
+        .map_err(|e| e.0)?;
     build(&Arc::new(scene), request, Naming::Flags)
 }
 

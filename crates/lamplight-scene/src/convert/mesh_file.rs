@@ -15,7 +15,13 @@
 //!   `directional_light` and `spot_light` with the glTF profile), and, when the
 //!   file has none and nothing emits, or its lights reach too little of the
 //!   view ([`crate::instantiate::imported`]), the viewer's key, fill and rim
-//!   lights with its `ambient`, `background` and studio `environment`.
+//!   lights with its `ambient`, `background` and studio `environment`;
+//! - an animated glTF file gets `[animation]` (frames 0 to its first
+//!   animation's last key at 24 fps, as rendering the file plays it): its
+//!   `[meshes]` entry plays that animation at the scene's time, so each frame
+//!   renders as the file's own frame; the camera and lights are written where
+//!   they stand at frame 0 (the viewer's camera frames everything the
+//!   animation reaches, as rendering the file does).
 
 use std::path::Path;
 
@@ -29,18 +35,30 @@ use crate::import::{self, ImportedLight, ImportedProjection};
 use crate::instantiate::{imported, studio, viewer};
 
 /// The scene table of the mesh file `input` for a TOML written to `output`,
-/// the warnings, and the image files to extract (absolute path, bytes).
-pub(super) fn convert(input: &Path, output: &Path) -> Result<super::Converted, LoadError> {
-    let imported = import::load(input)?;
+/// the warnings, and the image files to extract (absolute path, bytes);
+/// `clip` is the glTF animation chosen (`None`: the first).
+pub(super) fn convert(input: &Path, output: &Path, clip: Option<usize>) -> Result<super::Converted, LoadError> {
+    let mut imported = import::load(input)?;
     let fail = |m: String| LoadError::file(input, format!("cannot convert: {m}"));
+    // An animated glTF file: written at frame 0 of its first animation, which
+    // its `[meshes]` entry plays at the scene's time (`[animation]`, 24 fps).
+    let index = clip.unwrap_or(0);
+    let framing = imported::animation_sphere(input, &mut imported, index)?;
+    let animation = imported.clip_frames(index);
+    imported.pose_clip_frame(input, index, 0)?;
     let out_dir = super::absolute(output.parent().unwrap_or(Path::new("")));
     let stem = output.file_stem().map_or("scene".into(), |s| s.to_string_lossy().into_owned());
     let mesh_name = input.file_stem().map_or("mesh".into(), |s| s.to_string_lossy().into_owned());
     let mut images = Images::new(&imported.images, out_dir.clone(), &stem);
     let mut root: Vec<(&str, Value)> = Vec::new();
+    if let Some(a) = &animation {
+        let frames = Value::Array(vec![item(Value::Integer(a.start)), item(Value::Integer(a.end))]);
+        let fps = if a.fps.fract() == 0.0 { Value::Integer(a.fps as i64) } else { num(a.fps) };
+        root.push(("animation", Value::Table(table(vec![("frames", frames), ("fps", fps)]))));
+    }
 
     // Lights first (they decide the globals), written after the meshes.
-    let sphere = imported::world_sphere(&imported).ok_or_else(|| fail("the file has no geometry to render".into()))?;
+    let sphere = framing.or_else(|| imported::world_sphere(&imported)).ok_or_else(|| fail("the file has no geometry to render".into()))?;
     let (eye, target, camera) = match imported.cameras.first() {
         Some(c) => {
             let projection = match c.projection {
@@ -127,7 +145,11 @@ pub(super) fn convert(input: &Path, output: &Path) -> Result<super::Converted, L
     };
     root.push(("materials", Value::Table(materials)));
     let file = relative_to(&out_dir, &super::absolute_file(input));
-    let mesh = table(vec![("file", Value::String(file))]);
+    let mut mesh = vec![("file", Value::String(file))];
+    if let Some(i) = clip.filter(|&i| i > 0) {
+        mesh.push(("animation", Value::Integer(i as i64)));
+    }
+    let mesh = table(mesh);
     root.push(("meshes", Value::Table(table(vec![(mesh_name.as_str(), Value::Table(mesh))]))));
     root.push(("objects", Value::Array(objects)));
 
@@ -138,6 +160,13 @@ pub(super) fn convert(input: &Path, output: &Path) -> Result<super::Converted, L
     let toml = crate::formats::native_writer::write(&table(root), &header);
     let mut warnings = imported.warnings_of(input);
     warnings.extend(note);
+    if clip.is_none() {
+        warnings.extend(imported.several_animations_note());
+    }
+    if imported.animations.as_ref().is_some_and(|a| a.moves_cameras_or_lights(index)) {
+        let m = "its animation moves a camera or a light, which the scene file places where they stand at frame 0 (only the meshes play)";
+        warnings.push(format!("{}: {m}", input.display()));
+    }
     Ok(super::Converted { toml, warnings, files: images.extracted })
 }
 

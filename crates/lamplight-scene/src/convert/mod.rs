@@ -34,6 +34,18 @@ pub struct Converted {
 
 /// Converts the scene file `input` for writing to `output`.
 pub fn convert(input: &Path, output: &Path, defines: &[(String, String)]) -> Result<Converted, LoadError> {
+    convert_with(input, output, defines, None)
+}
+
+/// [`convert`] with the glTF animation `animation` names playing (`--animation`:
+/// its frames and its `[meshes]` entry's `animation`); a name or index the
+/// file lacks, or a file other than glTF, is refused as a render refuses it.
+pub fn convert_with(
+    input: &Path,
+    output: &Path,
+    defines: &[(String, String)],
+    animation: Option<&crate::import::gltf_choice::AnimationChoice>,
+) -> Result<Converted, LoadError> {
     if !output.extension().is_some_and(|e| e.eq_ignore_ascii_case("toml")) {
         return Err(LoadError::file(output, "convert writes a lamplight scene file, expected a name ending in .toml"));
     }
@@ -42,13 +54,23 @@ pub fn convert(input: &Path, output: &Path, defines: &[(String, String)]) -> Res
         if !defines.is_empty() {
             return Err(LoadError::file(input, "-D sets parameters of Mitsuba scenes; a mesh file has none"));
         }
-        return mesh_file::convert(input, output);
+        let clip = match animation {
+            None => None,
+            Some(_) if !crate::import::gltf_choice::is_gltf(input) => {
+                return Err(LoadError::file(input, "--animation applies to a glTF file (.gltf, .glb); this file has no animations"))
+            }
+            Some(choice) => Some(crate::import::gltf_choice::resolve(input, choice, "--animation")?),
+        };
+        return mesh_file::convert(input, output, clip);
     }
     if ext != "xml" {
         return Err(LoadError::file(
             input,
             format!("convert reads Mitsuba scenes (.xml) and mesh files ({}), not .{ext} files", crate::import::EXTENSIONS.join(", ")),
         ));
+    }
+    if animation.is_some() {
+        return Err(LoadError::file(input, "--animation applies to a glTF file (.gltf, .glb); a Mitsuba scene has no animations"));
     }
     let (mut table, source) = mitsuba::read_table(input, defines)?;
     let from = input.parent().unwrap_or(Path::new(""));

@@ -16,7 +16,7 @@
 //!
 //! | what | choice |
 //! |---|---|
-//! | the animation | the file's first (`animations[0]`); the others are listed by `lamplight info` |
+//! | the animation | the file's first (`animations[0]`), or the one chosen by name or index ([`super::gltf_choice`]); `lamplight info` lists them all |
 //! | time of frame `f` | `f / fps` seconds, frame 0 being glTF's time 0 |
 //! | frame rate | [`GLTF_FPS`] (24, Blender's and glTF exporters' usual rate) |
 //! | frame range | `0` to `ceil(end * fps)`, `end` the animation's last key time (its duration, as glTF players take it) |
@@ -31,6 +31,7 @@ use glam::DQuat as Quat;
 use gltf::accessor::{DataType, Dimensions};
 use lamplight_core::math::{Mat4, Vec3};
 
+pub use super::gltf_choice::{file_clip_frames, file_frames};
 use super::{Imported, ImportedLight, Warnings};
 use crate::description::animation::{interpolate, Animation, Interpolation, Shape, TimeUnit, Track};
 use crate::error::LoadError;
@@ -49,6 +50,24 @@ pub struct Animations {
     light_nodes: Vec<usize>,
     /// The animations, in file order.
     pub clips: Vec<Clip>,
+}
+
+impl Animations {
+    /// Whether animation `clip` moves a camera or a light of the file (a
+    /// channel on its node or on one above it).
+    pub fn moves_cameras_or_lights(&self, clip: usize) -> bool {
+        let Some(clip) = self.clips.get(clip) else { return false };
+        let moved = |mut n: usize| loop {
+            if clip.channels.iter().any(|c| c.tree == n) {
+                return true;
+            }
+            match self.nodes[n].parent {
+                Some(p) => n = p,
+                None => return false,
+            }
+        };
+        self.camera_nodes.iter().chain(&self.light_nodes).any(|&n| moved(n))
+    }
 }
 
 /// One node of the walked tree.
@@ -183,9 +202,6 @@ pub(super) fn read(
         }
         clips.push(Clip { index: animation.index(), name: animation.name().map(str::to_string), channels });
     }
-    if clips.len() > 1 {
-        warnings.once(format!("glTF file has {} animations: the first is played (lamplight info lists them)", clips.len()));
-    }
     let TreeRecorder { nodes, instance_nodes, camera_nodes, light_nodes, .. } = tree;
     Ok(Some(Animations { nodes, instance_nodes, camera_nodes, light_nodes, clips }))
 }
@@ -273,8 +289,18 @@ impl Imported {
     /// doc. A file without animations, or a `clip` it does not have, stays as read.
     /// A mesh whose node is scaled to nothing (an animation hiding it) is left out.
     pub fn pose(&mut self, path: &Path, clip: usize, seconds: f64) -> Result<(), LoadError> {
-        let Some(animations) = &self.animations else { return Ok(()) };
-        let Some(clip) = animations.clips.get(clip) else { return Ok(()) };
+        let visible = self.pose_all(path, clip, seconds)?;
+        let mut keep = visible.into_iter();
+        self.instances.retain(|_| keep.next().unwrap_or(true));
+        Ok(())
+    }
+
+    /// [`Imported::pose`] keeping every instance: whether each is visible (not
+    /// scaled to nothing), for a scene file's `part = i` to keep its meaning.
+    pub fn pose_all(&mut self, path: &Path, clip: usize, seconds: f64) -> Result<Vec<bool>, LoadError> {
+        let all = vec![true; self.instances.len()];
+        let Some(animations) = &self.animations else { return Ok(all) };
+        let Some(clip) = animations.clips.get(clip) else { return Ok(all) };
         let mut locals: Vec<Option<(Vec3, Quat, Vec3)>> = vec![None; animations.nodes.len()];
         for channel in &clip.channels {
             let node = &animations.nodes[channel.tree];
@@ -322,9 +348,7 @@ impl Imported {
                 ImportedLight::Spot { position, direction, .. } => (*position, *direction) = (origin, forward),
             }
         }
-        let mut keep = visible.into_iter();
-        self.instances.retain(|_| keep.next().unwrap_or(true));
-        Ok(())
+        Ok(visible)
     }
 
     /// [`Imported::pose`] at frame `frame` of the first animation at [`GLTF_FPS`] (module doc).
@@ -332,55 +356,26 @@ impl Imported {
         self.pose(path, 0, frame as f64 / GLTF_FPS)
     }
 
+    /// [`Imported::pose_frame`] for animation `clip` (an index into [`Animations::clips`]).
+    pub fn pose_clip_frame(&mut self, path: &Path, clip: usize, frame: i64) -> Result<(), LoadError> {
+        self.pose(path, clip, frame as f64 / GLTF_FPS)
+    }
+
     /// The frames of the animation [`Imported::pose_frame`] plays, if the file has one.
     pub fn frames(&self) -> Option<Animation> {
-        self.animations.as_ref()?.clips.first().map(Clip::frames)
+        self.clip_frames(0)
     }
-}
 
-/// The frames of the first animation of the glTF file at `path`, read from
-/// its JSON alone (the specification requires each sampler input's `max`),
-/// so that choosing frames does not decode meshes and images; `None` for
-/// other files, files without animations, and files that cannot be read
-/// (the render reports those).
-pub fn file_frames(path: &Path) -> Option<Animation> {
-    let ext = path.extension()?.to_str()?.to_ascii_lowercase();
-    if ext != "gltf" && ext != "glb" {
-        return None;
+    /// The frames of animation `clip`, if the file has it.
+    pub fn clip_frames(&self, clip: usize) -> Option<Animation> {
+        self.animations.as_ref()?.clips.get(clip).map(Clip::frames)
     }
-    let bytes = if ext == "glb" { glb_json(path)? } else { super::read_file(path).ok()? };
-    let gltf::Gltf { document, .. } = gltf::Gltf::from_slice_without_validation(&bytes).ok()?;
-    let first = document.animations().next()?;
-    let mut end: f64 = 0.0;
-    for channel in first.channels() {
-        if channel.target().property() == gltf::animation::Property::MorphTargetWeights {
-            continue;
-        }
-        let max = channel.sampler().input().max().and_then(|m| m.as_array()?.first()?.as_f64());
-        match max {
-            Some(m) if m.is_finite() => end = end.max(m),
-            // An input without its `max`: read the whole file.
-            _ => return super::load(path).ok()?.frames(),
-        }
-    }
-    Some(Animation { start: 0, end: frames_to(end, GLTF_FPS), fps: GLTF_FPS, shutter: (0.0, 0.0), loc: Default::default() })
-}
 
-/// The JSON chunk of the GLB file at `path`, read without the binary chunk
-/// (a model's meshes and images, often most of the file): the 12-byte header
-/// (`glTF`, version, length), then the first chunk's length and type `JSON`
-/// (glTF 2.0 specification, section 4.4).
-fn glb_json(path: &Path) -> Option<Vec<u8>> {
-    use std::io::Read;
-    let len = crate::input::check_regular(path).ok()?;
-    let mut file = std::fs::File::open(path).ok()?;
-    let mut head = [0u8; 20];
-    file.read_exact(&mut head).ok()?;
-    let chunk = u64::from(u32::from_le_bytes(head[12..16].try_into().ok()?));
-    if &head[0..4] != b"glTF" || &head[16..20] != b"JSON" || chunk > len.saturating_sub(20) {
-        return None;
+    /// The note a file with several animations gets when none was chosen.
+    pub fn several_animations_note(&self) -> Option<String> {
+        let n = self.animations.as_ref()?.clips.len();
+        (n > 1).then(|| {
+            format!("glTF file has {n} animations: the first plays unless --animation (Python animation=) chooses another; lamplight info lists them")
+        })
     }
-    let mut json = vec![0; chunk as usize];
-    file.read_exact(&mut json).ok()?;
-    Some(json)
 }

@@ -19,6 +19,7 @@ use crate::error::LoadError;
 
 mod gltf;
 pub mod gltf_animation;
+pub mod gltf_choice;
 mod gltf_images;
 mod gltf_material;
 mod mtl;

@@ -39,6 +39,10 @@ pub struct MeshOptions {
     pub smooth: bool,
     /// Whether a file with lights of its own keeps the viewer's lights too.
     pub auto_lights: AutoLights,
+    /// The glTF animation that plays, an index into the file's `animations`
+    /// (`--animation`, resolved by [`import::gltf_choice::resolve`]); `None`:
+    /// the first, with a note when the file has several.
+    pub animation: Option<usize>,
 }
 
 /// Reads the mesh file at `path` and builds a scene (for any image size).
@@ -59,15 +63,56 @@ pub fn load_with(path: &Path, options: MeshOptions) -> Result<Built, LoadError> 
 }
 
 /// [`load_with`] at frame `frame` of the file's animation (`None`: its first
-/// frame, 0; a glTF file's first animation at 24 fps: [`import::gltf_animation`]).
-/// A file without animations is the same at every frame.
+/// frame, 0; a glTF file's animation [`MeshOptions::animation`] at 24 fps:
+/// [`import::gltf_animation`]). A file without animations is the same at every frame.
 pub fn load_frame(path: &Path, options: MeshOptions, frame: Option<i64>) -> Result<Built, LoadError> {
     let mut imported = import::load(path)?;
-    imported.pose_frame(path, frame.unwrap_or(0))?;
-    let (scene, note) = build_with(path, &imported, options)?;
+    let framing = animation_sphere(path, &mut imported, options.animation.unwrap_or(0))?;
+    imported.pose_clip_frame(path, options.animation.unwrap_or(0), frame.unwrap_or(0))?;
+    if options.animation.is_none() {
+        imported.warnings.extend(imported.several_animations_note());
+    }
+    let (scene, note) = build_framed(path, &imported, options, framing)?;
     let mut warnings = imported.warnings_of(path);
     warnings.extend(note);
     Ok(Built { scene, warnings })
+}
+
+/// What the viewer's camera of an animated file frames: the corners of each
+/// placed mesh's bounds at every frame of animation `clip` (at most 257
+/// frames, evenly spaced), so that the camera and its lights hold still and
+/// see everything the animation reaches (`lamplight convert` writes the same
+/// camera); `None` for a file without animations. `imported` is left as it was read.
+pub fn animation_sphere(path: &Path, imported: &mut Imported, clip: usize) -> Result<Option<viewer::Sphere>, LoadError> {
+    let Some(frames) = imported.clip_frames(clip) else { return Ok(None) };
+    let bounds: Vec<Option<(Vec3, Vec3)>> = imported
+        .meshes
+        .iter()
+        .map(|m| {
+            let first = *m.positions.first()?;
+            Some(m.positions.iter().fold((first, first), |(lo, hi), p| (lo.min(*p), hi.max(*p))))
+        })
+        .collect();
+    let (instances, cameras, lights) = (imported.instances.clone(), imported.cameras.clone(), imported.lights.clone());
+    let step = (frames.end / 256).max(1);
+    let mut corners = Vec::new();
+    for frame in (0..=frames.end).step_by(step as usize).chain([frames.end]) {
+        imported.instances.clone_from(&instances);
+        imported.pose_clip_frame(path, clip, frame)?;
+        for placed in &imported.instances {
+            let Some(Some((lo, hi))) = bounds.get(placed.mesh) else { continue };
+            for i in 0..8 {
+                let corner = Vec3::new(
+                    if i & 1 == 0 { lo.x } else { hi.x },
+                    if i & 2 == 0 { lo.y } else { hi.y },
+                    if i & 4 == 0 { lo.z } else { hi.z },
+                );
+                corners.push(placed.transform.transform_point3(corner));
+            }
+        }
+    }
+    (imported.instances, imported.cameras, imported.lights) = (instances, cameras, lights);
+    Ok(viewer::bounding_sphere(corners.into_iter()))
 }
 
 /// Builds a scene from what an importer read from `path`.
@@ -78,7 +123,17 @@ pub fn build(path: &Path, imported: &Imported) -> Result<Scene, LoadError> {
 /// [`build`] with `options`, and a note when the viewer's lights were kept
 /// beside the file's because these reach too little of the view (module doc).
 pub fn build_with(path: &Path, imported: &Imported, options: MeshOptions) -> Result<(Scene, Option<String>), LoadError> {
-    let parts = Parts::new(path, imported, options.smooth)?;
+    build_framed(path, imported, options, None)
+}
+
+/// [`build_with`], the viewer's camera framing `framing` when given ([`animation_sphere`]).
+fn build_framed(
+    path: &Path,
+    imported: &Imported,
+    options: MeshOptions,
+    framing: Option<viewer::Sphere>,
+) -> Result<(Scene, Option<String>), LoadError> {
+    let parts = Parts::new(path, imported, options.smooth, framing)?;
     let decided = decide(&parts, options.auto_lights)?;
     let scene = match decided.own {
         Some(scene) if !decided.viewer_lights => scene,
@@ -90,7 +145,7 @@ pub fn build_with(path: &Path, imported: &Imported, options: MeshOptions) -> Res
 /// Whether the scene [`build_with`] makes of `imported` has the viewer's
 /// lights, and its note (for `lamplight convert`, which writes them out).
 pub fn viewer_lights(path: &Path, imported: &Imported, auto_lights: AutoLights) -> Result<(bool, Option<String>), LoadError> {
-    let parts = Parts::new(path, imported, false)?;
+    let parts = Parts::new(path, imported, false, None)?;
     let decided = decide(&parts, auto_lights)?;
     Ok((decided.viewer_lights, decided.note))
 }
@@ -142,7 +197,7 @@ struct Parts<'a> {
 }
 
 impl<'a> Parts<'a> {
-    fn new(path: &'a Path, imported: &'a Imported, smooth: bool) -> Result<Parts<'a>, LoadError> {
+    fn new(path: &'a Path, imported: &'a Imported, smooth: bool, framing: Option<viewer::Sphere>) -> Result<Parts<'a>, LoadError> {
         let fail = |e: lamplight_core::Error| LoadError::file(path, e.to_string());
         let mut meshes = Vec::with_capacity(imported.meshes.len());
         for data in &imported.meshes {
@@ -161,7 +216,7 @@ impl<'a> Parts<'a> {
                 return Err(LoadError::file(path, format!("instance of missing mesh {}", placed.mesh)));
             }
         }
-        let sphere = world_sphere(imported).ok_or_else(|| LoadError::file(path, "has no geometry to render"))?;
+        let sphere = framing.or_else(|| world_sphere(imported)).ok_or_else(|| LoadError::file(path, "has no geometry to render"))?;
         let (eye, target, camera): (Vec3, Vec3, Arc<dyn Camera>) = match imported.cameras.first() {
             Some(c) => match c.projection {
                 ImportedProjection::Perspective { vfov_deg } => {

@@ -19,6 +19,7 @@ pub mod environment;
 pub mod implicit;
 pub mod imported;
 mod materials;
+mod mesh_animation;
 mod motion;
 mod nodes;
 pub mod studio;
@@ -402,25 +403,29 @@ pub fn build_with_warnings(desc: &SceneDescription, source: &Source) -> Result<B
 /// any other. Errors found in it say the frame: `s.toml:9:20: frame 12: ...`.
 /// A scene without `[animation]` is the same at every frame.
 pub fn build_frame(desc: &SceneDescription, source: &Source, frame: Option<i64>) -> Result<Built, LoadError> {
-    let Some(animation) = &desc.animation else { return build_static(desc, source) };
+    let Some(animation) = &desc.animation else { return build_static(desc, source, None) };
     let frame = frame.unwrap_or(animation.start);
     let in_frame = |e: LoadError| LoadError { message: format!("frame {frame}: {}", e.message), ..e };
     let at = desc.at_frame(frame as f64).map_err(|e| in_frame(source.param_error(e)))?;
+    let seconds = animation.time(frame as f64, crate::description::animation::TimeUnit::Seconds);
     let shutter = motion::instants(desc, frame).map_err(|e| in_frame(source.param_error(e)))?;
-    build_at(&at, source, &shutter, animation.shutter).map_err(in_frame)
+    build_at(&at, source, &shutter, animation.shutter, Some(seconds)).map_err(in_frame)
 }
 
-fn build_static(desc: &SceneDescription, source: &Source) -> Result<Built, LoadError> {
-    build_at(desc, source, &[], (0.0, 0.0))
+fn build_static(desc: &SceneDescription, source: &Source, seconds: Option<f64>) -> Result<Built, LoadError> {
+    build_at(desc, source, &[], (0.0, 0.0), seconds)
 }
 
-/// Builds the static description `desc`, its shapes moving as the
-/// descriptions of the shutter's instants place them ([`motion`]).
+/// Builds `desc` with no animation left in it, at the scene's time `seconds`
+/// (its glTF meshes' animations; `None`: the scene has no `[animation]`), its
+/// shapes moving as the descriptions of the shutter's instants place them
+/// ([`motion`]).
 fn build_at(
     desc: &SceneDescription,
     source: &Source,
     instants: &[(f64, SceneDescription)],
     shutter: (f64, f64),
+    seconds: Option<f64>,
 ) -> Result<Built, LoadError> {
     let settings = settings(desc, source)?;
     // Each build counts afresh (a reload, another Python `Scene`); the limit
@@ -449,7 +454,7 @@ fn build_at(
         builder.name_material(index, name);
     }
     let mut warnings = source.warnings.clone();
-    warnings.extend(nodes::add_all(desc, source, &mut builder, materials, &textures, instants)?);
+    warnings.extend(nodes::add_all(desc, source, &mut builder, materials, &textures, seconds, instants)?);
     let objects = builder.object_count() as u64;
     crate::memory::reserve(objects * BVH_BYTES_PER_OBJECT, || format!("the scene's BVH over {objects} objects"))
         .map_err(|e| LoadError::file(&source.path, e.to_string()))?;

@@ -20,6 +20,7 @@ use lamplight_core::params::{unknown, unknown_among, Kind, ParamError, ParamResu
 use lamplight_core::shapes::{placed, Shape, TriangleMesh};
 use lamplight_core::SceneBuilder;
 
+use super::mesh_animation::{self, MeshClip};
 use super::transform;
 use crate::description::{Node, SceneDescription};
 use crate::error::{LoadError, Location};
@@ -41,7 +42,11 @@ struct Ctx<'a> {
     materials: BTreeMap<String, usize>,
     default_material: Option<usize>,
     assets: HashMap<String, Asset>,
-    files: HashMap<(PathBuf, Shading, Option<String>), Asset>,
+    files: HashMap<(PathBuf, Shading, Option<String>, MeshClip), Asset>,
+    /// Each mesh file decoded, read once per build however many clips pose it.
+    imported: HashMap<PathBuf, import::Imported>,
+    /// The scene's time in seconds, for glTF animations (`None`: no `[animation]`).
+    seconds: Option<f64>,
     names: HashMap<String, Vec<usize>>,
     lights: Vec<(&'a Node, Mat4)>,
     stack: Vec<String>,
@@ -53,14 +58,16 @@ struct Ctx<'a> {
     leaf: usize,
 }
 
-/// Adds every top-level node of `desc` to `builder`; returns the warnings of
-/// the mesh files read, each file's once.
+/// Adds every top-level node of `desc` to `builder` at the scene's time
+/// `seconds` (its glTF meshes' animations: [`super::mesh_animation`]);
+/// returns the warnings of the mesh files read, each file's once.
 pub(super) fn add_all(
     desc: &SceneDescription,
     source: &Source,
     builder: &mut SceneBuilder,
     materials: BTreeMap<String, usize>,
     textures: &Textures<'_>,
+    seconds: Option<f64>,
     shutter: &[(f64, SceneDescription)],
 ) -> Result<Vec<String>, LoadError> {
     let mut ctx = Ctx {
@@ -71,6 +78,8 @@ pub(super) fn add_all(
         default_material: None,
         assets: HashMap::new(),
         files: HashMap::new(),
+        imported: HashMap::new(),
+        seconds,
         names: HashMap::new(),
         lights: Vec::new(),
         stack: Vec::new(),
@@ -184,7 +193,8 @@ impl<'a> Ctx<'a> {
                 }
                 let chosen = asset.iter().enumerate().filter(|(i, _)| part.is_none_or(|k| k as usize == *i));
                 let keys = self.motion_keys(&m);
-                for (_, (mesh, placement, imported)) in chosen {
+                // A part its glTF animation hides at this frame ([`mesh_animation::HIDDEN`]).
+                for (_, (mesh, placement, imported)) in chosen.filter(|(_, part)| part.1 != mesh_animation::HIDDEN) {
                     let material = match (material, *imported) {
                         (Some(m), _) | (None, Some(m)) => m,
                         (None, None) => self.default_material().map_err(|e| self.fail(p.error(e)))?,
@@ -279,12 +289,13 @@ impl<'a> Ctx<'a> {
             (true, false) if !p.has("indices") && !p.has("normals") => {
                 let shading = Shading::read(&mut p).map_err(|e| Err(self.fail(e)))?;
                 let color = p.string("color").map_err(|e| Err(self.fail(e)))?.map(str::to_string);
+                let clip = mesh_animation::read(&mut p).map_err(|e| Err(self.fail(e)))?;
                 let file = p.required_string("file").map_err(|e| Err(self.fail(e)))?;
                 // Problems with the file as a whole are reported at the `file` key;
                 // those at a place inside the mesh file, at that place.
                 let file_loc = desc.value.get("file").map(|e| e.item.loc.clone()).unwrap_or_default();
                 let at_file = |m: String| self.source.error(&file_loc, format!("mesh \"{name}\": {m}"));
-                self.file_asset(file, shading, color).map_err(|e| match e {
+                self.file_asset(file, shading, color, clip).map_err(|e| match e {
                     Ok(m) => Err(at_file(m)),
                     Err(load) if load.location == Location::File => Err(at_file(load.to_string())),
                     Err(load) => Err(load),
@@ -298,7 +309,13 @@ impl<'a> Ctx<'a> {
         Ok(asset)
     }
 
-    fn file_asset(&mut self, file: &str, shading: Shading, color: Option<String>) -> Result<Asset, Result<String, LoadError>> {
+    fn file_asset(
+        &mut self,
+        file: &str,
+        shading: Shading,
+        color: Option<String>,
+        clip: MeshClip,
+    ) -> Result<Asset, Result<String, LoadError>> {
         if file.is_empty() {
             return Err(Ok("file: the path is empty, expected a mesh file".to_string()));
         }
@@ -310,17 +327,20 @@ impl<'a> Ctx<'a> {
             // A device or a pipe (/dev/zero) could be read forever: named for what it is.
             Err(r) => return Err(Ok(format!("file \"{file}\" {}", r.describe("a mesh file")))),
         }
-        let key = (path.canonicalize().unwrap_or(path.clone()), shading, color.clone());
+        let canonical = path.canonicalize().unwrap_or(path.clone());
+        let key = (canonical.clone(), shading, color.clone(), clip);
         if let Some(asset) = self.files.get(&key) {
             return Ok(asset.clone());
         }
-        let imported = import::load(&path).map_err(Err)?;
-        self.warnings.extend(imported.warnings_of(&path));
-        if imported.animations.is_some() {
-            // Played only when the file is rendered itself (`import::gltf_animation`).
-            let note = "glTF animations are not played in a scene file's [meshes]: the nodes stand as the file places them \
-                        (render the glTF file itself to play its first animation)";
-            self.warnings.push(format!("{}: {note}", path.display()));
+        if !self.imported.contains_key(&canonical) {
+            let imported = import::load(&path).map_err(Err)?;
+            self.warnings.extend(imported.warnings_of(&path));
+            self.imported.insert(canonical.clone(), imported);
+        }
+        let mut imported = self.imported[&canonical].clone();
+        let note = mesh_animation::pose(&mut imported, &path, file, &key.3, self.seconds).map_err(Ok)?;
+        if let Some(note) = note.filter(|n| !self.warnings.contains(n)) {
+            self.warnings.push(note);
         }
         let mut parts = Vec::new();
         let mut meshes: HashMap<usize, Arc<TriangleMesh>> = HashMap::new();
@@ -385,6 +405,14 @@ pub const MESH_PARAMS: &[lamplight_core::params::Param] = {
             "the file's colours",
             "",
             "the PLY attribute that is the mesh's colour (its `vertex_color` texture), as Mitsuba names it: `\"vertex_NAME\"` interpolated, `\"face_NAME\"` constant per face (a one-channel attribute is a grey)",
+        ),
+        Param::new(
+            "animation",
+            // Any value: a string, a whole number or false ([`mesh_animation::read`] checks it).
+            T::Table,
+            "the first",
+            "a name, an index or `false`",
+            "a glTF file's animation that plays, at the scene's time in seconds (`[animation]`): its name (`\"Walk\"`) or index (`2`), or `false` for the rest pose; without `[animation]` the glTF stands at its time 0",
         ),
     ]
 };

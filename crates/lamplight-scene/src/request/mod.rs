@@ -18,6 +18,7 @@ use lamplight_core::{PixelWindow, RenderOptions, Scene};
 
 use crate::builtin::{self, Builtin};
 use crate::import;
+pub use crate::import::gltf_choice::AnimationChoice;
 use crate::instantiate::{imported, Built, SceneFile};
 pub use imported::{AutoLights, MeshOptions};
 
@@ -159,9 +160,39 @@ impl SceneRequest {
     /// directly ([`MeshOptions`]: `--smooth`, `--keep-auto-lights`). A scene
     /// file says these itself (a mesh's `shading = "smooth"`, its own lights),
     /// so a choice other than the default is refused there rather than ignored.
+    /// The animation chosen by [`SceneRequest::with_animation`] is kept unless `options` chooses one.
     pub fn with_mesh_options(mut self, options: MeshOptions, naming: Naming) -> Result<SceneRequest, RequestError> {
         check_mesh_options(matches!(self.spec, SceneSpec::Mesh(_)), &self.name, options, naming)?;
-        self.mesh = options;
+        self.mesh = MeshOptions { animation: options.animation.or(self.mesh.animation), ..options };
+        Ok(self)
+    }
+
+    /// The scene playing the glTF animation `choice` names (`--animation
+    /// Walk`, `animation=2`; `None`: the file's first): the frames, the
+    /// render and `lamplight info` follow it. Only a glTF file rendered
+    /// directly takes a choice (a scene file names its mesh's animation in
+    /// `[meshes.NAME]`); a name or index the file lacks is one error listing
+    /// the file's animations.
+    pub fn with_animation(mut self, choice: Option<&AnimationChoice>, naming: Naming) -> Result<SceneRequest, RequestError> {
+        let Some(choice) = choice else { return Ok(self) };
+        let key = naming.name("animation");
+        let path = match &self.spec {
+            SceneSpec::Mesh(path) if import::gltf_choice::is_gltf(path) => path,
+            SceneSpec::Mesh(path) => {
+                return Err(bad(format!("{}: {key} applies to a glTF file (.gltf, .glb); this file has no animations", path.display())))
+            }
+            SceneSpec::File(_) => {
+                return Err(bad(format!(
+                    "{key} applies to a glTF file rendered directly (.gltf, .glb); '{}' is a scene file: give its glTF mesh `animation = {choice}` in [meshes.NAME]",
+                    self.name
+                )))
+            }
+            SceneSpec::Builtin(_) => {
+                return Err(bad(format!("{key} applies to a glTF file rendered directly (.gltf, .glb); '{}' is a built-in scene", self.name)))
+            }
+        };
+        let index = import::gltf_choice::resolve(path, choice, &key).map_err(|e| bad(e.to_string()))?;
+        self.mesh.animation = Some(index);
         Ok(self)
     }
 
@@ -204,12 +235,12 @@ impl SceneRequest {
 
 impl SceneRequest {
     /// The scene's `[animation]`, when it is an animated scene file, or the
-    /// frames of an animated glTF file's first animation
-    /// ([`crate::import::gltf_animation::file_frames`]).
+    /// frames of the animation of a glTF file that plays ([`MeshOptions::animation`],
+    /// [`crate::import::gltf_choice::file_clip_frames`]).
     pub fn animation(&self) -> Option<crate::description::Animation> {
         match &self.spec {
             SceneSpec::File(file) => file.description.animation.clone(),
-            SceneSpec::Mesh(path) => import::gltf_animation::file_frames(path),
+            SceneSpec::Mesh(path) => import::gltf_choice::file_clip_frames(path, self.mesh.animation.unwrap_or(0)),
             SceneSpec::Builtin(_) => None,
         }
     }
@@ -282,6 +313,9 @@ pub struct Request {
     pub keep_auto_lights: Option<AutoLights>,
     /// The frame of an animated scene (`None`: its first); see [`frames`].
     pub frame: Option<i64>,
+    /// The animation of a glTF file rendered directly that plays (`None`: its
+    /// first); applied by [`SceneRequest::with_animation`].
+    pub animation: Option<AnimationChoice>,
 }
 
 /// A request checked and with every default resolved.
@@ -305,7 +339,11 @@ pub struct Job {
 impl Request {
     /// The mesh file options of this request over those a scene was made with (`base`).
     pub fn mesh_options(&self, base: MeshOptions) -> MeshOptions {
-        MeshOptions { smooth: self.smooth.unwrap_or(base.smooth), auto_lights: self.keep_auto_lights.unwrap_or(base.auto_lights) }
+        MeshOptions {
+            smooth: self.smooth.unwrap_or(base.smooth),
+            auto_lights: self.keep_auto_lights.unwrap_or(base.auto_lights),
+            animation: base.animation,
+        }
     }
 
     /// Applies the precedence and the limits; messages spell options by `naming`.
