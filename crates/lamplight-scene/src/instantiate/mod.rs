@@ -413,7 +413,7 @@ pub fn build_frame(desc: &SceneDescription, source: &Source, frame: Option<i64>)
 }
 
 fn build_static(desc: &SceneDescription, source: &Source, seconds: Option<f64>) -> Result<Built, LoadError> {
-    build_at(desc, source, &[], (0.0, 0.0), seconds)
+    build_at(desc, source, &motion::Instants::NONE, (0.0, 0.0), seconds)
 }
 
 /// Builds `desc` with no animation left in it, at the scene's time `seconds`
@@ -423,7 +423,7 @@ fn build_static(desc: &SceneDescription, source: &Source, seconds: Option<f64>) 
 fn build_at(
     desc: &SceneDescription,
     source: &Source,
-    instants: &[(f64, SceneDescription)],
+    instants: &motion::Instants,
     shutter: (f64, f64),
     seconds: Option<f64>,
 ) -> Result<Built, LoadError> {

@@ -12,7 +12,8 @@
 //! shutter of zero length builds the same scene as none.
 //!
 //! What moves: a node's `translate`, `rotate` and `scale` (and those of its
-//! groups and instances). What is taken at the frame: the camera, lights,
+//! groups and instances), and a `[meshes]` glTF file's parts as its own
+//! animation places them at each instant (`nodes::Ctx::pose_over_shutter`). What is taken at the frame: the camera, lights,
 //! other animated keys (a radius, an intensity), and emitting shapes (an area
 //! light is sampled where it stands, so it is not smeared).
 //!
@@ -37,29 +38,45 @@ pub const SAMPLES: usize = 16;
 pub(super) struct Motion {
     /// The instants, in frames from the frame.
     times: Vec<f64>,
+    /// The scene's frame rate (glTF meshes' animations count seconds).
+    fps: f64,
     /// Per instant, the world transform of each shape node, in build order.
     leaves: Vec<Vec<Mat4>>,
 }
 
-/// The static descriptions of the shutter's instants, in frames from
-/// `frame`; none when the shutter is closed (`open == close`).
-pub(super) fn instants(desc: &SceneDescription, frame: i64) -> ParamResult<Vec<(f64, SceneDescription)>> {
-    let Some(animation) = &desc.animation else { return Ok(Vec::new()) };
+/// The static descriptions of the shutter's instants (in frames from the
+/// frame), and the scene's frame rate.
+pub(super) struct Instants {
+    fps: f64,
+    list: Vec<(f64, SceneDescription)>,
+}
+
+impl Instants {
+    /// A closed shutter: nothing moves.
+    pub(super) const NONE: Instants = Instants { fps: 24.0, list: Vec::new() };
+}
+
+/// The shutter's instants around `frame`; none when the shutter is closed
+/// (`open == close`).
+pub(super) fn instants(desc: &SceneDescription, frame: i64) -> ParamResult<Instants> {
+    let Some(animation) = &desc.animation else { return Ok(Instants::NONE) };
     let (open, close) = animation.shutter;
     if !(close > open) {
-        return Ok(Vec::new());
+        return Ok(Instants::NONE);
     }
-    (0..=SAMPLES)
+    let list = (0..=SAMPLES)
         .map(|k| {
             let t = open + (close - open) * k as f64 / SAMPLES as f64;
             Ok((t, desc.at_frame(frame as f64 + t)?))
         })
-        .collect()
+        .collect::<ParamResult<_>>()?;
+    Ok(Instants { fps: animation.fps, list })
 }
 
 impl Motion {
     /// Reads the shapes' transforms from each instant's description.
-    pub(super) fn new(instants: &[(f64, SceneDescription)]) -> ParamResult<Option<Motion>> {
+    pub(super) fn new(instants: &Instants) -> ParamResult<Option<Motion>> {
+        let (fps, instants) = (instants.fps, &instants.list);
         if instants.is_empty() {
             return Ok(None);
         }
@@ -71,20 +88,36 @@ impl Motion {
             }
             leaves.push(found);
         }
-        Ok(Some(Motion { times: instants.iter().map(|(t, _)| *t).collect(), leaves }))
+        Ok(Some(Motion { times: instants.iter().map(|(t, _)| *t).collect(), fps, leaves }))
+    }
+
+    /// The scene's times in seconds at the instants, for a glTF mesh's own
+    /// animation that stands at `seconds` at the frame.
+    pub(super) fn seconds(&self, seconds: f64) -> impl Iterator<Item = f64> + '_ {
+        self.times.iter().map(move |t| seconds + t / self.fps)
     }
 
     /// The keys of shape node `leaf` (in build order), standing at `frame`
-    /// (its world transform at the frame): `None` when it does not move.
-    pub(super) fn keys(&self, leaf: usize, frame: &Mat4) -> Option<Vec<(f64, Mat4)>> {
-        let inverse = frame.inverse();
-        let keys: Vec<(f64, Mat4)> = self
-            .times
-            .iter()
-            .zip(&self.leaves)
-            .map(|(&t, leaves)| (t, leaves.get(leaf).map_or(Mat4::IDENTITY, |m| *m * inverse)))
+    /// (its world transform at the frame), of its part placed by `placement`
+    /// in the node, which a glTF mesh's own animation moves to `placements`
+    /// at the instants (`None`: it keeps `placement`): `None` when the part
+    /// does not move, or when its animation hides it at some instant (it
+    /// then stands as at the frame).
+    pub(super) fn keys(&self, leaf: usize, frame: &Mat4, placement: &Mat4, placements: Option<&[Mat4]>) -> Option<Vec<(f64, Mat4)>> {
+        let hidden = |m: &Mat4| *m == super::mesh_animation::HIDDEN;
+        if hidden(placement) || placements.is_some_and(|p| p.iter().any(hidden) || p.len() != self.times.len()) {
+            return None;
+        }
+        let world = *frame * *placement;
+        let inverse = world.inverse();
+        let keys: Vec<(f64, Mat4)> = (0..self.times.len())
+            .map(|k| {
+                let node = self.leaves[k].get(leaf).copied().unwrap_or(*frame);
+                let part = placements.map_or(*placement, |p| p[k]);
+                (self.times[k], node * part * inverse)
+            })
             .collect();
-        let still = keys.iter().all(|(_, m)| m.abs_diff_eq(Mat4::IDENTITY, 1e-12 * (1.0 + frame.w_axis.truncate().abs().max_element())));
+        let still = keys.iter().all(|(_, m)| m.abs_diff_eq(Mat4::IDENTITY, 1e-12 * (1.0 + world.w_axis.truncate().abs().max_element())));
         (!still).then_some(keys)
     }
 }

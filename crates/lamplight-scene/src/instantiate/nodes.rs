@@ -33,7 +33,12 @@ pub const MAX_NESTING: usize = 64;
 pub const MAX_OBJECTS: usize = 1 << 22;
 
 /// A loaded mesh asset: its parts (mesh, placement in the asset, imported material).
-type Asset = Arc<Vec<(Arc<TriangleMesh>, Mat4, Option<usize>)>>;
+/// A glTF part's placements at the shutter's instants follow it, when its
+/// own animation moves it ([`super::motion::Motion::keys`]).
+type Asset = Arc<Vec<Part>>;
+/// A part of a mesh asset: its mesh, placement, imported material and
+/// placements at the shutter's instants.
+type Part = (Arc<TriangleMesh>, Mat4, Option<usize>, Option<Arc<[Mat4]>>);
 
 struct Ctx<'a> {
     desc: &'a SceneDescription,
@@ -68,7 +73,7 @@ pub(super) fn add_all(
     materials: BTreeMap<String, usize>,
     textures: &Textures<'_>,
     seconds: Option<f64>,
-    shutter: &[(f64, SceneDescription)],
+    shutter: &super::motion::Instants,
 ) -> Result<Vec<String>, LoadError> {
     let mut ctx = Ctx {
         desc,
@@ -192,9 +197,10 @@ impl<'a> Ctx<'a> {
                     return Err(self.fail(p.key_error("part", message)));
                 }
                 let chosen = asset.iter().enumerate().filter(|(i, _)| part.is_none_or(|k| k as usize == *i));
-                let keys = self.motion_keys(&m);
+                let leaf = self.next_leaf();
                 // A part its glTF animation hides at this frame ([`mesh_animation::HIDDEN`]).
-                for (_, (mesh, placement, imported)) in chosen.filter(|(_, part)| part.1 != mesh_animation::HIDDEN) {
+                for (_, (mesh, placement, imported, placements)) in chosen.filter(|(_, part)| part.1 != mesh_animation::HIDDEN) {
+                    let keys = self.motion.as_ref().and_then(|motion| motion.keys(leaf, &m, placement, placements.as_deref()));
                     let material = match (material, *imported) {
                         (Some(m), _) | (None, Some(m)) => m,
                         (None, None) => self.default_material().map_err(|e| self.fail(p.error(e)))?,
@@ -211,7 +217,8 @@ impl<'a> Ctx<'a> {
                     Some(m) => m,
                     None => self.default_material().map_err(|e| self.fail(p.error(e)))?,
                 };
-                let keys = self.motion_keys(&m);
+                let leaf = self.next_leaf();
+                let keys = self.motion.as_ref().and_then(|motion| motion.keys(leaf, &m, &Mat4::IDENTITY, None));
                 for shape in made {
                     let shape = self.moved(shape, material, keys.as_ref()).map_err(|e| self.fail(p.core_error(e)))?;
                     self.place(shape, material, reversed, n).map_err(|e| self.fail(p.error(e)))?;
@@ -221,12 +228,51 @@ impl<'a> Ctx<'a> {
         p.finish().map_err(|e| self.fail(e))
     }
 
-    /// The motion keys of the next shape or mesh node, which stands at `m`
-    /// at the frame (motion blur, [`super::motion`]).
-    fn motion_keys(&mut self, m: &Mat4) -> Option<Vec<(f64, Mat4)>> {
-        let leaf = self.leaf;
+    /// Each part's placement at the shutter's instants, where the glTF
+    /// file's own animation plays and moves it (motion blur).
+    fn pose_over_shutter(
+        &self,
+        parts: &mut [Part],
+        canonical: &PathBuf,
+        path: &std::path::Path,
+        file: &str,
+        clip: &MeshClip,
+    ) -> Result<(), String> {
+        let (Some(motion), Some(seconds)) = (&self.motion, self.seconds) else { return Ok(()) };
+        let base = &self.imported[canonical];
+        if base.animations.is_none() || *clip == MeshClip::Rest {
+            return Ok(());
+        }
+        let mut columns: Vec<Vec<Mat4>> = vec![Vec::new(); parts.len()];
+        for at in motion.seconds(seconds) {
+            // The node tree alone is posed: no mesh or image is copied.
+            let mut posed = import::Imported {
+                meshes: Vec::new(),
+                instances: base.instances.clone(),
+                cameras: Vec::new(),
+                lights: Vec::new(),
+                warnings: Vec::new(),
+                images: Vec::new(),
+                animations: base.animations.clone(),
+            };
+            mesh_animation::pose(&mut posed, path, file, clip, Some(at))?;
+            for (column, placed) in columns.iter_mut().zip(&posed.instances) {
+                column.push(placed.transform);
+            }
+        }
+        for (part, column) in parts.iter_mut().zip(columns) {
+            if column.iter().any(|m| *m != part.1) {
+                part.3 = Some(column.into());
+            }
+        }
+        Ok(())
+    }
+
+    /// The number of the next shape or mesh node in build order, which
+    /// motion blur's keys are read by ([`super::motion::Motion::keys`]).
+    fn next_leaf(&mut self) -> usize {
         self.leaf += 1;
-        self.motion.as_ref()?.keys(leaf, m)
+        self.leaf - 1
     }
 
     /// `shape` moving by `keys`; an emitting one stays where it is at the frame.
@@ -370,8 +416,9 @@ impl<'a> Ctx<'a> {
                 Some(m) => Some(self.builder.material(m.clone()).map_err(|e| Ok(format!("file \"{file}\": {e}")))?),
                 None => None,
             };
-            parts.push((mesh, placed.transform, material));
+            parts.push((mesh, placed.transform, material, None));
         }
+        self.pose_over_shutter(&mut parts, &canonical, &path, file, &key.3).map_err(Ok)?;
         let asset: Asset = Arc::new(parts);
         self.files.insert(key, asset.clone());
         Ok(asset)
@@ -495,7 +542,7 @@ fn inline(p: &mut Params<'_>) -> ParamResult<Asset> {
     let normals = p.vec3_list("normals")?;
     let normals = Shading::read(p)?.normals(&positions, &indices, normals);
     let mesh = TriangleMesh::new(positions, indices, normals).map_err(|e| p.error(e))?;
-    Ok(Arc::new(vec![(Arc::new(mesh), Mat4::IDENTITY, None)]))
+    Ok(Arc::new(vec![(Arc::new(mesh), Mat4::IDENTITY, None, None)]))
 }
 
 /// `indices`: triangles of vertex indices, each below 2^32.
