@@ -20,13 +20,15 @@ pub mod implicit;
 pub mod imported;
 mod materials;
 mod mesh_animation;
+mod mesh_keys;
 mod motion;
 mod nodes;
 pub mod studio;
 pub(crate) mod transform;
 pub mod viewer;
 
-pub use nodes::{MAX_NESTING, MAX_OBJECTS, MESH_PARAMS};
+pub use mesh_keys::MESH_PARAMS;
+pub use nodes::{MAX_NESTING, MAX_OBJECTS};
 
 /// Image and integrator settings with every default resolved.
 #[derive(Clone, Debug, PartialEq)]

@@ -122,6 +122,47 @@ impl Motion {
     }
 }
 
+/// Each part's placement at the instants of `motion`, where the glTF file
+/// `base` (read from `path`, named by `file`) plays `clip`, standing at the
+/// scene's `seconds` at the frame: `parts` (its instances, in order) whose
+/// animation moves them get their placements (`Part`'s last field).
+pub(super) fn pose_parts(
+    motion: &Motion,
+    seconds: f64,
+    base: &crate::import::Imported,
+    parts: &mut [super::nodes::Part],
+    path: &std::path::Path,
+    file: &str,
+    clip: &super::mesh_animation::MeshClip,
+) -> Result<(), String> {
+    if base.animations.is_none() || *clip == super::mesh_animation::MeshClip::Rest {
+        return Ok(());
+    }
+    let mut columns: Vec<Vec<Mat4>> = vec![Vec::new(); parts.len()];
+    for at in motion.seconds(seconds) {
+        // The node tree alone is posed: no mesh or image is copied.
+        let mut posed = crate::import::Imported {
+            meshes: Vec::new(),
+            instances: base.instances.clone(),
+            cameras: Vec::new(),
+            lights: Vec::new(),
+            warnings: Vec::new(),
+            images: Vec::new(),
+            animations: base.animations.clone(),
+        };
+        super::mesh_animation::pose(&mut posed, path, file, clip, Some(at))?;
+        for (column, placed) in columns.iter_mut().zip(&posed.instances) {
+            column.push(placed.transform);
+        }
+    }
+    for (part, column) in parts.iter_mut().zip(columns) {
+        if column.iter().any(|m| *m != part.1) {
+            part.3 = Some(column.into());
+        }
+    }
+    Ok(())
+}
+
 /// `shape` moved by `keys` ([`Motion::keys`]), or as it is without them.
 pub(super) fn wrap(shape: Arc<dyn Shape>, keys: Option<&Vec<(f64, Mat4)>>) -> Result<Arc<dyn Shape>, lamplight_core::Error> {
     match keys {
