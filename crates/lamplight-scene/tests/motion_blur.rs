@@ -129,6 +129,13 @@ fn still_shapes_are_built_as_without_motion_blur() {
     let file = SceneFile::parse(Path::new("s.toml"), &only_still).unwrap();
     assert_eq!(file.build_frame(Some(1)).unwrap().scene.shutter(), None);
     assert_eq!(render(&only_still, 16, "path"), render(&only_still.replace("shutter = [0, 1]\n", ""), 16, "path"));
+
+    // An unbounded shape has no box to sweep: a moving plane stands as at the frame.
+    let plane = "[[objects]]\ntype = \"plane\"\npoint = [0, 0, -3]\nnormal = [0, 0, 1]\nmaterial = \"flat\"\n\
+                 animate.translate = { frames = [0, 2], values = [[0, 0, 0], [0, 0, 1]] }\n";
+    let file = SceneFile::parse(Path::new("s.toml"), &scene(Some("[0, 1]"), plane)).unwrap();
+    let built = file.build_frame(Some(1)).unwrap().scene;
+    assert_eq!(built.objects.iter().map(|o| o.shape.moves()).collect::<Vec<_>>(), [true, false]);
 }
 
 #[test]

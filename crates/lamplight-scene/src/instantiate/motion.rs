@@ -13,9 +13,10 @@
 //!
 //! What moves: a node's `translate`, `rotate` and `scale` (and those of its
 //! groups and instances), and a `[meshes]` glTF file's parts as its own
-//! animation places them at each instant (`nodes::Ctx::pose_over_shutter`). What is taken at the frame: the camera, lights,
-//! other animated keys (a radius, an intensity), and emitting shapes (an area
-//! light is sampled where it stands, so it is not smeared).
+//! animation places them at each instant ([`pose_parts`]). What is taken at
+//! the frame: the camera, lights, other animated keys (a radius, an
+//! intensity), emitting shapes (an area light is sampled where it stands, so
+//! it is not smeared) and unbounded shapes (a plane has no box to sweep).
 //!
 //! Between the instants the motion is interpolated by parts
 //! ([`lamplight_core::shapes::moving`]): exact for motion at constant
@@ -163,11 +164,13 @@ pub(super) fn pose_parts(
     Ok(())
 }
 
-/// `shape` moved by `keys` ([`Motion::keys`]), or as it is without them.
+/// `shape` moved by `keys` ([`Motion::keys`]), or as it is without them
+/// or when it is unbounded (an infinite plane stands as at the frame).
 pub(super) fn wrap(shape: Arc<dyn Shape>, keys: Option<&Vec<(f64, Mat4)>>) -> Result<Arc<dyn Shape>, lamplight_core::Error> {
+    let bounds = shape.bounds();
     match keys {
-        Some(keys) => Ok(Arc::new(MovingInstance::new(shape, keys)?)),
-        None => Ok(shape),
+        Some(keys) if bounds.is_finite() && !bounds.is_empty() => Ok(Arc::new(MovingInstance::new(shape, keys)?)),
+        _ => Ok(shape),
     }
 }
 
