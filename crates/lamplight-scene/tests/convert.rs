@@ -22,6 +22,11 @@ fn write(dir: &Path, name: &str, bytes: &[u8]) -> PathBuf {
 
 /// The sRGB bytes of `path` rendered at 24 x 16 by `integrator` with `spp` samples.
 fn render(path: &Path, integrator: &str, spp: u32) -> Vec<u8> {
+    render_frame(path, None, integrator, spp)
+}
+
+/// [`render`] of frame `frame` (`None`: the scene's first).
+pub(crate) fn render_frame(path: &Path, frame: Option<i64>, integrator: &str, spp: u32) -> Vec<u8> {
     let scene = SceneRequest::resolve(path.to_str().unwrap()).unwrap();
     let request = Request {
         width: Some(24),
@@ -29,10 +34,11 @@ fn render(path: &Path, integrator: &str, spp: u32) -> Vec<u8> {
         spp: Some(spp),
         integrator: Some(integrator.to_string()),
         threads: Some(2),
+        frame,
         ..Request::default()
     };
     let job = request.resolve(&scene.defaults, Naming::Flags).unwrap();
-    let built = scene.build().unwrap();
+    let built = scene.build_frame(job.frame).unwrap().scene;
     job.run(&built, &RenderControl::default()).unwrap().image.to_srgb8()
 }
 

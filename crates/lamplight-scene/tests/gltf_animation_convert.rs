@@ -14,19 +14,7 @@ use crate::gltf_animation::{box_animated, interpolation_test};
 
 /// The sRGB bytes of frame `frame` of `path` at 24 x 16 by `integrator`.
 fn render(path: &Path, frame: i64, integrator: &str, spp: u32) -> Vec<u8> {
-    let scene = SceneRequest::resolve(path.to_str().unwrap()).unwrap();
-    let request = Request {
-        width: Some(24),
-        height: Some(16),
-        spp: Some(spp),
-        integrator: Some(integrator.to_string()),
-        threads: Some(2),
-        frame: Some(frame),
-        ..Request::default()
-    };
-    let job = request.resolve(&scene.defaults, Naming::Flags).unwrap();
-    let built = scene.build_frame(job.frame).unwrap().scene;
-    job.run(&built, &RenderControl::default()).unwrap().image.to_srgb8()
+    crate::convert::render_frame(path, Some(frame), integrator, spp)
 }
 
 fn assert_frames_match(input: &Path, output: &Path, frames: &str) {

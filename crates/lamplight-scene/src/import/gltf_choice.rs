@@ -97,15 +97,19 @@ pub fn resolve(path: &Path, choice: &AnimationChoice, key: &str) -> Result<usize
     if clips.is_empty() {
         return Err(LoadError::file(path, format!("{key} {choice}: the file has no animations")));
     }
-    let found = match choice {
-        AnimationChoice::Index(i) => (*i < clips.len()).then_some(*i),
-        AnimationChoice::Name(n) => clips.iter().position(|c| c.name.as_deref() == Some(n.as_str())),
-    };
-    let problem = match choice {
-        AnimationChoice::Index(_) => "is out of range",
-        AnimationChoice::Name(_) => "names no animation of the file",
-    };
-    found.ok_or_else(|| LoadError::file(path, format!("{key} {choice} {problem}: it has animations {}", listing(&clips))))
+    find(&clips, choice)
+        .map_err(|problem| LoadError::file(path, format!("{key} {choice} {problem}: it has animations {}", listing(&clips))))
+}
+
+/// The index of the animation `choice` names among `clips`, or what is
+/// wrong with the choice (`"is out of range"`, `"names no animation of the file"`).
+pub fn find(clips: &[ClipSummary], choice: &AnimationChoice) -> Result<usize, &'static str> {
+    match choice {
+        AnimationChoice::Index(i) => (*i < clips.len()).then_some(*i).ok_or("is out of range"),
+        AnimationChoice::Name(n) => {
+            clips.iter().position(|c| c.name.as_deref() == Some(n.as_str())).ok_or("names no animation of the file")
+        }
+    }
 }
 
 /// The frames of the first animation of the glTF file at `path` ([`file_clip_frames`]).

@@ -64,17 +64,8 @@ pub(super) fn pose(
         MeshClip::First if clips.is_empty() => return Ok(None),
         MeshClip::First => 0,
         MeshClip::Chosen(choice) if clips.is_empty() => return Err(format!("animation {choice}: file \"{file}\" has no animations")),
-        MeshClip::Chosen(choice) => {
-            let found = match choice {
-                AnimationChoice::Index(i) => (*i < clips.len()).then_some(*i),
-                AnimationChoice::Name(n) => clips.iter().position(|c| c.name.as_deref() == Some(n.as_str())),
-            };
-            let problem = match choice {
-                AnimationChoice::Index(_) => "is out of range",
-                AnimationChoice::Name(_) => "names no animation of the file",
-            };
-            found.ok_or_else(|| format!("animation {choice} {problem}: file \"{file}\" has animations {}", gltf_choice::listing(&clips)))?
-        }
+        MeshClip::Chosen(choice) => gltf_choice::find(&clips, choice)
+            .map_err(|problem| format!("animation {choice} {problem}: file \"{file}\" has animations {}", gltf_choice::listing(&clips)))?,
     };
     let visible = imported.pose_all(path, index, seconds.unwrap_or(0.0)).map_err(|e| e.message)?;
     for (placed, _) in imported.instances.iter_mut().zip(visible).filter(|(_, v)| !v) {
