@@ -312,6 +312,25 @@ impl Bvh {
         self.traverse_with::<true>(origin, dir, t_min, t_max, intersect)
     }
 
+    /// [`Bvh::traverse`] for a caller that has chosen the box test itself: the
+    /// scene's queries, compiled whole for AVX2 so that this walk is inlined
+    /// into them (`Scene::first_intersect`). `AVX2` must be set only on CPUs
+    /// that have it.
+    #[inline(always)]
+    pub(crate) fn traverse_in<const AVX2: bool>(
+        &self,
+        origin: Vec3,
+        dir: Vec3,
+        t_min: f64,
+        t_max: f64,
+        intersect: impl FnMut(u32, f64) -> Option<f64>,
+    ) -> f64 {
+        if self.nodes.is_empty() {
+            return t_max;
+        }
+        self.traverse_with::<AVX2>(origin, dir, t_min, t_max, intersect)
+    }
+
     #[inline(always)]
     fn traverse_with<const AVX2: bool>(
         &self,
@@ -410,6 +429,20 @@ impl Bvh {
     #[target_feature(enable = "avx2")]
     unsafe fn any_avx2(&self, origin: Vec3, dir: Vec3, t_min: f64, t_max: f64, occluded: impl FnMut(u32) -> bool) -> bool {
         self.any_with::<true>(origin, dir, t_min, t_max, occluded)
+    }
+
+    /// [`Bvh::any`] for a caller that has chosen the box test itself (see
+    /// [`Bvh::traverse_in`]).
+    #[inline(always)]
+    pub(crate) fn any_in<const AVX2: bool>(
+        &self,
+        origin: Vec3,
+        dir: Vec3,
+        t_min: f64,
+        t_max: f64,
+        occluded: impl FnMut(u32) -> bool,
+    ) -> bool {
+        !self.nodes.is_empty() && self.any_with::<AVX2>(origin, dir, t_min, t_max, occluded)
     }
 
     #[inline(always)]

@@ -245,6 +245,7 @@ impl Whitted {
 /// whose points are drawn from `uniform` (16 per light, see the module doc).
 /// Each term is told to `trace`.
 #[allow(clippy::too_many_arguments)]
+#[inline(always)]
 pub fn direct_light<T: WhittedTrace + ?Sized>(
     scene: &Scene,
     area_lights: &[AreaLight],
@@ -286,7 +287,7 @@ pub fn direct_light<T: WhittedTrace + ?Sized>(
 /// from `wi` over `distance` if nothing blocks it: `Lin (kd C (L.N) + ks
 /// (H.N)^shine)` times the shadow ray's transmittance (`own` does not block).
 #[allow(clippy::too_many_arguments)]
-#[inline]
+#[inline(always)]
 fn lit_by<T: WhittedTrace + ?Sized>(
     scene: &Scene,
     ray: &Ray,
