@@ -254,16 +254,24 @@ impl Scene {
     }
 
     /// The nearest hit of one object in `(0, t_max)`, past its cut-outs.
-    #[inline]
+    #[inline(always)]
     fn hit_object(&self, prim: &PrimRef, ray: &Ray, t_max: f64) -> Option<crate::shapes::SurfaceHit> {
-        let object = &self.objects[prim.object as usize];
         // The flag first: unmasked objects never load their material here.
         if prim.masked {
-            if let Some(mask) = &self.materials[object.material].alpha {
-                return crate::materials::alpha::first_covered(&*object.shape, mask, ray, 0.0, t_max);
-            }
+            return self.hit_masked(prim, ray, t_max);
         }
-        object.shape.intersect(ray, 0.0, t_max)
+        self.objects[prim.object as usize].shape.intersect(ray, 0.0, t_max)
+    }
+
+    /// [`Scene::hit_object`] of an object whose material may cut holes, kept out
+    /// of line so that the usual case inlines into the BVH walk.
+    #[inline(never)]
+    fn hit_masked(&self, prim: &PrimRef, ray: &Ray, t_max: f64) -> Option<crate::shapes::SurfaceHit> {
+        let object = &self.objects[prim.object as usize];
+        match &self.materials[object.material].alpha {
+            Some(mask) => crate::materials::alpha::first_covered(&*object.shape, mask, ray, 0.0, t_max),
+            None => object.shape.intersect(ray, 0.0, t_max),
+        }
     }
 
     /// The surface coordinates of `hit` ([`Shape::surface_coords`]), computed
