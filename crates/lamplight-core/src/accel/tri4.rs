@@ -19,7 +19,7 @@
 //! (glam's `Vec4`). Unused lanes hold NaN vertices: every comparison with NaN is
 //! false, so they never hit and never take the fallback.
 
-use glam::{BVec4A, Vec4};
+use glam::{BVec4A, Vec3A, Vec4};
 
 /// A ray prepared for the watertight test: axis permutation and shear.
 #[derive(Clone, Copy, Debug)]
@@ -35,16 +35,14 @@ pub struct ShearRay {
 impl ShearRay {
     /// Prepares the ray `origin + t dir`; `None` when `dir` is zero or not finite,
     /// or `origin` is not finite (such a ray hits nothing).
-    #[inline]
+    #[inline(always)]
     pub fn new(origin: [f32; 3], dir: [f32; 3]) -> Option<ShearRay> {
-        // `&`, not an iterator chain: no branch per component on the way into every walk.
-        let finite = origin[0].is_finite()
-            & origin[1].is_finite()
-            & origin[2].is_finite()
-            & dir[0].is_finite()
-            & dir[1].is_finite()
-            & dir[2].is_finite();
-        if !finite {
+        // Each array loaded whole, as the caller stored it (8 bytes, then 4):
+        // six scalar tests were vectorized by some builds into a load of
+        // components 1 and 2, which spans two of the caller's stores and cannot
+        // be forwarded from them; it stalled the packet walk of camera rays by
+        // 13 % (`BENCHMARKS.md`, session 20).
+        if !(Vec3A::from_array(origin).is_finite() & Vec3A::from_array(dir).is_finite()) {
             return None;
         }
         let a = dir.map(f32::abs);
