@@ -502,14 +502,8 @@ mod tests {
             eprintln!("skipped: this CPU lacks AVX2, so only the baseline compilation runs");
             return;
         }
-        let mut state = 7u64;
-        let mut rand = move || {
-            state = state.wrapping_add(0x9E3779B97F4A7C15);
-            let mut z = state;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58476D1CE4E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D049BB133111EB);
-            ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = crate::sampling::Rng::for_sample(7, 0, 0);
+        let mut rand = move || rng.uniform();
         for balls in [60, 6] {
             let camera = Perspective::look_at(Vec3::new(0.0, 0.0, 10.0), Vec3::ZERO, Vec3::Y, Fov::VerticalDeg(40.0)).unwrap();
             let mut builder = SceneBuilder::new(camera);
