@@ -30,9 +30,10 @@
 //! [`occluded`] answers only whether a ray hits anything at a distance in
 //! `(0, t_max)` (shadow rays), in the same units.
 //!
-//! Rays are split into chunks of [`CHUNK`] rays run on a rayon pool; every ray is
-//! answered on its own from the same inputs, so the answers do not depend on the
-//! thread count or the chunking, bit for bit.
+//! Rays are split into chunks of [`CHUNK`] rays run on a rayon pool (camera
+//! rays for a packet-walking target: bands of rows, read in pixel tiles, see
+//! [`tiles`]); every ray is answered on its own from the same inputs, so the
+//! answers do not depend on the thread count or the chunking, bit for bit.
 //!
 //! Two targets implement [`BatchTarget`]: a built [`crate::Scene`] (`f64`
 //! geometry, [`scene`]) and [`MeshAccel`] (one triangle mesh in `f32`, the
@@ -45,6 +46,7 @@ use crate::Error;
 
 pub mod mesh;
 pub mod scene;
+mod tiles;
 
 pub use mesh::{AccelMemory, MeshAccel};
 
@@ -110,6 +112,10 @@ pub trait BatchTarget: Sync {
 
     /// Whether [`BatchTarget::t_error`] bounds the error of `t`.
     const ERRORS: bool = false;
+
+    /// Whether [`BatchTarget::nearest_all`] walks neighbouring rays together,
+    /// so that [`cast`] should hand it camera rays in pixel tiles ([`tiles`]).
+    const PACKETS: bool = false;
 
     /// A bound on `|hit.t - t_exact|` in the target's own arithmetic (only asked
     /// when [`BatchTarget::ERRORS`]); the rounding to the output type is added
@@ -325,16 +331,19 @@ pub fn cast<B: BatchTarget, R: Rays, T: Float>(target: &B, rays: &R, out: Hits<'
     if out.error.is_some() && !B::ERRORS {
         return Err(Error::invalid("error", "this target does not bound its errors"));
     }
-    let mut object = out.object.map(|s| s.chunks_mut(CHUNK));
-    let mut primitive = out.primitive.map(|s| s.chunks_mut(CHUNK));
-    let mut normal = out.normal.map(|s| s.chunks_mut(CHUNK));
-    let mut error = out.error.map(|s| s.chunks_mut(CHUNK));
+    // Camera rays for a packet walker: bands of whole rows, each read in tiles.
+    let grid = if B::PACKETS { tiles::row_width(rays) } else { None };
+    let chunk = grid.map_or(CHUNK, |width| width * tiles::TILE_ROWS);
+    let mut object = out.object.map(|s| s.chunks_mut(chunk));
+    let mut primitive = out.primitive.map(|s| s.chunks_mut(chunk));
+    let mut normal = out.normal.map(|s| s.chunks_mut(chunk));
+    let mut error = out.error.map(|s| s.chunks_mut(chunk));
     let parts: Vec<Part<'_, T>> = out
         .t
-        .chunks_mut(CHUNK)
+        .chunks_mut(chunk)
         .enumerate()
         .map(|(k, t)| Part {
-            start: k * CHUNK,
+            start: k * chunk,
             t,
             object: object.as_mut().and_then(Iterator::next),
             primitive: primitive.as_mut().and_then(Iterator::next),
@@ -343,32 +352,47 @@ pub fn cast<B: BatchTarget, R: Rays, T: Float>(target: &B, rays: &R, out: Hits<'
         })
         .collect();
     run(threads, || {
-        parts.into_par_iter().for_each(|mut part| {
-            let ray = |j: usize| {
-                let (o, d) = rays.get(part.start + j);
-                BatchRay::new(o, d)
-            };
-            target.nearest_all(part.t.len(), ray, |j, hit| {
-                part.t[j] = T::from_f64(hit.map_or(f64::INFINITY, |h| h.t));
-                if let Some(object) = part.object.as_deref_mut() {
-                    object[j] = hit.map_or(-1, |h| h.object as i64);
-                }
-                if let Some(primitive) = part.primitive.as_deref_mut() {
-                    primitive[j] = hit.and_then(|h| h.primitive).map_or(-1, i64::from);
-                }
-                if let Some(normal) = part.normal.as_deref_mut() {
-                    normal[j] = hit.and_then(|h| h.normal).unwrap_or([0.0; 3]).map(T::from_f64);
-                }
-                if let Some(error) = part.error.as_deref_mut() {
-                    // A hit comes only from a usable ray, so `ray(j)` is `Some` with it.
-                    error[j] = T::from_f64(match (ray(j), hit) {
-                        (Some(ray), Some(hit)) => answer_error::<T>(target.t_error(&ray, &hit), hit.t),
-                        _ => f64::INFINITY,
-                    });
-                }
-            });
+        parts.into_par_iter().for_each(|part| {
+            // The `j`-th ray the target is given: the band's rays in tile order,
+            // or in order. One compilation of the part's loop per order, so that
+            // no ray pays for choosing it (a full band's order is a few shifts).
+            match grid.map(|width| (width, part.t.len() / width)) {
+                None => cast_part(target, rays, part, |j| j),
+                Some((width, tiles::TILE_ROWS)) => cast_part(target, rays, part, move |j| tiles::full_band_order(j, width)),
+                Some((width, rows)) => cast_part(target, rays, part, move |j| tiles::tile_order(j, width, rows)),
+            }
         })
     })
+}
+
+/// Casts the rays of one part, the target's `j`-th being the part's `index(j)`-th.
+#[inline(always)]
+fn cast_part<B: BatchTarget, R: Rays, T: Float>(target: &B, rays: &R, mut part: Part<'_, T>, index: impl Fn(usize) -> usize + Copy) {
+    let start = part.start;
+    let ray = |j: usize| {
+        let (o, d) = rays.get(start + index(j));
+        BatchRay::new(o, d)
+    };
+    target.nearest_all(part.t.len(), ray, |given, hit| {
+        let j = index(given);
+        part.t[j] = T::from_f64(hit.map_or(f64::INFINITY, |h| h.t));
+        if let Some(object) = part.object.as_deref_mut() {
+            object[j] = hit.map_or(-1, |h| h.object as i64);
+        }
+        if let Some(primitive) = part.primitive.as_deref_mut() {
+            primitive[j] = hit.and_then(|h| h.primitive).map_or(-1, i64::from);
+        }
+        if let Some(normal) = part.normal.as_deref_mut() {
+            normal[j] = hit.and_then(|h| h.normal).unwrap_or([0.0; 3]).map(T::from_f64);
+        }
+        if let Some(error) = part.error.as_deref_mut() {
+            // A hit comes only from a usable ray, so `ray(given)` is `Some` with it.
+            error[j] = T::from_f64(match (ray(given), hit) {
+                (Some(ray), Some(hit)) => answer_error::<T>(target.t_error(&ray, &hit), hit.t),
+                _ => f64::INFINITY,
+            });
+        }
+    });
 }
 
 /// `target_error` plus the rounding of `t` to `T` (half an ulp, here a whole
