@@ -179,8 +179,11 @@ impl PathTracer {
             trace.segment(depth, &ray, beta);
             // Mitsuba's `hide_emitters`: the camera sees through emitters, and black sky.
             let hidden = depth == 1 && scene.settings.hide_emitters;
-            let found = if hidden { scene.first_camera_hit(&ray) } else { scene.first_intersect(&ray, f64::INFINITY) };
-            let Some(mut hit) = found else {
+            let mut found = if hidden { scene.first_camera_hit(&ray) } else { scene.first_intersect(&ray, f64::INFINITY) };
+            // Used in place, by reference: moving the hit out of `found` copied it
+            // with wide loads over the query's narrow stores, a store-forwarding
+            // stall on every vertex (issue 24).
+            let Some(hit) = found.as_mut() else {
                 if let Some(env) = self.lights.environment.as_ref().filter(|_| !hidden) {
                     let w = if prev_delta { 1.0 } else { power_heuristic(prev_pdf, p_pick * env.pdf(ray.dir)) };
                     let le = env.radiance(ray.dir);
@@ -199,8 +202,8 @@ impl PathTracer {
                 cone.width + cone.spread * (hit.point - camera_ray.origin).length()
             };
             let unmapped = hit.normal;
-            let material = &*scene.shade(&mut hit, -ray.dir, footprint);
-            trace.path_hit(scene, &hit);
+            let material = &*scene.shade(hit, -ray.dir, footprint);
+            trace.path_hit(scene, hit);
             if material.emits_towards(hit.front_face) {
                 let w = match self.lights.area_light_of(hit.object) {
                     Some(light) if !prev_delta => {
@@ -233,7 +236,7 @@ impl PathTracer {
                 trace.end(PathEnd::BlackBsdf);
                 break;
             }
-            let frame = scene.shading_frame(&hit, bsdf);
+            let frame = scene.shading_frame(hit, bsdf);
             let wo = frame.to_local(-ray.dir);
             // A normal or bump map turned the normal: Mitsuba's sides and
             // shadowing term ([`crate::materials::map_shadowing`]).
@@ -262,7 +265,7 @@ impl PathTracer {
             });
             if let Some((u_pick, u_light)) = light_values {
                 let contribution =
-                    beta * self.sample_light(scene, &hit, bsdf, &frame, perturbed.as_ref(), wo, u_pick, u_light, counts, trace);
+                    beta * self.sample_light(scene, hit, bsdf, &frame, perturbed.as_ref(), wo, u_pick, u_light, counts, trace);
                 trace.nee_contribution(contribution);
                 radiance += contribution;
             }
