@@ -259,16 +259,20 @@ impl PathTracer {
             let u_rr = if depth >= self.rr_depth { sampler.get_1d() } else { sampler.skip_value() };
             // The continuation does not depend on the light sample: sampling it first
             // lets its division and square roots overlap the shadow ray's work.
-            let next = bsdf.sample(wo, u_lobe, u_bsdf).map(|s| {
-                let wi = frame.to_world(s.wi);
-                (s, wi, offset_origin(hit.point, hit.geometric_normal, wi, hit.t, hit.error))
-            });
+            let sampled = bsdf.sample(wo, u_lobe, u_bsdf);
             if let Some((u_pick, u_light)) = light_values {
                 let contribution =
                     beta * self.sample_light(scene, hit, bsdf, &frame, perturbed.as_ref(), wo, u_pick, u_light, counts, trace);
                 trace.nee_contribution(contribution);
                 radiance += contribution;
             }
+            // Read only now: right after `sample` returned, its result was still in
+            // the store buffer, and the wide loads of a Vec3 cannot be forwarded
+            // from the narrow stores that wrote it (a stall per vertex, issue 24).
+            let next = sampled.map(|s| {
+                let wi = frame.to_world(s.wi);
+                (s, wi, offset_origin(hit.point, hit.geometric_normal, wi, hit.t, hit.error))
+            });
             let Some((s, wi, origin)) = next else {
                 trace.end(PathEnd::NoSample);
                 break;
