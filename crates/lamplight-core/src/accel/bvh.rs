@@ -346,6 +346,7 @@ impl Bvh {
         }
         // Uninitialized: zero-filling the stack cost more than a short traversal.
         let mut stack = [const { MaybeUninit::<(u32, f32, u8)>::uninit() }; STACK];
+        let mut order = [(0f32, 0u32); WIDTH];
         let mut top = 0usize;
         let mut current = 0u32; // a node index, or LEAF | first with `leaf_count`
         let mut leaf_count = 0u8;
@@ -381,7 +382,7 @@ impl Bvh {
                 }
                 if mask != 0 {
                     // Push the entered children farthest first, then continue with the nearest.
-                    let (order, n) = farthest_first(&enter, mask);
+                    let n = farthest_first(&enter, mask, &mut order);
                     for &(t, slot) in &order[..n - 1] {
                         stack[top].write((node.child[slot as usize], t, node.count[slot as usize]));
                         top += 1;

@@ -111,6 +111,7 @@ impl MeshBvh {
         let limits = |t_max: &[f32; PACKET]| _mm256_loadu_ps(t_max.as_ptr());
         // A stack entry: a child, the rays that entered it, and their entries.
         let mut stack = [const { MaybeUninit::<(u32, u32, __m256)>::uninit() }; STACK];
+        let mut order = [(0f32, 0u32); 8];
         let mut top = 0usize;
         let (mut current, mut mask) = (0u32, active);
         loop {
@@ -169,7 +170,7 @@ impl MeshBvh {
                             // SAFETY: written above for every slot of `entered`.
                             near[slot] = nearest_of(unsafe { entries[slot].assume_init() }, rays_of[slot]);
                         }
-                        let (order, n) = farthest_first(&near, entered);
+                        let n = farthest_first(&near, entered, &mut order);
                         for &(_, slot) in &order[..n - 1] {
                             let slot = slot as usize;
                             // SAFETY: as above.

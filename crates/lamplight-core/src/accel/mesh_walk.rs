@@ -163,7 +163,12 @@ impl MeshBvh {
     /// and moves to the next reference, prefetching it when `PREFETCH`. False
     /// when the walk is over (`walk.best` is then the answer).
     #[inline(always)]
-    fn step_closest<const AVX2: bool, const PREFETCH: bool>(&self, walk: &mut Walk, stack: &mut Stack<(u32, f32)>) -> bool {
+    fn step_closest<const AVX2: bool, const PREFETCH: bool>(
+        &self,
+        walk: &mut Walk,
+        stack: &mut Stack<(u32, f32)>,
+        order: &mut [(f32, u32); WIDTH],
+    ) -> bool {
         let current = walk.current;
         if current & LEAF != 0 {
             let (first, count) = leaf_range(current);
@@ -182,7 +187,7 @@ impl MeshBvh {
                     node.child[mask.trailing_zeros() as usize]
                 } else {
                     // Push the entered children farthest first; continue with the nearest.
-                    let (order, n) = farthest_first(&enter, mask);
+                    let n = farthest_first(&enter, mask, order);
                     for &(t, slot) in &order[..n - 1] {
                         stack[walk.top].write((node.child[slot as usize], t));
                         walk.top += 1;
@@ -237,6 +242,7 @@ impl MeshBvh {
         let ray = SlabRay::new(Vec3::from(o.map(f64::from)), Vec3::from(d.map(f64::from)), 0.0);
         let mut best = None;
         let mut stack = [const { MaybeUninit::<(u32, f32)>::uninit() }; STACK];
+        let mut order = [(0f32, 0u32); WIDTH];
         let mut top = 0usize;
         let mut current = 0u32;
         loop {
@@ -258,7 +264,7 @@ impl MeshBvh {
                 }
                 if mask != 0 {
                     // Push the entered children farthest first; continue with the nearest.
-                    let (order, n) = farthest_first(&enter, mask);
+                    let n = farthest_first(&enter, mask, &mut order);
                     for &(t, slot) in &order[..n - 1] {
                         stack[top].write((node.child[slot as usize], t));
                         top += 1;
@@ -315,6 +321,7 @@ impl MeshBvh {
     ) {
         let mut walks = [const { MaybeUninit::<Walk>::uninit() }; LANES];
         let mut stacks = [const { [const { MaybeUninit::<(u32, f32)>::uninit() }; STACK] }; LANES];
+        let mut order = [(0f32, 0u32); WIDTH];
         let mut next = 0;
         let mut active = 0;
         while active < LANES {
@@ -327,7 +334,7 @@ impl MeshBvh {
             while lane < active {
                 // SAFETY: lanes below `active` hold walks written above.
                 let walk = unsafe { walks[lane].assume_init_mut() };
-                if self.step_closest::<AVX2, true>(walk, &mut stacks[lane]) {
+                if self.step_closest::<AVX2, true>(walk, &mut stacks[lane], &mut order) {
                     lane += 1;
                     continue;
                 }
