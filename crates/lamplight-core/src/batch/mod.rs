@@ -32,7 +32,7 @@
 //!
 //! Rays are split into chunks of [`CHUNK`] rays run on a rayon pool (camera
 //! rays for a packet-walking target: bands of rows, read in pixel tiles, see
-//! [`tiles`]); every ray is answered on its own from the same inputs, so the
+//! `batch/tiles.rs`); every ray is answered on its own from the same inputs, so the
 //! answers do not depend on the thread count or the chunking, bit for bit.
 //!
 //! Two targets implement [`BatchTarget`]: a built [`crate::Scene`] (`f64`
@@ -114,7 +114,7 @@ pub trait BatchTarget: Sync {
     const ERRORS: bool = false;
 
     /// Whether [`BatchTarget::nearest_all`] walks neighbouring rays together,
-    /// so that [`cast`] should hand it camera rays in pixel tiles ([`tiles`]).
+    /// so that [`cast`] should hand it camera rays in pixel tiles (`batch/tiles.rs`).
     const PACKETS: bool = false;
 
     /// A bound on `|hit.t - t_exact|` in the target's own arithmetic (only asked
