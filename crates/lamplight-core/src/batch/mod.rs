@@ -382,10 +382,13 @@ fn cast_part<B: BatchTarget, R: Rays, T: Float>(target: &B, rays: &R, mut part: 
         if let Some(primitive) = part.primitive.as_deref_mut() {
             primitive[j] = hit.and_then(|h| h.primitive).map_or(-1, i64::from);
         }
-        if let Some(normal) = part.normal.as_deref_mut() {
+        // The constants first: `cast` refuses these outputs from targets without
+        // them, and a target's answer loop then compiles without their code
+        // (small enough to inline into the mesh's packet loop).
+        if let Some(normal) = part.normal.as_deref_mut().filter(|_| B::NORMALS) {
             normal[j] = hit.and_then(|h| h.normal).unwrap_or([0.0; 3]).map(T::from_f64);
         }
-        if let Some(error) = part.error.as_deref_mut() {
+        if let Some(error) = part.error.as_deref_mut().filter(|_| B::ERRORS) {
             // A hit comes only from a usable ray, so `ray(given)` is `Some` with it.
             error[j] = T::from_f64(match (ray(given), hit) {
                 (Some(ray), Some(hit)) => answer_error::<T>(target.t_error(&ray, &hit), hit.t),

@@ -7,8 +7,10 @@
 //! consecutive ones are then an 8x1 strip, and on a fine mesh (triangles about a
 //! pixel wide) the strip fans out over more leaves than a compact tile would.
 //! Measured on this project's anchor rays (1024x1024 camera rays, one thread,
-//! issue 24): 2x4 tiles cast Igea-1M's 11 % faster than rows, the bunny's 4 %
-//! faster, and 4x2 tiles 9 % and 3 %.
+//! issue 24), re-ordered offline: 2x4 tiles cast Igea-1M's 11 % faster than
+//! rows, the bunny's 4 % faster, and 4x2 tiles 9 % and 3 %. Through [`cast`](super::cast),
+//! which pays for reading each band out of order: Igea-1M +13 % and the bunny
+//! +2 % against rows, in alternating rounds (`BENCHMARKS.md`, session 21).
 //!
 //! [`row_width`] recognises such a layout from the rays alone: directions that
 //! move by a small, even step from one ray to the next, with one large jump
