@@ -45,22 +45,20 @@ impl ShearRay {
         if !(Vec3A::from_array(origin).is_finite() & Vec3A::from_array(dir).is_finite()) {
             return None;
         }
+        // The axes are picked with arithmetic rather than branches: for scattered
+        // rays which axis dominates, and its sign, are coin flips the core
+        // mispredicts (5 % of the bunny's scattered casts, issue 24). Same
+        // choice as the branches: the lowest axis of largest magnitude.
         let a = dir.map(f32::abs);
-        let kz = if a[0] >= a[1] && a[0] >= a[2] {
-            0
-        } else if a[1] >= a[2] {
-            1
-        } else {
-            2
-        };
+        let x_first = (a[0] >= a[1]) & (a[0] >= a[2]);
+        let kz = usize::from(!x_first) * (1 + usize::from(a[1] < a[2]));
         if dir[kz] == 0.0 {
             return None;
         }
-        let mut kx = (kz + 1) % 3;
-        let mut ky = (kx + 1) % 3;
-        if dir[kz] < 0.0 {
-            std::mem::swap(&mut kx, &mut ky);
-        }
+        // (kx, ky) cycle on from kz, swapped for a negative direction so that
+        // the sheared frame keeps its handedness.
+        const AXES: [[usize; 2]; 6] = [[1, 2], [2, 1], [2, 0], [0, 2], [0, 1], [1, 0]];
+        let [kx, ky] = AXES[2 * kz + usize::from(dir[kz] < 0.0)];
         let shear = [dir[kx] / dir[kz], dir[ky] / dir[kz], 1.0 / dir[kz]];
         Some(ShearRay { k: [kx, ky, kz], origin: [origin[kx], origin[ky], origin[kz]], shear })
     }
@@ -217,6 +215,47 @@ mod tests {
     use super::*;
 
     const TRI: [[f32; 3]; 3] = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+
+    /// The axes as Woop et al. pick them, written with branches.
+    fn axes_by_branches(dir: [f32; 3]) -> [usize; 3] {
+        let a = dir.map(f32::abs);
+        let kz = if a[0] >= a[1] && a[0] >= a[2] {
+            0
+        } else if a[1] >= a[2] {
+            1
+        } else {
+            2
+        };
+        let (mut kx, mut ky) = ((kz + 1) % 3, (kz + 2) % 3);
+        if dir[kz] < 0.0 {
+            std::mem::swap(&mut kx, &mut ky);
+        }
+        [kx, ky, kz]
+    }
+
+    #[test]
+    fn axes_are_the_lowest_dominant_one_and_its_cycle() {
+        // Every sign and every order of magnitudes, ties included (0.5 twice or
+        // three times), and negative zeros.
+        let values = [-2.0f32, -0.5, -0.0, 0.0, 0.5, 2.0];
+        let mut checked = 0;
+        for x in values {
+            for y in values {
+                for z in values {
+                    let dir = [x, y, z];
+                    let Some(ray) = ShearRay::new([1.0, 2.0, 3.0], dir) else {
+                        assert!(dir.iter().all(|&c| c == 0.0), "{dir:?} refused");
+                        continue;
+                    };
+                    let k = axes_by_branches(dir);
+                    assert_eq!(ray.k, k, "{dir:?}");
+                    assert_eq!(ray.origin, k.map(|axis| [1.0, 2.0, 3.0][axis]), "{dir:?}");
+                    checked += 1;
+                }
+            }
+        }
+        assert_eq!(checked, 6 * 6 * 6 - 8);
+    }
 
     #[test]
     fn parameter_is_along_the_unnormalised_direction() {
