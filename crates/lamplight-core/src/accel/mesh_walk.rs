@@ -27,7 +27,7 @@
 
 use std::mem::MaybeUninit;
 
-use super::mesh_bvh::{MeshBvh, Node, COUNT_SHIFT, FIRST_MASK, LEAF, STACK, WIDTH};
+use super::mesh_bvh::{MeshBvh, Node, COUNT_SHIFT, FIRST_MASK, LEAF, MAX_LEAF, STACK, WIDTH};
 use super::slab::{farthest_first, test8, SlabRay, WIDEN};
 use super::tri4::{ShearRay, Tri4};
 use crate::math::Vec3;
@@ -68,19 +68,27 @@ fn test_node<const AVX2: bool>(ray: &SlabRay, node: &Node, t_max: f32) -> ([f32;
     (enter, mask & node.valid as u32)
 }
 
-/// Asks for the cache lines of `bytes` bytes from `start` (no effect on the
-/// answers; a no-op off x86-64).
+/// The most bytes [`prefetch`] covers: a leaf of [`MAX_LEAF`] triangles (two
+/// packets, unaligned to a line) or a node.
+const PREFETCH_SPAN: usize = 5 * 64;
+const _: () = assert!(MAX_LEAF.div_ceil(4) * size_of::<Tri4>() <= PREFETCH_SPAN && size_of::<Node>() <= PREFETCH_SPAN);
+
+/// Asks for the cache lines of `bytes` bytes (`1..=PREFETCH_SPAN`) from `start`
+/// (no effect on the answers; a no-op off x86-64). Always six hints, at steps
+/// of at most a line from the first byte to the last, so every line of the
+/// span gets one: a loop over the lines would end on a count the core
+/// mispredicts, since leaves and nodes take turns (issue 24).
 #[inline(always)]
-fn prefetch<T>(start: *const T, bytes: usize) {
+fn prefetch(start: usize, bytes: usize) {
     #[cfg(target_arch = "x86_64")]
     {
         use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
-        let base = start.cast::<i8>();
-        let mut offset = 0;
-        while offset < bytes {
+        debug_assert!((1..=PREFETCH_SPAN).contains(&bytes));
+        let last = start.wrapping_add(bytes - 1);
+        for offset in [0, 64, 128, 192, 256, PREFETCH_SPAN] {
+            let at = start.wrapping_add(offset).min(last);
             // SAFETY: prefetching is a hint; it never faults, whatever the address.
-            unsafe { _mm_prefetch::<_MM_HINT_T0>(base.wrapping_add(offset)) };
-            offset += 64;
+            unsafe { _mm_prefetch::<_MM_HINT_T0>(at as *const i8) };
         }
     }
     #[cfg(not(target_arch = "x86_64"))]
@@ -88,15 +96,17 @@ fn prefetch<T>(start: *const T, bytes: usize) {
 }
 
 impl MeshBvh {
-    /// Prefetches what `reference` points at: a node, or a leaf's packets.
+    /// Prefetches what `reference` points at: a node, or a leaf's packets. The
+    /// two addresses are both computed and one picked, without a branch.
     #[inline(always)]
     fn prefetch_reference(&self, reference: u32) {
-        if reference & LEAF != 0 {
-            let (first, count) = leaf_range(reference);
-            prefetch(self.packets.as_ptr().wrapping_add(first), count * size_of::<Tri4>());
-        } else {
-            prefetch(self.nodes.as_ptr().wrapping_add(reference as usize), size_of::<Node>());
-        }
+        let leaf = reference & LEAF != 0;
+        let (first, count) = leaf_range(reference);
+        let packets = self.packets.as_ptr().wrapping_add(first) as usize;
+        let node = self.nodes.as_ptr().wrapping_add(reference as usize) as usize;
+        let start = std::hint::select_unpredictable(leaf, packets, node);
+        let bytes = std::hint::select_unpredictable(leaf, count * size_of::<Tri4>(), size_of::<Node>());
+        prefetch(start, bytes);
     }
 
     /// The walk of the next ray from `*next` on that needs one, answering those
@@ -162,6 +172,14 @@ impl MeshBvh {
     /// One step of a closest-hit walk: tests `walk.current` (a node or a leaf)
     /// and moves to the next reference, prefetching it when `PREFETCH`. False
     /// when the walk is over (`walk.best` is then the answer).
+    ///
+    /// A node's entered children all go on the stack, nearest on top, and the
+    /// walk continues with what it pops. Whether a node has none, one or two
+    /// children entered (92 % of the bunny's scattered node visits: 30 %, 42 %
+    /// and 20 %) is then data for the same instructions, not a branch the core
+    /// must guess. The order is [`farthest_first`]'s, ties included, and the pop's
+    /// test only skips a child whose entry lies beyond the closest hit, which
+    /// cannot hold a nearer one: the answers are the single-ray walk's bits.
     #[inline(always)]
     fn step_closest<const AVX2: bool, const PREFETCH: bool>(
         &self,
@@ -181,24 +199,23 @@ impl MeshBvh {
         } else {
             let node = &self.nodes[current as usize];
             let (enter, mask) = test_node::<AVX2>(&walk.slab, node, walk.t_max);
-            if mask != 0 {
-                let next = if mask & (mask - 1) == 0 {
-                    // One child entered: nothing to order.
-                    node.child[mask.trailing_zeros() as usize]
-                } else {
-                    // Push the entered children farthest first; continue with the nearest.
-                    let n = farthest_first(&enter, mask, order);
-                    for &(t, slot) in &order[..n - 1] {
-                        stack[walk.top].write((node.child[slot as usize], t));
-                        walk.top += 1;
-                    }
-                    node.child[order[n - 1].1 as usize]
-                };
-                walk.current = next;
-                if PREFETCH {
-                    self.prefetch_reference(next);
+            let n = mask.count_ones() as usize;
+            if n <= 2 {
+                // Slots a < b (b meaningless unless two are entered). Of two, the
+                // farther goes below, the lower slot on a tie (as farthest_first).
+                let a = mask.trailing_zeros() as usize % WIDTH;
+                let b = (mask & mask.wrapping_sub(1)).trailing_zeros() as usize % WIDTH;
+                let below = std::hint::select_unpredictable((n == 2) & (enter[a] < enter[b]), b, a);
+                let above = a ^ b ^ below;
+                stack[walk.top].write((node.child[below], enter[below]));
+                stack[walk.top + 1].write((node.child[above], enter[above]));
+                walk.top += n;
+            } else {
+                let n = farthest_first(&enter, mask, order);
+                for &(t, slot) in &order[..n] {
+                    stack[walk.top].write((node.child[slot as usize], t));
+                    walk.top += 1;
                 }
-                return true;
             }
         }
         while walk.top > 0 {
