@@ -28,31 +28,64 @@ pub const RENDER_FEATURES: &str = "avx2,bmi1,bmi2,lzcnt,popcnt,gfni";
 /// before Ice Lake) would otherwise run the baseline loop.
 pub const AVX2_FEATURES: &str = "avx2,bmi1,bmi2,lzcnt,popcnt";
 
-/// Whether this CPU has every feature of [`RENDER_FEATURES`] (the standard
-/// library detects them once per process; each call is a load and a few tests).
+/// What [`render_features`] and [`avx2_features`] found, detected once: bit 0
+/// set when detection ran, bit 1 for [`RENDER_FEATURES`], bit 2 for
+/// [`AVX2_FEATURES`]. The scene's queries ask per ray; the standard library's
+/// own cache tests each feature's flag separately (about twenty instructions
+/// and a call), this is one load and one test (issue 24).
+static DETECTED: std::sync::atomic::AtomicU8 = std::sync::atomic::AtomicU8::new(0);
+
+/// The [`DETECTED`] bits, detecting on the first call.
+#[inline(always)]
+fn detected() -> u8 {
+    let bits = DETECTED.load(std::sync::atomic::Ordering::Relaxed);
+    if bits != 0 {
+        return bits;
+    }
+    detect()
+}
+
+/// Detects the features and stores them in [`DETECTED`] (threads that race
+/// here store the same value).
+#[cold]
+#[inline(never)]
+fn detect() -> u8 {
+    #[cfg(target_arch = "x86_64")]
+    let bits = {
+        use std::arch::is_x86_feature_detected as has;
+        let avx2 = has!("avx2") && has!("bmi1") && has!("bmi2") && has!("lzcnt") && has!("popcnt");
+        let render = avx2 && has!("gfni");
+        1 | (u8::from(render) << 1) | (u8::from(avx2) << 2)
+    };
+    #[cfg(not(target_arch = "x86_64"))]
+    let bits = 1;
+    DETECTED.store(bits, std::sync::atomic::Ordering::Relaxed);
+    bits
+}
+
+/// Whether this CPU has every feature of [`RENDER_FEATURES`] (detected once per
+/// process; each call is a load and a test).
 #[inline]
 pub fn render_features() -> bool {
-    #[cfg(target_arch = "x86_64")]
-    {
-        use std::arch::is_x86_feature_detected as has;
-        has!("avx2") && has!("bmi1") && has!("bmi2") && has!("lzcnt") && has!("popcnt") && has!("gfni")
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    {
-        false
-    }
+    detected() & 2 != 0
 }
 
 /// Whether this CPU has every feature of [`AVX2_FEATURES`].
 #[inline]
 pub fn avx2_features() -> bool {
-    #[cfg(target_arch = "x86_64")]
-    {
+    detected() & 4 != 0
+}
+
+#[cfg(all(test, target_arch = "x86_64"))]
+mod tests {
+    /// The cached answers are the standard library's, on the first call and after.
+    #[test]
+    fn cached_detection_matches_the_standard_library() {
         use std::arch::is_x86_feature_detected as has;
-        has!("avx2") && has!("bmi1") && has!("bmi2") && has!("lzcnt") && has!("popcnt")
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    {
-        false
+        let avx2 = has!("avx2") && has!("bmi1") && has!("bmi2") && has!("lzcnt") && has!("popcnt");
+        for _ in 0..2 {
+            assert_eq!(super::avx2_features(), avx2);
+            assert_eq!(super::render_features(), avx2 && has!("gfni"));
+        }
     }
 }

@@ -148,12 +148,24 @@ impl Scene {
     }
 
     /// The nearest hit with `0 < t < t_max`, normal turned against the ray.
+    ///
+    /// Inlined into its callers, so that the render loop goes straight to the
+    /// compilation for this CPU: an out-of-line choice cost about 60
+    /// instructions a ray, the baseline query's stack frame set up and torn
+    /// down before the jump (issue 24).
+    #[inline]
     pub fn first_intersect(&self, ray: &Ray, t_max: f64) -> Option<Hit> {
         #[cfg(target_arch = "x86_64")]
         if crate::cpu::avx2_features() {
             // SAFETY: the CPU has every feature the compilation assumes.
             return unsafe { self.first_intersect_avx2(ray, t_max) };
         }
+        self.first_intersect_baseline(ray, t_max)
+    }
+
+    /// [`Scene::first_intersect`] for baseline x86-64, out of line.
+    #[inline(never)]
+    fn first_intersect_baseline(&self, ray: &Ray, t_max: f64) -> Option<Hit> {
         self.first_intersect_in::<false>(ray, t_max)
     }
 
@@ -313,6 +325,7 @@ impl Scene {
     /// ray ends there. Neither the object nor anything inside it or behind its
     /// near surface shadows the light, as in Heckbert's test "the first sphere hit
     /// towards the light is the light".
+    #[inline]
     pub fn transmittance(&self, ray: &Ray, distance: f64, ignore: Option<usize>) -> Rgb {
         // The light is seen where the ray first meets its own object: the ray ends there.
         let own = ignore.and_then(|i| self.objects.get(i));
@@ -323,17 +336,26 @@ impl Scene {
     /// [`Scene::transmittance`] along a segment already known to end where it first
     /// meets object `own`: a point sampled on the facing side of a convex emitter
     /// ([`Shape::is_convex`]) is that first meeting, so the search is skipped.
+    #[inline]
     pub fn transmittance_to_surface(&self, ray: &Ray, distance: f64, own: usize) -> Rgb {
         self.transmittance_to(ray, distance, Some(own))
     }
 
-    /// Transmittance over `(0, distance)`, object `ignore` left out.
+    /// Transmittance over `(0, distance)`, object `ignore` left out (inlined,
+    /// as [`Scene::first_intersect`] is).
+    #[inline]
     fn transmittance_to(&self, ray: &Ray, distance: f64, ignore: Option<usize>) -> Rgb {
         #[cfg(target_arch = "x86_64")]
         if crate::cpu::avx2_features() {
             // SAFETY: the CPU has every feature the compilation assumes.
             return unsafe { self.transmittance_avx2(ray, distance, ignore) };
         }
+        self.transmittance_baseline(ray, distance, ignore)
+    }
+
+    /// [`Scene::transmittance_to`] for baseline x86-64, out of line.
+    #[inline(never)]
+    fn transmittance_baseline(&self, ray: &Ray, distance: f64, ignore: Option<usize>) -> Rgb {
         self.transmittance_in::<false>(ray, distance, ignore)
     }
 
