@@ -259,7 +259,9 @@ impl Bvh {
     /// sorted by entry distance and visited until one lies beyond the closest hit.
     #[inline(always)]
     fn traverse_flat<const AVX2: bool>(&self, ray: &SlabRay, mut t_max: f64, mut intersect: impl FnMut(u32, f64) -> Option<f64>) -> f64 {
-        let mut entered = [(0f32, 0u32); FLAT_MAX];
+        // Uninitialized, as the walk's stack: zero-filling it was the query's
+        // single hottest instruction in a path-traced Cornell box (issue 24).
+        let mut entered = [const { MaybeUninit::<(f32, u32)>::uninit() }; FLAT_MAX];
         let mut n = 0;
         for node in &self.nodes {
             let (enter, mut mask) = node.test::<AVX2>(ray, t_max as f32);
@@ -269,15 +271,22 @@ impl Bvh {
                 // Insertion by entry distance, nearest first.
                 let t = enter[slot];
                 let mut j = n;
-                while j > 0 && entered[j - 1].0 > t {
-                    entered[j] = entered[j - 1];
+                while j > 0 {
+                    // SAFETY: entries below `n` are written.
+                    let before = unsafe { entered[j - 1].assume_init() };
+                    if before.0 <= t {
+                        break;
+                    }
+                    entered[j].write(before);
                     j -= 1;
                 }
-                entered[j] = (t, node.child[slot] & !LEAF);
+                entered[j].write((t, node.child[slot] & !LEAF));
                 n += 1;
             }
         }
-        for &(enter, first) in &entered[..n] {
+        for k in 0..n {
+            // SAFETY: entries below `n` are written.
+            let (enter, first) = unsafe { entered[k].assume_init() };
             if f64::from(enter) * (1.0 - f64::from(WIDEN)) > t_max {
                 break;
             }
