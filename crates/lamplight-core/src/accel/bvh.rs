@@ -284,9 +284,9 @@ impl Bvh {
                 n += 1;
             }
         }
-        for k in 0..n {
+        for entry in &entered[..n] {
             // SAFETY: entries below `n` are written.
-            let (enter, first) = unsafe { entered[k].assume_init() };
+            let (enter, first) = unsafe { entry.assume_init() };
             if f64::from(enter) * (1.0 - f64::from(WIDEN)) > t_max {
                 break;
             }
