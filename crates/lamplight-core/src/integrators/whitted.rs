@@ -16,6 +16,7 @@
 //! agree ([`crate::lights::DELTA_SCALE`]). Rays that leave the scene see the
 //! environment map if there is one, else the background colour.
 
+use std::cell::Cell;
 use std::mem::MaybeUninit;
 
 use super::trace::{LightRef, LightTerm, NoTrace, ReflectionWeight, Trace, Unlit, WhittedTrace};
@@ -25,7 +26,7 @@ use crate::materials::{fresnel_conductor, fresnel_dielectric, Material, Reflecti
 use crate::math::{max_component, Rgb, Vec3};
 use crate::ray::{offset_origin, Ray};
 use crate::sampling::{stratified_2d, Cone, Rng};
-use crate::scene::{Hit, Scene};
+use crate::scene::{Hit, OccluderHint, Scene};
 use crate::Error;
 
 /// The registry's entry.
@@ -43,6 +44,20 @@ fn build_whitted(scene: &Scene, settings: &IntegratorSettings) -> Result<Box<dyn
 
 /// Points taken on each area light at each hit (a 4 x 4 grid, jittered).
 pub const AREA_SAMPLES: u32 = 16;
+
+/// Lights that keep an [`OccluderHint`] of their own; further lights share them
+/// (light `i` uses hint `i % HINTS`, area lights numbered after the delta lights).
+const HINTS: usize = 8;
+
+thread_local! {
+    /// Per light, the object that last blocked a shadow ray towards it on this
+    /// thread, tried first by the next one (`scene/shadow.rs`): neighbouring
+    /// pixels mostly share their occluder. Kept per thread because the render
+    /// loop hands a sample nothing mutable but its ray counts; no value here
+    /// changes an answer, only how soon it is known, so images do not depend
+    /// on the thread or the order pixels are traced in.
+    static OCCLUDERS: [Cell<OccluderHint>; HINTS] = const { [const { Cell::new(OccluderHint::NONE) }; HINTS] };
+}
 
 /// Lights whose `N.L` is at or below this are skipped (POV-Ray's threshold).
 const MIN_COSINE: f64 = 1e-10;
@@ -274,13 +289,27 @@ pub fn direct_light<T: WhittedTrace + ?Sized>(
             trace.unlit(Unlit::NotReached);
             continue;
         };
-        radiance +=
-            lit_by(scene, ray, hit, material, color, sample.wi, sample.distance, sample.radiance, light.own_object(), counts, trace);
+        let incident = Incident { wi: sample.wi, distance: sample.distance, lin: sample.radiance, own: light.own_object(), light: i };
+        radiance += lit_by(scene, ray, hit, material, color, &incident, counts, trace);
     }
     if !area_lights.is_empty() {
         radiance += area_light(scene, area_lights, ray, hit, material, color, uniform, counts, trace);
     }
     radiance
+}
+
+/// Light arriving at a hit from one light (or one point of an area light).
+struct Incident {
+    /// Unit direction towards the light.
+    wi: Vec3,
+    /// Distance to the light.
+    distance: f64,
+    /// Radiance arriving if nothing blocks it.
+    lin: Rgb,
+    /// The light's own body, which does not block it.
+    own: Option<usize>,
+    /// The light's number, delta lights first, which picks its [`OccluderHint`].
+    light: usize,
 }
 
 /// What the rough model reflects towards `-ray.dir` of light `lin` arriving
@@ -294,13 +323,11 @@ fn lit_by<T: WhittedTrace + ?Sized>(
     hit: &Hit,
     material: &Material,
     color: Rgb,
-    wi: Vec3,
-    distance: f64,
-    lin: Rgb,
-    own: Option<usize>,
+    incident: &Incident,
     counts: &mut RayCounts,
     trace: &mut T,
 ) -> Rgb {
+    let Incident { wi, distance, lin, own, light } = *incident;
     let n = hit.normal;
     let cos_light = n.dot(wi);
     if cos_light <= MIN_COSINE || hit.geometric_normal.dot(wi) <= 0.0 {
@@ -322,7 +349,13 @@ fn lit_by<T: WhittedTrace + ?Sized>(
     counts.shadow += 1;
     let origin = offset_origin(hit.point, hit.geometric_normal, wi, hit.t, hit.error);
     let remaining = distance - (origin - hit.point).length();
-    let visible = scene.transmittance(&hit.spawn(origin, wi), remaining, own);
+    let visible = OCCLUDERS.with(|hints| {
+        let hint = &hints[light % HINTS];
+        let mut h = hint.get();
+        let visible = scene.transmittance_hinted(&hit.spawn(origin, wi), remaining, own, &mut h);
+        hint.set(h);
+        visible
+    });
     let mut told = |radiance: Rgb| {
         let shadow = hit.spawn(origin, wi);
         let term = LightTerm {
@@ -368,7 +401,7 @@ fn area_light<T: WhittedTrace + ?Sized>(
     let mut radiance = Rgb::ZERO;
     let side = (AREA_SAMPLES as f64).sqrt() as u32;
     let scale = 1.0 / (std::f64::consts::PI * AREA_SAMPLES as f64);
-    for light in lights {
+    for (j, light) in lights.iter().enumerate() {
         for k in 0..AREA_SAMPLES {
             let (jx, jy) = (uniform(), uniform());
             let u = (((k % side) as f64 + jx) / side as f64, ((k / side) as f64 + jy) / side as f64);
@@ -378,7 +411,8 @@ fn area_light<T: WhittedTrace + ?Sized>(
                 continue;
             };
             let lin = s.radiance * (scale / s.pdf);
-            radiance += lit_by(scene, ray, hit, material, color, s.wi, s.distance, lin, Some(light.object), counts, trace);
+            let incident = Incident { wi: s.wi, distance: s.distance, lin, own: Some(light.object), light: scene.lights.len() + j };
+            radiance += lit_by(scene, ray, hit, material, color, &incident, counts, trace);
         }
     }
     radiance

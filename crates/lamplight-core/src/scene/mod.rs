@@ -10,8 +10,8 @@ use crate::accel::{Aabb, Bvh};
 use crate::bsdfs::Bsdf;
 use crate::lights::Light;
 use crate::materials::{bsdf_for, Material};
-use crate::math::{max_abs, Rgb, Vec3};
-use crate::ray::{Ray, OFFSET_SCALE};
+use crate::math::Vec3;
+use crate::ray::Ray;
 use crate::shapes::Shape;
 
 mod builder;
@@ -19,10 +19,12 @@ mod light_set;
 mod reach;
 mod settings;
 mod shading;
+mod shadow;
 
 pub use builder::SceneBuilder;
 pub use reach::{lit_share, reaches_camera_hits};
 pub use settings::{SceneSettings, Sides};
+pub use shadow::OccluderHint;
 
 /// A shape placed in the scene with its material.
 #[derive(Clone, Debug)]
@@ -316,109 +318,6 @@ impl Scene {
         out
     }
 
-    /// Fraction of light that travels from `ray.origin` a distance `distance` along the
-    /// unit `ray.dir` (a shadow ray, at `ray.time`): 0 if an opaque object lies in between, the product
-    /// of the crossed surfaces' `shadow_transmittance` otherwise.
-    ///
-    /// Object `ignore` is a light's own body (a bulb, or Heckbert's emitting
-    /// spheres): the light is seen where the ray first meets that object, so the
-    /// ray ends there. Neither the object nor anything inside it or behind its
-    /// near surface shadows the light, as in Heckbert's test "the first sphere hit
-    /// towards the light is the light".
-    #[inline]
-    pub fn transmittance(&self, ray: &Ray, distance: f64, ignore: Option<usize>) -> Rgb {
-        // The light is seen where the ray first meets its own object: the ray ends there.
-        let own = ignore.and_then(|i| self.objects.get(i));
-        let distance = own.and_then(|o| o.shape.intersect(ray, 0.0, distance)).map_or(distance, |h| h.t);
-        self.transmittance_to(ray, distance, ignore)
-    }
-
-    /// [`Scene::transmittance`] along a segment already known to end where it first
-    /// meets object `own`: a point sampled on the facing side of a convex emitter
-    /// ([`Shape::is_convex`]) is that first meeting, so the search is skipped.
-    #[inline]
-    pub fn transmittance_to_surface(&self, ray: &Ray, distance: f64, own: usize) -> Rgb {
-        self.transmittance_to(ray, distance, Some(own))
-    }
-
-    /// Transmittance over `(0, distance)`, object `ignore` left out (inlined,
-    /// as [`Scene::first_intersect`] is).
-    #[inline]
-    fn transmittance_to(&self, ray: &Ray, distance: f64, ignore: Option<usize>) -> Rgb {
-        #[cfg(target_arch = "x86_64")]
-        if crate::cpu::avx2_features() {
-            // SAFETY: the CPU has every feature the compilation assumes.
-            return unsafe { self.transmittance_avx2(ray, distance, ignore) };
-        }
-        self.transmittance_baseline(ray, distance, ignore)
-    }
-
-    /// [`Scene::transmittance_to`] for baseline x86-64, out of line.
-    #[inline(never)]
-    fn transmittance_baseline(&self, ray: &Ray, distance: f64, ignore: Option<usize>) -> Rgb {
-        self.transmittance_in::<false>(ray, distance, ignore)
-    }
-
-    /// [`Scene::transmittance_to`] compiled whole for [`crate::cpu::AVX2_FEATURES`],
-    /// as [`Scene::first_intersect_avx2`] is.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
-    unsafe fn transmittance_avx2(&self, ray: &Ray, distance: f64, ignore: Option<usize>) -> Rgb {
-        self.transmittance_in::<true>(ray, distance, ignore)
-    }
-
-    /// [`Scene::transmittance_to`] with the BVH's box test chosen by `AVX2`.
-    #[inline(always)]
-    fn transmittance_in<const AVX2: bool>(&self, ray: &Ray, distance: f64, ignore: Option<usize>) -> Rgb {
-        let (origin, dir) = (ray.origin, ray.dir);
-        let ignore = ignore.map_or(u32::MAX, |i| i as u32);
-        let blocks = |prim: &PrimRef| -> bool {
-            prim.opaque
-                && prim.object != ignore
-                && if prim.masked {
-                    self.hit_object(prim, ray, distance).is_some()
-                } else {
-                    self.objects[prim.object as usize].shape.intersect_p(ray, 0.0, distance)
-                }
-        };
-        if self.unbounded.iter().any(blocks) {
-            return Rgb::ZERO;
-        }
-        if self.bvh.any_in::<AVX2>(origin, dir, 0.0, distance, |prim| blocks(&self.bounded[prim as usize])) {
-            return Rgb::ZERO;
-        }
-        if !self.any_partial_shadow {
-            return Rgb::ONE;
-        }
-        // Only partly transparent surfaces lie on the segment: multiply their
-        // transmittance once per crossing.
-        let mut result = Rgb::ONE;
-        let mut crossing = |prim: &PrimRef| {
-            let i = prim.object as usize;
-            let filter = self.materials[self.objects[i].material].shadow_transmittance;
-            if prim.object == ignore || filter == Rgb::ZERO || filter == Rgb::ONE {
-                return;
-            }
-            let mut t_min = 0.0;
-            // Each crossing moves t_min forward by at least the relative offset, so the loop ends.
-            while let Some(h) = self.objects[i].shape.intersect(ray, t_min, distance) {
-                result *= filter;
-                t_min = h.t + OFFSET_SCALE * (max_abs(ray.at(h.t)) + h.t) + 4.0 * h.error;
-                if result == Rgb::ZERO {
-                    return;
-                }
-            }
-        };
-        for prim in &self.unbounded {
-            crossing(prim);
-        }
-        self.bvh.traverse_in::<AVX2>(origin, dir, 0.0, distance, |prim, _| {
-            crossing(&self.bounded[prim as usize]);
-            None
-        });
-        result
-    }
-
     /// The path tracer's BSDF at `hit`, whose material evaluated there
     /// ([`Scene::material_at`]) is `material` ([`surface_bsdf`]). Constant materials
     /// have it built once with the scene: making it per hit (scaling the lobes so
@@ -472,6 +371,7 @@ mod sides_tests;
 mod tests {
     use super::*;
     use crate::camera::{Fov, Perspective};
+    use crate::math::Rgb;
     use crate::shapes::Sphere;
 
     /// A bulb of radius 2 around the origin with a small opaque ball inside it,
@@ -507,9 +407,9 @@ mod tests {
     #[cfg(target_arch = "x86_64")]
     #[test]
     fn the_queries_are_compiled_for_the_detected_features() {
-        let source = include_str!("mod.rs");
-        for name in ["first_intersect_avx2", "transmittance_avx2"] {
-            let attribute = format!("#[target_feature(enable = \"{}\")]\n    unsafe fn {name}", crate::cpu::AVX2_FEATURES);
+        let source = [include_str!("mod.rs"), include_str!("shadow.rs")].concat();
+        for (name, prefix) in [("first_intersect_avx2", ""), ("transmittance_avx2", "pub(super) ")] {
+            let attribute = format!("#[target_feature(enable = \"{}\")]\n    {prefix}unsafe fn {name}", crate::cpu::AVX2_FEATURES);
             assert!(source.contains(&attribute), "{name} must be compiled for AVX2_FEATURES");
         }
     }
@@ -553,9 +453,13 @@ mod tests {
                 assert_eq!(key(&base), key(&avx2), "ray {ray:?}");
                 hits += usize::from(base.is_some());
                 let distance = rand() * 10.0;
-                let shadow = scene.transmittance_in::<false>(&ray, distance, None);
+                let shadow = scene.transmittance_in::<false>(&ray, distance, None, &mut OccluderHint::default());
                 // SAFETY: as above.
-                assert_eq!(shadow, unsafe { scene.transmittance_avx2(&ray, distance, None) }, "ray {ray:?} to {distance}");
+                assert_eq!(
+                    shadow,
+                    unsafe { scene.transmittance_avx2(&ray, distance, None, &mut OccluderHint::default()) },
+                    "ray {ray:?} to {distance}"
+                );
             }
             assert!(hits > 400, "{balls} balls: only {hits} of 4000 rays hit, too few to compare");
         }

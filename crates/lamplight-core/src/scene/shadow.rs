@@ -1,0 +1,247 @@
+//! Shadow queries: how much light reaches a point from a light, through the
+//! scene's objects ([`Scene::transmittance`]).
+//!
+//! A shadow ray is blocked as soon as any opaque object lies on its segment, so
+//! the order objects are tried in cannot change the answer, only how soon it is
+//! known. [`OccluderHint`] uses that: the object that blocked the previous
+//! shadow ray towards the same light is tried before the BVH is walked.
+//! Neighbouring pixels usually lie in the same object's shadow, so most blocked
+//! rays end after one shape test (POV-Ray keeps the same cache per light). The
+//! answer is the same for any hint, bit for bit: a hint that does not block
+//! leaves the walk exactly as it was.
+
+use super::{PrimRef, Scene};
+use crate::math::{max_abs, Rgb};
+use crate::ray::{Ray, OFFSET_SCALE};
+
+/// The object that last blocked a shadow ray, kept by the caller per light and
+/// handed to [`Scene::transmittance_hinted`], which tries it first and updates it.
+/// It only decides which object is tested first; any value (another scene's,
+/// or [`OccluderHint::NONE`]) gives the same answer.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct OccluderHint(u32);
+
+impl OccluderHint {
+    /// No object known: the BVH is walked as usual.
+    pub const NONE: OccluderHint = OccluderHint(u32::MAX);
+}
+
+impl Default for OccluderHint {
+    fn default() -> Self {
+        OccluderHint::NONE
+    }
+}
+
+impl Scene {
+    /// Fraction of light that travels from `ray.origin` a distance `distance` along the
+    /// unit `ray.dir` (a shadow ray, at `ray.time`): 0 if an opaque object lies in between, the product
+    /// of the crossed surfaces' `shadow_transmittance` otherwise.
+    ///
+    /// Object `ignore` is a light's own body (a bulb, or Heckbert's emitting
+    /// spheres): the light is seen where the ray first meets that object, so the
+    /// ray ends there. Neither the object nor anything inside it or behind its
+    /// near surface shadows the light, as in Heckbert's test "the first sphere hit
+    /// towards the light is the light".
+    #[inline]
+    pub fn transmittance(&self, ray: &Ray, distance: f64, ignore: Option<usize>) -> Rgb {
+        self.transmittance_hinted(ray, distance, ignore, &mut OccluderHint::default())
+    }
+
+    /// [`Scene::transmittance`], trying the object `hint` names first (module
+    /// doc). When the BVH walk finds an object that blocks the ray, `hint`
+    /// becomes that object; otherwise it is left as it was.
+    #[inline]
+    pub fn transmittance_hinted(&self, ray: &Ray, distance: f64, ignore: Option<usize>, hint: &mut OccluderHint) -> Rgb {
+        // The light is seen where the ray first meets its own object: the ray ends there.
+        let own = ignore.and_then(|i| self.objects.get(i));
+        let distance = own.and_then(|o| o.shape.intersect(ray, 0.0, distance)).map_or(distance, |h| h.t);
+        self.transmittance_to(ray, distance, ignore, hint)
+    }
+
+    /// [`Scene::transmittance`] along a segment already known to end where it first
+    /// meets object `own`: a point sampled on the facing side of a convex emitter
+    /// ([`Shape::is_convex`]) is that first meeting, so the search is skipped.
+    #[inline]
+    pub fn transmittance_to_surface(&self, ray: &Ray, distance: f64, own: usize) -> Rgb {
+        self.transmittance_to(ray, distance, Some(own), &mut OccluderHint::default())
+    }
+
+    /// Transmittance over `(0, distance)`, object `ignore` left out (inlined,
+    /// as [`Scene::first_intersect`] is).
+    #[inline]
+    fn transmittance_to(&self, ray: &Ray, distance: f64, ignore: Option<usize>, hint: &mut OccluderHint) -> Rgb {
+        #[cfg(target_arch = "x86_64")]
+        if crate::cpu::avx2_features() {
+            // SAFETY: the CPU has every feature the compilation assumes.
+            return unsafe { self.transmittance_avx2(ray, distance, ignore, hint) };
+        }
+        self.transmittance_baseline(ray, distance, ignore, hint)
+    }
+
+    /// [`Scene::transmittance_to`] for baseline x86-64, out of line.
+    #[inline(never)]
+    fn transmittance_baseline(&self, ray: &Ray, distance: f64, ignore: Option<usize>, hint: &mut OccluderHint) -> Rgb {
+        self.transmittance_in::<false>(ray, distance, ignore, hint)
+    }
+
+    /// [`Scene::transmittance_to`] compiled whole for [`crate::cpu::AVX2_FEATURES`],
+    /// as [`Scene::first_intersect_avx2`] is.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
+    pub(super) unsafe fn transmittance_avx2(&self, ray: &Ray, distance: f64, ignore: Option<usize>, hint: &mut OccluderHint) -> Rgb {
+        self.transmittance_in::<true>(ray, distance, ignore, hint)
+    }
+
+    /// [`Scene::transmittance_to`] with the BVH's box test chosen by `AVX2`.
+    #[inline(always)]
+    pub(super) fn transmittance_in<const AVX2: bool>(
+        &self,
+        ray: &Ray,
+        distance: f64,
+        ignore: Option<usize>,
+        hint: &mut OccluderHint,
+    ) -> Rgb {
+        let (origin, dir) = (ray.origin, ray.dir);
+        let ignore = ignore.map_or(u32::MAX, |i| i as u32);
+        let blocks = |prim: &PrimRef| -> bool {
+            prim.opaque
+                && prim.object != ignore
+                && if prim.masked {
+                    self.hit_object(prim, ray, distance).is_some()
+                } else {
+                    self.objects[prim.object as usize].shape.intersect_p(ray, 0.0, distance)
+                }
+        };
+        // Any blocking object gives the same answer, the hinted one included;
+        // one that does not block is not tested again by the walk.
+        let tried = hint.0;
+        if self.bounded.get(tried as usize).is_some_and(blocks) {
+            return Rgb::ZERO;
+        }
+        if self.unbounded.iter().any(blocks) {
+            return Rgb::ZERO;
+        }
+        let walk = |prim: u32| {
+            let blocked = prim != tried && blocks(&self.bounded[prim as usize]);
+            if blocked {
+                *hint = OccluderHint(prim);
+            }
+            blocked
+        };
+        if self.bvh.any_in::<AVX2>(origin, dir, 0.0, distance, walk) {
+            return Rgb::ZERO;
+        }
+        if !self.any_partial_shadow {
+            return Rgb::ONE;
+        }
+        // Only partly transparent surfaces lie on the segment: multiply their
+        // transmittance once per crossing.
+        let mut result = Rgb::ONE;
+        let mut crossing = |prim: &PrimRef| {
+            let i = prim.object as usize;
+            let filter = self.materials[self.objects[i].material].shadow_transmittance;
+            if prim.object == ignore || filter == Rgb::ZERO || filter == Rgb::ONE {
+                return;
+            }
+            let mut t_min = 0.0;
+            // Each crossing moves t_min forward by at least the relative offset, so the loop ends.
+            while let Some(h) = self.objects[i].shape.intersect(ray, t_min, distance) {
+                result *= filter;
+                t_min = h.t + OFFSET_SCALE * (max_abs(ray.at(h.t)) + h.t) + 4.0 * h.error;
+                if result == Rgb::ZERO {
+                    return;
+                }
+            }
+        };
+        for prim in &self.unbounded {
+            crossing(prim);
+        }
+        self.bvh.traverse_in::<AVX2>(origin, dir, 0.0, distance, |prim, _| {
+            crossing(&self.bounded[prim as usize]);
+            None
+        });
+        result
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::camera::{Fov, Perspective};
+    use crate::materials::Material;
+    use crate::math::Vec3;
+    use crate::scene::SceneBuilder;
+    use crate::shapes::Sphere;
+
+    /// 40 random balls, a quarter of them tinted glass that dims shadows
+    /// (transmittance 0.5) instead of blocking them.
+    fn balls() -> (Scene, Vec<Vec3>) {
+        let mut rng = crate::sampling::Rng::for_sample(11, 0, 0);
+        let mut rand = move || rng.uniform();
+        let camera = Perspective::look_at(Vec3::new(0.0, 0.0, 10.0), Vec3::ZERO, Vec3::Y, Fov::VerticalDeg(40.0)).unwrap();
+        let mut builder = SceneBuilder::new(camera);
+        let opaque = builder.material(Material::default()).unwrap();
+        let dim = builder.material(Material { shadow_transmittance: Rgb::splat(0.5), ..Material::default() }).unwrap();
+        let mut centres = Vec::new();
+        for k in 0..40 {
+            let centre = Vec3::new(rand() * 8.0 - 4.0, rand() * 8.0 - 4.0, rand() * 8.0 - 4.0);
+            let material = if k % 4 == 0 { dim } else { opaque };
+            builder.object(Sphere::new(centre, 0.2 + rand() * 0.6).unwrap(), material).unwrap();
+            centres.push(centre);
+        }
+        (builder.build().unwrap(), centres)
+    }
+
+    /// Every hint, each object's, none and one past the last, gives the answer of
+    /// the plain query bit for bit, with and without a light's own object; and a
+    /// walk that finds a blocker leaves the hint naming an object that blocks.
+    #[test]
+    fn no_hint_changes_the_answer() {
+        let (scene, centres) = balls();
+        let mut rng = crate::sampling::Rng::for_sample(12, 0, 0);
+        let mut rand = move || rng.uniform();
+        let hints: Vec<OccluderHint> = (0..=scene.bounded.len() as u32).map(OccluderHint).chain([OccluderHint::NONE]).collect();
+        let (mut blocked, mut dimmed, mut clear) = (0, 0, 0);
+        for _ in 0..600 {
+            let origin = Vec3::new(rand() * 12.0 - 6.0, rand() * 12.0 - 6.0, rand() * 12.0 - 6.0);
+            let target = centres[(rand() * centres.len() as f64) as usize] + Vec3::new(rand() - 0.5, rand() - 0.5, rand() - 0.5);
+            let ray = Ray::unit(origin, (target - origin).normalize());
+            let distance = rand() * 12.0;
+            let own = (rand() < 0.3).then(|| (rand() * centres.len() as f64) as usize);
+            let plain = scene.transmittance(&ray, distance, own);
+            for &start in &hints {
+                let mut hint = start;
+                assert_eq!(scene.transmittance_hinted(&ray, distance, own, &mut hint), plain, "ray {ray:?}, hint {start:?}");
+                if hint != start {
+                    assert_eq!(plain, Rgb::ZERO, "only a blocked ray moves the hint");
+                    let mut again = hint;
+                    assert_eq!(scene.transmittance_hinted(&ray, distance, own, &mut again), Rgb::ZERO);
+                    assert_eq!(again, hint, "the new hint blocks the ray itself, so it stays");
+                }
+            }
+            match plain {
+                p if p == Rgb::ZERO => blocked += 1,
+                p if p == Rgb::ONE => clear += 1,
+                _ => dimmed += 1,
+            }
+        }
+        assert!(blocked > 100 && clear > 100 && dimmed > 20, "{blocked} blocked, {dimmed} dimmed, {clear} clear: too few of a kind");
+    }
+
+    /// A walk that finds the blocker leaves the hint naming it, for the next ray.
+    #[test]
+    fn the_hint_names_the_blocker() {
+        let camera = Perspective::look_at(Vec3::new(0.0, 0.0, 10.0), Vec3::ZERO, Vec3::Y, Fov::VerticalDeg(40.0)).unwrap();
+        let mut builder = SceneBuilder::new(camera);
+        let opaque = builder.material(Material::default()).unwrap();
+        for x in 0..20 {
+            builder.object(Sphere::new(Vec3::new(x as f64 * 3.0, 0.0, 0.0), 1.0).unwrap(), opaque).unwrap();
+        }
+        let scene = builder.build().unwrap();
+        let mut hint = OccluderHint::NONE;
+        let ray = Ray::unit(Vec3::new(30.0, 5.0, 0.0), -Vec3::Y);
+        assert_eq!(scene.transmittance_hinted(&ray, 10.0, None, &mut hint), Rgb::ZERO);
+        let prim = scene.bounded[hint.0 as usize];
+        assert_eq!(prim.object, 10, "the ball at x = 30 blocks");
+    }
+}
