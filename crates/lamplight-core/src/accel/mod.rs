@@ -7,6 +7,9 @@
 //!   objects, and one inside every [`crate::shapes::TriangleMesh`] over its
 //!   triangles. Built by the binned SAH of `sah.rs` with the cost weights of
 //!   [`Costs`] (objects or triangles).
+//! - [`LightBuffer`] (`light_buffer.rs`): not a hierarchy but a cube of direction
+//!   cells around a point light, listing the objects in each, so that shadow
+//!   rays towards the light test one cell's objects instead of walking the [`Bvh`].
 //! - [`MeshBvh`] (`mesh_bvh.rs`), batch ray casting's ([`crate::batch::MeshAccel`]):
 //!   8-wide, one `f32` mesh, triangles stored inline in 4-wide packets; its
 //!   traversal interleaves scattered rays (`mesh_walk.rs`) and walks coherent
@@ -36,6 +39,7 @@
 
 mod aabb;
 mod bvh;
+mod light_buffer;
 mod mesh_bvh;
 mod mesh_packet;
 mod mesh_walk;
@@ -45,6 +49,7 @@ pub mod tri4;
 
 pub use aabb::Aabb;
 pub use bvh::{Bvh, BvhStats};
+pub use light_buffer::LightBuffer;
 pub use mesh_bvh::{MeshBvh, MeshBvhStats};
 pub use mesh_packet::{PacketRay, PACKET};
 pub use sah::Costs;

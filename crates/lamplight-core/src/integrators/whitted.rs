@@ -349,13 +349,10 @@ fn lit_by<T: WhittedTrace + ?Sized>(
     counts.shadow += 1;
     let origin = offset_origin(hit.point, hit.geometric_normal, wi, hit.t, hit.error);
     let remaining = distance - (origin - hit.point).length();
-    let visible = OCCLUDERS.with(|hints| {
-        let hint = &hints[light % HINTS];
-        let mut h = hint.get();
-        let visible = scene.transmittance_hinted(&hit.spawn(origin, wi), remaining, own, &mut h);
-        hint.set(h);
-        visible
-    });
+    // The query stays outside `with`'s closure, which the compiler may keep out of line.
+    let mut hint = OCCLUDERS.with(|hints| hints[light % HINTS].get()).towards(light);
+    let visible = scene.transmittance_hinted(&hit.spawn(origin, wi), remaining, own, &mut hint);
+    OCCLUDERS.with(|hints| hints[light % HINTS].set(hint));
     let mut told = |radiance: Rgb| {
         let shadow = hit.spawn(origin, wi);
         let term = LightTerm {

@@ -93,6 +93,13 @@ pub trait Light: Send + Sync + std::fmt::Debug {
         None
     }
 
+    /// The one point all of the light's rays leave from (point and spot lights),
+    /// around which the scene builds a light buffer for its shadow rays
+    /// ([`crate::accel::LightBuffer`]); `None` for other lights.
+    fn point_source(&self) -> Option<Vec3> {
+        None
+    }
+
     /// One light sample for receiver `point` from `u` in `[0, 1)^2`, or `None`
     /// when the light sends nothing there.
     ///

@@ -96,6 +96,10 @@ impl Light for PointLight {
         Some(LightSample { wi, distance, radiance })
     }
 
+    fn point_source(&self) -> Option<Vec3> {
+        Some(self.position)
+    }
+
     fn own_object(&self) -> Option<usize> {
         self.own_object
     }

@@ -194,6 +194,10 @@ impl Light for SpotLight {
         }
         Some(LightSample { wi, distance, radiance })
     }
+
+    fn point_source(&self) -> Option<Vec3> {
+        Some(self.position)
+    }
 }
 
 /// The scene's up, `+y`, or `+z` for an axis along `y` (light's own frame).

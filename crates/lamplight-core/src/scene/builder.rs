@@ -4,7 +4,7 @@
 use std::sync::Arc;
 
 use super::{set_name, surface_bsdf, Names, Object, PrimRef, Scene, SceneSettings};
-use crate::accel::{Bvh, Costs};
+use crate::accel::{Aabb, Bvh, Costs, LightBuffer};
 use crate::camera::Camera;
 use crate::lights::Light;
 use crate::materials::Material;
@@ -134,6 +134,7 @@ impl SceneBuilder {
                 unbounded.push(prim);
             }
         }
+        let light_buffers = light_buffers(&self.lights, &boxes, &bounded);
         let any_partial_shadow = self.materials.iter().any(|m| m.shadow_transmittance != Rgb::ZERO && m.shadow_transmittance != Rgb::ONE);
         let bsdfs = self
             .materials
@@ -165,6 +166,7 @@ impl SceneBuilder {
             bounded,
             unbounded,
             any_partial_shadow,
+            light_buffers,
             objects: self.objects,
             materials: self.materials,
             lights: self.lights,
@@ -173,4 +175,23 @@ impl SceneBuilder {
             names: self.names,
         })
     }
+}
+
+/// Lights with a buffer of their own; shadow rays towards later lights walk the BVH.
+const MAX_LIGHT_BUFFERS: usize = 16;
+
+/// The light buffer of each of the first [`MAX_LIGHT_BUFFERS`] lights that leave
+/// one point, over the bounded objects `bounded` with boxes `boxes`, listing
+/// those that can block a shadow ray, sized by the scene's extent (the light
+/// buffer's `near` distance scales with it).
+fn light_buffers(lights: &[Arc<dyn Light>], boxes: &[Aabb], bounded: &[PrimRef]) -> Vec<Option<LightBuffer>> {
+    let scale = boxes.iter().map(|b| b.min.abs().max(b.max.abs()).max_element()).fold(0.0, f64::max);
+    lights
+        .iter()
+        .enumerate()
+        .map(|(i, light)| {
+            let centre = light.point_source().filter(|_| i < MAX_LIGHT_BUFFERS)?;
+            LightBuffer::build(centre, boxes, |i| bounded[i].opaque, scale)
+        })
+        .collect()
 }

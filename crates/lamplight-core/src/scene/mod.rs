@@ -6,7 +6,7 @@
 use std::borrow::Cow;
 use std::sync::Arc;
 
-use crate::accel::{Aabb, Bvh};
+use crate::accel::{Aabb, Bvh, LightBuffer};
 use crate::bsdfs::Bsdf;
 use crate::lights::Light;
 use crate::materials::{bsdf_for, Material};
@@ -102,6 +102,8 @@ pub struct Scene {
     plain: Vec<bool>,
     /// Objects with infinite bounds (infinite planes, unclipped quadrics), tested one by one.
     unbounded: Vec<PrimRef>,
+    /// Per light, the light buffer of a point source (`scene/shadow.rs`).
+    light_buffers: Vec<Option<LightBuffer>>,
     /// Some material dims shadow rays without blocking them (transmittance strictly
     /// between 0 and 1), so shadow rays must collect every crossing.
     any_partial_shadow: bool,

@@ -6,24 +6,44 @@
 //! known. [`OccluderHint`] uses that: the object that blocked the previous
 //! shadow ray towards the same light is tried before the BVH is walked.
 //! Neighbouring pixels usually lie in the same object's shadow, so most blocked
-//! rays end after one shape test (POV-Ray keeps the same cache per light). The
-//! answer is the same for any hint, bit for bit: a hint that does not block
-//! leaves the walk exactly as it was.
+//! rays end after one shape test (POV-Ray keeps the same cache per light).
+//!
+//! A hint also names its light. For a light that leaves one point the scene
+//! keeps a [`LightBuffer`]: the objects that may lie in each cell of directions
+//! around the light. A shadow ray towards it tests its cell's objects instead of
+//! walking the BVH; the buffer checks that the ray really ends at its light.
+//!
+//! The answer is the same for any hint, bit for bit: a hinted object that does
+//! not block is skipped by the search that follows, and the cell lists every
+//! object that can lie on the ray. Scenes with partly transparent shadows
+//! (which multiply every crossing, in the walk's order) keep the walk.
 
 use super::{PrimRef, Scene};
+use crate::accel::LightBuffer;
 use crate::math::{max_abs, Rgb};
 use crate::ray::{Ray, OFFSET_SCALE};
 
-/// The object that last blocked a shadow ray, kept by the caller per light and
-/// handed to [`Scene::transmittance_hinted`], which tries it first and updates it.
-/// It only decides which object is tested first; any value (another scene's,
-/// or [`OccluderHint::NONE`]) gives the same answer.
+/// The object that last blocked a shadow ray towards a light, and that light's
+/// index in [`Scene::lights`], kept by the caller per light and handed to
+/// [`Scene::transmittance_hinted`], which tries the object first and updates it.
+/// It only decides which objects are tested and in what order; any value
+/// (another scene's, or [`OccluderHint::NONE`]) gives the same answer.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct OccluderHint(u32);
+pub struct OccluderHint {
+    /// Index into the scene's bounded objects, or `u32::MAX`.
+    prim: u32,
+    /// Index into the scene's lights, or `u32::MAX`.
+    light: u32,
+}
 
 impl OccluderHint {
-    /// No object known: the BVH is walked as usual.
-    pub const NONE: OccluderHint = OccluderHint(u32::MAX);
+    /// No object and no light known: the BVH is walked as usual.
+    pub const NONE: OccluderHint = OccluderHint { prim: u32::MAX, light: u32::MAX };
+
+    /// This hint for a shadow ray towards light `light` of [`Scene::lights`].
+    pub fn towards(self, light: usize) -> OccluderHint {
+        OccluderHint { light: u32::try_from(light).unwrap_or(u32::MAX), ..self }
+    }
 }
 
 impl Default for OccluderHint {
@@ -60,7 +80,7 @@ impl Scene {
 
     /// [`Scene::transmittance`] along a segment already known to end where it first
     /// meets object `own`: a point sampled on the facing side of a convex emitter
-    /// ([`Shape::is_convex`]) is that first meeting, so the search is skipped.
+    /// ([`crate::shapes::Shape::is_convex`]) is that first meeting, so the search is skipped.
     #[inline]
     pub fn transmittance_to_surface(&self, ray: &Ray, distance: f64, own: usize) -> Rgb {
         self.transmittance_to(ray, distance, Some(own), &mut OccluderHint::default())
@@ -114,20 +134,24 @@ impl Scene {
         };
         // Any blocking object gives the same answer, the hinted one included;
         // one that does not block is not tested again by the walk.
-        let tried = hint.0;
+        let tried = hint.prim;
         if self.bounded.get(tried as usize).is_some_and(blocks) {
             return Rgb::ZERO;
         }
         if self.unbounded.iter().any(blocks) {
             return Rgb::ZERO;
         }
-        let walk = |prim: u32| {
+        let mut walk = |prim: u32| {
             let blocked = prim != tried && blocks(&self.bounded[prim as usize]);
             if blocked {
-                *hint = OccluderHint(prim);
+                hint.prim = prim;
             }
             blocked
         };
+        if let Some((near, cell)) = self.light_cell(hint.light, ray, distance) {
+            let blocked = near.iter().any(|&prim| walk(prim)) || cell.iter().any(|&prim| walk(prim));
+            return if blocked { Rgb::ZERO } else { Rgb::ONE };
+        }
         if self.bvh.any_in::<AVX2>(origin, dir, 0.0, distance, walk) {
             return Rgb::ZERO;
         }
@@ -161,6 +185,20 @@ impl Scene {
             None
         });
         result
+    }
+
+    /// The objects a shadow ray towards light `light` over `(0, distance)` may
+    /// meet, from the light's buffer (module doc): those near the light, then
+    /// those of the ray's cell. `None` where the walk must answer: no buffer, a
+    /// ray that does not end at the light, or partly transparent shadows.
+    #[inline(always)]
+    fn light_cell(&self, light: u32, ray: &Ray, distance: f64) -> Option<(&[u32], &[u32])> {
+        if self.any_partial_shadow {
+            return None;
+        }
+        let buffer: &LightBuffer = self.light_buffers.get(light as usize)?.as_ref()?;
+        let cell = buffer.cell_of(ray.origin, ray.dir, distance)?;
+        Some((buffer.always(), cell))
     }
 }
 
@@ -200,7 +238,8 @@ mod tests {
         let (scene, centres) = balls();
         let mut rng = crate::sampling::Rng::for_sample(12, 0, 0);
         let mut rand = move || rng.uniform();
-        let hints: Vec<OccluderHint> = (0..=scene.bounded.len() as u32).map(OccluderHint).chain([OccluderHint::NONE]).collect();
+        let hints: Vec<OccluderHint> =
+            (0..=scene.bounded.len() as u32).map(|prim| OccluderHint { prim, light: u32::MAX }).chain([OccluderHint::NONE]).collect();
         let (mut blocked, mut dimmed, mut clear) = (0, 0, 0);
         for _ in 0..600 {
             let origin = Vec3::new(rand() * 12.0 - 6.0, rand() * 12.0 - 6.0, rand() * 12.0 - 6.0);
@@ -228,6 +267,72 @@ mod tests {
         assert!(blocked > 100 && clear > 100 && dimmed > 20, "{blocked} blocked, {dimmed} dimmed, {clear} clear: too few of a kind");
     }
 
+    /// Shadow rays as the Whitted tracer makes them (from a hit, its origin
+    /// pushed off the surface, towards a point light) get the walk's answer
+    /// from the light's buffer, for lights inside, beside and far above the
+    /// balls and at scene sizes from 1e-4 to 1e6; so do rays that do not end at
+    /// the light, which the buffer hands back to the walk.
+    #[test]
+    fn the_light_buffer_answers_as_the_walk() {
+        use crate::lights::PointLight;
+        use crate::ray::offset_origin;
+        let mut rng = crate::sampling::Rng::for_sample(13, 0, 0);
+        let mut rand = move || rng.uniform();
+        for scale in [1e-4, 1.0, 1e6] {
+            let (mut shadow_rays, mut from_buffer, mut blocked) = (0, 0, 0);
+            let camera = Perspective::look_at(Vec3::new(0.0, 0.0, 10.0), Vec3::ZERO, Vec3::Y, Fov::VerticalDeg(40.0)).unwrap();
+            let mut builder = SceneBuilder::new(camera);
+            let opaque = builder.material(Material::default()).unwrap();
+            let clear = builder.material(Material { shadow_transmittance: Rgb::ONE, ..Material::default() }).unwrap();
+            let mut centres = Vec::new();
+            for i in 0..60 {
+                let centre = Vec3::new(rand() * 8.0 - 4.0, rand() * 8.0 - 4.0, rand() * 8.0 - 4.0) * scale;
+                let material = if i % 5 == 0 { clear } else { opaque };
+                builder.object(Sphere::new(centre, (0.2 + rand() * 0.6) * scale).unwrap(), material).unwrap();
+                centres.push(centre);
+            }
+            let lights = [Vec3::ZERO, Vec3::new(5.0, 1.0, -2.0), Vec3::new(3.0, 40.0, 7.0)];
+            for p in lights {
+                builder.light(PointLight::new(p * scale, Rgb::ONE).unwrap());
+            }
+            let scene = builder.build().unwrap();
+            assert!(scene.light_buffers.iter().all(Option::is_some), "every point light has a buffer");
+            for _ in 0..3000 {
+                // Aimed near a ball, so that most rays hit one.
+                let origin = Vec3::new(rand() * 16.0 - 8.0, rand() * 16.0 - 8.0, rand() * 16.0 - 8.0) * scale;
+                let target = centres[(rand() * 60.0) as usize] + Vec3::new(rand() - 0.5, rand() - 0.5, rand() - 0.5) * scale;
+                let dir = (target - origin).normalize();
+                let Some(hit) = scene.first_intersect(&Ray::unit(origin, dir), f64::INFINITY) else {
+                    continue;
+                };
+                let light = (rand() * 3.0) as usize;
+                let sample = scene.lights[light].illuminate(hit.point).unwrap();
+                let start = offset_origin(hit.point, hit.geometric_normal, sample.wi, hit.t, hit.error);
+                let shadow = Ray::unit(start, sample.wi);
+                let remaining = sample.distance - (start - hit.point).length();
+                // Some rays treat a ball as the light's own body, which does not block it.
+                let own = (rand() < 0.3).then(|| (rand() * 60.0) as usize);
+                let walk = scene.transmittance(&shadow, remaining, own);
+                let mut hint = OccluderHint::NONE.towards(light);
+                assert_eq!(scene.transmittance_hinted(&shadow, remaining, own, &mut hint), walk, "scale {scale}, {shadow:?}, own {own:?}");
+                shadow_rays += 1;
+                blocked += usize::from(walk == Rgb::ZERO);
+                from_buffer += usize::from(scene.light_cell(light as u32, &shadow, remaining).is_some());
+                // The same ray past the light, and a ray that misses it.
+                let past = remaining * (1.0 + rand());
+                let mut hint = OccluderHint::NONE.towards(light);
+                assert_eq!(scene.transmittance_hinted(&shadow, past, None, &mut hint), scene.transmittance(&shadow, past, None));
+                let mut hint = OccluderHint::NONE.towards(light);
+                assert_eq!(
+                    scene.transmittance_hinted(&hit.spawn(start, dir), remaining, None, &mut hint),
+                    scene.transmittance(&hit.spawn(start, dir), remaining, None)
+                );
+            }
+            assert!(shadow_rays > 1500 && from_buffer == shadow_rays, "scale {scale}: {from_buffer} of {shadow_rays} used the buffer");
+            assert!(blocked > 300 && shadow_rays - blocked > 300, "scale {scale}: {blocked} of {shadow_rays} blocked, too few of a kind");
+        }
+    }
+
     /// A walk that finds the blocker leaves the hint naming it, for the next ray.
     #[test]
     fn the_hint_names_the_blocker() {
@@ -241,7 +346,7 @@ mod tests {
         let mut hint = OccluderHint::NONE;
         let ray = Ray::unit(Vec3::new(30.0, 5.0, 0.0), -Vec3::Y);
         assert_eq!(scene.transmittance_hinted(&ray, 10.0, None, &mut hint), Rgb::ZERO);
-        let prim = scene.bounded[hint.0 as usize];
+        let prim = scene.bounded[hint.prim as usize];
         assert_eq!(prim.object, 10, "the ball at x = 30 blocks");
     }
 }
