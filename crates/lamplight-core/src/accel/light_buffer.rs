@@ -56,6 +56,14 @@ const MAX_OBJECTS: usize = 4096;
 /// Most list entries a buffer may hold: 8 per cell on average (768 KB). Cells
 /// that list more objects than that are no faster than the BVH walk.
 const MAX_ENTRIES: usize = 8 * 6 * N * N;
+/// Most objects a cell lists: a ray through a longer list walks the BVH
+/// instead, whose cost grows with the logarithm of the count, not the count.
+const MAX_CELL: u32 = 32;
+/// Most objects near the light, which every ray tests; more and the scene
+/// keeps the walk for this light.
+const MAX_ALWAYS: usize = 8;
+/// A cell's span when its list is too long: rays through it walk the BVH.
+const WALK: [u32; 2] = [u32::MAX, u32::MAX];
 
 /// The direction cells around one point and the objects listed in each.
 #[derive(Clone, Debug)]
@@ -116,6 +124,9 @@ impl LightBuffer {
             let closest = centre.clamp(b.min, b.max);
             if !b.min.is_finite() || !b.max.is_finite() || (closest - centre).length() < near {
                 always.push(i as u32);
+                if always.len() > MAX_ALWAYS {
+                    return None;
+                }
                 continue;
             }
             for f in 0..6 {
@@ -156,15 +167,21 @@ impl LightBuffer {
         let mut spans = Vec::with_capacity(6 * N * N);
         let mut next = 0u32;
         for &n in &count {
-            spans.push([next, next]);
-            next += n;
+            if n > MAX_CELL {
+                spans.push(WALK);
+            } else {
+                spans.push([next, next]);
+                next += n;
+            }
         }
-        let mut items = vec![0u32; entries];
+        let mut items = vec![0u32; next as usize];
         for block in &blocks {
             for cell in cells_of(block) {
-                let end = &mut spans[cell][1];
-                items[*end as usize] = block.0;
-                *end += 1;
+                if spans[cell] != WALK {
+                    let end = &mut spans[cell][1];
+                    items[*end as usize] = block.0;
+                    *end += 1;
+                }
             }
         }
         Some(LightBuffer { centre, near, always, spans, items })
@@ -204,7 +221,8 @@ impl LightBuffer {
         let inv = 1.0 / major.abs();
         let cell = (face * N + cell_index(v * inv)) * N + cell_index(u * inv);
         let [start, end] = self.spans[cell];
-        Some(&self.items[start as usize..end as usize])
+        // A list too long (`WALK`) ends outside `items`: no cell.
+        self.items.get(start as usize..end as usize)
     }
 
     /// Entries over all cells (for tests and statistics).
@@ -272,10 +290,19 @@ mod tests {
         assert!(buffer.cell_of(aside, -Vec3::X, 5.0).is_none(), "the line misses the light by 1e-3");
     }
 
-    /// Scenes beyond the object limit keep the walk.
+    /// Scenes beyond the object limit, or with many objects around the light,
+    /// keep the walk; so do rays through a cell that would list too many.
     #[test]
-    fn large_scenes_get_no_buffer() {
+    fn crowded_scenes_and_cells_walk() {
         let boxes = vec![Aabb { min: Vec3::splat(1.0), max: Vec3::splat(2.0) }; MAX_OBJECTS + 1];
         assert!(LightBuffer::build(Vec3::ZERO, &boxes, |_| true, 10.0).is_none());
+        let around = vec![Aabb { min: Vec3::splat(-1.0), max: Vec3::splat(1.0) }; MAX_ALWAYS + 1];
+        assert!(LightBuffer::build(Vec3::ZERO, &around, |_| true, 10.0).is_none());
+        // 40 small boxes in a row along +x, one behind the other as seen from the light.
+        let row: Vec<Aabb> =
+            (0..40).map(|k| Aabb { min: Vec3::new(2.0 + k as f64, -0.1, -0.1), max: Vec3::new(2.5 + k as f64, 0.1, 0.1) }).collect();
+        let buffer = LightBuffer::build(Vec3::ZERO, &row, |_| true, 50.0).unwrap();
+        assert!(buffer.cell_of(Vec3::new(60.0, 0.0, 0.0), -Vec3::X, 60.0).is_none(), "40 objects in one cell: walk");
+        assert_eq!(buffer.cell_of(Vec3::new(0.0, 60.0, 0.0), -Vec3::Y, 60.0), Some(&[][..]), "nothing above the light");
     }
 }
