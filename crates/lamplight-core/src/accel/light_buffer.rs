@@ -224,11 +224,6 @@ impl LightBuffer {
         // A list too long (`WALK`) ends outside `items`: no cell.
         self.items.get(start as usize..end as usize)
     }
-
-    /// Entries over all cells (for tests and statistics).
-    pub fn entries(&self) -> usize {
-        self.items.len()
-    }
 }
 
 #[cfg(test)]

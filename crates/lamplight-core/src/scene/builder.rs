@@ -134,8 +134,9 @@ impl SceneBuilder {
                 unbounded.push(prim);
             }
         }
-        let light_buffers = light_buffers(&self.lights, &boxes, &bounded);
         let any_partial_shadow = self.materials.iter().any(|m| m.shadow_transmittance != Rgb::ZERO && m.shadow_transmittance != Rgb::ONE);
+        // Partly transparent shadows multiply every crossing, in the walk's order.
+        let light_buffers = if any_partial_shadow { vec![None; self.lights.len()] } else { light_buffers(&self.lights, &boxes, &bounded) };
         let bsdfs = self
             .materials
             .iter()

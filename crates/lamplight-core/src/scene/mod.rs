@@ -102,7 +102,8 @@ pub struct Scene {
     plain: Vec<bool>,
     /// Objects with infinite bounds (infinite planes, unclipped quadrics), tested one by one.
     unbounded: Vec<PrimRef>,
-    /// Per light, the light buffer of a point source (`scene/shadow.rs`).
+    /// Per light, the light buffer of a point source (`scene/shadow.rs`); none in
+    /// a scene with partly transparent shadows.
     light_buffers: Vec<Option<LightBuffer>>,
     /// Some material dims shadow rays without blocking them (transmittance strictly
     /// between 0 and 1), so shadow rays must collect every crossing.

@@ -67,9 +67,10 @@ impl Scene {
         self.transmittance_hinted(ray, distance, ignore, &mut OccluderHint::default())
     }
 
-    /// [`Scene::transmittance`], trying the object `hint` names first (module
-    /// doc). When the BVH walk finds an object that blocks the ray, `hint`
-    /// becomes that object; otherwise it is left as it was.
+    /// [`Scene::transmittance`], trying the object `hint` names first, then the
+    /// light buffer of the light it names (module doc). When the search finds
+    /// an object that blocks the ray, `hint` becomes that object; otherwise it
+    /// is left as it was.
     #[inline]
     pub fn transmittance_hinted(&self, ray: &Ray, distance: f64, ignore: Option<usize>, hint: &mut OccluderHint) -> Rgb {
         // The light is seen where the ray first meets its own object: the ray ends there.
@@ -189,13 +190,11 @@ impl Scene {
 
     /// The objects a shadow ray towards light `light` over `(0, distance)` may
     /// meet, from the light's buffer (module doc): those near the light, then
-    /// those of the ray's cell. `None` where the walk must answer: no buffer, a
-    /// ray that does not end at the light, or partly transparent shadows.
+    /// those of the ray's cell. `None` where the walk must answer: no buffer
+    /// (the builder makes none for scenes with partly transparent shadows), or a
+    /// ray that does not end at the light.
     #[inline(always)]
     fn light_cell(&self, light: u32, ray: &Ray, distance: f64) -> Option<(&[u32], &[u32])> {
-        if self.any_partial_shadow {
-            return None;
-        }
         let buffer: &LightBuffer = self.light_buffers.get(light as usize)?.as_ref()?;
         let cell = buffer.cell_of(ray.origin, ray.dir, distance)?;
         Some((buffer.always(), cell))
