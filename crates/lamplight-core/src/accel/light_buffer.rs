@@ -15,7 +15,19 @@
 //! directions `d` with `s d_a >= |d_b|, |d_c|`, at face coordinates
 //! `u = d_b / |d_a|`, `v = d_c / |d_a|` in `[-1, 1]`, cut into `N x N` cells.
 //! - An object whose box comes within `near` of the light goes on a list every
-//!   ray tests ([`LightBuffer::always`]).
+//!   ray tests ([`LightBuffer::always`]), unless its surface stays `near` away
+//!   from the light: a lamp shade around its bulb, whose box holds the bulb
+//!   but whose surface covers only half the directions. Such a box is halved
+//!   into eight parts that tile it (they share the midpoints), and again, up
+//!   to [`REFINE_DEPTH`] times; a part the shape rules out
+//!   ([`crate::shapes::Shape::may_meet`] false for the part grown by a
+//!   millionth of the box, which covers the rounding of a reported hit) is
+//!   dropped, and each kept part whose grown box is at least `near` from the
+//!   light is listed as a box of its own, by the rule below. Every surface
+//!   point the shape can report lies in a kept part, so the object is listed
+//!   in every cell that holds one; a kept part within `near` at the last depth
+//!   puts the object back on `always`. Parts larger than a quarter of their
+//!   distance are halved further ([`SPLIT_RATIO`]).
 //! - Any other box is cut to the part where `s (x_a - L_a) >= near / 2`, which
 //!   holds every box point seen in the face's directions: such a point `q` has
 //!   `|q - L| >= near` and a direction with `|d_a| >= 1/sqrt(3)` (less a tiny
@@ -103,12 +115,132 @@ fn cell_range(u0: f64, u1: f64) -> Option<(usize, usize)> {
     Some((cell_index(u0), cell_index(u1)))
 }
 
+/// The distance from `p` to the box `b` (0 inside).
+fn distance(p: Vec3, b: &Aabb) -> f64 {
+    (p.clamp(b.min, b.max) - p).length()
+}
+
+/// The cells of face `f` (ranges along its `u` and `v` axes) that hold the
+/// directions from `centre` to the points of box `b` at least `near / 2` out
+/// along the face's axis, widened by [`PAD`]; `None` when there are none.
+fn face_block(centre: Vec3, near: f64, b: &Aabb, f: usize) -> Option<((usize, usize), (usize, usize))> {
+    let (a, sign, ub, vb) = face_axes(f);
+    // The box's extent along the face axis, seen from the centre.
+    let (lo, hi) = (sign * (b.min[a] - centre[a]), sign * (b.max[a] - centre[a]));
+    let (x0, x1) = (lo.min(hi).max(0.5 * near), lo.max(hi));
+    if x1 < x0 {
+        return None;
+    }
+    let ratio_range = |axis: usize| {
+        let (y0, y1) = (b.min[axis] - centre[axis], b.max[axis] - centre[axis]);
+        let r = [y0 / x0, y0 / x1, y1 / x0, y1 / x1];
+        (r.iter().copied().fold(f64::INFINITY, f64::min), r.iter().copied().fold(f64::NEG_INFINITY, f64::max))
+    };
+    let (u0, u1) = ratio_range(ub);
+    let (v0, v1) = ratio_range(vb);
+    Some((cell_range(u0, u1)?, cell_range(v0, v1)?))
+}
+
+/// Halvings of an object's box when it surrounds a light (module doc).
+const REFINE_DEPTH: u32 = 6;
+/// A part is halved again while its size times this exceeds its distance from the light.
+/// At 640x360 `luxo`'s shade is then tested by 23 thousand shadow rays instead
+/// of 139 thousand, and the render takes 474.5 million instructions instead of
+/// 511.5; 1 gave 51 thousand tests (486.8 M), 8 gave 17 thousand but took 2 ms
+/// to build (477.1 M), and 16 ran into [`MAX_PARTS`] (514 M).
+const SPLIT_RATIO: f64 = 4.0;
+/// Most parts of one box looked at; beyond, the object is tested by every ray.
+const MAX_PARTS: usize = 20_000;
+
+/// The cells (a flag per cell, `6 N^2`) that may hold the surface of an object
+/// whose box `b` comes within `near` of `centre`, from parts of the box, each
+/// grown by a millionth of its size and kept where `meets` says the surface
+/// may reach it. A part within `near` of the light is halved (up to
+/// [`REFINE_DEPTH`] times); so is one large for its distance
+/// ([`SPLIT_RATIO`]), for a tighter list. `None` when the surface may come
+/// within `near` of the light, or the box takes more than [`MAX_PARTS`] parts.
+fn surface_cells(centre: Vec3, near: f64, b: &Aabb, meets: impl Fn(&Aabb) -> bool) -> Option<Vec<bool>> {
+    let size = b.extent().max_element() + 1e-3 * b.min.abs().max(b.max.abs()).max_element();
+    let grow = |part: &Aabb| Aabb::new(part.min - Vec3::splat(1e-6 * size), part.max + Vec3::splat(1e-6 * size));
+    // First only the parts near the light, a few per level: most shapes that
+    // surround a light (a room) reach it, and answer here.
+    let mut stack = vec![(*b, 0)];
+    while let Some((part, depth)) = stack.pop() {
+        let grown = grow(&part);
+        if distance(centre, &grown) < near && meets(&grown) {
+            if depth == REFINE_DEPTH {
+                return None;
+            }
+            stack.extend(halves(&part).map(|h| (h, depth + 1)));
+        }
+    }
+    let (mut stack, mut leaves, mut looked) = (vec![(*b, 0)], Vec::new(), 0);
+    while let Some((part, depth)) = stack.pop() {
+        looked += 1;
+        if looked > MAX_PARTS {
+            return None;
+        }
+        let grown = grow(&part);
+        if !meets(&grown) {
+            continue;
+        }
+        let away = distance(centre, &grown);
+        if away < near || (depth < REFINE_DEPTH && SPLIT_RATIO * grown.extent().max_element() > away) {
+            stack.extend(halves(&part).map(|h| (h, depth + 1)));
+        } else {
+            leaves.push(grown);
+        }
+    }
+    let mut cells = vec![false; 6 * N * N];
+    for leaf in &leaves {
+        for f in 0..6 {
+            let Some(((i0, i1), (j0, j1))) = face_block(centre, near, leaf, f) else { continue };
+            for j in j0..=j1 {
+                cells[(f * N + j) * N + i0..=(f * N + j) * N + i1].fill(true);
+            }
+        }
+    }
+    Some(cells)
+}
+
+/// The eight halves of `part`, which tile it exactly: they share the midpoints.
+fn halves(part: &Aabb) -> impl Iterator<Item = Aabb> + '_ {
+    let mid = (part.min + part.max) * 0.5;
+    (0..8).map(move |k| {
+        let pick = |bit: usize, axis: usize| if k & bit == 0 { (part.min[axis], mid[axis]) } else { (mid[axis], part.max[axis]) };
+        let ((x0, x1), (y0, y1), (z0, z1)) = (pick(1, 0), pick(2, 1), pick(4, 2));
+        Aabb { min: Vec3::new(x0, y0, z0), max: Vec3::new(x1, y1, z1) }
+    })
+}
+
+/// The runs of flagged cells in each row of each face: `(face, row, (first, last))`.
+fn row_runs(cells: &[bool]) -> impl Iterator<Item = (usize, usize, (usize, usize))> + '_ {
+    cells.chunks(N).enumerate().flat_map(|(row, flags)| {
+        let (f, j) = (row / N, row % N);
+        let mut i = 0;
+        std::iter::from_fn(move || {
+            let start = i + flags[i..].iter().position(|&x| x)?;
+            let end = start + flags[start..].iter().position(|&x| !x).unwrap_or(N - start);
+            i = end;
+            Some((f, j, (start, end - 1)))
+        })
+    })
+}
+
 impl LightBuffer {
     /// The buffer around `centre` for the objects with boxes `boxes` (numbered
     /// as the slice) that `listed` accepts (those that can block a shadow ray),
     /// in a scene whose extent (largest coordinate magnitude) is `scale`; `None`
-    /// for more than `MAX_OBJECTS` (4,096) boxes or lists too long.
-    pub fn build(centre: Vec3, boxes: &[Aabb], listed: impl Fn(usize) -> bool, scale: f64) -> Option<LightBuffer> {
+    /// for more than `MAX_OBJECTS` (4,096) boxes or lists too long. `meets(i,
+    /// region)` is false only where object `i` has no surface point in the box
+    /// `region` ([`crate::shapes::Shape::may_meet`]); `|_, _| true` is safe.
+    pub fn build(
+        centre: Vec3,
+        boxes: &[Aabb],
+        listed: impl Fn(usize) -> bool,
+        meets: impl Fn(usize, &Aabb) -> bool,
+        scale: f64,
+    ) -> Option<LightBuffer> {
         if boxes.len() > MAX_OBJECTS || !centre.is_finite() || !scale.is_finite() {
             return None;
         }
@@ -121,8 +253,22 @@ impl LightBuffer {
         let mut blocks = Vec::new();
         let mut entries = 0usize;
         for (i, b) in boxes.iter().enumerate().filter(|&(i, _)| listed(i)) {
-            let closest = centre.clamp(b.min, b.max);
-            if !b.min.is_finite() || !b.max.is_finite() || (closest - centre).length() < near {
+            let finite = b.min.is_finite() && b.max.is_finite();
+            let near_light = finite && distance(centre, b) < near;
+            if near_light {
+                // The box surrounds the light; the surface itself may not.
+                if let Some(cells) = surface_cells(centre, near, b, |part| meets(i, part)) {
+                    for (f, j, (i0, i1)) in row_runs(&cells) {
+                        entries += i1 - i0 + 1;
+                        blocks.push((i as u32, f, (i0, i1), (j, j)));
+                    }
+                    if entries > MAX_ENTRIES {
+                        return None;
+                    }
+                    continue;
+                }
+            }
+            if !finite || near_light {
                 always.push(i as u32);
                 if always.len() > MAX_ALWAYS {
                     return None;
@@ -130,23 +276,7 @@ impl LightBuffer {
                 continue;
             }
             for f in 0..6 {
-                let (a, sign, ub, vb) = face_axes(f);
-                // The box's extent along the face axis, seen from the centre.
-                let (lo, hi) = (sign * (b.min[a] - centre[a]), sign * (b.max[a] - centre[a]));
-                let (x0, x1) = (lo.min(hi).max(0.5 * near), lo.max(hi));
-                if x1 < x0 {
-                    continue;
-                }
-                let ratio_range = |axis: usize| {
-                    let (y0, y1) = (b.min[axis] - centre[axis], b.max[axis] - centre[axis]);
-                    let r = [y0 / x0, y0 / x1, y1 / x0, y1 / x1];
-                    (r.iter().copied().fold(f64::INFINITY, f64::min), r.iter().copied().fold(f64::NEG_INFINITY, f64::max))
-                };
-                let (u0, u1) = ratio_range(ub);
-                let (v0, v1) = ratio_range(vb);
-                let (Some((i0, i1)), Some((j0, j1))) = (cell_range(u0, u1), cell_range(v0, v1)) else {
-                    continue;
-                };
+                let Some(((i0, i1), (j0, j1))) = face_block(centre, near, b, f) else { continue };
                 entries += (i1 - i0 + 1) * (j1 - j0 + 1);
                 if entries > MAX_ENTRIES {
                     return None;
@@ -249,7 +379,7 @@ mod tests {
                     Aabb { min: c - size, max: c + size }
                 })
                 .collect();
-            let buffer = LightBuffer::build(centre, &boxes, |_| true, 10.0 * scale).expect("small enough");
+            let buffer = LightBuffer::build(centre, &boxes, |_| true, |_, _| true, 10.0 * scale).expect("small enough");
             for (k, b) in boxes.iter().enumerate() {
                 for _ in 0..40 {
                     let q = b.min + (b.max - b.min) * Vec3::new(rand(), rand(), rand());
@@ -277,7 +407,7 @@ mod tests {
     #[test]
     fn rays_that_do_not_end_at_the_light_walk() {
         let boxes = [Aabb { min: Vec3::splat(1.0), max: Vec3::splat(2.0) }];
-        let buffer = LightBuffer::build(Vec3::ZERO, &boxes, |_| true, 10.0).unwrap();
+        let buffer = LightBuffer::build(Vec3::ZERO, &boxes, |_| true, |_, _| true, 10.0).unwrap();
         let origin = Vec3::new(5.0, 0.0, 0.0);
         assert!(buffer.cell_of(origin, -Vec3::X, 5.0).is_some());
         assert!(buffer.cell_of(origin, -Vec3::X, 6.0).is_none(), "the segment goes past the light");
@@ -290,13 +420,13 @@ mod tests {
     #[test]
     fn crowded_scenes_and_cells_walk() {
         let boxes = vec![Aabb { min: Vec3::splat(1.0), max: Vec3::splat(2.0) }; MAX_OBJECTS + 1];
-        assert!(LightBuffer::build(Vec3::ZERO, &boxes, |_| true, 10.0).is_none());
+        assert!(LightBuffer::build(Vec3::ZERO, &boxes, |_| true, |_, _| true, 10.0).is_none());
         let around = vec![Aabb { min: Vec3::splat(-1.0), max: Vec3::splat(1.0) }; MAX_ALWAYS + 1];
-        assert!(LightBuffer::build(Vec3::ZERO, &around, |_| true, 10.0).is_none());
+        assert!(LightBuffer::build(Vec3::ZERO, &around, |_| true, |_, _| true, 10.0).is_none());
         // 40 small boxes in a row along +x, one behind the other as seen from the light.
         let row: Vec<Aabb> =
             (0..40).map(|k| Aabb { min: Vec3::new(2.0 + k as f64, -0.1, -0.1), max: Vec3::new(2.5 + k as f64, 0.1, 0.1) }).collect();
-        let buffer = LightBuffer::build(Vec3::ZERO, &row, |_| true, 50.0).unwrap();
+        let buffer = LightBuffer::build(Vec3::ZERO, &row, |_| true, |_, _| true, 50.0).unwrap();
         assert!(buffer.cell_of(Vec3::new(60.0, 0.0, 0.0), -Vec3::X, 60.0).is_none(), "40 objects in one cell: walk");
         assert_eq!(buffer.cell_of(Vec3::new(0.0, 60.0, 0.0), -Vec3::Y, 60.0), Some(&[][..]), "nothing above the light");
     }

@@ -136,7 +136,8 @@ impl SceneBuilder {
         }
         let any_partial_shadow = self.materials.iter().any(|m| m.shadow_transmittance != Rgb::ZERO && m.shadow_transmittance != Rgb::ONE);
         // Partly transparent shadows multiply every crossing, in the walk's order.
-        let light_buffers = if any_partial_shadow { vec![None; self.lights.len()] } else { light_buffers(&self.lights, &boxes, &bounded) };
+        let light_buffers =
+            if any_partial_shadow { vec![None; self.lights.len()] } else { light_buffers(&self.lights, &self.objects, &boxes, &bounded) };
         let bsdfs = self
             .materials
             .iter()
@@ -185,14 +186,20 @@ const MAX_LIGHT_BUFFERS: usize = 16;
 /// one point, over the bounded objects `bounded` with boxes `boxes`, listing
 /// those that can block a shadow ray, sized by the scene's extent (the light
 /// buffer's `near` distance scales with it).
-fn light_buffers(lights: &[Arc<dyn Light>], boxes: &[Aabb], bounded: &[PrimRef]) -> Vec<Option<LightBuffer>> {
+fn light_buffers(lights: &[Arc<dyn Light>], objects: &[Object], boxes: &[Aabb], bounded: &[PrimRef]) -> Vec<Option<LightBuffer>> {
     let scale = boxes.iter().map(|b| b.min.abs().max(b.max.abs()).max_element()).fold(0.0, f64::max);
     lights
         .iter()
         .enumerate()
         .map(|(i, light)| {
             let centre = light.point_source().filter(|_| i < MAX_LIGHT_BUFFERS)?;
-            LightBuffer::build(centre, boxes, |i| bounded[i].opaque, scale)
+            LightBuffer::build(
+                centre,
+                boxes,
+                |i| bounded[i].opaque,
+                |i, region| objects[bounded[i].object as usize].shape.may_meet(region),
+                scale,
+            )
         })
         .collect()
 }

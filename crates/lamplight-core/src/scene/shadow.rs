@@ -7,6 +7,8 @@
 //! shadow ray towards the same light is tried before the BVH is walked.
 //! Neighbouring pixels usually lie in the same object's shadow, so most blocked
 //! rays end after one shape test (POV-Ray keeps the same cache per light).
+//! A ray that nothing blocks clears the hint: its neighbours are then likely
+//! lit too, and would test the object for nothing.
 //!
 //! A hint also names its light. For a light that leaves one point the scene
 //! keeps a [`LightBuffer`]: the objects that may lie in each cell of directions
@@ -25,7 +27,8 @@ use crate::ray::{Ray, OFFSET_SCALE};
 
 /// The object that last blocked a shadow ray towards a light, and that light's
 /// index in [`Scene::lights`], kept by the caller per light and handed to
-/// [`Scene::transmittance_hinted`], which tries the object first and updates it.
+/// [`Scene::transmittance_hinted`], which tries the object first and updates it
+/// (to the blocker found, or to no object when none blocks).
 /// It only decides which objects are tested and in what order; any value
 /// (another scene's, or [`OccluderHint::NONE`]) gives the same answer.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -151,11 +154,15 @@ impl Scene {
         };
         if let Some((near, cell)) = self.light_cell(hint.light, ray, distance) {
             let blocked = near.iter().any(|&prim| walk(prim)) || cell.iter().any(|&prim| walk(prim));
+            if !blocked {
+                hint.prim = u32::MAX;
+            }
             return if blocked { Rgb::ZERO } else { Rgb::ONE };
         }
         if self.bvh.any_in::<AVX2>(origin, dir, 0.0, distance, walk) {
             return Rgb::ZERO;
         }
+        hint.prim = u32::MAX;
         if !self.any_partial_shadow {
             return Rgb::ONE;
         }
@@ -230,8 +237,9 @@ mod tests {
     }
 
     /// Every hint, each object's, none and one past the last, gives the answer of
-    /// the plain query bit for bit, with and without a light's own object; and a
-    /// walk that finds a blocker leaves the hint naming an object that blocks.
+    /// the plain query bit for bit, with and without a light's own object; a
+    /// walk that finds a blocker leaves the hint naming an object that blocks,
+    /// and a ray that nothing blocks leaves it naming none.
     #[test]
     fn no_hint_changes_the_answer() {
         let (scene, centres) = balls();
@@ -250,8 +258,9 @@ mod tests {
             for &start in &hints {
                 let mut hint = start;
                 assert_eq!(scene.transmittance_hinted(&ray, distance, own, &mut hint), plain, "ray {ray:?}, hint {start:?}");
-                if hint != start {
-                    assert_eq!(plain, Rgb::ZERO, "only a blocked ray moves the hint");
+                if plain != Rgb::ZERO {
+                    assert_eq!(hint.prim, u32::MAX, "a ray that nothing blocks clears the hint");
+                } else if hint != start {
                     let mut again = hint;
                     assert_eq!(scene.transmittance_hinted(&ray, distance, own, &mut again), Rgb::ZERO);
                     assert_eq!(again, hint, "the new hint blocks the ray itself, so it stays");
@@ -329,6 +338,86 @@ mod tests {
             }
             assert!(shadow_rays > 1500 && from_buffer == shadow_rays, "scale {scale}: {from_buffer} of {shadow_rays} used the buffer");
             assert!(blocked > 300 && shadow_rays - blocked > 300, "scale {scale}: {blocked} of {shadow_rays} blocked, too few of a kind");
+        }
+    }
+
+    /// A lamp shade around its light (`luxo`): the light's buffer lists the
+    /// shade only where its surface is, not on the list every ray tests, so a
+    /// ray through the mouth tests nothing; and every shadow ray, from hits
+    /// inside the shade, on its back and on the balls and floor around it,
+    /// gets the walk's answer, at scene sizes from 1e-3 to 1e5 and for a
+    /// shade turned so that its box is not aligned with its axis.
+    #[test]
+    fn a_shade_around_its_light_is_listed_only_where_its_surface_is() {
+        use crate::lights::PointLight;
+        use crate::ray::offset_origin;
+        use crate::shapes::Quadric;
+        let mut rng = crate::sampling::Rng::for_sample(14, 0, 0);
+        let mut rand = move || rng.uniform();
+        for (scale, axis) in [(1e-3, Vec3::new(0.55, -1.35, 0.30)), (1.0, -Vec3::Y), (1e5, Vec3::new(-0.2, -1.0, 0.7))] {
+            let axis = axis.normalize();
+            let camera = Perspective::look_at(Vec3::new(0.0, 0.0, 10.0), Vec3::ZERO, Vec3::Y, Fov::VerticalDeg(40.0)).unwrap();
+            let mut builder = SceneBuilder::new(camera);
+            let opaque = builder.material(Material::default()).unwrap();
+            let apex = Vec3::new(-0.45, 1.35, -0.25) * scale;
+            let focus = apex + axis * 0.1 * scale;
+            let shade = builder.object(Quadric::paraboloid_cup(apex, axis, 0.1 * scale, 0.25 * scale).unwrap(), opaque).unwrap();
+            builder.object(Sphere::new(Vec3::new(0.0, -10.0, 0.0) * scale, 9.0 * scale).unwrap(), opaque).unwrap();
+            let mut centres = vec![focus + axis * 0.6 * scale];
+            for _ in 0..12 {
+                centres.push(focus + Vec3::new(rand() - 0.5, rand() - 0.9, rand() - 0.5) * 2.0 * scale);
+            }
+            for &c in &centres {
+                builder.object(Sphere::new(c, (0.05 + 0.1 * rand()) * scale).unwrap(), opaque).unwrap();
+            }
+            builder.light(PointLight::new(focus, Rgb::ONE).unwrap());
+            builder.light(PointLight::new(Vec3::new(2.0, 3.0, 1.0) * scale, Rgb::ONE).unwrap());
+            let scene = builder.build().unwrap();
+            let buffer = scene.light_buffers[0].as_ref().expect("the shade's light has a buffer");
+            let shade_prim = scene.bounded.iter().position(|p| p.object as usize == shade).unwrap() as u32;
+            assert!(!buffer.always().contains(&shade_prim), "scale {scale}: the shade is tested by every ray");
+            // Straight out of the mouth: no list; straight out of the back: the shade.
+            let below = focus + axis * 3.0 * scale;
+            let (near, cell) = scene.light_cell(0, &Ray::unit(below, -axis), 3.0 * scale).expect("a cell");
+            assert!(near.is_empty() && !cell.contains(&shade_prim), "scale {scale}: {near:?} {cell:?}");
+            let behind = focus - axis * 3.0 * scale;
+            assert!(scene.light_cell(0, &Ray::unit(behind, axis), 3.0 * scale).unwrap().1.contains(&shade_prim));
+            let (mut shadow_rays, mut from_buffer, mut blocked, mut inside) = (0, 0, 0, 0);
+            for k in 0..4000 {
+                let origin = focus + Vec3::new(rand() - 0.5, rand() - 0.5, rand() - 0.5) * 8.0 * scale;
+                // A third aimed into the shade, the rest at a ball or the floor.
+                let target = match k % 3 {
+                    0 => apex + (axis * 0.25 + Vec3::new(rand() - 0.5, rand() - 0.5, rand() - 0.5) * 0.4) * scale,
+                    1 => {
+                        centres[(rand() * centres.len() as f64) as usize]
+                            + Vec3::new(rand() - 0.5, rand() - 0.5, rand() - 0.5) * 0.2 * scale
+                    }
+                    _ => focus + Vec3::new(rand() - 0.5, -1.0, rand() - 0.5) * 2.0 * scale,
+                };
+                let Some(hit) = scene.first_intersect(&Ray::unit(origin, (target - origin).normalize()), f64::INFINITY) else {
+                    continue;
+                };
+                for light in 0..2 {
+                    let sample = scene.lights[light].illuminate(hit.point).unwrap();
+                    let start = offset_origin(hit.point, hit.geometric_normal, sample.wi, hit.t, hit.error);
+                    let shadow = Ray::unit(start, sample.wi);
+                    let remaining = sample.distance - (start - hit.point).length();
+                    let walk = scene.transmittance(&shadow, remaining, None);
+                    let mut hint = OccluderHint::NONE.towards(light);
+                    assert_eq!(scene.transmittance_hinted(&shadow, remaining, None, &mut hint), walk, "scale {scale}, {shadow:?}");
+                    if light == 0 {
+                        shadow_rays += 1;
+                        blocked += usize::from(walk == Rgb::ZERO);
+                        inside += usize::from(hit.object == shade && walk == Rgb::ONE);
+                        from_buffer += usize::from(scene.light_cell(0, &shadow, remaining).is_some());
+                    }
+                }
+            }
+            assert!(from_buffer == shadow_rays, "scale {scale}: {from_buffer} of {shadow_rays} used the buffer");
+            assert!(
+                blocked > 500 && shadow_rays - blocked > 500 && inside > 100,
+                "scale {scale}: {blocked} of {shadow_rays} blocked, {inside} lit inside the shade"
+            );
         }
     }
 

@@ -94,6 +94,16 @@ pub trait Shape: Send + Sync + std::fmt::Debug {
         self.intersect(ray, t_min, t_max).is_some()
     }
 
+    /// False only when no point that [`Shape::intersect`] or
+    /// [`Shape::intersect_p`] can report (rounding included) lies in `region`.
+    /// Lets the light buffer ([`crate::accel::LightBuffer`]) list a shape whose
+    /// box surrounds a light only in the directions its surface covers: a lamp
+    /// shade around its bulb. The default, whether `region` meets
+    /// [`Shape::bounds`], is always safe.
+    fn may_meet(&self, region: &Aabb) -> bool {
+        !self.bounds().intersection(*region).is_empty()
+    }
+
     /// True for flat shapes and boundaries of convex solids (rectangles, disks,
     /// triangles, spheres, boxes): a segment from a point outside to a point of the
     /// surface whose outward normal faces that point meets the surface nowhere

@@ -273,6 +273,17 @@ impl Shape for Quadric {
         Some(SurfaceHit::new(t, normal))
     }
 
+    /// Where `f` can vanish over the part of `region` in the stored box
+    /// (`Form::range_over`) and every clip region may keep a point of it.
+    fn may_meet(&self, region: &Aabb) -> bool {
+        let b = region.intersection(self.bounds);
+        if b.is_empty() {
+            return false;
+        }
+        let (lo, hi) = self.form.range_over(&b);
+        lo <= 0.0 && hi >= 0.0 && self.clips.iter().all(|c| c.may_keep(&b))
+    }
+
     /// `Quadric::crossing` without the normal.
     fn intersect_p(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
         self.crossing(ray, t_min, t_max).is_some()

@@ -90,6 +90,19 @@ impl Shape for Sphere {
         true
     }
 
+    /// The sphere meets a box when the box's nearest point is no farther from
+    /// the centre than the radius and its farthest corner no nearer; both with
+    /// a relative allowance far above the rounding of a reported hit.
+    fn may_meet(&self, region: &Aabb) -> bool {
+        if region.is_empty() {
+            return false;
+        }
+        let nearest = (self.center.clamp(region.min, region.max) - self.center).length();
+        let farthest = (region.min - self.center).abs().max((region.max - self.center).abs()).length();
+        let slack = 1e-9 * (self.radius + farthest + self.center.abs().max_element());
+        nearest <= self.radius + slack && farthest >= self.radius - slack
+    }
+
     fn area(&self) -> Option<f64> {
         Some(4.0 * std::f64::consts::PI * self.radius * self.radius)
     }
@@ -267,5 +280,35 @@ mod tests {
     fn rejects_bad_radius() {
         assert!(Sphere::new(Vec3::ZERO, 0.0).is_err());
         assert!(Sphere::new(Vec3::ZERO, f64::NAN).is_err());
+    }
+
+    /// Every hit of random rays lies in each box placed around it, from a
+    /// billionth to the whole of the ball's size, where `may_meet` is true;
+    /// boxes wholly inside or outside the ball are ruled out.
+    #[test]
+    fn may_meet_holds_every_hit() {
+        let mut rng = crate::sampling::Rng::for_sample(41, 0, 0);
+        let mut rand = move || rng.uniform();
+        for (centre, radius) in [(Vec3::ZERO, 1.0), (Vec3::new(3e5, -1e5, 2e5), 0.5), (Vec3::new(0.1, 0.2, 0.3), 1e-4)] {
+            let ball = Sphere::new(centre, radius).unwrap();
+            let mut hits = 0;
+            for _ in 0..2000 {
+                let origin = centre + Vec3::new(rand() - 0.5, rand() - 0.5, rand() - 0.5) * 6.0 * radius;
+                let target = centre + Vec3::new(rand() - 0.5, rand() - 0.5, rand() - 0.5) * 2.0 * radius;
+                let ray = Ray::new(origin, target - origin);
+                let Some(hit) = ball.intersect(&ray, 0.0, f64::INFINITY) else { continue };
+                hits += 1;
+                let p = ray.at(hit.t);
+                let extent = Vec3::new(rand(), rand(), rand()) * 2.0 * radius * 10f64.powf(-9.0 + 9.0 * rand());
+                let at = if rand() < 0.5 { Vec3::ZERO } else { Vec3::new(rand(), rand(), rand()) };
+                let region = Aabb::new(p - extent * at, p - extent * at + extent);
+                assert!(ball.may_meet(&region), "hit {p} in {region:?}");
+            }
+            assert!(hits > 1000, "{hits}");
+            let r = Vec3::splat(radius);
+            assert!(!ball.may_meet(&Aabb::new(centre - 0.5 * r, centre + 0.5 * r)), "inside");
+            assert!(!ball.may_meet(&Aabb::new(centre + 0.8 * r, centre + 2.0 * r)), "outside, within the bounds' corner");
+            assert!(ball.may_meet(&Aabb::new(centre - 0.5 * r, centre + 0.6 * r)), "reaches the surface");
+        }
     }
 }

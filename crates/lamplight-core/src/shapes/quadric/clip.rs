@@ -62,6 +62,21 @@ impl Clip {
         }
     }
 
+    /// False only when no point of the box `b` lies in the region, with the
+    /// allowance of [`Form::range_over`] (a plane's the same, relative to the
+    /// box's distance from the plane's point).
+    pub(super) fn may_keep(&self, b: &Aabb) -> bool {
+        match &self.kind {
+            Kind::HalfSpace { point, normal } => {
+                let c = (b.min + b.max) * 0.5;
+                let r = (b.max - c).max(c - b.min);
+                let reach = normal.abs().dot(r);
+                normal.dot(c - *point) - reach <= 1e-9 * ((c - *point).abs().element_sum() + reach)
+            }
+            Kind::Inside(form) => form.range_over(b).0 <= 0.0,
+        }
+    }
+
     /// The region after the affine map: `p0 -> M p0`, `n -> M^-T n` (which keeps
     /// `n.(p - p0)`'s sign), and `G -> M^-T G M^-1` for a quadric.
     pub(super) fn transformed(&self, affine: &Affine) -> Result<Clip, Error> {
@@ -140,6 +155,35 @@ mod tests {
         let moved = c.transformed(&Affine::new(m).unwrap()).unwrap();
         for p in [Vec3::new(0.3, -0.9, 0.1), Vec3::new(-1.0, 0.2, 4.0), Vec3::new(2.0, 2.0, 2.0), Vec3::new(0.1, -0.05, 0.0)] {
             assert_eq!(moved.keeps(m.transform_point3(p)), c.keeps(p), "{p}");
+        }
+    }
+
+    /// `may_keep` is true for every box that holds a kept point, and false for
+    /// boxes clearly on the dropped side.
+    #[test]
+    fn may_keep_holds_every_box_with_a_kept_point() {
+        let mut rng = crate::sampling::Rng::for_sample(22, 0, 0);
+        let mut rand = move || rng.uniform();
+        let clips = [
+            Clip::half_space(Vec3::new(0.3, 0.0, -0.5), Vec3::new(0.2, 1.0, -0.4)).unwrap(),
+            Clip::inside_matrix(Mat4::from_diagonal(DVec4::new(0.25, 1.0, 0.25, -1.0))).unwrap(),
+        ];
+        for clip in &clips {
+            let (mut kept, mut dropped) = (0, 0);
+            for _ in 0..3000 {
+                let size = 10f64.powf(-7.0 + 7.0 * rand());
+                let c = Vec3::new(rand() - 0.5, rand() - 0.5, rand() - 0.5) * 4.0;
+                let b = Aabb::new(c, c + Vec3::new(rand(), rand(), rand()) * size);
+                let any =
+                    (0..20).map(|_| b.min + b.extent() * Vec3::new(rand(), rand(), rand())).chain([b.min, b.max]).any(|p| clip.keeps(p));
+                if any {
+                    kept += 1;
+                    assert!(clip.may_keep(&b), "{b:?} holds a kept point");
+                } else if !clip.may_keep(&b) {
+                    dropped += 1;
+                }
+            }
+            assert!(kept > 300 && dropped > 300, "{kept} kept, {dropped} ruled out: too few of a kind");
         }
     }
 }

@@ -63,6 +63,24 @@ impl Form {
         self.eval(p).0
     }
 
+    /// Bounds `(lo, hi)` on `f` over the box `b`. Around the box's centre `c`
+    /// with half-extents `r`, `f(c + h) = f(c) + 2 g.h + h^T A h` with
+    /// `g = A (c - o) + b`, so `|f - f(c)| <= 2 |g|.r + r^T |A| r`; widened by
+    /// `1e-9` of the terms' magnitude, far above the rounding of evaluating `f`
+    /// anywhere in the box.
+    pub(super) fn range_over(&self, b: &Aabb) -> (f64, f64) {
+        let c = (b.min + b.max) * 0.5;
+        let r = (b.max - c).max(c - b.min);
+        let (fc, g) = self.eval(c);
+        let a = DMat3::from_mat4(self.q);
+        let abs_a = DMat3::from_cols(a.x_axis.abs(), a.y_axis.abs(), a.z_axis.abs());
+        let spread = 2.0 * g.truncate().abs().dot(r) + r.dot(abs_a * r);
+        let x = ((c - self.origin).abs() + r).extend(1.0);
+        let abs_q = Mat4::from_cols(self.q.x_axis.abs(), self.q.y_axis.abs(), self.q.z_axis.abs(), self.q.w_axis.abs());
+        let slack = 1e-9 * x.dot(abs_q * x);
+        (fc - spread - slack, fc + spread + slack)
+    }
+
     /// The matrix in world coordinates, `T^T Q T` with `T` the translation by `-o`.
     pub(super) fn world_matrix(&self) -> Mat4 {
         let t = Mat4::from_translation(-self.origin);
@@ -242,5 +260,49 @@ mod tests {
         assert!(moved.value(Vec3::new(0.0, 5.0, 0.0)) < 0.0);
         let b = affine.map_box(Aabb::new(Vec3::splat(-1.0), Vec3::splat(1.0)));
         assert!((b.max - Vec3::new(2.0, 6.0, 1.0)).length() < 1e-5);
+    }
+
+    /// Every value of `f` at points of a box (corners, centre, random points)
+    /// lies in `range_over`'s bounds, for boxes from a millionth to ten times
+    /// the form's size and far from its origin; and the bounds are tight
+    /// enough to exclude a box well inside or outside a sphere.
+    #[test]
+    fn range_over_bounds_every_value_in_the_box() {
+        let mut rng = crate::sampling::Rng::for_sample(21, 0, 0);
+        let mut rand = move || rng.uniform();
+        let forms = [
+            sphere_form(Vec3::new(1.0, -2.0, 3.0), 0.7),
+            Form::from_parts(Vec3::new(-0.45, 1.35, -0.25), DMat3::from_diagonal(Vec3::new(1.0, 0.0, 1.0)), -0.4 * Vec3::Y, 0.0, "q")
+                .unwrap(),
+            Form::new(
+                Vec3::new(5e3, 0.0, -1e3),
+                Mat4::from_cols_array(&[2.0, 0.3, -0.5, 0.1, 0.3, -1.0, 0.2, 0.0, -0.5, 0.2, 0.5, -0.3, 0.1, 0.0, -0.3, -1.0]),
+                "q",
+            )
+            .unwrap(),
+        ];
+        for f in &forms {
+            for _ in 0..400 {
+                let size = 10f64.powf(-6.0 + 7.0 * rand());
+                let c = f.origin + Vec3::new(rand() - 0.5, rand() - 0.5, rand() - 0.5) * 4.0;
+                let b = Aabb::new(c, c + Vec3::new(rand(), rand(), rand()) * size);
+                let (lo, hi) = f.range_over(&b);
+                let corners = (0..8).map(|k| {
+                    Vec3::new(
+                        if k & 1 == 0 { b.min.x } else { b.max.x },
+                        if k & 2 == 0 { b.min.y } else { b.max.y },
+                        if k & 4 == 0 { b.min.z } else { b.max.z },
+                    )
+                });
+                let inside: Vec<Vec3> = (0..20).map(|_| b.min + b.extent() * Vec3::new(rand(), rand(), rand())).collect();
+                for p in corners.chain(inside).chain([b.centroid()]) {
+                    let v = f.value(p);
+                    assert!(lo <= v && v <= hi, "f({p}) = {v} outside [{lo}, {hi}] over {b:?}");
+                }
+            }
+        }
+        let unit = sphere_form(Vec3::ZERO, 1.0);
+        assert!(unit.range_over(&Aabb::new(Vec3::splat(-0.3), Vec3::splat(0.3))).1 < 0.0, "well inside");
+        assert!(unit.range_over(&Aabb::new(Vec3::splat(1.0), Vec3::splat(1.5))).0 > 0.0, "well outside");
     }
 }

@@ -264,6 +264,65 @@ fn bounds_hold_every_hit() {
     assert_hits_inside_bounds(&cut, 7);
 }
 
+/// Random rays' hits, each in boxes from a billionth to the whole of the
+/// shape's size placed around it (the hit at a corner, on a face or inside):
+/// `may_meet` must be true for every one.
+fn assert_may_meet_every_hit(q: &Quadric, seed: u64) {
+    let b = q.bounds();
+    let (centre, size) = (b.centroid(), b.extent().length());
+    let mut rng = Rng::for_sample(seed, 0, 0);
+    let mut hits = 0;
+    for _ in 0..1500 {
+        let origin = centre + random_unit(&mut rng) * size * (0.2 + 2.0 * rng.uniform());
+        let target = b.min + b.extent() * Vec3::new(rng.uniform(), rng.uniform(), rng.uniform());
+        let ray = Ray::new(origin, target - origin);
+        let mut t_min = 0.0;
+        while let Some(hit) = q.intersect(&ray, t_min, INF) {
+            hits += 1;
+            let p = ray.at(hit.t);
+            for _ in 0..4 {
+                let extent = Vec3::new(rng.uniform(), rng.uniform(), rng.uniform()) * size * 10f64.powf(-9.0 + 9.0 * rng.uniform());
+                // Where the hit sits in the box: a corner, a face or inside.
+                let at = match (rng.uniform() * 3.0) as u32 {
+                    0 => Vec3::ZERO,
+                    1 => Vec3::new(0.0, rng.uniform(), rng.uniform()),
+                    _ => Vec3::new(rng.uniform(), rng.uniform(), rng.uniform()),
+                };
+                let region = Aabb::new(p - extent * at, p - extent * at + extent);
+                assert!(q.may_meet(&region), "hit {p} in {region:?}");
+            }
+            t_min = hit.t;
+        }
+    }
+    assert!(hits > 200, "{hits}");
+}
+
+#[test]
+fn may_meet_holds_every_hit_and_rules_out_boxes_off_the_surface() {
+    let luxo_axis = Vec3::new(0.55, -1.35, 0.30).normalize();
+    let (apex, focal) = (Vec3::new(-0.45, 1.35, -0.25), 0.10);
+    let shade = Quadric::paraboloid_cup(apex, luxo_axis, focal, 0.25).unwrap();
+    assert_may_meet_every_hit(&shade, 31);
+    let rotation = Mat4::from_rotation_translation(DQuat::from_rotation_z(0.7), Vec3::new(1.0, 0.0, 0.0));
+    assert_may_meet_every_hit(&shade.transformed(rotation).unwrap(), 32);
+    assert_may_meet_every_hit(&Quadric::cone_segment(Vec3::new(0.5, 1.0, 0.2), Vec3::new(0.4, 0.0, 0.3), 0.3).unwrap(), 33);
+    let ball = Quadric::ellipsoid(Vec3::new(0.0, 1.0, 0.0), Vec3::splat(2.0)).unwrap();
+    let cut = Quadric::cylinder(Vec3::ZERO, Vec3::new(1.0, 1.0, 0.0), 0.5).unwrap().with_clip(Clip::inside(&ball));
+    assert_may_meet_every_hit(&cut, 34);
+    let far = Quadric::ellipsoid(Vec3::new(3e5, -2e5, 1e5), Vec3::new(2.0, 1.0, 0.5)).unwrap();
+    assert_may_meet_every_hit(&far, 35);
+    // The bulb, at the focus, is a focal length from the surface, and the
+    // mouth's middle farther; past the rim the clip rules the surface out.
+    let focus = apex + luxo_axis * focal;
+    assert!(!shade.may_meet(&Aabb::new(focus - Vec3::splat(0.03), focus + Vec3::splat(0.03))), "the bulb's box");
+    let mouth = apex + luxo_axis * 0.25;
+    assert!(!shade.may_meet(&Aabb::new(mouth - Vec3::splat(0.06), mouth + Vec3::splat(0.06))), "the mouth's middle");
+    let past = apex + luxo_axis * 0.35;
+    assert!(!shade.may_meet(&Aabb::new(past - Vec3::splat(0.04), past + Vec3::splat(0.04))), "past the rim");
+    assert!(!shade.may_meet(&Aabb::new(Vec3::splat(5.0), Vec3::splat(6.0))), "far away");
+    assert!(shade.may_meet(&Aabb::new(apex - Vec3::splat(0.01), apex + Vec3::splat(0.01))), "the apex");
+}
+
 #[test]
 fn new_validates_and_symmetrizes() {
     assert!(Quadric::new(Mat4::from_diagonal(DVec4::new(1.0, 1.0, f64::NAN, -1.0))).is_err());
