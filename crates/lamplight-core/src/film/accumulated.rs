@@ -77,7 +77,16 @@ impl Film {
     pub fn new(width: u32, height: u32) -> Film {
         let tiles_x = width.div_ceil(TILE);
         let tiles = tiles_x as usize * height.div_ceil(TILE) as usize;
-        Film { width, height, tiles_x, sums: vec![[0.0; 3]; tiles * TILE_PIXELS], squares: None, means: None, counts: None, samples: 0 }
+        Film {
+            width,
+            height,
+            tiles_x,
+            sums: super::pages::zeroed([0.0; 3], tiles * TILE_PIXELS),
+            squares: None,
+            means: None,
+            counts: None,
+            samples: 0,
+        }
     }
 
     /// A film that keeps only the means of one pass of samples (see the module
@@ -91,7 +100,7 @@ impl Film {
             tiles_x,
             sums: Vec::new(),
             squares: None,
-            means: Some(vec![[0.0; 3]; tiles * TILE_PIXELS]),
+            means: Some(super::pages::zeroed([0.0; 3], tiles * TILE_PIXELS)),
             counts: None,
             samples: 0,
         }
@@ -213,7 +222,7 @@ impl Film {
     /// writes them (a single sample's square is its sum's).
     pub(crate) fn prepare_pass(&mut self, count: u32) {
         if count > 1 && self.squares.is_none() && self.means.is_none() {
-            self.squares = Some(vec![[0.0; 3]; self.sums.len()]);
+            self.squares = Some(super::pages::zeroed([0.0; 3], self.sums.len()));
         }
     }
 
