@@ -211,7 +211,7 @@ pub(super) fn antialias(
     let probe_options = RenderOptions { spp: 1, window: Some(around), adaptive: None, ..options.clone() };
     let (probe, mut stats) =
         passes(pool, scene, &probe_options, control, integrator, Sampled { image_only: true, only: None, noise: None })?;
-    let probe = pool.install(|| probe.mean());
+    let probe = pool.install(|| probe.into_mean());
     let mask = refine_mask(&probe, around, window, aa.threshold);
     let left = options.time_limit.map(|limit| limit.saturating_sub(start.elapsed()));
     let refined = if mask.iter().any(|m| *m) && left.is_none_or(|l| l > Duration::ZERO) && !control.stopped() {

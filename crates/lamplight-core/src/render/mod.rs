@@ -206,7 +206,7 @@ pub fn render(scene: &Scene, options: &RenderOptions, control: &RenderControl) -
 pub fn render_image(scene: &Scene, options: &RenderOptions, control: &RenderControl) -> Result<(Image, RenderStats), Error> {
     let pool = thread_pool(options.threads)?;
     let (film, stats) = render_in(&pool, scene, options, control, true)?;
-    Ok((pool.install(|| film.mean()), stats))
+    Ok((pool.install(|| film.into_mean()), stats))
 }
 
 fn render_in(
