@@ -8,11 +8,12 @@
 //! want only the image (`R`, `G`, `B`) see it as before. The write is atomic like
 //! every image write ([`crate::image_io`]).
 
-use std::io::Cursor;
 use std::path::Path;
 
-use exr::prelude::{AnyChannel, AnyChannels, Encoding, FlatSamples, Image as ExrImage, Layer, LayerAttributes, SmallVec, WritableImage};
+use exr::prelude::FlatSamples;
 use lamplight_core::film::Image;
+
+use crate::exr_zip::Samples;
 
 use crate::image_io::{write_atomically, ImageError};
 
@@ -52,22 +53,18 @@ pub fn write_exr_with_layers(path: &Path, image: &Image, extra: &[ExtraLayer]) -
     if pixels == 0 || image.pixels.len() != pixels {
         return Err(encode_error(format!("{} pixels do not make a {width}x{height} image", image.pixels.len())));
     }
-    let mut channels: SmallVec<[AnyChannel<FlatSamples>; 4]> = SmallVec::new();
-    for (c, name) in ["R", "G", "B"].iter().enumerate() {
-        channels.push(AnyChannel::new(*name, FlatSamples::F32(image.pixels.iter().map(|p| p[c]).collect())));
-    }
+    let mut channels: Vec<(String, Samples)> =
+        ["R", "G", "B"].iter().enumerate().map(|(c, name)| (name.to_string(), Samples::Component(&image.pixels, c))).collect();
     for layer in extra {
         for (name, values) in &layer.channels {
             if values.len() != pixels {
                 return Err(encode_error(format!("layer {}.{name} has {} values for {pixels} pixels", layer.name, values.len())));
             }
-            channels.push(AnyChannel::new(format!("{}.{name}", layer.name).as_str(), FlatSamples::F32(values.clone())));
+            channels.push((format!("{}.{name}", layer.name), Samples::Plane(values)));
         }
     }
-    let layer = Layer::new((width, height), LayerAttributes::default(), Encoding::SMALL_LOSSLESS, AnyChannels::sort(channels));
-    let mut bytes = Cursor::new(Vec::new());
-    ExrImage::from_layer(layer).write().to_buffered(&mut bytes).map_err(|e| encode_error(e.to_string()))?;
-    write_atomically(path, &bytes.into_inner())
+    let bytes = crate::exr_zip::encode(width, height, channels).map_err(encode_error)?;
+    write_atomically(path, &bytes)
 }
 
 /// Named channels of an image: `(name, values)`, values row-major.

@@ -15,7 +15,7 @@
 //! file, never a truncated image.
 
 use std::fs::File;
-use std::io::{self, BufReader, Cursor};
+use std::io::{self, BufReader};
 use std::path::{Path, PathBuf};
 
 use image::ImageEncoder;
@@ -157,17 +157,9 @@ fn encode(format: Format, image: &Image, transfer: Transfer) -> Result<Vec<u8>, 
             Ok(bytes)
         }
         Format::Exr => {
-            use exr::prelude::{Encoding, Image as ExrImage, SpecificChannels, Vec2, WritableImage};
-            let channels = SpecificChannels::rgb(|Vec2(x, y): Vec2<usize>| {
-                let [r, g, b] = image.pixels[y * width as usize + x];
-                (r, g, b)
-            });
-            let mut bytes = Cursor::new(Vec::new());
-            ExrImage::from_encoded_channels((width as usize, height as usize), Encoding::SMALL_LOSSLESS, channels)
-                .write()
-                .to_buffered(&mut bytes)
-                .map_err(|e| e.to_string())?;
-            Ok(bytes.into_inner())
+            use crate::exr_zip::Samples;
+            let channel = |name: &str, k| (name.to_string(), Samples::Component(&image.pixels, k));
+            crate::exr_zip::encode(width as usize, height as usize, vec![channel("R", 0), channel("G", 1), channel("B", 2)])
         }
     }
 }

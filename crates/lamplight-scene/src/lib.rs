@@ -34,6 +34,7 @@ mod error;
 pub mod explain;
 pub mod expr;
 pub mod exr_layers;
+mod exr_zip;
 pub mod formats;
 pub mod image_io;
 pub mod import;
