@@ -2,13 +2,14 @@
 //! deflate's fastest level, in parallel.
 //!
 //! Why not the `exr` crate's own writer: it deflates every ZIP block at level 4,
-//! fixed. On rendered images that took 4.5 times as long as level 1 for 1-2 %
-//! smaller files on a noisy path-traced image and 7 % on a smooth Whitted one
+//! fixed. On rendered images that took 4.5 times as long as level 1 for files
+//! 2 % smaller on a noisy path-traced image and 7 % on a smooth Whitted one
 //! (512x512 Cornell box: 68 ms against 15 ms on one core; a 1280x720 `luxo`:
 //! 112 ms against 26 ms; BENCHMARKS.md), the largest step of a short render
 //! after the render itself. The file is still the crate's: its header, offset
-//! table and chunk framing come from `exr::block::writer::write_chunks_with`; this module
-//! only makes each block's bytes, as OpenEXR's ZIP compressor defines them:
+//! table and chunk framing come from `exr::block::writer::write_chunks_with`;
+//! this module only makes each block's bytes, as OpenEXR's ZIP compressor
+//! defines them:
 //!
 //! 1. the block's scan lines in order, each line every channel in name order,
 //!    each channel its row of 32-bit floats, little-endian;
@@ -44,7 +45,7 @@ const LEVEL: u8 = 1;
 pub(crate) enum Samples<'a> {
     /// One value per pixel.
     Plane(&'a [f32]),
-    /// Component `.1` of each pixel.
+    /// Component `k` (the second field: 0, 1 or 2) of each pixel.
     Component(&'a [[f32; 3]], usize),
 }
 
