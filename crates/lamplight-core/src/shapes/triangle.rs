@@ -80,6 +80,9 @@ impl WatertightRay {
         };
         let mut kx = (kz + 1) % 3;
         let mut ky = (kx + 1) % 3;
+        // Arrays, not `Vec3` indexing: glam's `Index` is a `match` per access,
+        // which cost 4 % of a textured mesh render (BENCHMARKS.md, session 26).
+        let d = d.to_array();
         if d[kz] < 0.0 {
             std::mem::swap(&mut kx, &mut ky);
         }
@@ -90,7 +93,7 @@ impl WatertightRay {
     /// scale, and the unscaled `z`.
     #[inline]
     fn project(&self, p: Vec3) -> (f64, f64, f64) {
-        let a = p - self.origin;
+        let a = (p - self.origin).to_array();
         (a[self.kx] - self.sx * a[self.kz], a[self.ky] - self.sy * a[self.kz], a[self.kz])
     }
 }
