@@ -328,6 +328,12 @@ fn lit_by<T: WhittedTrace + ?Sized>(
     trace: &mut T,
 ) -> Rgb {
     let Incident { wi, distance, lin, own, light } = *incident;
+    // A light point that sends nothing (a black texel of a textured emitter)
+    // adds `0 * visible * reflected = 0` whatever blocks it: no shadow ray.
+    if lin == Rgb::ZERO {
+        trace.unlit(Unlit::NotReached);
+        return Rgb::ZERO;
+    }
     let n = hit.normal;
     let cos_light = n.dot(wi);
     if cos_light <= MIN_COSINE || hit.geometric_normal.dot(wi) <= 0.0 {
@@ -512,6 +518,39 @@ fn smooth_directions<T: WhittedTrace + ?Sized>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A light point of zero radiance adds nothing and traces no shadow ray; the
+    /// same point with radiance traces one, blocked or not.
+    #[test]
+    fn a_light_point_that_sends_nothing_costs_no_shadow_ray() {
+        use crate::camera::{Fov, Perspective};
+        use crate::scene::SceneBuilder;
+        use crate::shapes::Sphere;
+        let camera = Perspective::look_at(Vec3::new(0.0, 0.0, 10.0), Vec3::ZERO, Vec3::Y, Fov::VerticalDeg(40.0)).unwrap();
+        let mut builder = SceneBuilder::new(camera);
+        let matte = builder.material(Material::default()).unwrap();
+        builder.object(Sphere::new(Vec3::ZERO, 1.0).unwrap(), matte).unwrap();
+        builder.object(Sphere::new(Vec3::new(0.0, 0.0, 3.0), 0.5).unwrap(), matte).unwrap();
+        let scene = builder.build().unwrap();
+        let ray = Ray::new(Vec3::new(0.0, 0.0, 10.0), -Vec3::Z);
+        let mut hit = scene.first_intersect(&Ray::new(Vec3::new(0.0, 0.0, 2.0), -Vec3::Z), f64::INFINITY).unwrap();
+        let material = &*scene.shade(&mut hit, Vec3::Z, 0.0);
+        let towards = |z: f64, lin: Rgb| {
+            let to = Vec3::new(0.0, 0.0, z) - hit.point;
+            Incident { wi: to.normalize(), distance: to.length(), lin, own: None, light: 0 }
+        };
+        let lit = |incident: Incident| {
+            let mut counts = RayCounts::default();
+            let value = lit_by(&scene, &ray, &hit, material, Rgb::ONE, &incident, &mut counts, &mut NoTrace);
+            (value, counts.shadow)
+        };
+        // Towards z = 6 the small ball at z = 3 blocks; towards z = 2 nothing does.
+        assert_eq!(lit(towards(6.0, Rgb::ZERO)), (Rgb::ZERO, 0));
+        assert_eq!(lit(towards(2.0, Rgb::ZERO)), (Rgb::ZERO, 0));
+        assert_eq!(lit(towards(6.0, Rgb::ONE)), (Rgb::ZERO, 1));
+        let (value, shadow) = lit(towards(2.0, Rgb::ONE));
+        assert!(value.x > 0.0 && shadow == 1, "{value:?}");
+    }
 
     #[test]
     fn snells_law_holds() {
