@@ -55,6 +55,7 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
         materials: HashMap::new(),
         images: GltfImages::new(path),
     };
+    reader.images.decode_ahead(&document, &reader.buffers);
     let mut out = Imported::default();
     if document.extensions_used().any(|e| e == "KHR_materials_volume") {
         reader.warnings.once("glTF KHR_materials_volume ignored: transmission is thin-walled (no refraction, no absorption)".to_string());

@@ -1,9 +1,17 @@
 //! The images of a glTF file, for its materials' textures: in a buffer view
 //! (GLB files), a `data:` URI or a file beside the glTF, decoded once per
 //! colour space ([`crate::texture_files::decode_texture`], with its size checks).
+//!
+//! The materials ask for their images one at a time, but a file's images are
+//! independent: [`GltfImages::decode_ahead`] first finds every (image, colour
+//! space) the materials will ask for and decodes them on all cores (the
+//! Damaged Helmet's five 2048 x 2048 JPEGs took 100 ms of its 245 ms load on
+//! one). The materials then take them in their own order, so what they get,
+//! the order of [`GltfImages::into_sources`] and every error are as before.
 
+use std::borrow::Cow;
 use std::collections::HashMap;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use base64::Engine;
@@ -44,16 +52,60 @@ pub(super) fn check_sources(path: &Path, root: &gltf::json::Root) -> Result<(), 
     Ok(())
 }
 
+/// An image's name in messages, its encoded bytes, and whether it is embedded.
+type Encoded<'b> = (PathBuf, Cow<'b, [u8]>, bool);
+
 /// Decoded images by (image index, sRGB), and where each came from.
 pub(super) struct GltfImages<'p> {
     path: &'p Path,
     cache: HashMap<(usize, bool), Arc<ImageData>>,
     sources: Vec<ImageSource>,
+    /// Images decoded by [`GltfImages::decode_ahead`] that no material has taken yet.
+    ahead: HashMap<(usize, bool), (Encoded<'static>, Result<ImageData, String>)>,
 }
 
 impl<'p> GltfImages<'p> {
     pub(super) fn new(path: &'p Path) -> GltfImages<'p> {
-        GltfImages { path, cache: HashMap::new(), sources: Vec::new() }
+        GltfImages { path, cache: HashMap::new(), sources: Vec::new(), ahead: HashMap::new() }
+    }
+
+    /// Decodes, in parallel, every image that `document`'s materials will ask
+    /// for (found by mapping each material with a loader that only records),
+    /// for [`GltfImages::load`] to take. An image whose bytes cannot be read is
+    /// left to `load`, which reports it.
+    pub(super) fn decode_ahead(&mut self, document: &gltf::Document, buffers: &[Vec<u8>]) {
+        use rayon::prelude::*;
+        let placeholder =
+            Arc::new(ImageData::new(1, 1, lamplight_core::materials::image::Texels::F32(vec![[0.0; 4]]), false).expect("1 x 1"));
+        let mut wanted: Vec<(usize, bool)> = Vec::new();
+        for material in document.materials() {
+            let mut record = |image: &gltf::Image, srgb: bool| {
+                if !wanted.contains(&(image.index(), srgb)) {
+                    wanted.push((image.index(), srgb));
+                }
+                Ok(placeholder.clone())
+            };
+            let _ = super::gltf_material::map(&material, false, &mut record, &mut super::Warnings::default());
+        }
+        wanted.retain(|key| !self.cache.contains_key(key));
+        if wanted.len() < 2 {
+            return;
+        }
+        let images: Vec<gltf::Image> = document.images().collect();
+        let jobs: Vec<((usize, bool), Encoded<'static>)> = wanted
+            .into_iter()
+            .filter_map(|(index, srgb)| {
+                let (name, bytes, embedded) = self.encoded(images.get(index)?, buffers).ok()?;
+                Some(((index, srgb), (name, Cow::Owned(bytes.into_owned()), embedded)))
+            })
+            .collect();
+        self.ahead = jobs
+            .into_par_iter()
+            .map(|(key, encoded)| {
+                let decoded = crate::texture_files::decode_texture(&encoded.0, &encoded.1, key.1);
+                (key, (encoded, decoded))
+            })
+            .collect();
     }
 
     /// Every image decoded, in the order it was first used.
@@ -68,8 +120,36 @@ impl<'p> GltfImages<'p> {
             return Ok(data.clone());
         }
         let at = format!("images[{}]", image.index());
+        let fail = |message: String| LoadError::json(self.path, at.clone(), message);
+        let ((name, bytes, embedded), data): (Encoded<'_>, _) = match self.ahead.remove(&key) {
+            Some((encoded, decoded)) => (encoded, decoded),
+            None => {
+                let encoded = self.encoded(image, buffers)?;
+                let decoded = crate::texture_files::decode_texture(&encoded.0, &encoded.1, srgb);
+                (encoded, decoded)
+            }
+        };
+        let data = Arc::new(data.map_err(fail)?);
+        self.cache.insert(key, data.clone());
+        let origin = if embedded {
+            ImageOrigin::Embedded {
+                label: name.file_name().map_or_else(|| at.clone(), |n| n.to_string_lossy().into_owned()),
+                index: image.index(),
+                extension: image_extension(&bytes),
+                bytes: Arc::from(&*bytes),
+            }
+        } else {
+            ImageOrigin::File(name)
+        };
+        self.sources.push(ImageSource { data: data.clone(), srgb, origin });
+        Ok(data)
+    }
+
+    /// Where image `image` is and its encoded bytes; errors name `images[i]`.
+    fn encoded<'b>(&self, image: &gltf::Image, buffers: &'b [Vec<u8>]) -> Result<Encoded<'b>, LoadError> {
+        let at = format!("images[{}]", image.index());
         let fail = |where_: &str, message: String| LoadError::json(self.path, format!("{at}{where_}"), message);
-        let (name, bytes, embedded): (std::path::PathBuf, std::borrow::Cow<'_, [u8]>, bool) = match image.source() {
+        Ok(match image.source() {
             gltf::image::Source::View { view, .. } => {
                 let (start, len) = (view.offset(), view.length());
                 let buffer = buffers.get(view.buffer().index());
@@ -105,22 +185,7 @@ impl<'p> GltfImages<'p> {
                     (file, bytes.into(), false)
                 }
             }
-        };
-        let data = crate::texture_files::decode_texture(&name, &bytes, srgb).map_err(|m| fail("", m))?;
-        let data = Arc::new(data);
-        self.cache.insert(key, data.clone());
-        let origin = if embedded {
-            ImageOrigin::Embedded {
-                label: name.file_name().map_or_else(|| at.clone(), |n| n.to_string_lossy().into_owned()),
-                index: image.index(),
-                extension: image_extension(&bytes),
-                bytes: Arc::from(&*bytes),
-            }
-        } else {
-            ImageOrigin::File(name)
-        };
-        self.sources.push(ImageSource { data: data.clone(), srgb, origin });
-        Ok(data)
+        })
     }
 }
 
@@ -146,6 +211,68 @@ fn percent_decoded(uri: &str) -> String {
 
 #[cfg(test)]
 mod tests {
+    use super::*;
+
+    /// A 2 x 2 PNG of one colour, as a `data:` URI.
+    fn png_uri(rgb: [u8; 3]) -> String {
+        use image::ImageEncoder;
+        let pixels: Vec<u8> = (0..4).flat_map(|_| rgb).collect();
+        let mut bytes = Vec::new();
+        image::codecs::png::PngEncoder::new(&mut bytes).write_image(&pixels, 2, 2, image::ExtendedColorType::Rgb8).unwrap();
+        format!("data:image/png;base64,{}", base64::engine::general_purpose::STANDARD.encode(bytes))
+    }
+
+    /// Loading after `decode_ahead` gives every material the images, sources
+    /// and errors that loading one by one gives.
+    #[test]
+    fn images_decoded_ahead_are_the_ones_decoded_one_by_one() {
+        let broken = format!("data:image/png;base64,{}", base64::engine::general_purpose::STANDARD.encode(b"\x89PNG not really"));
+        let json = format!(
+            r#"{{"asset": {{"version": "2.0"}},
+  "images": [{{"uri": "{}"}}, {{"uri": "{}"}}, {{"uri": "{broken}"}}],
+  "textures": [{{"source": 0}}, {{"source": 1}}, {{"source": 2}}],
+  "materials": [
+    {{"pbrMetallicRoughness": {{"baseColorTexture": {{"index": 0}}}}}},
+    {{"pbrMetallicRoughness": {{"metallicRoughnessTexture": {{"index": 0}}}}, "emissiveTexture": {{"index": 1}}, "emissiveFactor": [1, 1, 1]}},
+    {{"normalTexture": {{"index": 2}}}}]}}"#,
+            png_uri([200, 100, 50]),
+            png_uri([10, 20, 30])
+        );
+        let document = gltf::Gltf::from_slice(json.as_bytes()).unwrap().document;
+        let path = Path::new("t.gltf");
+        let load_all = |images: &mut GltfImages| -> Vec<Result<Vec<Arc<ImageData>>, String>> {
+            document
+                .materials()
+                .map(|m| {
+                    let mut got = Vec::new();
+                    let mut load = |image: &gltf::Image, srgb: bool| {
+                        let data = images.load(image, &[], srgb)?;
+                        got.push(data.clone());
+                        Ok(data)
+                    };
+                    super::super::gltf_material::map(&m, false, &mut load, &mut super::super::Warnings::default())
+                        .map(|_| got)
+                        .map_err(|e| e.to_string())
+                })
+                .collect()
+        };
+        let mut ahead = GltfImages::new(path);
+        ahead.decode_ahead(&document, &[]);
+        let mut keys: Vec<_> = ahead.ahead.keys().copied().collect();
+        keys.sort();
+        assert_eq!(keys, [(0, false), (0, true), (1, true), (2, false)], "every image the materials use, in its colour space");
+        let (with, without) = (load_all(&mut ahead), load_all(&mut GltfImages::new(path)));
+        assert_eq!(with, without);
+        assert!(with[2].as_ref().is_err_and(|e| e.contains("images[2]")), "{:?}", with[2]);
+        assert!(ahead.ahead.is_empty(), "every image decoded ahead was taken");
+        let sources = |images: GltfImages| -> Vec<(bool, String)> {
+            images.into_sources().iter().map(|s| (s.srgb, format!("{:?}", s.origin).chars().take(60).collect())).collect()
+        };
+        let mut one_by_one = GltfImages::new(path);
+        load_all(&mut one_by_one);
+        assert_eq!(sources(ahead), sources(one_by_one));
+    }
+
     #[test]
     fn uris_are_percent_decoded() {
         assert_eq!(super::percent_decoded("My%20Texture.png"), "My Texture.png");
