@@ -39,6 +39,27 @@ use super::gltf_images::GltfImages;
 use super::{gltf_material, Imported, ImportedCamera, ImportedLight, ImportedMesh, ImportedProjection, MeshData, Warnings};
 use crate::error::LoadError;
 
+/// The materials of the primitives under `roots`, each once, in the order
+/// first met (nodes met twice, which the walk below refuses, are not followed
+/// again here).
+fn used_materials<'a>(document: &'a gltf::Document, roots: &[gltf::Node<'a>]) -> Vec<gltf::Material<'a>> {
+    let (mut seen, mut taken) = (vec![false; document.nodes().len()], vec![false; document.materials().len()]);
+    let mut stack: Vec<gltf::Node> = roots.iter().rev().cloned().collect();
+    let mut materials = Vec::new();
+    while let Some(node) = stack.pop() {
+        if std::mem::replace(&mut seen[node.index()], true) {
+            continue;
+        }
+        for p in node.mesh().iter().flat_map(|m| m.primitives()) {
+            if let Some(i) = p.material().index().filter(|&i| !std::mem::replace(&mut taken[i], true)) {
+                materials.extend(document.materials().nth(i));
+            }
+        }
+        stack.extend(node.children().collect::<Vec<_>>().into_iter().rev());
+    }
+    materials
+}
+
 /// Reads a `.gltf` or `.glb` file's bytes; external buffers are read relative to `path`.
 pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
     let gltf::Gltf { document, blob } = gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| gltf_error(path, bytes, e))?;
@@ -55,7 +76,6 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
         materials: HashMap::new(),
         images: GltfImages::new(path),
     };
-    reader.images.decode_ahead(&document, &reader.buffers);
     let mut out = Imported::default();
     if document.extensions_used().any(|e| e == "KHR_materials_volume") {
         reader.warnings.once("glTF KHR_materials_volume ignored: transmission is thin-walled (no refraction, no absorption)".to_string());
@@ -79,6 +99,7 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
             document.nodes().filter(|n| !is_child[n.index()]).collect()
         }
     };
+    reader.images.decode_ahead(&document, &used_materials(&document, &roots), &reader.buffers);
     // Depth-first, children in file order, with an explicit stack so deep trees cannot overflow it.
     let mut seen = vec![false; document.nodes().len()];
     // Each node's place in the tree is kept for the animations (`gltf_animation`).

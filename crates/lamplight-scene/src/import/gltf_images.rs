@@ -69,23 +69,26 @@ impl<'p> GltfImages<'p> {
         GltfImages { path, cache: HashMap::new(), sources: Vec::new(), ahead: HashMap::new() }
     }
 
-    /// Decodes, in parallel, every image that `document`'s materials will ask
-    /// for (found by mapping each material with a loader that only records),
-    /// for [`GltfImages::load`] to take. An image whose bytes cannot be read is
-    /// left to `load`, which reports it.
-    pub(super) fn decode_ahead(&mut self, document: &gltf::Document, buffers: &[Vec<u8>]) {
+    /// Decodes, in parallel, every image that `materials` will ask for (found
+    /// by mapping each material with a loader that only records), for
+    /// [`GltfImages::load`] to take. If any of them fails (a broken image, or
+    /// the memory budget, which decoding in parallel draws on at once), none is
+    /// kept and their budget is given back: `load` then decodes one by one as
+    /// before, so every error, and the budget each image meets, is as before.
+    /// An image whose bytes cannot be read is left to `load` too.
+    pub(super) fn decode_ahead(&mut self, document: &gltf::Document, materials: &[gltf::Material], buffers: &[Vec<u8>]) {
         use rayon::prelude::*;
         let placeholder =
             Arc::new(ImageData::new(1, 1, lamplight_core::materials::image::Texels::F32(vec![[0.0; 4]]), false).expect("1 x 1"));
         let mut wanted: Vec<(usize, bool)> = Vec::new();
-        for material in document.materials() {
+        for material in materials {
             let mut record = |image: &gltf::Image, srgb: bool| {
                 if !wanted.contains(&(image.index(), srgb)) {
                     wanted.push((image.index(), srgb));
                 }
                 Ok(placeholder.clone())
             };
-            let _ = super::gltf_material::map(&material, false, &mut record, &mut super::Warnings::default());
+            let _ = super::gltf_material::map(material, false, &mut record, &mut super::Warnings::default());
         }
         wanted.retain(|key| !self.cache.contains_key(key));
         if wanted.len() < 2 {
@@ -99,13 +102,21 @@ impl<'p> GltfImages<'p> {
                 Some(((index, srgb), (name, Cow::Owned(bytes.into_owned()), embedded)))
             })
             .collect();
-        self.ahead = jobs
+        let budget_before = crate::memory::used();
+        let decoded: HashMap<_, _> = jobs
             .into_par_iter()
             .map(|(key, encoded)| {
                 let decoded = crate::texture_files::decode_texture(&encoded.0, &encoded.1, key.1);
                 (key, (encoded, decoded))
             })
             .collect();
+        if decoded.values().all(|(_, d)| d.is_ok()) {
+            self.ahead = decoded;
+        } else {
+            // What these decodes reserved (a load reserves from one thread, so
+            // nothing else has drawn on the budget since), given back.
+            crate::memory::release(crate::memory::used().saturating_sub(budget_before));
+        }
     }
 
     /// Every image decoded, in the order it was first used.
@@ -256,15 +267,23 @@ mod tests {
                 })
                 .collect()
         };
+        let materials: Vec<gltf::Material> = document.materials().collect();
+        // The first two materials: every image they use decoded ahead, in its colour space.
         let mut ahead = GltfImages::new(path);
-        ahead.decode_ahead(&document, &[]);
+        ahead.decode_ahead(&document, &materials[..2], &[]);
         let mut keys: Vec<_> = ahead.ahead.keys().copied().collect();
         keys.sort();
-        assert_eq!(keys, [(0, false), (0, true), (1, true), (2, false)], "every image the materials use, in its colour space");
+        assert_eq!(keys, [(0, false), (0, true), (1, true)]);
+        // All three: the broken image makes it keep none (the budget is
+        // process-wide and other tests draw on it, so its release is not checked here).
+        let mut fallback = GltfImages::new(path);
+        fallback.decode_ahead(&document, &materials, &[]);
+        assert!(fallback.ahead.is_empty(), "a failure keeps nothing");
         let (with, without) = (load_all(&mut ahead), load_all(&mut GltfImages::new(path)));
         assert_eq!(with, without);
         assert!(with[2].as_ref().is_err_and(|e| e.contains("images[2]")), "{:?}", with[2]);
         assert!(ahead.ahead.is_empty(), "every image decoded ahead was taken");
+        assert_eq!(load_all(&mut fallback), without);
         let sources = |images: GltfImages| -> Vec<(bool, String)> {
             images.into_sources().iter().map(|s| (s.srgb, format!("{:?}", s.origin).chars().take(60).collect())).collect()
         };
