@@ -98,20 +98,21 @@ fn leaf(prims: &[BuildPrim], bounds: Aabb) -> Tree {
 }
 
 /// Copies `prims` into `into`, those `goes_left` accepts first, each side in
-/// its order; returns how many went left.
+/// its order; returns how many went left. One test per primitive: the right
+/// ones fill `into` from its end backwards and are then turned around.
 fn stable_partition(prims: &[BuildPrim], into: &mut [BuildPrim], goes_left: impl Fn(&BuildPrim) -> bool) -> usize {
-    let left = prims.iter().filter(|p| goes_left(p)).count();
-    let (mut l, mut r) = (0, left);
+    let (mut l, mut r) = (0, into.len());
     for p in prims {
         if goes_left(p) {
             into[l] = *p;
             l += 1;
         } else {
+            r -= 1;
             into[r] = *p;
-            r += 1;
         }
     }
-    left
+    into[l..].reverse();
+    l
 }
 
 fn bin_of(value: f64, min: f64, scale: f64) -> usize {

@@ -80,10 +80,10 @@ impl<'p> GltfImages<'p> {
         use rayon::prelude::*;
         let placeholder =
             Arc::new(ImageData::new(1, 1, lamplight_core::materials::image::Texels::F32(vec![[0.0; 4]]), false).expect("1 x 1"));
-        let mut wanted: Vec<(usize, bool)> = Vec::new();
+        let (mut wanted, mut seen) = (Vec::new(), std::collections::HashSet::new());
         for material in materials {
             let mut record = |image: &gltf::Image, srgb: bool| {
-                if !wanted.contains(&(image.index(), srgb)) {
+                if seen.insert((image.index(), srgb)) {
                     wanted.push((image.index(), srgb));
                 }
                 Ok(placeholder.clone())
