@@ -25,10 +25,12 @@
 use std::collections::HashMap;
 use std::path::Path;
 
+use rustc_hash::FxHashMap;
+
 use lamplight_core::materials::Material;
 use lamplight_core::math::{Mat4, Vec3};
 
-use super::{mtl, number, words, Imported, ImportedMesh, MeshData, Warnings};
+use super::{mtl, number, words_into, Imported, ImportedMesh, MeshData, Warnings};
 use crate::error::LoadError;
 
 /// One run of faces being built: its own vertices, remapped from the file's.
@@ -42,7 +44,9 @@ struct Group {
     all_corners_have_normals: bool,
     all_corners_have_uvs: bool,
     /// File corner -> index in this mesh.
-    remap: HashMap<Corner, u32>,
+    /// Corner -> vertex: FxHash, as the keys are three small integers from the
+    /// file and no one can pick them to collide to any effect but slowness.
+    remap: FxHashMap<Corner, u32>,
     /// Index in this mesh -> file corner.
     origin: Vec<Corner>,
 }
@@ -76,10 +80,13 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
     let mut done: Vec<Group> = Vec::new();
     let mut group = Group::new(None, None);
     let mut corners: Vec<Corner> = Vec::new();
+    // One buffer of words for all lines: a new vector per line was an
+    // allocation per vertex and face.
+    let mut w = Vec::new();
     for (line_index, raw) in text.lines().enumerate() {
         let line_no = line_index + 1;
         let line = raw.split('#').next().unwrap_or("");
-        let w = words(line);
+        words_into(line, &mut w);
         let Some(&(_, keyword)) = w.first() else { continue };
         let num = |i: usize, what: &str| number(path, line_no, line, &w, i, what);
         match keyword {
