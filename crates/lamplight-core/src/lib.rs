@@ -42,6 +42,7 @@ pub mod integrators;
 pub mod lights;
 pub mod materials;
 pub mod math;
+mod pages;
 pub mod params;
 pub mod ray;
 mod render;

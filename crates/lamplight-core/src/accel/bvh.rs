@@ -10,9 +10,10 @@
 //!
 //! Build: a binary tree by binned SAH ([`super::sah`]), collapsed into nodes of
 //! up to eight children by repeatedly opening the child with the largest surface
-//! area. A node stores its children's boxes as `f32` structure-of-arrays, so one
-//! ray is tested against eight boxes in one AVX test on CPUs with AVX2 (detected
-//! at run time; the whole traversal, with the closure inlined into it, is then
+//! area (`bvh/collapse.rs`, in parallel near the root of a large tree). A node
+//! stores its children's boxes as `f32` structure-of-arrays, so one ray is
+//! tested against eight boxes in one AVX test on CPUs with AVX2 (detected at
+//! run time; the whole traversal, with the closure inlined into it, is then
 //! compiled for AVX2), two SSE tests elsewhere, with the same bits either way
 //! ([`super::slab::test8`]). Eight children rather than four halve the levels a
 //! ray descends through over a scene's objects: fewer box tests, pushes and pops
@@ -34,10 +35,13 @@
 
 use std::mem::MaybeUninit;
 
-use super::sah::{self, Costs, Tree};
+use super::sah::{self, Costs};
 use super::slab::{farthest_first, has_avx2, test8, SlabRay, WIDEN};
 use super::Aabb;
 use crate::math::Vec3;
+
+mod collapse;
+use collapse::Layout;
 
 /// Marks a child reference as a leaf: low bits are the first index in `indices`.
 const LEAF: u32 = 1 << 31;
@@ -137,23 +141,9 @@ impl Bvh {
             return Bvh::flat(bounds);
         }
         let tree = sah::build(bounds, costs);
-        let mut bvh = Bvh {
-            nodes: Vec::with_capacity(bounds.len() / WIDTH + 1),
-            indices: Vec::with_capacity(bounds.len()),
-            bounds: Some(tree.bounds()),
-            flat: false,
-        };
-        match &tree {
-            Tree::Leaf { .. } => {
-                // A single leaf still gets a root node, so traversal has one shape.
-                bvh.nodes.push(Node::EMPTY);
-                bvh.set_child(0, 0, &tree);
-            }
-            Tree::Interior { .. } => {
-                bvh.collapse(&tree);
-            }
-        }
-        bvh
+        let root = tree.bounds();
+        let Layout { nodes, indices } = Layout::of(tree, bounds.len());
+        Bvh { nodes, indices, bounds: Some(root), flat: false }
     }
 
     /// Up to [`FLAT_MAX`] primitives, eight per node, each its own leaf.
@@ -179,52 +169,6 @@ impl Bvh {
             bvh.nodes[node].valid |= 1 << slot;
         }
         bvh
-    }
-
-    /// Stores `tree` as child `slot` of node `node`, recursing into interior trees.
-    fn set_child(&mut self, node: usize, slot: usize, tree: &Tree) {
-        let b = tree.bounds();
-        let planes =
-            [round_down(b.min.x), round_down(b.min.y), round_down(b.min.z), round_up(b.max.x), round_up(b.max.y), round_up(b.max.z)];
-        for (row, value) in planes.into_iter().enumerate() {
-            self.nodes[node].planes[row][slot] = value;
-        }
-        self.nodes[node].valid |= 1 << slot;
-        match tree {
-            Tree::Leaf { prims, .. } => {
-                self.nodes[node].child[slot] = LEAF | self.indices.len() as u32;
-                self.nodes[node].count[slot] = prims.len() as u8;
-                self.indices.extend_from_slice(prims);
-            }
-            Tree::Interior { .. } => {
-                let index = self.collapse(tree);
-                self.nodes[node].child[slot] = index as u32;
-            }
-        }
-    }
-
-    /// Makes a node for interior `tree` from up to eight of its descendants: the
-    /// child with the largest surface area is opened until there are eight.
-    fn collapse(&mut self, tree: &Tree) -> usize {
-        let Tree::Interior { children, .. } = tree else { unreachable!("collapse is called on interior trees") };
-        let mut kids: Vec<&Tree> = vec![&children.0, &children.1];
-        while kids.len() < WIDTH {
-            let widest = kids
-                .iter()
-                .enumerate()
-                .filter(|(_, t)| matches!(t, Tree::Interior { .. }))
-                .max_by(|a, b| a.1.bounds().surface_area().total_cmp(&b.1.bounds().surface_area()));
-            let Some((i, _)) = widest else { break };
-            let Tree::Interior { children, .. } = kids.swap_remove(i) else { unreachable!() };
-            kids.push(&children.0);
-            kids.push(&children.1);
-        }
-        let index = self.nodes.len();
-        self.nodes.push(Node::EMPTY);
-        for (slot, kid) in kids.into_iter().enumerate() {
-            self.set_child(index, slot, kid);
-        }
-        index
     }
 
     /// Bounds of everything in the hierarchy ([`Aabb::EMPTY`] if nothing).

@@ -87,9 +87,11 @@ struct BuildPrim {
 /// and its allocations were a fifth of loading a million-triangle mesh; the
 /// order, and so the tree, is the one they gave.
 pub fn build(bounds: &[Aabb], costs: Costs) -> Tree {
-    let mut prims: Vec<BuildPrim> =
-        bounds.iter().enumerate().map(|(i, b)| BuildPrim { bounds: *b, centroid: b.centroid(), index: i as u32 }).collect();
-    let mut scratch = prims.clone();
+    // Two arrays of 80 bytes a primitive, written at once: in huge pages.
+    let mut prims: Vec<BuildPrim> = crate::pages::with_capacity(bounds.len());
+    prims.extend(bounds.iter().enumerate().map(|(i, b)| BuildPrim { bounds: *b, centroid: b.centroid(), index: i as u32 }));
+    let mut scratch = crate::pages::with_capacity(prims.len());
+    scratch.extend_from_slice(&prims);
     let span = prims.iter().fold(Span::EMPTY, Span::add);
     build_node(&mut prims, &mut scratch, span, 0, costs)
 }

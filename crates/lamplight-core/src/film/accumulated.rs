@@ -85,7 +85,7 @@ impl Film {
             width,
             height,
             tiles_x,
-            sums: super::pages::zeroed([0.0; 3], tiles * TILE_PIXELS),
+            sums: crate::pages::zeroed([0.0; 3], tiles * TILE_PIXELS),
             squares: None,
             means: None,
             counts: None,
@@ -102,7 +102,7 @@ impl Film {
             tiles_x: width.div_ceil(TILE),
             sums: Vec::new(),
             squares: None,
-            means: Some(super::pages::zeroed([0.0; 3], width as usize * height as usize)),
+            means: Some(crate::pages::zeroed([0.0; 3], width as usize * height as usize)),
             counts: None,
             samples: 0,
         }
@@ -232,7 +232,7 @@ impl Film {
     /// writes them (a single sample's square is its sum's).
     pub(crate) fn prepare_pass(&mut self, count: u32) {
         if count > 1 && self.squares.is_none() && self.means.is_none() {
-            self.squares = Some(super::pages::zeroed([0.0; 3], self.sums.len()));
+            self.squares = Some(crate::pages::zeroed([0.0; 3], self.sums.len()));
         }
     }
 

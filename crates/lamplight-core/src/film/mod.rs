@@ -4,7 +4,7 @@
 
 mod accumulated;
 mod filter;
-mod pages;
+
 pub mod tonemap;
 mod window;
 
@@ -59,7 +59,7 @@ pub struct Image {
 impl Image {
     /// A black image.
     pub fn new(width: u32, height: u32) -> Image {
-        Image { width, height, pixels: pages::zeroed([0.0; 3], width as usize * height as usize) }
+        Image { width, height, pixels: crate::pages::zeroed([0.0; 3], width as usize * height as usize) }
     }
 
     /// The pixel at column `x`, row `y` (from the top).
