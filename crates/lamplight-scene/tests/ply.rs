@@ -96,6 +96,90 @@ fn elements_without_properties_cost_nothing_whatever_their_count() {
     assert_eq!(imported.warnings, vec!["PLY element `empty` (1000000000000 items) ignored".to_string()]);
 }
 
+/// Vertices of `float x, y, z` and faces of `list uchar int vertex_indices`
+/// (`uint` when `unsigned`), the layout read in bulk, with these positions
+/// and faces (each a list of any length). `general`: the same mesh as
+/// `double`s and `list int int`, which only the general reader reads.
+fn bulk_layout(big_endian: bool, unsigned: bool, general: bool, positions: &[[f32; 3]], faces: &[&[i32]]) -> Vec<u8> {
+    let (real, count, index) = match (general, unsigned) {
+        (true, _) => ("double", "int", "int"),
+        (false, false) => ("float", "uchar", "int"),
+        (false, true) => ("float", "uchar", "uint"),
+    };
+    let mut out = format!(
+        "ply\nformat binary_{}_endian 1.0\nelement vertex {}\nproperty {real} x\nproperty {real} y\nproperty {real} z\n\
+         element face {}\nproperty list {count} {index} vertex_indices\nend_header\n",
+        if big_endian { "big" } else { "little" },
+        positions.len(),
+        faces.len(),
+    )
+    .into_bytes();
+    let bytes = |b: &[u8], out: &mut Vec<u8>| {
+        out.extend(b.iter().rev().take(if big_endian { b.len() } else { 0 }).chain(b.iter().take(if big_endian { 0 } else { b.len() })))
+    };
+    for p in positions {
+        for v in p {
+            match general {
+                true => bytes(&f64::from(*v).to_le_bytes(), &mut out),
+                false => bytes(&v.to_le_bytes(), &mut out),
+            }
+        }
+    }
+    for face in faces {
+        match general {
+            true => bytes(&(face.len() as i32).to_le_bytes(), &mut out),
+            false => out.push(face.len() as u8),
+        }
+        for i in *face {
+            bytes(&i.to_le_bytes(), &mut out);
+        }
+    }
+    out
+}
+
+#[test]
+fn the_bulk_layout_reads_as_the_general_reader_does() {
+    let dir = tempfile::tempdir().unwrap();
+    let positions = [[0.0, 0.0, 0.0], [1.5, -0.0, 2.25], [0.1, 1e-30, -3.0e7], [f32::MAX, -1.0, 0.5]];
+    let triangles: [&[i32]; 3] = [&[0, 1, 2], &[2, 1, 3], &[3, 0, 2]];
+    // Triangles are read in bulk; with a quad among them (the general reader's
+    // fan) the whole element goes to the general reader.
+    let with_quad: [&[i32]; 3] = [&[0, 1, 2], &[0, 1, 2, 3], &[3, 0, 2]];
+    for faces in [&triangles[..], &with_quad[..]] {
+        for big in [false, true] {
+            let general = write_and_load(dir.path(), "general.ply", &bulk_layout(big, false, true, &positions, faces)).unwrap();
+            let want = &general.meshes[0];
+            assert_eq!(want.positions[3], Vec3::new(f64::from(f32::MAX), -1.0, 0.5));
+            for unsigned in [false, true] {
+                let bulk = write_and_load(dir.path(), "bulk.ply", &bulk_layout(big, unsigned, false, &positions, faces)).unwrap();
+                let got = &bulk.meshes[0];
+                let bits = |m: &import::MeshData| m.positions.iter().flat_map(|p| p.to_array().map(f64::to_bits)).collect::<Vec<_>>();
+                assert_eq!(bits(got), bits(want), "positions, big endian {big}, uint {unsigned}");
+                assert_eq!(got.indices, want.indices);
+                assert_eq!((got.normals.is_none(), got.attributes.uvs.is_none(), got.named.is_empty()), (true, true, true));
+                assert_eq!(bulk.warnings, general.warnings);
+            }
+        }
+    }
+    // What the bulk read leaves to the general reader gives its exact errors.
+    let header = |file: &[u8]| file.windows(11).position(|w| w == b"end_header\n").unwrap() + 11;
+    let nan = bulk_layout(false, false, false, &[[0.0; 3], [1.0, f32::NAN, 0.0], [0.0; 3]], &[&[0, 1, 2]]);
+    assert_eq!(
+        error_of(dir.path(), "nan.ply", &nan),
+        format!("nan.ply: at byte {}: vertex 1: `y` is NaN, expected a finite number", header(&nan) + 12 + 4)
+    );
+    let out_of_range = bulk_layout(false, false, false, &[[0.0; 3]; 3], &[&[0, 1, 3]]);
+    assert_eq!(
+        error_of(dir.path(), "range.ply", &out_of_range),
+        format!("range.ply: at byte {}: face 0: vertex index 3 out of range (the file has 3 vertices)", header(&out_of_range) + 36 + 1 + 8)
+    );
+    let negative = bulk_layout(true, false, false, &[[0.0; 3]; 3], &[&[0, -1, 2]]);
+    assert_eq!(
+        error_of(dir.path(), "negative.ply", &negative),
+        format!("negative.ply: at byte {}: face 0: vertex index -1 out of range (the file has 3 vertices)", header(&negative) + 36 + 1 + 4)
+    );
+}
+
 #[test]
 fn malformed_files_give_one_exact_error() {
     let dir = tempfile::tempdir().unwrap();

@@ -35,6 +35,8 @@ use super::{Imported, ImportedMesh, MeshData};
 use crate::error::LoadError;
 use lamplight_core::math::Mat4;
 
+mod bulk;
+
 /// Reads a PLY file's bytes into one mesh with an identity transform.
 pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Imported, LoadError> {
     let mut warnings = Vec::new();
@@ -253,6 +255,9 @@ fn read_vertices(path: &Path, reader: &mut Reader, e: &Element, mesh: &mut MeshD
     if e.count > u64::from(u32::MAX) {
         return Err(LoadError::at(path, e.line, e.count_column, format!("{} vertices are more than a mesh can index (2^32 - 1)", e.count)));
     }
+    if bulk::vertices(reader, e, mesh) {
+        return Ok(());
+    }
     let find = |name: &str| e.props.iter().position(|p| p.name == name && p.count.is_none());
     let mut slot = vec![None; e.props.len()];
     for (axis, name) in ["x", "y", "z"].iter().enumerate() {
@@ -344,6 +349,9 @@ fn read_faces(
     mesh: &mut MeshData,
     warnings: &mut Vec<String>,
 ) -> Result<(), LoadError> {
+    if bulk::triangles(reader, e, vertex_count, mesh) {
+        return Ok(());
+    }
     let strips = e.name == "tristrips";
     let Some(list) = e.props.iter().position(|p| (p.name == "vertex_indices" || p.name == "vertex_index") && p.count.is_some()) else {
         return Err(LoadError::at(path, e.line, 1, format!("element `{}` has no list property `vertex_indices`", e.name)));
