@@ -89,10 +89,10 @@ impl Layout {
             self.nodes = nodes;
         }
         for (slot, (kid, run)) in kids.iter().zip(runs).enumerate() {
-            self.set_bounds(index, slot, kid);
             match run {
                 None => self.set_child(index, slot, kid, 0),
                 Some(run) => {
+                    self.set_bounds(index, slot, kid);
                     let (node_base, index_base) = (self.nodes.len() as u32, self.indices.len() as u32);
                     self.nodes[index].child[slot] = node_base;
                     self.nodes.extend(run.nodes.into_iter().map(|mut node| {
