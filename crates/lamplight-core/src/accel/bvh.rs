@@ -71,6 +71,16 @@ impl Node {
     /// No children.
     const EMPTY: Node = Node { planes: [[0.0; WIDTH]; 6], child: [0; WIDTH], count: [0; WIDTH], valid: 0 };
 
+    /// Makes child `slot` valid with box `b`, rounded outwards to `f32`.
+    fn set_box(&mut self, slot: usize, b: &Aabb) {
+        let planes =
+            [round_down(b.min.x), round_down(b.min.y), round_down(b.min.z), round_up(b.max.x), round_up(b.max.y), round_up(b.max.z)];
+        for (row, value) in planes.into_iter().enumerate() {
+            self.planes[row][slot] = value;
+        }
+        self.valid |= 1 << slot;
+    }
+
     /// The entry distances of the children and the mask of those entered before `t_max`.
     #[inline(always)]
     fn test<const AVX2: bool>(&self, ray: &SlabRay, t_max: f32) -> ([f32; WIDTH], u32) {
@@ -159,14 +169,9 @@ impl Bvh {
             if slot == 0 {
                 bvh.nodes.push(Node::EMPTY);
             }
-            let planes =
-                [round_down(b.min.x), round_down(b.min.y), round_down(b.min.z), round_up(b.max.x), round_up(b.max.y), round_up(b.max.z)];
-            for (row, value) in planes.into_iter().enumerate() {
-                bvh.nodes[node].planes[row][slot] = value;
-            }
+            bvh.nodes[node].set_box(slot, b);
             bvh.nodes[node].child[slot] = LEAF | i as u32;
             bvh.nodes[node].count[slot] = 1;
-            bvh.nodes[node].valid |= 1 << slot;
         }
         bvh
     }

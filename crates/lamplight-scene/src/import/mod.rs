@@ -332,30 +332,30 @@ pub(crate) fn words(line: &str) -> Vec<(usize, &str)> {
 
 /// [`words`] into `out`, which is cleared first (so a parser reuses one buffer).
 pub(crate) fn words_into<'a>(line: &'a str, out: &mut Vec<(usize, &'a str)>) {
-    out.clear();
     if line.is_ascii() {
         // Mesh files are ASCII: a byte is a character (its column), and the
         // ASCII characters `char::is_whitespace` takes are these six. Decoding
         // every character was a twentieth of loading an OBJ file.
-        let mut start = None;
-        for (i, &b) in line.as_bytes().iter().enumerate() {
-            match (matches!(b, b' ' | b'\t' | b'\n' | b'\x0b' | b'\x0c' | b'\r'), start) {
-                (false, None) => start = Some(i),
-                (true, Some(i0)) => {
-                    out.push((i0 + 1, &line[i0..i]));
-                    start = None;
-                }
-                _ => {}
-            }
-        }
-        if let Some(i0) = start {
-            out.push((i0 + 1, &line[i0..]));
-        }
-        return;
+        let bytes = line.bytes().enumerate().map(|(i, b)| (i, i, matches!(b, b' ' | b'\t' | b'\n' | b'\x0b' | b'\x0c' | b'\r')));
+        split_words(line, bytes, out);
+    } else {
+        words_by_char(line, out);
     }
+}
+
+/// [`words_into`] decoding every character.
+fn words_by_char<'a>(line: &'a str, out: &mut Vec<(usize, &'a str)>) {
+    split_words(line, line.char_indices().enumerate().map(|(col, (i, c))| (col, i, c.is_whitespace())), out);
+}
+
+/// The words of `line` from its characters as (0-based column, byte index,
+/// whether it is whitespace), into `out`, cleared first.
+#[inline(always)]
+fn split_words<'a>(line: &'a str, chars: impl Iterator<Item = (usize, usize, bool)>, out: &mut Vec<(usize, &'a str)>) {
+    out.clear();
     let mut start = None;
-    for (col, (i, c)) in line.char_indices().enumerate() {
-        match (c.is_whitespace(), start) {
+    for (col, i, space) in chars {
+        match (space, start) {
             (false, None) => start = Some((col + 1, i)),
             (true, Some((c0, i0))) => {
                 out.push((c0, &line[i0..i]));
@@ -410,23 +410,11 @@ mod tests {
         // ASCII lines take the byte path: every ASCII character splits as
         // `char::is_whitespace` says, and the columns are the same.
         let ascii: String = (0u8..128).map(char::from).collect();
-        fn by_char(line: &str) -> Vec<(usize, &str)> {
-            let (mut out, mut start) = (Vec::new(), None);
-            for (col, (i, c)) in line.char_indices().enumerate() {
-                match (c.is_whitespace(), start) {
-                    (false, None) => start = Some((col + 1, i)),
-                    (true, Some((c0, i0))) => {
-                        out.push((c0, &line[i0..i]));
-                        start = None;
-                    }
-                    _ => {}
-                }
-            }
-            if let Some((c0, i0)) = start {
-                out.push((c0, &line[i0..]));
-            }
+        let by_char = |line| {
+            let mut out = Vec::new();
+            words_by_char(line, &mut out);
             out
-        }
+        };
         for line in [ascii.as_str(), "v 1 2 3", "\x0bf 1/2/3\x0c4//5 6\r", "  ", ""] {
             assert_eq!(words(line), by_char(line), "{line:?}");
         }

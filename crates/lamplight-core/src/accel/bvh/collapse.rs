@@ -19,7 +19,7 @@
 use rayon::prelude::*;
 
 use super::super::sah::Tree;
-use super::{round_down, round_up, Node, LEAF, WIDTH};
+use super::{Node, LEAF, WIDTH};
 
 /// Primitives below which a tree is laid out on one thread.
 const PARALLEL_MIN: usize = 1 << 16;
@@ -92,7 +92,7 @@ impl Layout {
             match run {
                 None => self.set_child(index, slot, kid, 0),
                 Some(run) => {
-                    self.set_bounds(index, slot, kid);
+                    self.nodes[index].set_box(slot, &kid.bounds());
                     let (node_base, index_base) = (self.nodes.len() as u32, self.indices.len() as u32);
                     self.nodes[index].child[slot] = node_base;
                     self.nodes.extend(run.nodes.into_iter().map(|mut node| {
@@ -110,20 +110,9 @@ impl Layout {
         index
     }
 
-    /// Writes child `slot` of node `node`'s box.
-    fn set_bounds(&mut self, node: usize, slot: usize, tree: &Tree) {
-        let b = tree.bounds();
-        let planes =
-            [round_down(b.min.x), round_down(b.min.y), round_down(b.min.z), round_up(b.max.x), round_up(b.max.y), round_up(b.max.z)];
-        for (row, value) in planes.into_iter().enumerate() {
-            self.nodes[node].planes[row][slot] = value;
-        }
-        self.nodes[node].valid |= 1 << slot;
-    }
-
     /// Stores `tree` as child `slot` of node `node`, recursing into interior trees.
     fn set_child(&mut self, node: usize, slot: usize, tree: &Tree, levels: usize) {
-        self.set_bounds(node, slot, tree);
+        self.nodes[node].set_box(slot, &tree.bounds());
         match tree {
             Tree::Leaf { prims, .. } => {
                 self.nodes[node].child[slot] = LEAF | self.indices.len() as u32;
