@@ -89,6 +89,39 @@ impl Node {
     }
 }
 
+/// The primitive test of a closest-hit walk: `visit(i, t_max)` tests primitive
+/// `i` and returns the parameter of a hit closer than `t_max`. Closures are
+/// visitors; a caller whose test must be compiled into the walk (the scene's
+/// query) implements it with an `#[inline(always)]` method instead, since a
+/// closure's body is inlined only where LLVM's cost model agrees, and a large
+/// one called from the walk's two places was not (issue 24).
+pub(crate) trait Visit {
+    /// Tests primitive `prim` against `(t_min, t_max)` of the walk.
+    fn visit(&mut self, prim: u32, t_max: f64) -> Option<f64>;
+}
+
+/// The primitive test of an any-hit walk: `occluded(i)` is true when primitive
+/// `i` blocks the ray. Closures are such tests; the scene's shadow query
+/// implements it with an `#[inline(always)]` method, as [`Visit`] explains.
+pub(crate) trait Occlude {
+    /// Whether primitive `prim` blocks the walk's ray.
+    fn occluded(&mut self, prim: u32) -> bool;
+}
+
+impl<F: FnMut(u32) -> bool> Occlude for F {
+    #[inline(always)]
+    fn occluded(&mut self, prim: u32) -> bool {
+        self(prim)
+    }
+}
+
+impl<F: FnMut(u32, f64) -> Option<f64>> Visit for F {
+    #[inline(always)]
+    fn visit(&mut self, prim: u32, t_max: f64) -> Option<f64> {
+        self(prim, t_max)
+    }
+}
+
 /// A built hierarchy over primitives `0..n`.
 #[derive(Clone, Debug, Default)]
 pub struct Bvh {
@@ -207,7 +240,7 @@ impl Bvh {
     /// [`Bvh::traverse`] of a flat hierarchy: every box tested, the entered ones
     /// sorted by entry distance and visited until one lies beyond the closest hit.
     #[inline(always)]
-    fn traverse_flat<const AVX2: bool>(&self, ray: &SlabRay, mut t_max: f64, mut intersect: impl FnMut(u32, f64) -> Option<f64>) -> f64 {
+    fn traverse_flat<const AVX2: bool>(&self, ray: &SlabRay, mut t_max: f64, mut intersect: impl Visit) -> f64 {
         // Uninitialized, as the walk's stack: zero-filling it was the query's
         // single hottest instruction in a path-traced Cornell box (issue 24).
         let mut entered = [const { MaybeUninit::<(f32, u32)>::uninit() }; FLAT_MAX];
@@ -239,7 +272,7 @@ impl Bvh {
             if f64::from(enter) * (1.0 - f64::from(WIDEN)) > t_max {
                 break;
             }
-            if let Some(t) = intersect(self.indices[first as usize], t_max) {
+            if let Some(t) = intersect.visit(self.indices[first as usize], t_max) {
                 t_max = t_max.min(t);
             }
         }
@@ -275,14 +308,7 @@ impl Bvh {
     /// into them (`Scene::first_intersect`). `AVX2` must be set only on CPUs
     /// that have it.
     #[inline(always)]
-    pub(crate) fn traverse_in<const AVX2: bool>(
-        &self,
-        origin: Vec3,
-        dir: Vec3,
-        t_min: f64,
-        t_max: f64,
-        intersect: impl FnMut(u32, f64) -> Option<f64>,
-    ) -> f64 {
+    pub(crate) fn traverse_in<const AVX2: bool>(&self, origin: Vec3, dir: Vec3, t_min: f64, t_max: f64, intersect: impl Visit) -> f64 {
         if self.nodes.is_empty() {
             return t_max;
         }
@@ -290,14 +316,7 @@ impl Bvh {
     }
 
     #[inline(always)]
-    fn traverse_with<const AVX2: bool>(
-        &self,
-        origin: Vec3,
-        dir: Vec3,
-        t_min: f64,
-        mut t_max: f64,
-        mut intersect: impl FnMut(u32, f64) -> Option<f64>,
-    ) -> f64 {
+    fn traverse_with<const AVX2: bool>(&self, origin: Vec3, dir: Vec3, t_min: f64, mut t_max: f64, mut intersect: impl Visit) -> f64 {
         let ray = SlabRay::new(origin, dir, t_min);
         if self.flat {
             return self.traverse_flat::<AVX2>(&ray, t_max, intersect);
@@ -312,7 +331,7 @@ impl Bvh {
             if current & LEAF != 0 {
                 let first = (current & !LEAF) as usize;
                 for &prim in &self.indices[first..first + leaf_count as usize] {
-                    if let Some(t) = intersect(prim, t_max) {
+                    if let Some(t) = intersect.visit(prim, t_max) {
                         t_max = t_max.min(t);
                     }
                 }
@@ -393,33 +412,26 @@ impl Bvh {
     /// [`Bvh::any`] for a caller that has chosen the box test itself (see
     /// [`Bvh::traverse_in`]).
     #[inline(always)]
-    pub(crate) fn any_in<const AVX2: bool>(
-        &self,
-        origin: Vec3,
-        dir: Vec3,
-        t_min: f64,
-        t_max: f64,
-        occluded: impl FnMut(u32) -> bool,
-    ) -> bool {
+    pub(crate) fn any_in<const AVX2: bool>(&self, origin: Vec3, dir: Vec3, t_min: f64, t_max: f64, occluded: impl Occlude) -> bool {
         !self.nodes.is_empty() && self.any_with::<AVX2>(origin, dir, t_min, t_max, occluded)
     }
 
     #[inline(always)]
-    fn any_with<const AVX2: bool>(&self, origin: Vec3, dir: Vec3, t_min: f64, t_max: f64, mut occluded: impl FnMut(u32) -> bool) -> bool {
+    fn any_with<const AVX2: bool>(&self, origin: Vec3, dir: Vec3, t_min: f64, t_max: f64, mut occluded: impl Occlude) -> bool {
         let ray = SlabRay::new(origin, dir, t_min);
         let t_max32 = t_max as f32;
         if self.flat {
-            return self.nodes.iter().any(|node| {
+            for node in &self.nodes {
                 let (_, mut mask) = node.test::<AVX2>(&ray, t_max32);
                 while mask != 0 {
                     let slot = mask.trailing_zeros() as usize;
                     mask &= mask - 1;
-                    if occluded(self.indices[(node.child[slot] & !LEAF) as usize]) {
+                    if occluded.occluded(self.indices[(node.child[slot] & !LEAF) as usize]) {
                         return true;
                     }
                 }
-                false
-            });
+            }
+            return false;
         }
         let mut stack = [const { MaybeUninit::<u32>::uninit() }; STACK];
         stack[0].write(0); // the root node
@@ -435,8 +447,10 @@ impl Bvh {
                 let child = node.child[slot];
                 if child & LEAF != 0 {
                     let first = (child & !LEAF) as usize;
-                    if self.indices[first..first + node.count[slot] as usize].iter().any(|&p| occluded(p)) {
-                        return true;
+                    for &p in &self.indices[first..first + node.count[slot] as usize] {
+                        if occluded.occluded(p) {
+                            return true;
+                        }
                     }
                 } else {
                     stack[top].write(child);

@@ -49,6 +49,7 @@ pub mod tri4;
 
 pub use aabb::Aabb;
 pub use bvh::{Bvh, BvhStats};
+pub(crate) use bvh::{Occlude, Visit};
 pub use light_buffer::LightBuffer;
 pub use mesh_bvh::{MeshBvh, MeshBvhStats};
 pub use mesh_packet::{PacketRay, PACKET};

@@ -124,7 +124,12 @@ impl SceneBuilder {
         for (i, object) in self.objects.iter().enumerate() {
             let b = object.shape.bounds();
             let material = &self.materials[object.material];
-            let prim = PrimRef { object: i as u32, opaque: material.shadow_transmittance == Rgb::ZERO, masked: material.alpha.is_some() };
+            let prim = PrimRef {
+                object: i as u32,
+                opaque: material.shadow_transmittance == Rgb::ZERO,
+                masked: material.alpha.is_some(),
+                inlined: Arc::clone(&object.shape).inlined(),
+            };
             if b.is_finite() {
                 bounded.push(prim);
                 boxes.push(b);

@@ -131,14 +131,36 @@ fn set_name(list: &mut Vec<Option<String>>, i: usize, name: &str) {
     list[i] = Some(name.to_string());
 }
 
+/// The closest-hit query's test of one bounded object, the nearest hit so far
+/// kept: a visitor rather than a closure, so that the object test (with the
+/// [`crate::shapes::Inlined`] kinds' tests) is compiled into the BVH walk.
+struct Nearest<'a> {
+    scene: &'a Scene,
+    ray: &'a Ray,
+    best: Option<(usize, crate::shapes::SurfaceHit)>,
+}
+
+impl crate::accel::Visit for &mut Nearest<'_> {
+    #[inline(always)]
+    fn visit(&mut self, prim: u32, t_max: f64) -> Option<f64> {
+        let prim = &self.scene.bounded[prim as usize];
+        let h = self.scene.hit_object(prim, self.ray, t_max)?;
+        self.best = Some((prim.object as usize, h));
+        Some(h.t)
+    }
+}
+
 /// An object as the BVH sees it: its index and whether it stops shadow rays, kept
 /// side by side so that shadow queries touch no material.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 struct PrimRef {
     object: u32,
     opaque: bool,
     /// Its material cuts holes ([`crate::materials::alpha`]).
     masked: bool,
+    /// The shape, where its kind is tested without a virtual call
+    /// ([`crate::shapes::Inlined`]).
+    inlined: Option<crate::shapes::Inlined>,
 }
 
 impl Scene {
@@ -196,13 +218,9 @@ impl Scene {
                 best = Some((i, h));
             }
         }
-        self.bvh.traverse_in::<AVX2>(ray.origin, ray.dir, 0.0, closest, |prim, t_max| {
-            let prim = &self.bounded[prim as usize];
-            let h = self.hit_object(prim, ray, t_max)?;
-            best = Some((prim.object as usize, h));
-            Some(h.t)
-        });
-        let (object, h) = best?;
+        let mut nearest = Nearest { scene: self, ray, best };
+        self.bvh.traverse_in::<AVX2>(ray.origin, ray.dir, 0.0, closest, &mut nearest);
+        let (object, h) = nearest.best?;
         let faces_ray = ray.dir.dot(h.normal) < 0.0;
         let (geometric_normal, mut normal) = if faces_ray { (h.normal, h.shading_normal) } else { (-h.normal, -h.shading_normal) };
         let mut front_face = faces_ray != self.objects[object].reversed;
@@ -277,7 +295,10 @@ impl Scene {
         if prim.masked {
             return self.hit_masked(prim, ray, t_max);
         }
-        self.objects[prim.object as usize].shape.intersect(ray, 0.0, t_max)
+        match &prim.inlined {
+            Some(shape) => shape.intersect(ray, 0.0, t_max),
+            None => self.objects[prim.object as usize].shape.intersect(ray, 0.0, t_max),
+        }
     }
 
     /// [`Scene::hit_object`] of an object whose material may cut holes, kept out

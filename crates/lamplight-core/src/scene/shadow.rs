@@ -21,7 +21,7 @@
 //! (which multiply every crossing, in the walk's order) keep the walk.
 
 use super::{PrimRef, Scene};
-use crate::accel::LightBuffer;
+use crate::accel::{LightBuffer, Occlude};
 use crate::math::{max_abs, Rgb};
 use crate::ray::{Ray, OFFSET_SCALE};
 
@@ -52,6 +52,30 @@ impl OccluderHint {
 impl Default for OccluderHint {
     fn default() -> Self {
         OccluderHint::NONE
+    }
+}
+
+/// The shadow query's test of one bounded object for the walk and the light
+/// buffer's lists: the hinted object `tried` is skipped (it was tested first),
+/// and the blocker found is kept for the hint.
+struct Blocker<'a> {
+    scene: &'a Scene,
+    ray: &'a Ray,
+    distance: f64,
+    ignore: u32,
+    tried: u32,
+    /// The object that blocked, or `u32::MAX`.
+    found: u32,
+}
+
+impl crate::accel::Occlude for &mut Blocker<'_> {
+    #[inline(always)]
+    fn occluded(&mut self, prim: u32) -> bool {
+        let blocked = prim != self.tried && self.scene.blocks(&self.scene.bounded[prim as usize], self.ray, self.distance, self.ignore);
+        if blocked {
+            self.found = prim;
+        }
+        blocked
     }
 }
 
@@ -127,39 +151,30 @@ impl Scene {
     ) -> Rgb {
         let (origin, dir) = (ray.origin, ray.dir);
         let ignore = ignore.map_or(u32::MAX, |i| i as u32);
-        let blocks = |prim: &PrimRef| -> bool {
-            prim.opaque
-                && prim.object != ignore
-                && if prim.masked {
-                    self.hit_object(prim, ray, distance).is_some()
-                } else {
-                    self.objects[prim.object as usize].shape.intersect_p(ray, 0.0, distance)
-                }
-        };
         // Any blocking object gives the same answer, the hinted one included;
         // one that does not block is not tested again by the walk.
         let tried = hint.prim;
-        if self.bounded.get(tried as usize).is_some_and(blocks) {
+        if self.bounded.get(tried as usize).is_some_and(|prim| self.blocks(prim, ray, distance, ignore)) {
             return Rgb::ZERO;
         }
-        if self.unbounded.iter().any(blocks) {
-            return Rgb::ZERO;
-        }
-        let mut walk = |prim: u32| {
-            let blocked = prim != tried && blocks(&self.bounded[prim as usize]);
-            if blocked {
-                hint.prim = prim;
+        for prim in &self.unbounded {
+            if self.blocks(prim, ray, distance, ignore) {
+                return Rgb::ZERO;
             }
-            blocked
-        };
+        }
+        let mut walk = Blocker { scene: self, ray, distance, ignore, tried, found: u32::MAX };
         if let Some((near, cell)) = self.light_cell(hint.light, ray, distance) {
-            let blocked = near.iter().any(|&prim| walk(prim)) || cell.iter().any(|&prim| walk(prim));
-            if !blocked {
-                hint.prim = u32::MAX;
+            for &prim in near.iter().chain(cell) {
+                if (&mut walk).occluded(prim) {
+                    hint.prim = prim;
+                    return Rgb::ZERO;
+                }
             }
-            return if blocked { Rgb::ZERO } else { Rgb::ONE };
+            hint.prim = u32::MAX;
+            return Rgb::ONE;
         }
-        if self.bvh.any_in::<AVX2>(origin, dir, 0.0, distance, walk) {
+        if self.bvh.any_in::<AVX2>(origin, dir, 0.0, distance, &mut walk) {
+            hint.prim = walk.found;
             return Rgb::ZERO;
         }
         hint.prim = u32::MAX;
@@ -193,6 +208,24 @@ impl Scene {
             None
         });
         result
+    }
+
+    /// Whether object `prim` blocks the shadow ray `ray` over `(0, distance)`:
+    /// opaque, not the light's own object `ignore`, and hit. A method compiled
+    /// into each of the query's three places rather than a closure, which LLVM
+    /// kept out of line once the [`crate::shapes::Inlined`] tests made it large.
+    #[inline(always)]
+    fn blocks(&self, prim: &PrimRef, ray: &Ray, distance: f64, ignore: u32) -> bool {
+        prim.opaque
+            && prim.object != ignore
+            && if prim.masked {
+                self.hit_object(prim, ray, distance).is_some()
+            } else {
+                match &prim.inlined {
+                    Some(shape) => shape.intersect_p(ray, 0.0, distance),
+                    None => self.objects[prim.object as usize].shape.intersect_p(ray, 0.0, distance),
+                }
+            }
     }
 
     /// The objects a shadow ray towards light `light` over `(0, distance)` may
@@ -434,7 +467,7 @@ mod tests {
         let mut hint = OccluderHint::NONE;
         let ray = Ray::unit(Vec3::new(30.0, 5.0, 0.0), -Vec3::Y);
         assert_eq!(scene.transmittance_hinted(&ray, 10.0, None, &mut hint), Rgb::ZERO);
-        let prim = scene.bounded[hint.prim as usize];
+        let prim = &scene.bounded[hint.prim as usize];
         assert_eq!(prim.object, 10, "the ball at x = 30 blocks");
     }
 }

@@ -26,6 +26,7 @@ pub mod box_uv;
 pub mod cuboid;
 pub mod disk_uv;
 mod implicit;
+mod inlined;
 mod instance;
 mod mesh;
 pub mod moving;
@@ -39,6 +40,7 @@ pub mod triangle;
 
 pub use cuboid::Cuboid;
 pub use implicit::{GradientFn, Implicit, ImplicitFn};
+pub use inlined::Inlined;
 pub use instance::{placed, Instance};
 pub use mesh::{TriangleMesh, VertexAttributes};
 pub use moving::MovingInstance;
@@ -83,6 +85,13 @@ impl SurfaceHit {
 pub trait Shape: Send + Sync + std::fmt::Debug {
     /// A box that contains the whole surface; [`Aabb::INFINITE`] for an unbounded one.
     fn bounds(&self) -> Aabb;
+
+    /// This shape as a kind the scene's queries test without a virtual call
+    /// ([`Inlined`]), asked once when the scene is built; `None` (the default)
+    /// keeps the virtual call.
+    fn inlined(self: Arc<Self>) -> Option<Inlined> {
+        None
+    }
 
     /// The hit with the smallest ray parameter `t` in the open interval
     /// `(t_min, t_max)`, or `None`. `ray.dir` is a unit vector.

@@ -199,6 +199,10 @@ impl Rectangle {
 }
 
 impl Shape for Rectangle {
+    fn inlined(self: std::sync::Arc<Self>) -> Option<super::Inlined> {
+        Some(super::Inlined::Rectangle(self))
+    }
+
     fn is_convex(&self) -> bool {
         true
     }
@@ -216,6 +220,7 @@ impl Shape for Rectangle {
         Aabb::from_points([c, c + self.edge_u, c + self.edge_v, c + self.edge_u + self.edge_v])
     }
 
+    #[inline(always)]
     fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
         let t = self.hit_t(ray, t_min, t_max)?;
         Some(SurfaceHit::new(t, self.normal))
@@ -223,6 +228,7 @@ impl Shape for Rectangle {
 
     /// Shadow rays skip building the hit record (a floor or a wall is tested by
     /// most shadow rays of a scene).
+    #[inline(always)]
     fn intersect_p(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
         self.hit_t(ray, t_min, t_max).is_some()
     }

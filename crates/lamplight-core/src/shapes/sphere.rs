@@ -86,6 +86,10 @@ impl Sphere {
 }
 
 impl Shape for Sphere {
+    fn inlined(self: std::sync::Arc<Self>) -> Option<super::Inlined> {
+        Some(super::Inlined::Sphere(self))
+    }
+
     fn is_convex(&self) -> bool {
         true
     }
@@ -128,6 +132,7 @@ impl Shape for Sphere {
     /// (Haines et al., Ray Tracing Gems ch. 7), free of the cancellation in `b^2 - c`,
     /// so a small sphere far from the ray origin keeps its precision; the roots use
     /// the stable pair `q = -(b + sign(b) sqrt(D))`, `t = q` and `t = c / q`.
+    #[inline(always)]
     fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
         let f = ray.origin - self.center;
         let b_half = f.dot(ray.dir);
@@ -175,6 +180,7 @@ impl Shape for Sphere {
         }
     }
 
+    #[inline(always)]
     fn intersect_p(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
         let f = ray.origin - self.center;
         let b_half = f.dot(ray.dir);
