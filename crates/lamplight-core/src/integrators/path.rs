@@ -327,14 +327,12 @@ impl PathTracer {
         counts: &mut RayCounts,
         trace: &mut T,
     ) -> Rgb {
-        let Some(picked) = self.lights.pick(u_pick) else {
+        let Some((picked, sample)) = self.lights.pick_and_sample(u_pick, hit.point, u) else {
             trace.nee_miss(NeeMiss::NoLight);
             return Rgb::ZERO;
         };
         let p_pick = self.lights.pick_probability();
-        let Some(crate::lights::LiSample { wi, distance, radiance: li, pdf: light_pdf, own_object: own, ends_on_own }) =
-            picked.sample_li(hit.point, u)
-        else {
+        let Some(crate::lights::LiSample { wi, distance, radiance: li, pdf: light_pdf, own_object: own, ends_on_own }) = sample else {
             trace.nee_miss(NeeMiss::NoSample);
             return Rgb::ZERO;
         };

@@ -105,6 +105,7 @@ impl AreaLight {
     }
 
     /// A light point for receiver `x` from `u`.
+    #[inline]
     pub fn sample(&self, x: Vec3, u: (f64, f64)) -> Option<AreaSample> {
         let (y, n, face) = match &self.triangles {
             Some(t) => t.sample(u).map(|(y, n, k)| (y, n, Some(k)))?,
@@ -154,6 +155,15 @@ impl Light for AreaLight {
 
     /// A point on the surface ([`AreaLight::sample`]).
     fn sample_li(&self, point: Vec3, u: (f64, f64)) -> Option<LiSample> {
+        self.sample_li_direct(point, u)
+    }
+}
+
+impl AreaLight {
+    /// [`Light::sample_li`], for callers that know the light's type
+    /// ([`crate::lights::LightSet::pick_and_sample`]) and compile it in.
+    #[inline(always)]
+    pub fn sample_li_direct(&self, point: Vec3, u: (f64, f64)) -> Option<LiSample> {
         let s = self.sample(point, u)?;
         Some(LiSample {
             wi: s.wi,

@@ -15,8 +15,8 @@
 
 use std::sync::Arc;
 
-use super::{AreaLight, Environment, Light};
-use crate::math::Rgb;
+use super::{AreaLight, Environment, LiSample, Light};
+use crate::math::{Rgb, Vec3};
 
 /// The lights of a scene in one list.
 #[derive(Debug)]
@@ -89,6 +89,26 @@ impl LightSet {
         self.environment.as_deref().map(|e| e as &dyn Light)
     }
 
+    /// [`LightSet::pick`] and the picked light's [`Light::sample_li`] at `point`
+    /// from `u`. An area light (the usual light of a path-traced scene) is
+    /// sampled by a direct call that the path tracer's loop compiles in, not
+    /// through `dyn Light`: the same operations, the same values.
+    #[inline(always)]
+    pub fn pick_and_sample(&self, u_pick: f64, point: Vec3, u: (f64, f64)) -> Option<(&dyn Light, Option<LiSample>)> {
+        let n = self.count();
+        if n == 0 {
+            return None;
+        }
+        let i = ((u_pick * n as f64) as usize).min(n - 1);
+        match i.checked_sub(self.delta.len()) {
+            Some(a) if a < self.area.len() => {
+                let light = &self.area[a];
+                Some((light as &dyn Light, light.sample_li_direct(point, u)))
+            }
+            _ => self.pick(u_pick).map(|light| (light, light.sample_li(point, u))),
+        }
+    }
+
     /// Whether object `object` is a delta light's own body, whose light the
     /// delta light gives (see the module doc).
     pub fn is_bulb(&self, object: usize) -> bool {
@@ -141,5 +161,16 @@ mod tests {
         // The sky: uniform over the sphere, infinitely far.
         let sky = picks[3];
         assert_eq!((sky.distance, sky.radiance, sky.pdf), (f64::INFINITY, Rgb::splat(0.5), Some(1.0 / (4.0 * std::f64::consts::PI))));
+        // The path tracer's pick_and_sample picks the same light and draws the
+        // same sample, bit for bit, for every kind (the area light by a direct call).
+        let mut rng = crate::sampling::Rng::for_sample(3, 0, 0);
+        for _ in 0..400 {
+            let (u_pick, u) = (rng.uniform(), (rng.uniform(), rng.uniform()));
+            let point = Vec3::new(rng.uniform() * 4.0 - 2.0, rng.uniform() * 3.0 - 1.0, rng.uniform() * 4.0 - 2.0);
+            let (light, sample) = set.pick_and_sample(u_pick, point, u).unwrap();
+            let picked = set.pick(u_pick).unwrap();
+            assert!(std::ptr::addr_eq(light, picked), "u_pick {u_pick}");
+            assert_eq!(sample, picked.sample_li(point, u), "u_pick {u_pick}, point {point}");
+        }
     }
 }
