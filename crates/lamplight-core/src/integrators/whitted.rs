@@ -283,13 +283,13 @@ pub fn direct_light<T: WhittedTrace + ?Sized>(
     if !material.is_lit() || !scatters {
         return radiance;
     }
-    for (i, light) in scene.lights.iter().enumerate() {
+    for i in 0..scene.lights.len() {
         trace.light(LightRef::Delta(i));
-        let Some(sample) = light.illuminate(hit.point) else {
+        let (Some(sample), own) = scene.illuminate(i, hit.point) else {
             trace.unlit(Unlit::NotReached);
             continue;
         };
-        let incident = Incident { wi: sample.wi, distance: sample.distance, lin: sample.radiance, own: light.own_object(), light: i };
+        let incident = Incident { wi: sample.wi, distance: sample.distance, lin: sample.radiance, own, light: i };
         radiance += lit_by(scene, ray, hit, material, color, &incident, counts, trace);
     }
     if !area_lights.is_empty() {

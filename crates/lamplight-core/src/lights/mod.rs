@@ -87,6 +87,13 @@ pub trait Light: Send + Sync + std::fmt::Debug {
     /// The light arriving at `point` from a delta light, or `None`.
     fn illuminate(&self, point: Vec3) -> Option<LightSample>;
 
+    /// This light as a [`PointLight`], asked once when the scene is built: the
+    /// Whitted tracer then lights by a direct call, without `dyn Light`
+    /// ([`crate::Scene::illuminate`]). `None` (the default) keeps the dyn call.
+    fn point_light(&self) -> Option<&PointLight> {
+        None
+    }
+
     /// Index of a scene object that belongs to the light itself (a bulb around a
     /// point light) and must not shadow it.
     fn own_object(&self) -> Option<usize> {

@@ -87,6 +87,7 @@ pub(crate) fn towards(position: Vec3, point: Vec3) -> Option<(Vec3, f64, f64)> {
 }
 
 impl Light for PointLight {
+    #[inline]
     fn illuminate(&self, point: Vec3) -> Option<LightSample> {
         let (wi, distance, d2) = towards(self.position, point)?;
         let radiance = match self.falloff {
@@ -102,6 +103,10 @@ impl Light for PointLight {
 
     fn own_object(&self) -> Option<usize> {
         self.own_object
+    }
+
+    fn point_light(&self) -> Option<&PointLight> {
+        Some(self)
     }
 }
 

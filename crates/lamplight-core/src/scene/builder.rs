@@ -176,6 +176,7 @@ impl SceneBuilder {
             light_buffers,
             objects: self.objects,
             materials: self.materials,
+            point_lights: self.lights.iter().map(|l| l.point_light().cloned()).collect(),
             lights: self.lights,
             settings: self.settings,
             blend_parts: self.blend_parts,

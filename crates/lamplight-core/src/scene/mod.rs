@@ -87,6 +87,9 @@ pub struct Scene {
     /// The camera, the ambient and background light, the sky and the
     /// recursion's limits.
     pub settings: SceneSettings,
+    /// Per light, a copy of it where it is a [`crate::lights::PointLight`]
+    /// ([`Scene::illuminate`]).
+    point_lights: Vec<Option<crate::lights::PointLight>>,
     bvh: Bvh,
     /// Objects in the BVH, in BVH primitive order.
     bounded: Vec<PrimRef>,
@@ -312,6 +315,21 @@ impl Scene {
         }
     }
 
+    /// [`Light::illuminate`] of light `i` of [`Scene::lights`] at `point`, and
+    /// its [`Light::own_object`]: a point light (the lecture's and POV-Ray's
+    /// usual light) by a direct call compiled into the Whitted tracer's loop,
+    /// the others through `dyn Light`; the same values either way.
+    #[inline(always)]
+    pub fn illuminate(&self, i: usize, point: Vec3) -> (Option<crate::lights::LightSample>, Option<usize>) {
+        match self.point_lights.get(i) {
+            Some(Some(light)) => (Light::illuminate(light, point), light.own_object),
+            _ => {
+                let light = &self.lights[i];
+                (light.illuminate(point), light.own_object())
+            }
+        }
+    }
+
     /// The surface coordinates of `hit` ([`Shape::surface_coords`]), computed
     /// now: only materials that read them ask.
     pub fn surface_coords(&self, hit: &Hit) -> crate::shapes::SurfaceCoords {
@@ -397,6 +415,29 @@ mod tests {
     use crate::camera::{Fov, Perspective};
     use crate::math::Rgb;
     use crate::shapes::Sphere;
+
+    /// `Scene::illuminate` answers as `dyn Light` does, point lights (called
+    /// directly) and other kinds alike, bit for bit.
+    #[test]
+    fn lights_illuminate_as_through_dyn_light() {
+        use crate::lights::{DirectionalLight, Falloff, PointLight, SpotLight, SpotProfile};
+        let camera = Perspective::look_at(Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO, Vec3::Y, Fov::VerticalDeg(40.0)).unwrap();
+        let mut b = SceneBuilder::new(camera);
+        b.light(PointLight::new(Vec3::new(1.0, 3.0, -2.0), Rgb::new(9.0, 8.0, 7.0)).unwrap());
+        b.light(PointLight::new(Vec3::new(-2.0, 1.0, 0.5), Rgb::splat(3.0)).unwrap().with_falloff(Falloff::None));
+        b.light(SpotLight::new(Vec3::new(0.0, 3.0, 0.0), -Vec3::Y, Rgb::splat(9.0), 10.0, 20.0, SpotProfile::Smoothstep).unwrap());
+        b.light(DirectionalLight::new(Vec3::new(0.3, -1.0, 0.2), Rgb::splat(2.0)).unwrap());
+        let scene = b.build().unwrap();
+        assert_eq!(scene.point_lights.iter().map(Option::is_some).collect::<Vec<_>>(), [true, true, false, false]);
+        let mut rng = crate::sampling::Rng::for_sample(9, 0, 0);
+        for _ in 0..200 {
+            let point = Vec3::new(rng.uniform() * 6.0 - 3.0, rng.uniform() * 6.0 - 3.0, rng.uniform() * 6.0 - 3.0);
+            for (i, light) in scene.lights.iter().enumerate() {
+                let direct = scene.illuminate(i, point);
+                assert_eq!(direct, (light.illuminate(point), light.own_object()), "light {i} at {point}");
+            }
+        }
+    }
 
     /// A bulb of radius 2 around the origin with a small opaque ball inside it,
     /// off centre towards +x, and an opaque ball outside it on the -x side.
