@@ -256,6 +256,10 @@ impl Bsdf {
 
     /// Samples an incident direction for outgoing `wo` (local, `wo.z > 0`): `u_lobe`
     /// picks the lobe (and, rescaled, the glass branch), `u` the direction.
+    ///
+    /// The single Lambertian lobe is compiled into the caller (the path
+    /// tracer's loop, in its AVX2 compilation); other BSDFs go out of line.
+    #[inline(always)]
     pub fn sample(&self, wo: Vec3, u_lobe: f64, u: (f64, f64)) -> Option<BsdfSample> {
         if let Some(albedo) = self.single_diffuse() {
             let wi = lambertian::sample(u);
@@ -267,6 +271,12 @@ impl Bsdf {
             // the surface (pdf > 0): exactly the albedo.
             return Some(BsdfSample { wi, weight: albedo, pdf, delta: false, eta: 1.0 });
         }
+        self.sample_lobes(wo, u_lobe, u)
+    }
+
+    /// [`Bsdf::sample`] of any other BSDF: a lobe picked by `u_lobe`, then sampled.
+    #[inline(never)]
+    fn sample_lobes(&self, wo: Vec3, u_lobe: f64, u: (f64, f64)) -> Option<BsdfSample> {
         let mut start = 0.0;
         let mut chosen = self.count.checked_sub(1)?;
         for i in 0..self.count {
