@@ -105,7 +105,7 @@ impl AreaLight {
     }
 
     /// A light point for receiver `x` from `u`.
-    #[inline]
+    #[inline(always)]
     pub fn sample(&self, x: Vec3, u: (f64, f64)) -> Option<AreaSample> {
         let (y, n, face) = match &self.triangles {
             Some(t) => t.sample(u).map(|(y, n, k)| (y, n, Some(k)))?,
