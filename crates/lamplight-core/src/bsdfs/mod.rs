@@ -226,12 +226,19 @@ impl Bsdf {
         self.single_diffuse().is_none()
     }
 
-    /// Sum of the non-delta lobes' values.
-    #[inline]
+    /// Sum of the non-delta lobes' values (the single Lambertian lobe compiled
+    /// into the caller, as in [`Bsdf::sample`]).
+    #[inline(always)]
     pub fn f(&self, wo: Vec3, wi: Vec3) -> Rgb {
         if let Some(albedo) = self.single_diffuse() {
             return lambertian::f(albedo, wo, wi);
         }
+        self.f_lobes(wo, wi)
+    }
+
+    /// [`Bsdf::f`] of any other BSDF.
+    #[inline(never)]
+    fn f_lobes(&self, wo: Vec3, wi: Vec3) -> Rgb {
         let mut sum = Rgb::ZERO;
         for lobe in self.lobes() {
             lobe.add_f(&mut sum, wo, wi);
@@ -241,12 +248,18 @@ impl Bsdf {
 
     /// Solid-angle density with which [`Bsdf::sample`] returns `wi` from a non-delta lobe
     /// (`wi.z < 0`: transmitted).
-    #[inline]
+    #[inline(always)]
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f64 {
         if self.single_diffuse().is_some() {
             // The single lobe's probability is exactly 1.
             return lambertian::pdf(wo, wi);
         }
+        self.pdf_lobes(wo, wi)
+    }
+
+    /// [`Bsdf::pdf`] of any other BSDF.
+    #[inline(never)]
+    fn pdf_lobes(&self, wo: Vec3, wi: Vec3) -> f64 {
         let mut pdf = 0.0;
         for (lobe, p) in self.lobes().iter().zip(self.probs) {
             lobe.add_pdf(&mut pdf, p, wo, wi);
