@@ -3,7 +3,8 @@
 //! A scene query tests each candidate object through `dyn Shape`. Around that
 //! indirect call the query saves and restores every vector register the call
 //! may clobber, and the hit comes back through memory: about 60 instructions a
-//! test, more than a sphere's or a rectangle's test itself (callgrind, issue 24).
+//! test, more than a rectangle's own test (57) and two thirds of a sphere's
+//! (about 90; callgrind, issue 24).
 //! The most common analytic shapes hand the scene a typed reference of
 //! themselves ([`Shape::inlined`]) when it is built; the query matches on it and
 //! calls the very `Shape::intersect` the virtual call would reach, compiled into
