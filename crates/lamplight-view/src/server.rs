@@ -36,6 +36,10 @@ use crate::state::App;
 /// Longest message a page may send (a camera or a setting is some 200 bytes).
 pub const MAX_MESSAGE: usize = 64 * 1024;
 
+/// How long a session that closed a WebSocket for a too long message waits
+/// before dropping the connection (see `page_session`).
+const CLOSE_LINGER: std::time::Duration = std::time::Duration::from_millis(500);
+
 const INDEX_HTML: &str = include_str!("page/index.html");
 const APP_JS: &str = include_str!("page/app.js");
 const INSPECTOR_JS: &str = include_str!("page/inspector.js");
@@ -175,7 +179,13 @@ async fn page_session(app: Arc<App>, mut socket: WebSocket) {
                     if e.to_string().contains("Space limit exceeded") {
                         let reason = format!("a message is at most {MAX_MESSAGE} bytes");
                         let close = CloseFrame { code: close_code::SIZE, reason: reason.into() };
-                        let _ = socket.send(Message::Close(Some(close))).await;
+                        if socket.send(Message::Close(Some(close))).await.is_ok() {
+                            // The rest of the long message is still unread here, and
+                            // closing a TCP socket with unread data resets the
+                            // connection, which can destroy the close frame before
+                            // the page reads it. Give the page time to read it.
+                            tokio::time::sleep(CLOSE_LINGER).await;
+                        }
                     }
                     break;
                 }
