@@ -343,8 +343,41 @@ impl LightBuffer {
         if !(off <= allowed * allowed && length <= along + 0.5 * self.near) {
             return None;
         }
-        // The face of `-dir` (axis a, then the axes a + 1 and a + 2 as u and v).
-        let (e, m) = (-dir, dir.abs());
+        self.list_towards(-dir)
+    }
+
+    /// The objects a ray leaving the centre itself along `dir` may meet besides
+    /// [`LightBuffer::always`]; `None` where the cell's list was too long. Every
+    /// point of such a ray is seen from the centre exactly in the direction
+    /// `dir`, so the lists are complete for it (module doc, with `m = 0`, and a
+    /// ray that cannot pass the point it leaves): the eye's buffer
+    /// (`eye_buffer.rs`) is looked up so.
+    #[inline(always)]
+    pub fn cell_from_centre(&self, dir: Vec3) -> Option<&[u32]> {
+        self.list_towards(dir)
+    }
+
+    /// The point the cells are seen from.
+    pub fn centre(&self) -> Vec3 {
+        self.centre
+    }
+
+    /// Orders every cell's list by `key` of its objects, nearest first (ties
+    /// by object number), for a caller that may stop partway along a list.
+    pub fn sort_lists_by(&mut self, key: impl Fn(u32) -> f64) {
+        for &[start, end] in &self.spans {
+            if let Some(list) = self.items.get_mut(start as usize..end as usize) {
+                list.sort_by(|&a, &b| key(a).total_cmp(&key(b)).then(a.cmp(&b)));
+            }
+        }
+        self.always.sort_by(|&a, &b| key(a).total_cmp(&key(b)).then(a.cmp(&b)));
+    }
+
+    /// The list of the cell that holds direction `e` seen from the centre.
+    #[inline(always)]
+    fn list_towards(&self, e: Vec3) -> Option<&[u32]> {
+        // The face of `e` (axis a, then the axes a + 1 and a + 2 as u and v).
+        let m = e.abs();
         let (major, u, v, face) = if m.x >= m.y && m.x >= m.z {
             (e.x, e.y, e.z, 0)
         } else if m.y >= m.z {

@@ -10,6 +10,9 @@
 //! - [`LightBuffer`] (`light_buffer.rs`): not a hierarchy but a cube of direction
 //!   cells around a point light, listing the objects in each, so that shadow
 //!   rays towards the light test one cell's objects instead of walking the [`Bvh`].
+//! - [`EyeBuffer`] (`eye_buffer.rs`): the same cube of cells around the camera's
+//!   eye, listing every object, so that camera rays test one cell's objects,
+//!   nearest first, instead of walking the [`Bvh`].
 //! - [`MeshBvh`] (`mesh_bvh.rs`), batch ray casting's ([`crate::batch::MeshAccel`]):
 //!   8-wide, one `f32` mesh, triangles stored inline in 4-wide packets; its
 //!   traversal interleaves scattered rays (`mesh_walk.rs`) and walks coherent
@@ -39,6 +42,7 @@
 
 mod aabb;
 mod bvh;
+mod eye_buffer;
 mod light_buffer;
 mod mesh_bvh;
 mod mesh_packet;
@@ -48,8 +52,9 @@ mod slab;
 pub mod tri4;
 
 pub use aabb::Aabb;
-pub use bvh::{Bvh, BvhStats};
+pub use bvh::{Bvh, BvhStats, FLAT_MAX};
 pub(crate) use bvh::{Occlude, Visit};
+pub use eye_buffer::EyeBuffer;
 pub use light_buffer::LightBuffer;
 pub use mesh_bvh::{MeshBvh, MeshBvhStats};
 pub use mesh_packet::{PacketRay, PACKET};

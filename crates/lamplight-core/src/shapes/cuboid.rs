@@ -225,6 +225,10 @@ impl SlabHit {
 }
 
 impl Shape for Cuboid {
+    fn hit_ignores_t_max(&self) -> bool {
+        true
+    }
+
     fn is_convex(&self) -> bool {
         true
     }

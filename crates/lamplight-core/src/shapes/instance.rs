@@ -112,6 +112,11 @@ impl Shape for Instance {
         self.bounds
     }
 
+    /// The placed shape's answer, scaled: as independent of `t_max` as it is.
+    fn hit_ignores_t_max(&self) -> bool {
+        self.shape.hit_ignores_t_max()
+    }
+
     fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
         let (local, scale) = self.object_ray(ray)?;
         let hit = self.shape.intersect(&local, t_min * scale, t_max * scale)?;

@@ -252,6 +252,10 @@ impl TriangleMesh {
 }
 
 impl Shape for TriangleMesh {
+    fn hit_ignores_t_max(&self) -> bool {
+        true
+    }
+
     fn bounds(&self) -> Aabb {
         self.bounds
     }

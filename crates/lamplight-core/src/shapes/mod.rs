@@ -113,6 +113,17 @@ pub trait Shape: Send + Sync + std::fmt::Debug {
         !self.bounds().intersection(*region).is_empty()
     }
 
+    /// True when the hit [`Shape::intersect`] reports below `t_max` is the same,
+    /// bit for bit, for every larger `t_max`: `t_max` only rejects. A closed-form
+    /// test (a sphere's quadratic, a box's slabs, a mesh's nearest triangle) has
+    /// it; a search over `(t_min, t_max)` (marching, root isolation on that
+    /// interval) may land elsewhere. The eye's buffer (`accel/eye_buffer.rs`)
+    /// asks objects with other bounds than the BVH walk would and is built only
+    /// when every object says so. `false` (the default) is always safe.
+    fn hit_ignores_t_max(&self) -> bool {
+        false
+    }
+
     /// True for flat shapes and boundaries of convex solids (rectangles, disks,
     /// triangles, spheres, boxes): a segment from a point outside to a point of the
     /// surface whose outward normal faces that point meets the surface nowhere

@@ -116,6 +116,10 @@ impl Plane {
 }
 
 impl Shape for Plane {
+    fn hit_ignores_t_max(&self) -> bool {
+        true
+    }
+
     fn bounds(&self) -> Aabb {
         Aabb::INFINITE
     }
@@ -199,6 +203,10 @@ impl Rectangle {
 }
 
 impl Shape for Rectangle {
+    fn hit_ignores_t_max(&self) -> bool {
+        true
+    }
+
     fn inlined(self: std::sync::Arc<Self>) -> Option<super::Inlined> {
         Some(super::Inlined::Rectangle(self))
     }
@@ -297,6 +305,10 @@ impl Disk {
 }
 
 impl Shape for Disk {
+    fn hit_ignores_t_max(&self) -> bool {
+        true
+    }
+
     fn is_convex(&self) -> bool {
         true
     }

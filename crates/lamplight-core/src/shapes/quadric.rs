@@ -257,6 +257,10 @@ impl Quadric {
 }
 
 impl Shape for Quadric {
+    fn hit_ignores_t_max(&self) -> bool {
+        true
+    }
+
     fn bounds(&self) -> Aabb {
         if self.bounds.is_finite() {
             self.bounds

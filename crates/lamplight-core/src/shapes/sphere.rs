@@ -86,6 +86,10 @@ impl Sphere {
 }
 
 impl Shape for Sphere {
+    fn hit_ignores_t_max(&self) -> bool {
+        true
+    }
+
     fn inlined(self: std::sync::Arc<Self>) -> Option<super::Inlined> {
         Some(super::Inlined::Sphere(self))
     }

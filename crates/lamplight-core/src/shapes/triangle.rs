@@ -200,6 +200,10 @@ impl Triangle {
 }
 
 impl Shape for Triangle {
+    fn hit_ignores_t_max(&self) -> bool {
+        true
+    }
+
     fn is_convex(&self) -> bool {
         true
     }
