@@ -28,8 +28,15 @@ impl Scene {
     pub(super) fn first_intersect_from_eye_baseline(&self, eye: &EyeBuffer, ray: &Ray, t_max: f64) -> Option<Hit> {
         match self.first_intersect_listed(eye, ray, t_max) {
             Some(found) => found,
-            None => self.first_intersect_in::<false>(ray, t_max),
+            None => self.first_intersect_walk_baseline(ray, t_max),
         }
+    }
+
+    /// The walk of [`Scene::first_intersect`] for baseline x86-64, without
+    /// its look at the eye ([`Scene::first_intersect_walk_avx2`]).
+    #[inline(never)]
+    fn first_intersect_walk_baseline(&self, ray: &Ray, t_max: f64) -> Option<Hit> {
+        self.first_intersect_in::<false>(ray, t_max)
     }
 
     /// [`Scene::first_intersect_from_eye_baseline`] compiled for [`crate::cpu::AVX2_FEATURES`].
@@ -39,8 +46,18 @@ impl Scene {
     pub(super) unsafe fn first_intersect_from_eye_avx2(&self, eye: &EyeBuffer, ray: &Ray, t_max: f64) -> Option<Hit> {
         match self.first_intersect_listed(eye, ray, t_max) {
             Some(found) => found,
-            None => self.first_intersect_in::<true>(ray, t_max),
+            None => self.first_intersect_walk_avx2(ray, t_max),
         }
+    }
+
+    /// The walk of [`Scene::first_intersect_avx2`] without its look at the
+    /// eye, for the rays the buffer hands back; out of line, so that the
+    /// search's own frame stays small.
+    #[cfg(target_arch = "x86_64")]
+    #[inline(never)]
+    #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
+    unsafe fn first_intersect_walk_avx2(&self, ray: &Ray, t_max: f64) -> Option<Hit> {
+        self.first_intersect_in::<true>(ray, t_max)
     }
 
     /// The unbounded objects, then those the eye's buffer lists for `ray`;
