@@ -83,7 +83,7 @@ impl EyeBuffer {
     }
 
     /// A distance below every hit on object `i` by a ray from the eye: how
-    /// near its box comes to the eye, less [`REACH_ALLOWANCE`] of the sizes
+    /// near its box comes to the eye, less `REACH_ALLOWANCE` (1e-9) of the sizes
     /// involved. A list can stop at an object whose reach lies beyond the
     /// nearest hit found.
     #[inline(always)]
