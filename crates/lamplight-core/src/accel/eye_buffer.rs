@@ -13,8 +13,9 @@
 //! ordered them.
 //!
 //! **The same answer as the walk.** Where the nearest hit is nearer than every
-//! other object's, any search that tests all candidates finds it, and the
-//! object's test reports the same hit for any `t_max` above it
+//! other object's, any search that tests every candidate that could be nearer
+//! finds it (the search skips only boxes beyond the nearest hit so far), and
+//! the object's test reports the same hit for any `t_max` above it
 //! ([`crate::shapes::Shape::hit_ignores_t_max`], which every object must
 //! have for the buffer to be built). Where two objects are hit at exactly the
 //! same distance, the walk's order decides, so the search hands such a ray
