@@ -6,7 +6,9 @@
     python3 bench/anchors.py --only whitted,raycast
     LAMPLIGHT=/path/to/lamplight python3 bench/anchors.py
 
-Rows (lamplight and the peer alternate; each figure is a median):
+Rows (lamplight and the peer alternate; each figure is a median; the Whitted
+rows' check also gives the median of the per-round ratios and the ratio of
+the minimums, which the machine's load moves less):
   whitted  `spheres` and `luxo`, 1280x720, 1 spp, 2 threads: lamplight's whole
            process against POV-Ray 3.7's own trace time (bench/povray_compare.py);
            the images must agree to within 1 level per channel.
@@ -141,9 +143,17 @@ def whitted_rows(quick):
         ours, peer = statistics.median(res["lamplight"]), statistics.median(res["povray_trace"])
         img = res["image"]
         ratio = peer / ours
+        # The ratio stands on the medians. Both renderers' times move with the
+        # machine's load (POV-Ray's from 0.47 to 0.95 s on `spheres` within half
+        # an hour, BENCHMARKS.md session 29), so the check also gives the median
+        # of each round's ratio (the two runs of a round see the same load) and
+        # the ratio of the minimums, for reading one table against another.
+        paired = statistics.median(p / o for p, o in zip(res["povray_trace"], res["lamplight"]))
+        fastest = min(res["povray_trace"]) / min(res["lamplight"])
         rows.append(row(name, f"POV-Ray {povray_version()}: {peer:.3f} s", f"{ours:.3f} s", f"{ratio:.2f}x", target,
                         ratio >= w["target"] and img["over_1"] == 0,
-                        f"image: max difference {img['max']} level(s), {img['over_1']} of {img['pixels']} pixels differ by > 1"))
+                        f"image: max difference {img['max']} level(s), {img['over_1']} of {img['pixels']} pixels differ by > 1; "
+                        f"per-round ratios' median {paired:.2f}x, minimums' ratio {fastest:.2f}x"))
     return rows
 
 
