@@ -96,6 +96,7 @@ impl EyeBuffer {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::accel::light_buffer::tests::random_boxes;
     use crate::sampling::Rng;
 
     /// Random boxes around an eye: every box a ray from the eye passes through
@@ -107,13 +108,7 @@ mod tests {
         for trial in 0..30 {
             let scale = [1e-3, 1.0, 1e4][trial % 3];
             let eye = Vec3::new(rand() - 0.5, rand() - 0.5, rand() - 0.5) * 4.0 * scale;
-            let boxes: Vec<Aabb> = (0..50)
-                .map(|k| {
-                    let c = Vec3::new(rand() - 0.5, rand() - 0.5, rand() - 0.5) * 10.0 * scale;
-                    let size = Vec3::new(rand(), if k % 5 == 0 { 0.0 } else { rand() }, rand()) * scale * [0.1, 1.0, 4.0][k % 3];
-                    Aabb { min: c - size, max: c + size }
-                })
-                .collect();
+            let boxes = random_boxes(&mut rand, 50, scale, 5, 4.0);
             let Some(buffer) = EyeBuffer::build(eye, &boxes, |_, _| true, 10.0 * scale) else { continue };
             for (k, b) in boxes.iter().enumerate() {
                 for _ in 0..30 {

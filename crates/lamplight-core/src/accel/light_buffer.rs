@@ -396,7 +396,7 @@ impl LightBuffer {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
 
     #[test]
@@ -414,6 +414,25 @@ mod tests {
     }
     use crate::sampling::Rng;
 
+    /// `count` boxes centred in the cube of side `10 scale` around the origin,
+    /// from `rand`: every `flat_every`-th has no height (a floor), and their
+    /// half sizes reach `largest` times `scale` (a box may hold the centre).
+    pub(in crate::accel) fn random_boxes(
+        rand: &mut impl FnMut() -> f64,
+        count: usize,
+        scale: f64,
+        flat_every: usize,
+        largest: f64,
+    ) -> Vec<Aabb> {
+        (0..count)
+            .map(|k| {
+                let c = Vec3::new(rand() - 0.5, rand() - 0.5, rand() - 0.5) * 10.0 * scale;
+                let size = Vec3::new(rand(), if k % flat_every == 0 { 0.0 } else { rand() }, rand()) * scale * [0.1, 1.0, largest][k % 3];
+                Aabb { min: c - size, max: c + size }
+            })
+            .collect()
+    }
+
     /// Boxes of many sizes around a light; points sampled inside each box and
     /// looked up from the light, along rays that start beyond the point (and
     /// off the exact line by up to the allowed distance), find the box listed.
@@ -424,14 +443,8 @@ mod tests {
         for trial in 0..40 {
             let scale = [1e-3, 1.0, 1e5][trial % 3];
             let centre = Vec3::new(rand() - 0.5, rand() - 0.5, rand() - 0.5) * 4.0 * scale;
-            let boxes: Vec<Aabb> = (0..60)
-                .map(|k| {
-                    let c = Vec3::new(rand() - 0.5, rand() - 0.5, rand() - 0.5) * 10.0 * scale;
-                    // Some flat boxes (a floor) and some that surround the light.
-                    let size = Vec3::new(rand(), if k % 7 == 0 { 0.0 } else { rand() }, rand()) * scale * [0.1, 1.0, 6.0][k % 3];
-                    Aabb { min: c - size, max: c + size }
-                })
-                .collect();
+            // Some flat boxes (a floor) and some that surround the light.
+            let boxes = random_boxes(&mut rand, 60, scale, 7, 6.0);
             let buffer = LightBuffer::build(centre, &boxes, |_| true, |_, _| true, 10.0 * scale).expect("small enough");
             for (k, b) in boxes.iter().enumerate() {
                 for _ in 0..40 {
