@@ -41,6 +41,9 @@ CASES = {
     "luxo": ["render", "luxo", "--width", "640", "--height", "360", "--spp", "1", "-o", "{out}/luxo.png"],
     "cornell": ["render", "cornell-box", "--integrator", "path", "--max-depth", "8", "--filter", "box",
                 "--width", "256", "--height", "256", "--spp", "8", "-o", "{out}/cornell.exr"],
+    # The peer table's spp (16: passes of 1, 1, 2, 4 and 8 samples), at a quarter of its pixels.
+    "cornell16": ["render", "cornell-box", "--integrator", "path", "--max-depth", "8", "--filter", "box",
+                  "--width", "256", "--height", "256", "--spp", "16", "-o", "{out}/cornell16.exr"],
     "card": ["render", "business-card", "--width", "320", "--height", "240", "-o", "{out}/card.png"],
 }
 

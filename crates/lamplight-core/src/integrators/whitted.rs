@@ -209,8 +209,11 @@ impl Whitted {
             trace.ray(&ray, weight, depth);
             // Mitsuba's `hide_emitters`: the camera sees through emitters, and black sky.
             let hidden = depth == 1 && scene.settings.hide_emitters;
-            let found = if hidden { scene.first_camera_hit(&ray) } else { scene.first_intersect(&ray, f64::INFINITY) };
-            let Some(mut hit) = found else {
+            let mut found = if hidden { scene.first_camera_hit(&ray) } else { scene.first_intersect(&ray, f64::INFINITY) };
+            // Used in place, by reference, as the path tracer does: moving the
+            // hit out of `found` copied it with wide loads over the query's
+            // narrow stores, a store-forwarding stall on every hit (issue 24).
+            let Some(hit) = found.as_mut() else {
                 let sky = if hidden {
                     Rgb::ZERO
                 } else {
@@ -223,9 +226,9 @@ impl Whitted {
             };
             let width = width + cone.spread * hit.t;
             // Shaded first, so the tree shows the normal the lighting used (a normal map's).
-            let material = &*scene.shade(&mut hit, -ray.dir, width);
-            trace.hit(scene, &hit);
-            let direct = direct_light(scene, &self.area_lights, &ray, &hit, material, uniform, counts, trace);
+            let material = &*scene.shade(hit, -ray.dir, width);
+            trace.hit(scene, hit);
+            let direct = direct_light(scene, &self.area_lights, &ray, hit, material, uniform, counts, trace);
             let contribution = weight * direct;
             trace.direct(direct, contribution);
             total += contribution;
@@ -236,7 +239,7 @@ impl Whitted {
             if !material.scatters_at(hit.front_face) {
                 continue;
             }
-            for (dir, w) in smooth_directions(&ray, &hit, material, trace) {
+            for (dir, w) in smooth_directions(&ray, hit, material, trace) {
                 let w = weight * w;
                 if max_component(w) <= self.min_weight {
                     trace.branch(&hit.spawn(hit.point, dir), w, depth + 1, false);
@@ -358,7 +361,10 @@ fn lit_by<T: WhittedTrace + ?Sized>(
     // The query stays outside `with`'s closure, which the compiler may keep out of line.
     let mut hint = OCCLUDERS.with(|hints| hints[light % HINTS].get()).towards(light);
     let visible = scene.transmittance_hinted(&hit.spawn(origin, wi), remaining, own, &mut hint);
-    OCCLUDERS.with(|hints| hints[light % HINTS].set(hint));
+    // Only the object is read back (the query writes that alone): loading the
+    // whole hint spanned the query's narrower store, a store-forwarding stall
+    // on every shadow ray (issue 24).
+    OCCLUDERS.with(|hints| hints[light % HINTS].set(hint.towards(light)));
     let mut told = |radiance: Rgb| {
         let shadow = hit.spawn(origin, wi);
         let term = LightTerm {
@@ -468,6 +474,7 @@ pub fn refract(d: Vec3, n: Vec3, eta: f64) -> Option<Vec3> {
 
 /// The reflected and refracted directions with their weights (at most two),
 /// announced to `trace` in that order.
+#[inline(always)]
 fn smooth_directions<T: WhittedTrace + ?Sized>(
     ray: &Ray,
     hit: &Hit,
