@@ -198,14 +198,23 @@ impl Whitted {
         // so the list never holds more than one pending sibling per level plus two.
         // Left uninitialized: filling 4 KB per camera ray cost more than tracing it.
         let mut work = [const { MaybeUninit::<Pending>::uninit() }; MAX_DEPTH_LIMIT as usize + 2];
-        work[0].write(Pending { ray: *ray, weight: Rgb::ONE, depth: 1, width: cone.width });
-        let mut pending = 1;
+        let mut pending = 0;
+        // The ray pushed last, which is taken next, kept out of the list: read
+        // back right after it was written, the list's copy waited for the
+        // push's stores (a store-forwarding stall, issue 24).
+        let mut next = Some(Pending { ray: *ray, weight: Rgb::ONE, depth: 1, width: cone.width });
         let max_depth = self.max_depth.min(MAX_DEPTH_LIMIT);
-        while pending > 0 {
-            pending -= 1;
-            // SAFETY: entries below `pending` were written before (each push writes
-            // `work[pending]` and then increments it).
-            let Pending { ray, weight, depth, width } = unsafe { work[pending].assume_init_read() };
+        loop {
+            let Pending { ray, weight, depth, width } = match next.take() {
+                Some(p) => p,
+                None if pending > 0 => {
+                    pending -= 1;
+                    // SAFETY: entries below `pending` were written before (each push
+                    // writes `work[pending]` and then increments it).
+                    unsafe { work[pending].assume_init_read() }
+                }
+                None => break,
+            };
             trace.ray(&ray, weight, depth);
             // Mitsuba's `hide_emitters`: the camera sees through emitters, and black sky.
             let hidden = depth == 1 && scene.settings.hide_emitters;
@@ -248,8 +257,10 @@ impl Whitted {
                 counts.secondary += 1;
                 let origin = offset_origin(hit.point, hit.geometric_normal, dir, hit.t, hit.error);
                 trace.branch(&hit.spawn(origin, dir), w, depth + 1, true);
-                work[pending].write(Pending { ray: hit.spawn(origin, dir), weight: w, depth: depth + 1, width });
-                pending += 1;
+                if let Some(earlier) = next.replace(Pending { ray: hit.spawn(origin, dir), weight: w, depth: depth + 1, width }) {
+                    work[pending].write(earlier);
+                    pending += 1;
+                }
             }
         }
         total
