@@ -505,7 +505,12 @@ mod tests {
     fn the_queries_are_compiled_for_the_detected_features() {
         let source = [include_str!("mod.rs"), include_str!("shadow.rs"), include_str!("eye.rs")].concat();
         for (name, prefix) in
-            [("first_intersect_avx2", ""), ("transmittance_avx2", "pub(super) "), ("first_intersect_from_eye_avx2", "pub(super) ")]
+            [
+                ("first_intersect_avx2", ""),
+                ("transmittance_avx2", "pub(super) "),
+                ("transmittance_fresh_avx2", "pub(super) "),
+                ("first_intersect_from_eye_avx2", "pub(super) "),
+            ]
         {
             let attribute = format!("#[target_feature(enable = \"{}\")]\n    {prefix}unsafe fn {name}", crate::cpu::AVX2_FEATURES);
             assert!(source.contains(&attribute), "{name} must be compiled for AVX2_FEATURES");
@@ -558,6 +563,10 @@ mod tests {
                     unsafe { scene.transmittance_avx2(&ray, distance, None, &mut OccluderHint::default()) },
                     "ray {ray:?} to {distance}"
                 );
+                let own = (rand() * balls as f64) as usize;
+                // SAFETY: as above.
+                let fresh = unsafe { scene.transmittance_fresh_avx2(&ray, distance, Some(own), &mut OccluderHint::default()) };
+                assert_eq!(scene.transmittance_in::<false>(&ray, distance, Some(own), &mut OccluderHint::default()), fresh);
             }
             assert!(hits > 400, "{balls} balls: only {hits} of 4000 rays hit, too few to compare");
         }
