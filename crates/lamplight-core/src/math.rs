@@ -15,6 +15,22 @@ pub type Mat4 = glam::DMat4;
 /// Linear RGB radiance or reflectance. Components multiply channel by channel (`*`).
 pub type Rgb = glam::DVec3;
 
+/// `v` read one coordinate at a time, for a value a call has just written to
+/// memory (an out-of-line query returns its `Rgb` or reads its ray there).
+/// The call's stores may still be in the store buffer, and a 16-byte load
+/// of two coordinates that two different stores wrote cannot be forwarded
+/// from them: it waits until they reach the cache (a store-forwarding stall,
+/// issue 24). An 8-byte load lies within one store whatever widths were
+/// used. Volatile, so that the compiler does not merge the loads into wide
+/// ones again. Worth it only where `perf` shows the stall: where the value's
+/// own computation is what the reader waits for, it cost time (the checker
+/// colour after `Texture::evaluate`, BENCHMARKS.md session 30).
+#[inline(always)]
+pub fn read_forwarded(v: &Vec3) -> Vec3 {
+    // SAFETY: references to initialized `f64`s.
+    unsafe { Vec3::new(std::ptr::read_volatile(&v.x), std::ptr::read_volatile(&v.y), std::ptr::read_volatile(&v.z)) }
+}
+
 /// The largest absolute coordinate of `v`, the magnitude used to scale ray offsets.
 ///
 /// Plain comparisons rather than `f64::max`, whose NaN rules cost a dozen

@@ -39,25 +39,15 @@ impl Ray {
         Ray { origin, dir, time: self.time }
     }
 
-    /// This ray, read one coordinate at a time: for a query that takes a ray
-    /// its caller has just built. The caller's stores of it may still be in
-    /// the store buffer, and a 16-byte load of two coordinates that two
-    /// different stores wrote cannot be forwarded from them: it waits until
-    /// they reach the cache (a store-forwarding stall; 10 % of the shadow
-    /// query's time in `perf` on `spheres`, issue 24). An 8-byte load lies
-    /// within one store whatever widths the caller used. Volatile, so that the
-    /// compiler does not merge the loads into wide ones again.
+    /// This ray, read one coordinate at a time ([`crate::math::read_forwarded`]),
+    /// for a query that takes a ray its caller has just built: a 16-byte load
+    /// of two coordinates that two of the caller's stores wrote stalled the
+    /// shadow query (10 % of its time in `perf` on the Cornell box, issue 24).
     #[inline(always)]
     pub fn read_forwarded(&self) -> Ray {
-        let read = |v: &f64| {
-            // SAFETY: a reference to an initialized `f64`.
-            unsafe { std::ptr::read_volatile(v) }
-        };
-        Ray {
-            origin: Vec3::new(read(&self.origin.x), read(&self.origin.y), read(&self.origin.z)),
-            dir: Vec3::new(read(&self.dir.x), read(&self.dir.y), read(&self.dir.z)),
-            time: read(&self.time),
-        }
+        // SAFETY: a reference to an initialized `f64`.
+        let time = unsafe { std::ptr::read_volatile(&self.time) };
+        Ray { origin: crate::math::read_forwarded(&self.origin), dir: crate::math::read_forwarded(&self.dir), time }
     }
 
     /// The point at parameter `t`: `origin + dir * t`.

@@ -371,7 +371,9 @@ fn lit_by<T: WhittedTrace + ?Sized>(
     let remaining = distance - (origin - hit.point).length();
     // The query stays outside `with`'s closure, which the compiler may keep out of line.
     let mut hint = OCCLUDERS.with(|hints| hints[light % HINTS].get()).towards(light);
-    let visible = scene.transmittance_hinted(&hit.spawn(origin, wi), remaining, own, &mut hint);
+    // Read back one component at a time: the first test of the query's
+    // answer below stalled on its stores (issue 24, `read_forwarded`).
+    let visible = crate::math::read_forwarded(&scene.transmittance_hinted(&hit.spawn(origin, wi), remaining, own, &mut hint));
     // Only the object is read back (the query writes that alone): loading the
     // whole hint spanned the query's narrower store, a store-forwarding stall
     // on every shadow ray (issue 24).
