@@ -3,6 +3,9 @@
 
     python3 bench/ab.py OLD NEW [--rounds 30] [--cases spheres,luxo,cornell] [--threads 1]
 
+Cases: spheres, luxo, cornell (path-traced, 8 spp), cornell16 (16 spp, the
+peer table's), card.
+
 OLD and NEW are `lamplight` binaries (copy the build before a change somewhere
 first, e.g. `cp target/release/lamplight /tmp/lamplight-old`). For each case it
 first renders once with both and compares the output files byte for byte (a
