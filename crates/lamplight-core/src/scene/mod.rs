@@ -504,14 +504,12 @@ mod tests {
     #[test]
     fn the_queries_are_compiled_for_the_detected_features() {
         let source = [include_str!("mod.rs"), include_str!("shadow.rs"), include_str!("eye.rs")].concat();
-        for (name, prefix) in
-            [
-                ("first_intersect_avx2", ""),
-                ("transmittance_avx2", "pub(super) "),
-                ("transmittance_fresh_avx2", "pub(super) "),
-                ("first_intersect_from_eye_avx2", "pub(super) "),
-            ]
-        {
+        for (name, prefix) in [
+            ("first_intersect_avx2", ""),
+            ("transmittance_avx2", "pub(super) "),
+            ("transmittance_fresh_avx2", "pub(super) "),
+            ("first_intersect_from_eye_avx2", "pub(super) "),
+        ] {
             let attribute = format!("#[target_feature(enable = \"{}\")]\n    {prefix}unsafe fn {name}", crate::cpu::AVX2_FEATURES);
             assert!(source.contains(&attribute), "{name} must be compiled for AVX2_FEATURES");
         }
