@@ -79,7 +79,7 @@ impl AlphaMask {
     pub fn covers(&self, shape: &dyn Shape, ray: &Ray, hit: &SurfaceHit) -> bool {
         let p = ray.at(hit.t);
         let at = if self.texture.needs_coords() {
-            ShadingPoint::with_coords(p, &shape.surface_coords(p, hit.normal, hit.primitive))
+            ShadingPoint::with_coords(p, &shape.surface_coords(p, hit.normal, hit.primitive()))
         } else {
             ShadingPoint::at(p)
         };

@@ -278,7 +278,7 @@ impl Scene {
             object,
             material: self.objects[object].material,
             error: h.error,
-            primitive: h.primitive,
+            primitive: h.primitive(),
             time: ray.time,
         }
     }

@@ -291,7 +291,7 @@ impl Implicit {
         let p = ray.at(t);
         let normal = self.gradient(p).try_normalize().unwrap_or(-ray.dir);
         let shading_normal = self.shading.as_ref().map_or(normal, |s| s(p).try_normalize().unwrap_or(normal));
-        SurfaceHit { t, normal, shading_normal, error, primitive: None }
+        SurfaceHit { t, normal, shading_normal, error, primitive_index: SurfaceHit::NO_PRIMITIVE }
     }
 
     /// Close to the surface at `t` (value `v`) by the Lipschitz bound and approaching

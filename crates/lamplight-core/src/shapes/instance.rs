@@ -126,7 +126,7 @@ impl Shape for Instance {
         }
         let normal = self.normal_matrix.transform_vector3(hit.normal).try_normalize()?;
         let shading_normal = self.normal_matrix.transform_vector3(hit.shading_normal).try_normalize().unwrap_or(normal);
-        Some(SurfaceHit { t, normal, shading_normal, error: hit.error * self.max_scale, primitive: hit.primitive })
+        Some(SurfaceHit { t, normal, shading_normal, error: hit.error * self.max_scale, primitive_index: hit.primitive_index })
     }
 
     fn intersect_p(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {

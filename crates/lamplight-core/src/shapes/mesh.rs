@@ -91,6 +91,10 @@ impl TriangleMesh {
         if positions.len() > u32::MAX as usize {
             return Err(Error::invalid("positions", "more vertices than 32-bit indices can address"));
         }
+        // A hit names its face by a u32 below `SurfaceHit::NO_PRIMITIVE`.
+        if indices.len() >= SurfaceHit::NO_PRIMITIVE as usize {
+            return Err(Error::invalid("indices", "more faces than 32-bit face indices can address"));
+        }
         if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
             return Err(Error::invalid("positions", format!("vertex {i} is not finite: {}", positions[i])));
         }
@@ -247,7 +251,7 @@ impl TriangleMesh {
                 }
             }
         };
-        SurfaceHit { t: hit.t, normal, shading_normal, error: 0.0, primitive: Some(face) }
+        SurfaceHit { t: hit.t, normal, shading_normal, error: 0.0, primitive_index: face }
     }
 }
 

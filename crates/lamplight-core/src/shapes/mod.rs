@@ -68,16 +68,31 @@ pub struct SurfaceHit {
     /// offset in [`crate::ray::offset_origin`]).
     pub error: f64,
     /// Index of the triangle hit within a triangle mesh, in its face order (kept
-    /// through an [`Instance`]); `None` for every other shape. Batch ray queries
-    /// report it ([`crate::batch`]).
-    pub primitive: Option<u32>,
+    /// through an [`Instance`]); [`SurfaceHit::NO_PRIMITIVE`] for every other
+    /// shape ([`SurfaceHit::primitive`] says which). Batch ray queries report it
+    /// ([`crate::batch`]).
+    ///
+    /// A plain `u32`, not an `Option<u32>`: a shape's test wrote the option as
+    /// two 4-byte stores (tag, value) and the render loops read it back as one
+    /// 8-byte load right after the call, which the core cannot forward from
+    /// the store buffer: a stall on every hit of a box (issue 24).
+    pub primitive_index: u32,
 }
 
 impl SurfaceHit {
     /// A hit with one normal used for both geometry and shading.
     #[inline]
     pub fn new(t: f64, normal: Vec3) -> SurfaceHit {
-        SurfaceHit { t, normal, shading_normal: normal, error: 0.0, primitive: None }
+        SurfaceHit { t, normal, shading_normal: normal, error: 0.0, primitive_index: SurfaceHit::NO_PRIMITIVE }
+    }
+
+    /// [`SurfaceHit::primitive_index`] of a hit that is not on a mesh's triangle.
+    pub const NO_PRIMITIVE: u32 = u32::MAX;
+
+    /// The triangle hit within a mesh, `None` for every other shape.
+    #[inline]
+    pub fn primitive(&self) -> Option<u32> {
+        (self.primitive_index != SurfaceHit::NO_PRIMITIVE).then_some(self.primitive_index)
     }
 }
 

@@ -238,7 +238,7 @@ impl Shape for MovingInstance {
         let normal = (normal_matrix * hit.normal).try_normalize()?;
         let shading_normal = (normal_matrix * hit.shading_normal).try_normalize().unwrap_or(normal);
         let stretch = pose.linear.x_axis.length().max(pose.linear.y_axis.length()).max(pose.linear.z_axis.length());
-        Some(SurfaceHit { t, normal, shading_normal, error: hit.error * stretch, primitive: hit.primitive })
+        Some(SurfaceHit { t, normal, shading_normal, error: hit.error * stretch, primitive_index: hit.primitive_index })
     }
 
     fn intersect_p(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {

@@ -103,8 +103,8 @@ fn surface_coordinates_are_read_where_the_shape_stood() {
     let ray = at(Vec3::new(0.2, 3.0 + 0.1, 5.0), -Vec3::Z, s);
     let hit = moving.intersect(&ray, 0.0, INF).unwrap();
     let p = ray.at(hit.t);
-    let moved = moving.surface_coords_at(p, hit.normal, hit.primitive, s);
-    let back = still.surface_coords(p - Vec3::new(0.0, 3.0, 0.0), hit.normal, hit.primitive);
+    let moved = moving.surface_coords_at(p, hit.normal, hit.primitive(), s);
+    let back = still.surface_coords(p - Vec3::new(0.0, 3.0, 0.0), hit.normal, hit.primitive());
     assert!((moved.uv[0] - back.uv[0]).abs() < 1e-12 && (moved.uv[1] - back.uv[1]).abs() < 1e-12, "{:?} vs {:?}", moved.uv, back.uv);
 }
 

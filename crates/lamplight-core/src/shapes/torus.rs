@@ -194,7 +194,13 @@ impl Shape for Torus {
             roots_in(&poly, 0.0, exit - enter).as_slice().iter().map(|&u| (u, enter + u)).find(|&(_, t)| t > t_min && t < t_max)?;
         let p = start + d * u;
         let normal = self.world_from_local(self.normal_local(p)).normalize();
-        Some(SurfaceHit { t, normal, shading_normal: normal, error: self.distance_local(p).abs(), primitive: None })
+        Some(SurfaceHit {
+            t,
+            normal,
+            shading_normal: normal,
+            error: self.distance_local(p).abs(),
+            primitive_index: SurfaceHit::NO_PRIMITIVE,
+        })
     }
 
     fn surface_coords(&self, p: Vec3, n: Vec3, _primitive: Option<u32>) -> SurfaceCoords {

@@ -248,7 +248,7 @@ fn attributes_are_interpolated_at_the_hit() {
         .unwrap();
     for (x, y) in [(1.5, 0.25), (0.5, 0.75)] {
         let hit = mesh.intersect(&Ray::new(Vec3::new(x, y, 1.0), -Vec3::Z), 0.0, f64::INFINITY).unwrap();
-        let c = mesh.surface_coords(Vec3::new(x, y, 0.0), hit.normal, hit.primitive);
+        let c = mesh.surface_coords(Vec3::new(x, y, 0.0), hit.normal, hit.primitive());
         assert!((c.uv[0] - x / 2.0).abs() < 1e-12 && (c.uv[1] - y).abs() < 1e-12, "{:?}", c.uv);
         assert!((c.dpdu - Vec3::new(2.0, 0.0, 0.0)).length() < 1e-12 && (c.dpdv - Vec3::Y).length() < 1e-12);
         assert!((c.color.unwrap() - Rgb::new(x / 2.0, 0.0, 1.0)).length() < 1e-12);
@@ -272,7 +272,7 @@ fn face_colours_are_constant_over_each_face_and_win_over_vertex_colours() {
     // Below the diagonal (face 0) and above it (face 1), near and far from the corners.
     for (x, y, grey) in [(1.9, 0.05, 0.25), (1.0, 0.4, 0.25), (0.1, 0.9, 0.75), (0.9, 0.6, 0.75)] {
         let hit = mesh.intersect(&Ray::new(Vec3::new(x, y, 1.0), -Vec3::Z), 0.0, f64::INFINITY).unwrap();
-        let c = mesh.surface_coords(Vec3::new(x, y, 0.0), hit.normal, hit.primitive);
+        let c = mesh.surface_coords(Vec3::new(x, y, 0.0), hit.normal, hit.primitive());
         assert_eq!(c.color, Some(Rgb::splat(grey)), "({x}, {y})");
     }
     let one = TriangleMesh::new(vec![Vec3::ZERO, Vec3::X, Vec3::Y], vec![[0, 1, 2]], None).unwrap();
