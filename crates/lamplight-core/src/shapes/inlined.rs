@@ -40,6 +40,16 @@ impl Inlined {
         }
     }
 
+    /// [`Shape::sample_area`] of the shape, without the virtual call (an area
+    /// light's point, once per light sample of the path tracer).
+    #[inline(always)]
+    pub fn sample_area(&self, u: (f64, f64)) -> Option<(crate::math::Vec3, crate::math::Vec3)> {
+        match self {
+            Inlined::Sphere(s) => Shape::sample_area(&**s, u),
+            Inlined::Rectangle(r) => Shape::sample_area(&**r, u),
+        }
+    }
+
     /// [`Shape::intersect_p`] of the shape, without the virtual call.
     #[inline(always)]
     pub fn intersect_p(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
@@ -82,6 +92,10 @@ mod tests {
                 );
                 assert_eq!(inlined.intersect_p(&ray, 0.0, t_max), shape.intersect_p(&ray, 0.0, t_max));
                 hits += usize::from(direct.is_some());
+                // An area light's point: the same bits as the virtual call.
+                let u = (rng.uniform(), rng.uniform());
+                let bits = |p: Option<(Vec3, Vec3)>| p.map(|(y, n)| (y.to_array().map(f64::to_bits), n.to_array().map(f64::to_bits)));
+                assert_eq!(bits(inlined.sample_area(u)), bits(shape.sample_area(u)), "{shape:?} {u:?}");
             }
             assert!(hits > 200 && hits < 1800, "{shape:?}: {hits} hits of 2000");
         }
