@@ -4,7 +4,8 @@
     python3 bench/ab.py OLD NEW [--rounds 30] [--cases spheres,luxo,cornell] [--threads 1]
 
 Cases: spheres, luxo, cornell (path-traced, 8 spp), cornell16 (16 spp, the
-peer table's), card.
+peer table's), card, bunny (the Stanford bunny path-traced: a mesh's own walk;
+needs ../shared/data or LAMPLIGHT_BUNNY).
 
 OLD and NEW are `lamplight` binaries (copy the build before a change somewhere
 first, e.g. `cp target/release/lamplight /tmp/lamplight-old`). For each case it
@@ -37,6 +38,9 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from machine import cpu_model  # noqa: E402
 
+# The Stanford bunny of the shared data, for the `bunny` case.
+BUNNY = Path(os.environ.get("LAMPLIGHT_BUNNY", Path(__file__).resolve().parents[2] / "shared/data/meshes/stanford-bunny.obj"))
+
 # Each case: lamplight arguments, `{out}` the output file. Small enough that a
 # round of all of them takes about a second on one thread.
 CASES = {
@@ -48,6 +52,9 @@ CASES = {
     "cornell16": ["render", "cornell-box", "--integrator", "path", "--max-depth", "8", "--filter", "box",
                   "--width", "256", "--height", "256", "--spp", "16", "-o", "{out}/cornell16.exr"],
     "card": ["render", "business-card", "--width", "320", "--height", "240", "-o", "{out}/card.png"],
+    # A mesh's own walk (69,451 triangles), path-traced; needs ../shared/data.
+    "bunny": ["render", str(BUNNY), "--integrator", "path", "--width", "200", "--height", "200", "--spp", "8",
+              "-o", "{out}/bunny.exr"],
 }
 
 
@@ -95,6 +102,8 @@ def main():
     unknown = [c for c in cases if c not in CASES]
     if unknown:
         sys.exit(f"error: unknown case {', '.join(unknown)}; known: {', '.join(CASES)}")
+    if "bunny" in cases and not BUNNY.is_file():
+        sys.exit(f"error: the bunny case needs {BUNNY} (../shared/data, or set LAMPLIGHT_BUNNY)")
     for b in (args.old, args.new):
         if not os.access(b, os.X_OK):
             sys.exit(f"error: {b} is not an executable lamplight binary")
