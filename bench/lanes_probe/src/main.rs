@@ -197,7 +197,11 @@ fn closest<const N: usize>(s: &Scene, o: V3<N>, d: V3<N>) -> (V<N>, V3<N>, V3<N>
         let u = local.dot(V3::s(r.du));
         let v = local.dot(V3::s(r.dv));
         let ok = denom.cmp(zero, |a, b| a != b).and(t.cmp(zero, |a, b| a > b)).and(t.cmp(best, |a, b| a < b));
-        let ok = ok.and(u.cmp(zero, |a, b| a >= b)).and(u.cmp(one, |a, b| a <= b)).and(v.cmp(zero, |a, b| a >= b)).and(v.cmp(one, |a, b| a <= b));
+        let ok = ok
+            .and(u.cmp(zero, |a, b| a >= b))
+            .and(u.cmp(one, |a, b| a <= b))
+            .and(v.cmp(zero, |a, b| a >= b))
+            .and(v.cmp(one, |a, b| a <= b));
         best = V::sel(ok, t, best);
         n = V3::sel(ok, nn, n);
         alb = V3::sel(ok, V3::s(r.albedo), alb);
@@ -218,7 +222,9 @@ fn closest<const N: usize>(s: &Scene, o: V3<N>, d: V3<N>) -> (V<N>, V3<N>, V3<N>
         let mut exit = V::<N>::s(f64::INFINITY);
         let mut enter_face = V::<N>::s(0.0);
         let mut exit_face = V::<N>::s(0.0);
-        for (a, (oo, dd, l, h)) in [(lo.x, ld.x, c.lo.x, c.hi.x), (lo.y, ld.y, c.lo.y, c.hi.y), (lo.z, ld.z, c.lo.z, c.hi.z)].into_iter().enumerate() {
+        for (a, (oo, dd, l, h)) in
+            [(lo.x, ld.x, c.lo.x, c.hi.x), (lo.y, ld.y, c.lo.y, c.hi.y), (lo.z, ld.z, c.lo.z, c.hi.z)].into_iter().enumerate()
+        {
             let inv = one / dd;
             let tl = (V::s(l) - oo) * inv;
             let th = (V::s(h) - oo) * inv;
