@@ -2,9 +2,12 @@
 //! roulette after 4 segments, Lambertian surfaces, depth 8) by one kernel written
 //! over `N` lanes, with `N` paths in lockstep (a finished lane takes the next
 //! sample), to measure what lanes give over one path with the same arithmetic:
-//! every lane count traces the same rays and sums the same image. Each object
-//! is tested for every ray (no boxes), in `f64`; a cheap per-sample generator
-//! stands in for the Sobol points. `N` lanes of `f64` are plain arrays whose
+//! every lane count traces the same rays and computes the same sample values
+//! (a pixel's sum may differ in its last bits: lanes finish its samples in
+//! another order). Each object
+//! is tested for every ray (no boxes), in `f64`. The random values come from a
+//! cheap generator, then from one that costs what lamplight's sampler costs
+//! (hashed per lane in scalar code). `N` lanes of `f64` are plain arrays whose
 //! loops LLVM turns into AVX2 (build with `-C target-cpu=x86-64-v3`); masks are
 //! all-ones bit patterns, which it selects with; `bool` masks stayed scalar
 //! and were slower than one lane.
@@ -275,19 +278,63 @@ fn blocked<const N: usize>(s: &Scene, o: V3<N>, d: V3<N>, dist: V<N>) -> M<N> {
     m
 }
 
+/// A sample's random values: with `SOBOL` unset, a cheap LCG with a mixed
+/// output; with it set, values at the cost of lamplight's sampler (per value,
+/// two SplitMix64 mixes for the dimension's seeds, two Laine-Karras
+/// permutations and two bit reversals, as `PixelSampler::get_1d`), hashed per
+/// lane in scalar code.
 #[derive(Clone, Copy)]
-struct Rng(u64);
+struct Rng {
+    state: u64,
+    index_reversed: u32,
+    dimension: u32,
+    sobol: bool,
+}
+
+#[inline(always)]
+fn mix(mut z: u64) -> u64 {
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+#[inline(always)]
+fn laine_karras(mut x: u32, seed: u32) -> u32 {
+    x = x.wrapping_add(seed);
+    x ^= x.wrapping_mul(0x6c50_b47c);
+    x ^= x.wrapping_mul(0xb82f_1e52);
+    x ^= x.wrapping_mul(0xc7af_e638);
+    x ^= x.wrapping_mul(0x8d22_f6e6);
+    x
+}
+
 impl Rng {
+    fn new(pixel: u64, index: u32, sobol: bool) -> Rng {
+        Rng {
+            state: mix(pixel.wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ 0x1234) ^ index as u64,
+            index_reversed: index.reverse_bits(),
+            dimension: 0,
+            sobol,
+        }
+    }
+
     #[inline(always)]
     fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-        let x = self.0 ^ (self.0 >> 29);
+        if self.sobol {
+            let h = mix(self.state ^ (self.dimension as u64).wrapping_mul(0xD1B5_4A32_D192_ED03));
+            let h2 = mix(h ^ 0x2545_F491_4F6C_DD1D);
+            self.dimension += 1;
+            let i = laine_karras(self.index_reversed, h2 as u32).reverse_bits();
+            return laine_karras(i, h as u32).reverse_bits() as f64 * (1.0 / 4_294_967_296.0);
+        }
+        self.state = self.state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        let x = self.state ^ (self.state >> 29);
         let x = x.wrapping_mul(0xBF58_476D_1CE4_E5B9);
         ((x ^ (x >> 32)) >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
     }
 }
 
-fn render<const N: usize>(s: &Scene, w: usize, spp: usize) -> (Vec<DVec3>, u64) {
+fn render<const N: usize>(s: &Scene, w: usize, spp: usize, sobol: bool) -> (Vec<DVec3>, u64) {
     let mut img = vec![DVec3::ZERO; w * w];
     let total = w * w * spp;
     let eye = DVec3::new(0.0, 0.0, 3.9);
@@ -302,7 +349,7 @@ fn render<const N: usize>(s: &Scene, w: usize, spp: usize) -> (Vec<DVec3>, u64) 
     let mut prev_pdf = V::<N>::s(0.0);
     let mut alive = M([0u64; N]);
     let mut pix = [0usize; N];
-    let mut rng = [Rng(0); N];
+    let mut rng = [Rng::new(0, 0, sobol); N];
     let mut rays = 0u64;
     let light = &s.rects[0];
     loop {
@@ -323,7 +370,7 @@ fn render<const N: usize>(s: &Scene, w: usize, spp: usize) -> (Vec<DVec3>, u64) 
                 next_sample += 1;
                 let p = sidx / spp;
                 pix[i] = p;
-                rng[i] = Rng((sidx as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ 0x1234);
+                rng[i] = Rng::new(p as u64, (sidx % spp) as u32, sobol);
                 let (px, py) = ((p % w) as f64 + rng[i].next(), (p / w) as f64 + rng[i].next());
                 let (a, b) = ((2.0 * px / w as f64 - 1.0) * tan, (1.0 - 2.0 * py / w as f64) * tan);
                 let dir = DVec3::new(a, b, -1.0).normalize();
@@ -462,28 +509,35 @@ fn main() {
     ];
     let s = Scene { rects, cubes, le: DVec3::new(18.387, 13.9873, 6.75357), light_area };
     let (w, spp) = (256, 16);
-    for round in 0..3 {
-        let t0 = std::time::Instant::now();
-        let (i1, r1) = render::<1>(&s, w, spp);
-        let e1 = t0.elapsed().as_secs_f64();
-        let t0 = std::time::Instant::now();
-        let (i4, r4) = render::<4>(&s, w, spp);
-        let e4 = t0.elapsed().as_secs_f64();
-        let t0 = std::time::Instant::now();
-        let (i8, _) = render::<8>(&s, w, spp);
-        let e8 = t0.elapsed().as_secs_f64();
-        let mean = |img: &Vec<DVec3>| img.iter().fold(DVec3::ZERO, |a, b| a + *b) / (img.len() * spp) as f64;
-        println!(
-            "round {round}: 1 lane {:.3} s ({:.2} M samples/s, {r1} rays), 4 lanes {:.3} s ({:.2}x, {r4} rays), 8 lanes {:.3} s ({:.2}x); means {:?} {:?} {:?}",
-            e1,
-            (w * w * spp) as f64 / e1 / 1e6,
-            e4,
-            e1 / e4,
-            e8,
-            e1 / e8,
-            mean(&i1),
-            mean(&i4),
-            mean(&i8)
-        );
+    for sobol in [false, true] {
+        println!("generator: {}", if sobol { "lamplight's sampler's cost (SplitMix64 + Laine-Karras per value)" } else { "cheap LCG" });
+        for round in 0..3 {
+            let mut times = Vec::new();
+            let mut means = Vec::new();
+            let mut rays = Vec::new();
+            for lanes in [1, 4, 8] {
+                let t0 = std::time::Instant::now();
+                let (img, r) = match lanes {
+                    1 => render::<1>(&s, w, spp, sobol),
+                    4 => render::<4>(&s, w, spp, sobol),
+                    _ => render::<8>(&s, w, spp, sobol),
+                };
+                times.push(t0.elapsed().as_secs_f64());
+                means.push(img.iter().fold(DVec3::ZERO, |a, b| a + *b) / (img.len() * spp) as f64);
+                rays.push(r);
+            }
+            let same = rays.iter().all(|r| *r == rays[0]) && means.iter().all(|m| (*m - means[0]).abs().max_element() < 1e-12);
+            println!(
+                "  round {round}: 1 lane {:.3} s ({:.2} M samples/s), 4 lanes {:.3} s ({:.2}x), 8 lanes {:.3} s ({:.2}x); {} rays, image mean {:.5?}, the same for every lane count (up to the order a pixel's samples are summed in): {same}",
+                times[0],
+                (w * w * spp) as f64 / times[0] / 1e6,
+                times[1],
+                times[0] / times[1],
+                times[2],
+                times[0] / times[2],
+                rays[0],
+                means[0].to_array()
+            );
+        }
     }
 }
