@@ -278,17 +278,29 @@ fn blocked<const N: usize>(s: &Scene, o: V3<N>, d: V3<N>, dist: V<N>) -> M<N> {
     m
 }
 
-/// A sample's random values: with `SOBOL` unset, a cheap LCG with a mixed
-/// output; with it set, values at the cost of lamplight's sampler (per value,
-/// two SplitMix64 mixes for the dimension's seeds, two Laine-Karras
-/// permutations and two bit reversals, as `PixelSampler::get_1d`), hashed per
-/// lane in scalar code.
+/// Where a sample's random values come from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Values {
+    /// A cheap LCG with a mixed output.
+    Cheap,
+    /// At the cost of lamplight's sampler, per value: two SplitMix64 mixes for
+    /// the dimension's seeds (from the pixel and the dimension), two
+    /// Laine-Karras permutations and two bit reversals (`PixelSampler::get_1d`),
+    /// hashed per lane in scalar code.
+    Sampler,
+    /// As `Sampler` without the two mixes per lane: the cost if lanes that take
+    /// the samples of one pixel computed each dimension's seeds once.
+    SharedSeeds,
+}
+
+/// A sample's random values ([`Values`]).
 #[derive(Clone, Copy)]
 struct Rng {
+    /// The LCG's state, or the pixel's seed.
     state: u64,
     index_reversed: u32,
     dimension: u32,
-    sobol: bool,
+    values: Values,
 }
 
 #[inline(always)]
@@ -309,20 +321,22 @@ fn laine_karras(mut x: u32, seed: u32) -> u32 {
 }
 
 impl Rng {
-    fn new(pixel: u64, index: u32, sobol: bool) -> Rng {
-        Rng {
-            state: mix(pixel.wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ 0x1234) ^ index as u64,
-            index_reversed: index.reverse_bits(),
-            dimension: 0,
-            sobol,
-        }
+    fn new(pixel: u64, index: u32, values: Values) -> Rng {
+        let pixel_seed = mix(pixel.wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ 0x1234);
+        let state = if values == Values::Cheap { pixel_seed ^ index as u64 } else { pixel_seed };
+        Rng { state, index_reversed: index.reverse_bits(), dimension: 0, values }
     }
 
     #[inline(always)]
     fn next(&mut self) -> f64 {
-        if self.sobol {
-            let h = mix(self.state ^ (self.dimension as u64).wrapping_mul(0xD1B5_4A32_D192_ED03));
-            let h2 = mix(h ^ 0x2545_F491_4F6C_DD1D);
+        if self.values != Values::Cheap {
+            let h = self.state ^ (self.dimension as u64).wrapping_mul(0xD1B5_4A32_D192_ED03);
+            let (h, h2) = if self.values == Values::Sampler {
+                let h = mix(h);
+                (h, mix(h ^ 0x2545_F491_4F6C_DD1D))
+            } else {
+                (h, h.rotate_left(29))
+            };
             self.dimension += 1;
             let i = laine_karras(self.index_reversed, h2 as u32).reverse_bits();
             return laine_karras(i, h as u32).reverse_bits() as f64 * (1.0 / 4_294_967_296.0);
@@ -334,7 +348,7 @@ impl Rng {
     }
 }
 
-fn render<const N: usize>(s: &Scene, w: usize, spp: usize, sobol: bool) -> (Vec<DVec3>, u64) {
+fn render<const N: usize>(s: &Scene, w: usize, spp: usize, values: Values) -> (Vec<DVec3>, u64) {
     let mut img = vec![DVec3::ZERO; w * w];
     let total = w * w * spp;
     let eye = DVec3::new(0.0, 0.0, 3.9);
@@ -349,7 +363,7 @@ fn render<const N: usize>(s: &Scene, w: usize, spp: usize, sobol: bool) -> (Vec<
     let mut prev_pdf = V::<N>::s(0.0);
     let mut alive = M([0u64; N]);
     let mut pix = [0usize; N];
-    let mut rng = [Rng::new(0, 0, sobol); N];
+    let mut rng = [Rng::new(0, 0, values); N];
     let mut rays = 0u64;
     let light = &s.rects[0];
     loop {
@@ -370,7 +384,7 @@ fn render<const N: usize>(s: &Scene, w: usize, spp: usize, sobol: bool) -> (Vec<
                 next_sample += 1;
                 let p = sidx / spp;
                 pix[i] = p;
-                rng[i] = Rng::new(p as u64, (sidx % spp) as u32, sobol);
+                rng[i] = Rng::new(p as u64, (sidx % spp) as u32, values);
                 let (px, py) = ((p % w) as f64 + rng[i].next(), (p / w) as f64 + rng[i].next());
                 let (a, b) = ((2.0 * px / w as f64 - 1.0) * tan, (1.0 - 2.0 * py / w as f64) * tan);
                 let dir = DVec3::new(a, b, -1.0).normalize();
@@ -509,8 +523,8 @@ fn main() {
     ];
     let s = Scene { rects, cubes, le: DVec3::new(18.387, 13.9873, 6.75357), light_area };
     let (w, spp) = (256, 16);
-    for sobol in [false, true] {
-        println!("generator: {}", if sobol { "lamplight's sampler's cost (SplitMix64 + Laine-Karras per value)" } else { "cheap LCG" });
+    for values in [Values::Cheap, Values::Sampler, Values::SharedSeeds] {
+        println!("random values: {values:?}");
         for round in 0..3 {
             let mut times = Vec::new();
             let mut means = Vec::new();
@@ -518,9 +532,9 @@ fn main() {
             for lanes in [1, 4, 8] {
                 let t0 = std::time::Instant::now();
                 let (img, r) = match lanes {
-                    1 => render::<1>(&s, w, spp, sobol),
-                    4 => render::<4>(&s, w, spp, sobol),
-                    _ => render::<8>(&s, w, spp, sobol),
+                    1 => render::<1>(&s, w, spp, values),
+                    4 => render::<4>(&s, w, spp, values),
+                    _ => render::<8>(&s, w, spp, values),
                 };
                 times.push(t0.elapsed().as_secs_f64());
                 means.push(img.iter().fold(DVec3::ZERO, |a, b| a + *b) / (img.len() * spp) as f64);
