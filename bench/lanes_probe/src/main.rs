@@ -291,6 +291,33 @@ enum Values {
     /// As `Sampler` without the two mixes per lane: the cost if lanes that take
     /// the samples of one pixel computed each dimension's seeds once.
     SharedSeeds,
+    /// `Sampler`'s values, hashed for all lanes at once ([`draw_lanes`]): loops
+    /// over the lanes that LLVM vectorises (the 64-bit multiplies emulated from
+    /// 32-bit ones, as AVX2 has none).
+    SamplerInLanes,
+}
+
+/// One value for each lane from `Values::Sampler`'s hash, written over the
+/// lanes (structure of arrays), for each lane's pixel seed, reversed index and
+/// dimension.
+#[inline(always)]
+fn draw_lanes<const N: usize>(seed: &[u64; N], index_reversed: &[u32; N], dimension: &[u32; N]) -> [f64; N] {
+    let mut h = [0u64; N];
+    let mut h2 = [0u64; N];
+    for i in 0..N {
+        h[i] = mix(seed[i] ^ (dimension[i] as u64).wrapping_mul(0xD1B5_4A32_D192_ED03));
+    }
+    for i in 0..N {
+        h2[i] = mix(h[i] ^ 0x2545_F491_4F6C_DD1D);
+    }
+    let mut x = [0u32; N];
+    for i in 0..N {
+        x[i] = laine_karras(index_reversed[i], h2[i] as u32).reverse_bits();
+    }
+    for i in 0..N {
+        x[i] = laine_karras(x[i], h[i] as u32).reverse_bits();
+    }
+    std::array::from_fn(|i| x[i] as f64 * (1.0 / 4_294_967_296.0))
 }
 
 /// A sample's random values ([`Values`]).
@@ -331,7 +358,7 @@ impl Rng {
     fn next(&mut self) -> f64 {
         if self.values != Values::Cheap {
             let h = self.state ^ (self.dimension as u64).wrapping_mul(0xD1B5_4A32_D192_ED03);
-            let (h, h2) = if self.values == Values::Sampler {
+            let (h, h2) = if matches!(self.values, Values::Sampler | Values::SamplerInLanes) {
                 let h = mix(h);
                 (h, mix(h ^ 0x2545_F491_4F6C_DD1D))
             } else {
@@ -415,9 +442,24 @@ fn render<const N: usize>(s: &Scene, w: usize, spp: usize, values: Values) -> (V
         let n = V3::sel(facing, n0, neg);
         // emitter hit: the light's front (normal -y, facing the ray)
         let mut u = [[0.0f64; 5]; N];
-        for i in 0..N {
+        if values == Values::SamplerInLanes {
+            let seed = std::array::from_fn(|i| rng[i].state);
+            let index_reversed = std::array::from_fn(|i| rng[i].index_reversed);
             for k in 0..5 {
-                u[i][k] = rng[i].next();
+                let dimension = std::array::from_fn(|i| rng[i].dimension + k as u32);
+                let v = draw_lanes::<N>(&seed, &index_reversed, &dimension);
+                for i in 0..N {
+                    u[i][k] = v[i];
+                }
+            }
+            for r in rng.iter_mut() {
+                r.dimension += 5;
+            }
+        } else {
+            for i in 0..N {
+                for k in 0..5 {
+                    u[i][k] = rng[i].next();
+                }
             }
         }
         let col = |k: usize| V(std::array::from_fn(|i| u[i][k]));
@@ -523,7 +565,7 @@ fn main() {
     ];
     let s = Scene { rects, cubes, le: DVec3::new(18.387, 13.9873, 6.75357), light_area };
     let (w, spp) = (256, 16);
-    for values in [Values::Cheap, Values::Sampler, Values::SharedSeeds] {
+    for values in [Values::Cheap, Values::Sampler, Values::SharedSeeds, Values::SamplerInLanes] {
         println!("random values: {values:?}");
         for round in 0..3 {
             let mut times = Vec::new();
