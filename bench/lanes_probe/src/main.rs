@@ -330,6 +330,9 @@ struct Rng {
     values: Values,
 }
 
+// `mix` and `laine_karras` are copies of `lamplight_core::sampling::sobol`'s
+// private functions: the probe stands outside the workspace and needs the
+// hashes inlined into its lane loops; a change there should be copied here.
 #[inline(always)]
 fn mix(mut z: u64) -> u64 {
     z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
