@@ -237,18 +237,32 @@ pub trait Integrator: Send + Sync {
     /// [`crate::cpu::AVX2_FEATURES`]) the loop, with the integrator's sample
     /// inlined into it, runs compiled for them (the same values, see [`crate::cpu`]).
     fn sample_row(&self, view: &View, row: (u32, u32), samples: Range<u32>, counts: &mut RayCounts, sums: &mut [PixelSum]) -> u64 {
-        #[cfg(target_arch = "x86_64")]
-        if crate::cpu::render_features() {
-            // SAFETY: the CPU has every feature `sample_row_features` is compiled for.
-            return unsafe { sample_row_features(self, view, row, samples, counts, sums) };
-        }
-        #[cfg(target_arch = "x86_64")]
-        if crate::cpu::avx2_features() {
-            // SAFETY: the CPU has every feature `sample_row_avx2` is compiled for.
-            return unsafe { sample_row_avx2(self, view, row, samples, counts, sums) };
-        }
-        sample_row_loop(self, view, row, samples, counts, sums)
+        sample_row_one_by_one(self, view, row, samples, counts, sums)
     }
+}
+
+/// [`Integrator::sample_row`]'s default: each sample on its own, through the
+/// compilation for this CPU.
+#[inline(always)]
+pub(crate) fn sample_row_one_by_one<I: Integrator + ?Sized>(
+    integrator: &I,
+    view: &View,
+    row: (u32, u32),
+    samples: Range<u32>,
+    counts: &mut RayCounts,
+    sums: &mut [PixelSum],
+) -> u64 {
+    #[cfg(target_arch = "x86_64")]
+    if crate::cpu::render_features() {
+        // SAFETY: the CPU has every feature `sample_row_features` is compiled for.
+        return unsafe { sample_row_features(integrator, view, row, samples, counts, sums) };
+    }
+    #[cfg(target_arch = "x86_64")]
+    if crate::cpu::avx2_features() {
+        // SAFETY: the CPU has every feature `sample_row_avx2` is compiled for.
+        return unsafe { sample_row_avx2(integrator, view, row, samples, counts, sums) };
+    }
+    sample_row_loop(integrator, view, row, samples, counts, sums)
 }
 
 /// [`Integrator::sample_row`]'s loop, inlined into each compilation of it.

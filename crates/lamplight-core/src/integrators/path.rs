@@ -18,7 +18,7 @@
 use super::trace::{NeeMiss, NeeSample, NoTrace, PathEnd, PathTrace, Trace};
 use super::{CameraSample, Integrator, IntegratorEntry, IntegratorSettings, RayCounts, Schedule, View};
 use crate::bsdfs::{Bsdf, Frame};
-use crate::film::{Filter, FilterSampler};
+use crate::film::{Filter, FilterSampler, PixelSum};
 use crate::lights::LightSet;
 use crate::materials::map_shadowing::Perturbed;
 use crate::materials::{Reflection, Refraction};
@@ -27,6 +27,8 @@ use crate::ray::{offset_origin, Ray};
 use crate::sampling::{Cone, PixelSampler};
 use crate::scene::{Hit, Scene, Sides};
 use crate::Error;
+
+mod lanes;
 
 /// What a map left of the unmapped normal `unmapped` where it turned the
 /// shading normal to `mapped` ([`Perturbed`]); `None` where it did not. Kept
@@ -408,6 +410,24 @@ impl Integrator for PathTracer {
 
     fn schedule(&self) -> Schedule {
         Schedule::Doubling
+    }
+
+    /// Four paths at a time where the scene's lanes test its objects
+    /// (`path/lanes.rs`; the same values), else one sample at a time.
+    fn sample_row(
+        &self,
+        view: &View,
+        row: (u32, u32),
+        samples: std::ops::Range<u32>,
+        counts: &mut RayCounts,
+        sums: &mut [PixelSum],
+    ) -> u64 {
+        #[cfg(target_arch = "x86_64")]
+        if self.lanes_fit(view) && sums.len().saturating_mul(samples.len()) < u32::MAX as usize {
+            // SAFETY: the lanes fit this view.
+            return unsafe { self.sample_row_lanes(view, row, samples, counts, sums) };
+        }
+        super::sample_row_one_by_one(self, view, row, samples, counts, sums)
     }
 }
 

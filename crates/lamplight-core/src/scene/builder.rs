@@ -4,7 +4,7 @@
 use std::sync::Arc;
 
 use super::{set_name, surface_bsdf, Names, Object, PrimRef, Scene, SceneSettings};
-use crate::accel::{Aabb, Bvh, Costs, EyeBuffer, LightBuffer, FLAT_MAX};
+use crate::accel::{Aabb, Bvh, Costs, EyeBuffer, LightBuffer, ObjectLanes, FLAT_MAX};
 use crate::camera::Camera;
 use crate::lights::Light;
 use crate::materials::Material;
@@ -144,6 +144,7 @@ impl SceneBuilder {
         let light_buffers =
             if any_partial_shadow { vec![None; self.lights.len()] } else { light_buffers(&self.lights, &self.objects, &boxes, &bounded) };
         let eye_buffer = eye_buffer(&*self.settings.camera, &self.objects, &boxes, &bounded);
+        let lanes = object_lanes(&self.objects, &bounded, &unbounded);
         let bsdfs = self
             .materials
             .iter()
@@ -177,6 +178,7 @@ impl SceneBuilder {
             light_buffers,
             eye: eye_buffer.as_ref().map_or(Vec3::NAN, EyeBuffer::eye),
             eye_buffer,
+            lanes,
             objects: self.objects,
             materials: self.materials,
             point_lights: self.lights.iter().map(|l| l.point_light().cloned()).collect(),
@@ -186,6 +188,20 @@ impl SceneBuilder {
             names: self.names,
         })
     }
+}
+
+/// The objects' tests in lanes ([`ObjectLanes`]) where the scene is at most
+/// [`FLAT_MAX`] bounded objects, every one of a kind the lanes test
+/// ([`Shape::lane`]) and none with holes cut by its material; `None` otherwise.
+fn object_lanes(objects: &[Object], bounded: &[PrimRef], unbounded: &[PrimRef]) -> Option<ObjectLanes> {
+    if !unbounded.is_empty() || bounded.len() > FLAT_MAX {
+        return None;
+    }
+    let list = bounded
+        .iter()
+        .map(|p| (!p.masked).then(|| objects[p.object as usize].shape.lane()).flatten().map(|shape| (shape, p.opaque, p.object)))
+        .collect::<Option<Vec<_>>>()?;
+    ObjectLanes::build(&list)
 }
 
 /// The eye's buffer ([`EyeBuffer`]) where every ray of the camera leaves one

@@ -6,7 +6,7 @@
 use std::borrow::Cow;
 use std::sync::Arc;
 
-use crate::accel::{Aabb, Bvh, EyeBuffer, LightBuffer};
+use crate::accel::{Aabb, Bvh, EyeBuffer, LightBuffer, ObjectLanes};
 use crate::bsdfs::Bsdf;
 use crate::lights::Light;
 use crate::materials::{bsdf_for, Material};
@@ -16,6 +16,7 @@ use crate::shapes::Shape;
 
 mod builder;
 mod eye;
+mod lanes;
 mod light_set;
 mod reach;
 mod settings;
@@ -111,6 +112,9 @@ pub struct Scene {
     light_buffers: Vec<Option<LightBuffer>>,
     /// The camera's eye's buffer, for rays that leave the eye (`accel/eye_buffer.rs`).
     eye_buffer: Option<EyeBuffer>,
+    /// Every object's test for four rays at once, where the scene is a handful
+    /// of rectangles and boxes and nothing else (`scene/lanes.rs`).
+    lanes: Option<ObjectLanes>,
     /// The buffer's eye, NaN without one: the queries compare a ray's origin
     /// with it first, one comparison that fails for almost every other ray.
     eye: Vec3,

@@ -237,6 +237,15 @@ impl Shape for Cuboid {
         self.bounds
     }
 
+    fn lane(&self) -> Option<crate::accel::LaneShape> {
+        Some(crate::accel::LaneShape::Slab(crate::accel::SlabLane {
+            linear: self.local_linear,
+            lo: self.lo_shift,
+            hi: self.hi_shift,
+            normals: self.normals,
+        }))
+    }
+
     fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
         let hit = self.hit(ray, t_min, t_max)?;
         Some(SurfaceHit::new(hit.t, self.normals[hit.face()]))

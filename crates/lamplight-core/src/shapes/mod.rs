@@ -108,6 +108,15 @@ pub trait Shape: Send + Sync + std::fmt::Debug {
         None
     }
 
+    /// This shape's test as the path tracer's lanes run it, four rays side by
+    /// side ([`crate::accel::ObjectLanes`]), asked once when the scene is
+    /// built; `None` (the default) keeps the scene's rays on the walk. A shape
+    /// that answers must give the parameters of a test whose every operation
+    /// is that of its [`Shape::intersect`] and [`Shape::intersect_p`].
+    fn lane(&self) -> Option<crate::accel::LaneShape> {
+        None
+    }
+
     /// The hit with the smallest ray parameter `t` in the open interval
     /// `(t_min, t_max)`, or `None`. `ray.dir` is a unit vector.
     fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit>;

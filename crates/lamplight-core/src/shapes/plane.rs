@@ -211,6 +211,15 @@ impl Shape for Rectangle {
         Some(super::Inlined::Rectangle(self))
     }
 
+    fn lane(&self) -> Option<crate::accel::LaneShape> {
+        Some(crate::accel::LaneShape::Rectangle(crate::accel::RectangleLane {
+            corner: self.corner,
+            normal: self.normal,
+            dual_u: self.dual_u,
+            dual_v: self.dual_v,
+        }))
+    }
+
     fn is_convex(&self) -> bool {
         true
     }
