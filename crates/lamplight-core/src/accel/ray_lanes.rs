@@ -45,6 +45,10 @@ pub struct RectangleLane {
     pub dual_u: Vec3,
     /// `dual_v . (p - corner)` is `v`.
     pub dual_v: Vec3,
+    /// The edges from the corner (for sampling a point of an emitting rectangle).
+    pub edge_u: Vec3,
+    /// The second edge.
+    pub edge_v: Vec3,
 }
 
 /// A box's test in a lane: [`crate::shapes::Cuboid`]'s map to its local

@@ -212,7 +212,7 @@ impl Bsdf {
     /// scenes): [`Bsdf::f`], [`Bsdf::pdf`] and [`Bsdf::sample`] then skip the lobe
     /// loop (and the sample's weight is the albedo itself, not `f cos / pdf`).
     #[inline(always)]
-    fn single_diffuse(&self) -> Option<Rgb> {
+    pub(crate) fn single_diffuse(&self) -> Option<Rgb> {
         match self.lobes[0] {
             Lobe::Diffuse(Lambertian(albedo)) if self.count == 1 => Some(albedo),
             _ => None,

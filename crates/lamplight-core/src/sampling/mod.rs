@@ -9,7 +9,7 @@ mod sobol;
 
 pub use cone::Cone;
 pub use distribution::{Distribution1d, Distribution2d};
-pub use sobol::{owen_scramble, PixelSampler};
+pub use sobol::{owen_scramble, peek_2d_lanes, PixelSampler};
 
 /// SplitMix64 (Steele et al. 2014): a fast generator with good statistical quality
 /// for the short streams a pixel sample needs; seeded by hashing its inputs.

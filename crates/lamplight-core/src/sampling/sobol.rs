@@ -193,9 +193,69 @@ impl PixelSampler {
     }
 }
 
+/// [`PixelSampler::peek_2d`] of four samplers, `ahead.0` and `ahead.1`
+/// dimensions past each one's next: the same values, worked out as eight
+/// lanes side by side (the path tracer's lanes draw two 2D values a vertex
+/// for four paths at once, `integrators/path/lanes.rs`). Plain loops over
+/// arrays, which LLVM turns into vector code where the caller is compiled
+/// for AVX2; the same operations either way, so the same bits.
+#[inline(always)]
+pub fn peek_2d_lanes(samplers: [&PixelSampler; 4], ahead: (u32, u32)) -> [[(f64, f64); 4]; 2] {
+    let mut seed = [0u64; 8];
+    let mut index = [0u32; 8];
+    let mut dimension = [0u32; 8];
+    for k in 0..8 {
+        let s = samplers[k % 4];
+        seed[k] = s.pixel_seed;
+        index[k] = s.index_reversed;
+        dimension[k] = s.dimension + if k < 4 { ahead.0 } else { ahead.1 };
+    }
+    // `dimension_seeds`, lane by lane.
+    let mut h = [0u64; 8];
+    for k in 0..8 {
+        h[k] = mix(seed[k] ^ (dimension[k] as u64).wrapping_mul(0xD1B5_4A32_D192_ED03));
+    }
+    let mut i = [0u32; 8];
+    for k in 0..8 {
+        i[k] = laine_karras(index[k], mix(h[k] ^ 0x2545_F491_4F6C_DD1D) as u32).reverse_bits();
+    }
+    let mut x = [0u32; 8];
+    let mut y = [0u32; 8];
+    for k in 0..8 {
+        x[k] = laine_karras(i[k], h[k] as u32).reverse_bits();
+        y[k] = laine_karras(sobol1_reversed(i[k]), (h[k] >> 32) as u32).reverse_bits();
+    }
+    let mut out = [[(0.0, 0.0); 4]; 2];
+    for k in 0..8 {
+        out[k / 4][k % 4] = (to_unit(x[k]), to_unit(y[k]));
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn lanes_peek_the_values_each_sampler_peeks() {
+        let mut rng = crate::sampling::Rng::for_sample(3, 0, 0);
+        for round in 0..2000u32 {
+            let mut samplers: Vec<PixelSampler> = (0..4)
+                .map(|k| PixelSampler::new(u64::from(round % 7), (rng.uniform() * 1e12) as u64, (rng.uniform() * 4e9) as u32 + k))
+                .collect();
+            for (k, s) in samplers.iter_mut().enumerate() {
+                for _ in 0..(round as usize + 3 * k) % 41 {
+                    s.skip();
+                }
+            }
+            let ahead = (round % 5, (round / 5) % 7);
+            let lanes = peek_2d_lanes([&samplers[0], &samplers[1], &samplers[2], &samplers[3]], ahead);
+            for (k, s) in samplers.iter().enumerate() {
+                assert_eq!(lanes[0][k], s.peek_2d(ahead.0), "lane {k}, round {round}");
+                assert_eq!(lanes[1][k], s.peek_2d(ahead.1), "lane {k}, round {round}");
+            }
+        }
+    }
 
     #[test]
     fn peeked_values_are_the_ones_drawn_later() {

@@ -21,6 +21,11 @@ impl Scene {
         None
     }
 
+    /// The scene's object number of the lanes' slot `slot`.
+    pub fn lane_object(&self, slot: u32) -> usize {
+        self.bounded[slot as usize].object as usize
+    }
+
     /// [`Scene::first_intersect`] with no bound of each ray of `rays` whose
     /// bit is set in `active`, into `hits` (the others are left as they are).
     /// A ray whose nearest hit ties between two objects walks the BVH, which

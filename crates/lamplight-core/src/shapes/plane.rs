@@ -217,6 +217,8 @@ impl Shape for Rectangle {
             normal: self.normal,
             dual_u: self.dual_u,
             dual_v: self.dual_v,
+            edge_u: self.edge_u,
+            edge_v: self.edge_v,
         }))
     }
 

@@ -20,16 +20,21 @@
 //! `hide_emitters` keep the one-path loop, and so does a sample's trace
 //! (`explain`).
 //!
-//! [`PathTracer::vertex`] repeats the body of `li`'s loop for such scenes; a
-//! test (`lanes/tests.rs`) renders rows both ways and compares the bits, so a
-//! change to one that the other does not follow fails there.
+//! [`PathTracer::vertex`] and `diffuse.rs` repeat the body of `li`'s loop for
+//! their scenes; a test (`lanes/tests.rs`) renders rows of both kinds both
+//! ways and compares the bits, so a change to one that the others do not
+//! follow fails there.
 //!
-//! **What it gains, so far** (BENCHMARKS.md, session 32): the two queries
-//! take about 30 % of a Cornell sample's time instead of 46 %, but the paths'
-//! state now lives in memory between rounds, and the whole sample is 2-5 %
-//! faster on one thread, about 2 % on two (about as many instructions). The
-//! lanes pay where the shading runs in them too, the next step: the probe
-//! with everything in lanes ran 1.4-1.9x (`bench/lanes_probe`).
+//! **Two kinds of shading.** A scene of the Cornell box's kind (Lambertian
+//! surfaces of constant colour, one emitting rectangle, no sky: `diffuse.rs`)
+//! keeps the four paths' state lane by lane and shades each vertex with that
+//! case's operations written out, building no `Hit`, `Bsdf` or material:
+//! 0.80-0.82x the time of one sample at a time, 20 % fewer instructions.
+//! Other scenes of rectangles and boxes keep each path's state as the
+//! one-path loop does and shade it with the general code ([`PathTracer::vertex`]):
+//! the queries take 35 % of the time instead of 46 %, but the state goes
+//! through memory between rounds, and the whole is 2-5 % faster
+//! (BENCHMARKS.md, session 32).
 
 use std::ops::Range;
 
@@ -39,8 +44,9 @@ use crate::integrators::{RayCounts, View};
 use crate::lights::LiSample;
 use crate::math::{Rgb, Vec3};
 use crate::ray::{offset_origin, Ray};
-use crate::sampling::PixelSampler;
+use crate::sampling::{peek_2d_lanes, PixelSampler};
 use crate::scene::{Hit, Scene, Sides};
+use diffuse::{Diffuse, Paths, Shadows};
 
 /// One lane's path.
 #[derive(Clone, Debug)]
@@ -76,6 +82,21 @@ enum Shadow {
     Known(Pending),
     /// The ray, its length and the object it may end on, for the lanes.
     Ray(Pending, Ray, f64, u32),
+}
+
+/// Adds each pixel's `per_pixel` values in `values` to its sum in `sums`, in
+/// sample order, as the one-sample loop does; the number dropped.
+fn add_in_order(values: &[Rgb], per_pixel: usize, clamp: f64, sums: &mut [PixelSum]) -> u64 {
+    let mut nonfinite = 0;
+    for (sum, pixel) in sums.iter_mut().zip(values.chunks_exact(per_pixel.max(1))) {
+        for &l in pixel {
+            match crate::film::kept(l, clamp) {
+                Some(l) => sum.add(l),
+                None => nonfinite += 1,
+            }
+        }
+    }
+    nonfinite
 }
 
 impl PathTracer {
@@ -146,6 +167,9 @@ impl PathTracer {
         sums: &mut [PixelSum],
     ) -> u64 {
         let scene = view.scene;
+        if let Some(diffuse) = Diffuse::of(self, scene) {
+            return self.row_diffuse(&diffuse, view, (x0, y), samples, counts, sums);
+        }
         let per_pixel = samples.len();
         let total = sums.len() * per_pixel;
         let mut values = vec![Rgb::ZERO; total];
@@ -191,18 +215,14 @@ impl PathTracer {
                 break;
             }
             // Each vertex's light and BSDF points, drawn before its ray is traced (as `li`).
-            // A plain loop: `array::map` kept its closure out of line (11 % of the time).
-            let mut drawn = [((0.0, 0.0), (0.0, 0.0)); 4];
-            for (d, path) in drawn.iter_mut().zip(&paths) {
-                *d = (path.sampler.peek_2d(1), path.sampler.peek_2d(3));
-            }
+            let [lights, bsdfs] = peek_2d_lanes([&paths[0].sampler, &paths[1].sampler, &paths[2].sampler, &paths[3].sampler], (1, 3));
             let rays = [paths[0].ray, paths[1].ray, paths[2].ray, paths[3].ray];
             scene.closest_hits4(&rays, active, &mut hits);
             let mut shadows = [Shadow::None; 4];
             let mut ended = 0u8;
             for lane in 0..4 {
                 if active & (1 << lane) != 0 {
-                    let (end, shadow) = self.vertex(scene, &mut paths[lane], hits[lane].as_mut(), drawn[lane], counts);
+                    let (end, shadow) = self.vertex(scene, &mut paths[lane], hits[lane].as_mut(), (lights[lane], bsdfs[lane]), counts);
                     shadows[lane] = shadow;
                     ended |= u8::from(end) << lane;
                 }
@@ -233,16 +253,119 @@ impl PathTracer {
                 }
             }
         }
-        let mut nonfinite = 0;
-        for (sum, pixel) in sums.iter_mut().zip(values.chunks_exact(per_pixel.max(1))) {
-            for &l in pixel {
-                match crate::film::kept(l, view.clamp) {
-                    Some(l) => sum.add(l),
-                    None => nonfinite += 1,
+        add_in_order(&values, per_pixel, view.clamp, sums)
+    }
+
+    /// [`PathTracer::row_lanes`] for a scene of [`Diffuse`]'s kind: the
+    /// paths' state lane by lane, each vertex shaded by `diffuse`.
+    #[cfg(target_arch = "x86_64")]
+    #[inline(always)]
+    // The lanes index several arrays side by side (structure of arrays).
+    #[allow(clippy::needless_range_loop)]
+    unsafe fn row_diffuse(
+        &self,
+        diffuse: &Diffuse,
+        view: &View,
+        (x0, y): (u32, u32),
+        samples: Range<u32>,
+        counts: &mut RayCounts,
+        sums: &mut [PixelSum],
+    ) -> u64 {
+        let scene = view.scene;
+        let Some(lanes) = scene.object_lanes() else { return 0 };
+        let per_pixel = samples.len();
+        let total = sums.len() * per_pixel;
+        let mut values = vec![Rgb::ZERO; total];
+        let mut item = [u32::MAX; 4];
+        let mut weight = [1.0; 4];
+        let fresh = PixelSampler::new(0, 0, 0);
+        let mut samplers = [fresh.clone(), fresh.clone(), fresh.clone(), fresh];
+        let mut paths = Paths {
+            origin: [Vec3::ZERO; 4],
+            dir: [Vec3::Z; 4],
+            beta: [Rgb::ONE; 4],
+            radiance: [Rgb::ZERO; 4],
+            prev_pdf: [0.0; 4],
+            prev_delta: [true; 4],
+            depth: [1; 4],
+        };
+        let mut next = 0;
+        let mut shadows = Shadows::default();
+        let own = [diffuse.light_object(); 4];
+        loop {
+            let mut active = 0u8;
+            for l in 0..4 {
+                if item[l] == u32::MAX && next < total {
+                    let (x, s) = (x0 + (next / per_pixel) as u32, samples.start + (next % per_pixel) as u32);
+                    let (camera, sampler) = self.camera_sample_with(view, x, y, s);
+                    counts.camera += 1;
+                    item[l] = next as u32;
+                    next += 1;
+                    paths.origin[l] = camera.ray.origin;
+                    paths.dir[l] = camera.ray.dir;
+                    paths.beta[l] = Rgb::ONE;
+                    paths.radiance[l] = Rgb::ZERO;
+                    paths.prev_pdf[l] = 0.0;
+                    paths.prev_delta[l] = true;
+                    paths.depth[l] = 1;
+                    samplers[l] = sampler;
+                    weight[l] = camera.weight;
+                }
+                if item[l] != u32::MAX {
+                    active |= 1 << l;
+                }
+            }
+            if active == 0 {
+                break;
+            }
+            let [u_light, u_bsdf] = peek_2d_lanes([&samplers[0], &samplers[1], &samplers[2], &samplers[3]], (1, 3));
+            let rays = [0, 1, 2, 3].map(|l| Ray::unit(paths.origin[l], paths.dir[l]));
+            let nearest = lanes.closest(&rays, f64::INFINITY, active);
+            shadows.nee = [false; 4];
+            let mut ended = 0u8;
+            for l in 0..4 {
+                let bit = 1 << l;
+                if active & bit == 0 {
+                    continue;
+                }
+                let hit = if nearest.tie & bit != 0 {
+                    scene.first_intersect(&rays[l], f64::INFINITY).map(|h| diffuse.walked(&h))
+                } else if nearest.hit & bit != 0 {
+                    let slot = nearest.slot[l];
+                    Some((nearest.t[l], slot, lanes.shape(slot).normal(nearest.face[l] as usize)))
+                } else {
+                    None
+                };
+                let u_rr = if paths.depth[l] >= self.rr_depth { samplers[l].peek_2d(4).0 } else { 0.5 };
+                let end = diffuse.vertex(self, &mut paths, l, hit, (u_light[l], u_bsdf[l], u_rr), &mut shadows, counts);
+                // The vertex's five dimensions (`li` skips those it does not use).
+                for _ in 0..5 {
+                    samplers[l].skip();
+                }
+                ended |= u8::from(end) << l;
+            }
+            let mut asked = 0u8;
+            let mut shadow_rays = rays;
+            for l in 0..4 {
+                if let (true, Some(ray)) = (shadows.nee[l], shadows.rays[l]) {
+                    shadow_rays[l] = ray;
+                    asked |= 1 << l;
+                }
+            }
+            let blocked = if asked != 0 { lanes.blocked(&shadow_rays, &shadows.distance, &own, asked) } else { 0 };
+            for l in 0..4 {
+                if shadows.nee[l] {
+                    let clear = asked & !blocked & (1 << l) != 0;
+                    paths.radiance[l] += shadows.beta[l] * if clear { shadows.value[l] } else { Rgb::ZERO };
+                }
+                if ended & (1 << l) != 0 {
+                    let r = paths.radiance[l];
+                    values[item[l] as usize] = if weight[l] == 1.0 { r } else { r * weight[l] };
+                    item[l] = u32::MAX;
                 }
             }
         }
-        nonfinite
+        add_in_order(&values, per_pixel, view.clamp, sums)
     }
 
     /// One vertex of `path` at its query's answer `found`: [`PathTracer::li`]'s
@@ -404,5 +527,6 @@ impl PathTracer {
     }
 }
 
+mod diffuse;
 #[cfg(test)]
 mod tests;

@@ -16,14 +16,21 @@ fn diffuse(c: Rgb) -> Material {
 
 /// A Cornell box (its tall box standing exactly on the floor, so that some
 /// rays tie), and in `variant` 1 a second emitter and a point light, in
-/// variant 2 a glass box (a delta BSDF, and shadows that glass lets through).
+/// variant 2 a glass box (a delta BSDF, and shadows that glass lets through),
+/// in variant 3 a light that emits from both sides, the back wall turned
+/// inside out and Russian roulette from the second segment. Variants 0 and
+/// 3 are [`Diffuse`]'s kind of scene, 1 and 2 are not.
 fn cornell(variant: u32) -> Scene {
     let camera = Perspective::look_at(Vec3::new(0.0, 0.0, 3.9), Vec3::ZERO, Vec3::Y, Fov::SmallerSideDeg(39.3077)).unwrap();
     let mut b = SceneBuilder::new(camera);
     let white = b.material(diffuse(Rgb::new(0.885809, 0.698859, 0.666422))).unwrap();
     let green = b.material(diffuse(Rgb::new(0.105421, 0.37798, 0.076425))).unwrap();
     let red = b.material(diffuse(Rgb::new(0.570068, 0.0430135, 0.0443706))).unwrap();
-    let light = b.material(Material { emission: Rgb::new(18.387, 13.9873, 6.75357), ..diffuse(Rgb::splat(0.8)) }).unwrap();
+    let light =
+        b.material(Material { emission: Rgb::new(18.387, 13.9873, 6.75357), two_sided: variant == 3, ..diffuse(Rgb::splat(0.8)) }).unwrap();
+    if variant == 3 {
+        b.settings.rr_depth = 2;
+    }
     let rect = |m: Mat4| {
         let corner = m.transform_point3(Vec3::new(-1.0, -1.0, 0.0));
         Rectangle::new(corner, m.transform_vector3(Vec3::new(2.0, 0.0, 0.0)), m.transform_vector3(Vec3::new(0.0, 2.0, 0.0))).unwrap()
@@ -34,7 +41,10 @@ fn cornell(variant: u32) -> Scene {
     b.object(rect(t(0.0, 0.99, 0.01) * rx(90.0) * Mat4::from_scale(Vec3::new(0.23, 0.19, 0.19))), light).unwrap();
     b.object(rect(t(0.0, -1.0, 0.0) * rx(-90.0)), white).unwrap();
     b.object(rect(t(0.0, 1.0, 0.0) * rx(90.0)), white).unwrap();
-    b.object(rect(t(0.0, 0.0, -1.0)), white).unwrap();
+    let back = b.object(rect(t(0.0, 0.0, -1.0)), white).unwrap();
+    if variant == 3 {
+        b.reverse_orientation(back);
+    }
     b.object(rect(t(1.0, 0.0, 0.0) * ry(-90.0)), green).unwrap();
     b.object(rect(t(-1.0, 0.0, 0.0) * ry(90.0)), red).unwrap();
     b.object(Cuboid::new(-Vec3::ONE, Vec3::ONE, t(0.335, -0.7, 0.38) * ry(-17.0) * Mat4::from_scale(Vec3::splat(0.3))).unwrap(), white)
@@ -55,9 +65,10 @@ fn lanes_add_the_same_sums_as_one_sample_at_a_time() {
         eprintln!("skipped: this CPU lacks AVX2, and the lanes run only there");
         return;
     }
-    for variant in 0..3 {
+    for variant in 0..4 {
         let scene = cornell(variant);
         let tracer = PathTracer::new(&scene, 8);
+        assert_eq!(Diffuse::of(&tracer, &scene).is_some(), variant == 0 || variant == 3, "variant {variant}");
         let camera = scene.settings.camera.for_image(24, 16).unwrap();
         for clamp in [None, Some(0.5)] {
             let view = View::new(&scene, &*camera, 24, 16, 12, 7).with_clamp(clamp);
