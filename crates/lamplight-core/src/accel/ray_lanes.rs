@@ -311,11 +311,9 @@ mod avx2 {
             }
             let mut out = Nearest4::default();
             _mm256_storeu_pd(out.t.as_mut_ptr(), best);
-            let (mut slots, mut faces) = ([0.0; 4], [0.0; 4]);
-            _mm256_storeu_pd(slots.as_mut_ptr(), slot);
-            _mm256_storeu_pd(faces.as_mut_ptr(), face);
-            out.slot = slots.map(|s| s as u32);
-            out.face = faces.map(|f| f as u32);
+            // Small whole numbers in `f64`: converted exactly.
+            _mm_storeu_si128(out.slot.as_mut_ptr().cast(), _mm256_cvttpd_epi32(slot));
+            _mm_storeu_si128(out.face.as_mut_ptr().cast(), _mm256_cvttpd_epi32(face));
             out.hit = _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_LT_OQ>(best, _mm256_set1_pd(f64::INFINITY))) as u8;
             out.tie = _mm256_movemask_pd(tie) as u8;
             out
