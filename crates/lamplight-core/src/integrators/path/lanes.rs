@@ -280,15 +280,7 @@ impl PathTracer {
         let mut weight = [1.0; 4];
         let fresh = PixelSampler::new(0, 0, 0);
         let mut samplers = [fresh.clone(), fresh.clone(), fresh.clone(), fresh];
-        let mut paths = Paths {
-            origin: [Vec3::ZERO; 4],
-            dir: [Vec3::Z; 4],
-            beta: [Rgb::ONE; 4],
-            radiance: [Rgb::ZERO; 4],
-            prev_pdf: [0.0; 4],
-            prev_delta: [true; 4],
-            depth: [1; 4],
-        };
+        let mut paths = Paths::default();
         let mut next = 0;
         let mut shadows = Shadows::default();
         let own = [diffuse.light_object(); 4];
@@ -301,10 +293,10 @@ impl PathTracer {
                     counts.camera += 1;
                     item[l] = next as u32;
                     next += 1;
-                    paths.origin[l] = camera.ray.origin;
-                    paths.dir[l] = camera.ray.dir;
-                    paths.beta[l] = Rgb::ONE;
-                    paths.radiance[l] = Rgb::ZERO;
+                    paths.origin.set(l, camera.ray.origin);
+                    paths.dir.set(l, camera.ray.dir);
+                    paths.beta.set(l, Rgb::ONE);
+                    paths.radiance.set(l, Rgb::ZERO);
                     paths.prev_pdf[l] = 0.0;
                     paths.prev_delta[l] = true;
                     paths.depth[l] = 1;
@@ -320,11 +312,12 @@ impl PathTracer {
             }
             let [u_light, u_bsdf] = peek_2d_lanes([&samplers[0], &samplers[1], &samplers[2], &samplers[3]], (1, 3));
             // Written out: `array::map` kept its closure out of line (5 % of the time).
-            let ray = |l: usize| Ray::unit(paths.origin[l], paths.dir[l]);
+            let ray = |l: usize| Ray::unit(paths.origin.get(l), paths.dir.get(l));
             let rays = [ray(0), ray(1), ray(2), ray(3)];
             let nearest = lanes.closest(&rays, f64::INFINITY, active);
-            shadows.nee = [false; 4];
-            let mut ended = 0u8;
+            let mut hits = [(0.0, 0, Vec3::Z); 4];
+            let mut live = [false; 4];
+            let mut u_rr = [0.5; 4];
             for l in 0..4 {
                 let bit = 1 << l;
                 if active & bit == 0 {
@@ -338,19 +331,24 @@ impl PathTracer {
                 } else {
                     None
                 };
-                let u_rr = if paths.depth[l] >= self.rr_depth { samplers[l].peek_2d(4).0 } else { 0.5 };
-                let end = diffuse.vertex(self, &mut paths, l, hit, (u_light[l], u_bsdf[l], u_rr), &mut shadows, counts);
+                if let Some(h) = hit {
+                    hits[l] = h;
+                    live[l] = true;
+                }
+                if paths.depth[l] >= self.rr_depth {
+                    u_rr[l] = samplers[l].peek_2d(4).0;
+                }
                 // The vertex's five dimensions (`li` skips those it does not use).
                 for _ in 0..5 {
                     samplers[l].skip();
                 }
-                ended |= u8::from(end) << l;
             }
+            let on = diffuse.vertex(self, &mut paths, live, &hits, &u_light, &u_bsdf, &u_rr, &mut shadows, counts);
             let mut asked = 0u8;
             let mut shadow_rays = rays;
             for l in 0..4 {
-                if let (true, Some(ray)) = (shadows.nee[l], shadows.rays[l]) {
-                    shadow_rays[l] = ray;
+                if shadows.ray[l] {
+                    shadow_rays[l] = Ray::unit(shadows.origin.get(l), shadows.dir.get(l));
                     asked |= 1 << l;
                 }
             }
@@ -358,10 +356,11 @@ impl PathTracer {
             for l in 0..4 {
                 if shadows.nee[l] {
                     let clear = asked & !blocked & (1 << l) != 0;
-                    paths.radiance[l] += shadows.beta[l] * if clear { shadows.value[l] } else { Rgb::ZERO };
+                    let value = if clear { shadows.value.get(l) } else { Rgb::ZERO };
+                    paths.radiance.set(l, paths.radiance.get(l) + shadows.beta.get(l) * value);
                 }
-                if ended & (1 << l) != 0 {
-                    let r = paths.radiance[l];
+                if active & (1 << l) != 0 && !on[l] {
+                    let r = paths.radiance.get(l);
                     values[item[l] as usize] = if weight[l] == 1.0 { r } else { r * weight[l] };
                     item[l] = u32::MAX;
                 }

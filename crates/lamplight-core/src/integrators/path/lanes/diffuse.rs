@@ -17,7 +17,7 @@ use super::super::{power_heuristic, PathTracer};
 use crate::accel::LaneShape;
 use crate::bsdfs::lambertian;
 use crate::math::{orthonormal_basis, Rgb, Vec3};
-use crate::ray::{offset_origin, Ray};
+use crate::ray::offset_origin;
 use crate::scene::{Scene, Sides};
 
 /// What a vertex needs of one object of the lanes (by its slot).
@@ -117,168 +117,199 @@ impl Diffuse {
     }
 }
 
+/// Four vectors, coordinate by coordinate: lane `k` is `(x[k], y[k], z[k])`.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct L3 {
+    pub(super) x: [f64; 4],
+    pub(super) y: [f64; 4],
+    pub(super) z: [f64; 4],
+}
+
+impl L3 {
+    /// Lane `k`.
+    #[inline(always)]
+    pub(super) fn get(&self, k: usize) -> Vec3 {
+        Vec3::new(self.x[k], self.y[k], self.z[k])
+    }
+
+    /// Sets lane `k`.
+    #[inline(always)]
+    pub(super) fn set(&mut self, k: usize, v: Vec3) {
+        (self.x[k], self.y[k], self.z[k]) = (v.x, v.y, v.z);
+    }
+}
+
 /// Four paths' state, lane by lane.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Default)]
 pub(super) struct Paths {
-    pub(super) origin: [Vec3; 4],
-    pub(super) dir: [Vec3; 4],
-    pub(super) beta: [Rgb; 4],
-    pub(super) radiance: [Rgb; 4],
+    pub(super) origin: L3,
+    pub(super) dir: L3,
+    pub(super) beta: L3,
+    pub(super) radiance: L3,
     pub(super) prev_pdf: [f64; 4],
     pub(super) prev_delta: [bool; 4],
     pub(super) depth: [u32; 4],
 }
 
-/// A light sample waiting for its shadow ray: the ray, its length, the
-/// light's object, the throughput and the value where the ray is clear.
+/// The light samples waiting for their shadow rays: per lane whether the
+/// lane reached its light sample (its `beta * value` is added), whether the
+/// sample gave a ray, the ray, its length, the throughput and the value
+/// where the ray is clear.
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct Shadows {
-    /// The lane reached its light sample: its `beta * value` is added.
     pub(super) nee: [bool; 4],
-    pub(super) rays: [Option<Ray>; 4],
+    pub(super) ray: [bool; 4],
+    pub(super) origin: L3,
+    pub(super) dir: L3,
     pub(super) distance: [f64; 4],
-    pub(super) beta: [Rgb; 4],
-    pub(super) value: [Rgb; 4],
+    pub(super) beta: L3,
+    pub(super) value: L3,
 }
 
+/// One lane's hit as the lanes report it: its parameter, its object's slot
+/// and the outward normal there.
+pub(super) type LaneHit = (f64, u32, Vec3);
+
 impl Diffuse {
-    /// One vertex of lane `l` of `paths` at its hit (`t`, `slot`, `face`; a
-    /// tie's hit from the walk comes as its object's slot and face 0 with its
-    /// normal in `tie_normal`), with the sample values drawn for it. Fills
-    /// `shadows` for the lane; returns whether the path ends here.
+    /// One vertex of each path of `live` (the lanes hit, `hits` their hits),
+    /// with the sample values drawn for it, stage by stage over the four
+    /// lanes (each stage a loop LLVM may turn into vector code; every lane
+    /// computes what the general code computes, in its order). Fills
+    /// `shadows`; returns the lanes whose paths go on.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     pub(super) fn vertex(
         &self,
         tracer: &PathTracer,
         paths: &mut Paths,
-        l: usize,
-        hit: Option<(f64, u32, Vec3)>,
-        (u_light, u_bsdf, u_rr): ((f64, f64), (f64, f64), f64),
+        live: [bool; 4],
+        hits: &[LaneHit; 4],
+        u_light: &[(f64, f64); 4],
+        u_bsdf: &[(f64, f64); 4],
+        u_rr: &[f64; 4],
         shadows: &mut Shadows,
         counts: &mut crate::integrators::RayCounts,
-    ) -> bool {
-        let (origin, dir) = (paths.origin[l], paths.dir[l]);
-        let depth = paths.depth[l];
-        let Some((t, slot, n)) = hit else { return true };
-        let s = &self.slots[slot as usize];
-        // `Scene::hit_record`: the normal turned against the ray.
-        let faces_ray = dir.dot(n) < 0.0;
-        let gn = if faces_ray { n } else { -n };
-        let front = faces_ray != s.reversed;
-        let point = origin + dir * t;
-        if s.emission != Rgb::ZERO && (front || s.two_sided) {
-            let w = if s.light && !paths.prev_delta[l] {
-                // `AreaLight::pdf` of this direction, distance and normal.
-                let cos_y = dir.dot(gn).abs();
-                let pdf = if cos_y <= 0.0 { 0.0 } else { t * t / (cos_y * self.light.area) };
-                power_heuristic(paths.prev_pdf[l], 1.0 * pdf)
-            } else {
-                1.0
-            };
-            paths.radiance[l] += paths.beta[l] * s.emission * w;
-        }
-        if depth >= tracer.max_depth {
-            return true;
-        }
-        let Some(albedo) = s.albedo[usize::from(front)] else { return true };
-        let (ft, fb) = orthonormal_basis(gn);
-        let to_local = |v: Vec3| Vec3::new(v.dot(ft), v.dot(fb), v.dot(gn));
-        let wo = to_local(-dir);
-        // The BSDF's sample (`Bsdf::sample` of a single Lambertian lobe).
-        let wi_local = lambertian::sample(u_bsdf);
-        let bsdf_pdf = lambertian::pdf(wo, wi_local);
-        let beta = paths.beta[l];
-        shadows.nee[l] = true;
-        shadows.rays[l] = None;
-        shadows.beta[l] = beta;
-        shadows.value[l] = Rgb::ZERO;
-        self.light_sample(point, gn, t, wo, albedo, u_light, &to_local, l, shadows, counts);
-        if !(bsdf_pdf > 0.0) {
-            return true;
-        }
-        let wi = ft * wi_local.x + fb * wi_local.y + gn * wi_local.z;
-        let next = offset_origin(point, gn, wi, t, 0.0);
-        if (wi.dot(gn) > 0.0) != (wi_local.z > 0.0) || albedo == Rgb::ZERO {
-            return true;
-        }
-        paths.beta[l] *= albedo;
-        paths.prev_pdf[l] = bsdf_pdf;
-        paths.prev_delta[l] = false;
-        if depth >= tracer.rr_depth {
-            let survive = paths.beta[l].max_element().min(1.0);
-            if !(u_rr < survive) {
-                return true;
-            }
-            paths.beta[l] *= 1.0 / survive;
-        }
-        counts.secondary += 1;
-        paths.origin[l] = next;
-        paths.dir[l] = wi;
-        paths.depth[l] += 1;
-        false
-    }
-
-    /// The light sample of `PathTracer::sample_light` for this light and a
-    /// Lambertian surface: its shadow ray and value into `shadows` (lane `l`),
-    /// or nothing where it gives nothing.
-    #[allow(clippy::too_many_arguments)]
-    #[inline(always)]
-    fn light_sample(
-        &self,
-        point: Vec3,
-        gn: Vec3,
-        t: f64,
-        wo: Vec3,
-        albedo: Rgb,
-        u: (f64, f64),
-        to_local: &impl Fn(Vec3) -> Vec3,
-        l: usize,
-        shadows: &mut Shadows,
-        counts: &mut crate::integrators::RayCounts,
-    ) {
+    ) -> [bool; 4] {
         let light = &self.light;
-        // `AreaLight::sample` of the rectangle (`Rectangle::sample_area`).
-        let y = light.corner + light.edge_u * u.0 + light.edge_v * u.1;
-        let to = y - point;
-        let d2 = to.length_squared();
-        if !(d2 > 0.0) {
-            return;
+        let mut shade = [false; 4];
+        let mut gn = L3::default();
+        let mut point = L3::default();
+        let mut albedo = L3::default();
+        let mut t = [0.0; 4];
+        // The hit record, the emission, and which paths end here.
+        for k in 0..4 {
+            let (tk, slot, n) = hits[k];
+            let s = &self.slots[slot as usize];
+            let dir = paths.dir.get(k);
+            let faces_ray = dir.dot(n) < 0.0;
+            let g = if faces_ray { n } else { -n };
+            let front = faces_ray != s.reversed;
+            let p = paths.origin.get(k) + dir * tk;
+            if live[k] && s.emission != Rgb::ZERO && (front || s.two_sided) {
+                let w = if s.light && !paths.prev_delta[k] {
+                    // `AreaLight::pdf` of this direction, distance and normal.
+                    let cos_y = dir.dot(g).abs();
+                    let pdf = if cos_y <= 0.0 { 0.0 } else { tk * tk / (cos_y * light.area) };
+                    power_heuristic(paths.prev_pdf[k], 1.0 * pdf)
+                } else {
+                    1.0
+                };
+                paths.radiance.set(k, paths.radiance.get(k) + paths.beta.get(k) * s.emission * w);
+            }
+            let a = s.albedo[usize::from(front)];
+            shade[k] = live[k] && paths.depth[k] < tracer.max_depth && a.is_some();
+            albedo.set(k, a.unwrap_or(Rgb::ZERO));
+            gn.set(k, g);
+            point.set(k, p);
+            t[k] = tk;
         }
-        let distance = d2.sqrt();
-        let wi = to * (1.0 / distance);
-        let facing = if light.reversed { wi.dot(light.normal) } else { -wi.dot(light.normal) };
-        let cos_y = if light.two_sided { facing.abs() } else { facing };
-        if cos_y <= 0.0 {
-            return;
+        // The frame, the direction towards the viewer, the BSDF's sample.
+        let mut ft = L3::default();
+        let mut fb = L3::default();
+        let mut wo = L3::default();
+        let mut wi_local = L3::default();
+        let mut bsdf_pdf = [0.0; 4];
+        for k in 0..4 {
+            let g = gn.get(k);
+            let (a, b) = orthonormal_basis(g);
+            let v = -paths.dir.get(k);
+            let o = Vec3::new(v.dot(a), v.dot(b), v.dot(g));
+            let wi = lambertian::sample(u_bsdf[k]);
+            ft.set(k, a);
+            fb.set(k, b);
+            wo.set(k, o);
+            wi_local.set(k, wi);
+            bsdf_pdf[k] = lambertian::pdf(o, wi);
         }
-        let pdf = d2 / (cos_y * light.area);
-        if !pdf.is_finite() || light.radiance == Rgb::ZERO {
-            return;
+        // The light's sample (`AreaLight::sample` of the rectangle, then
+        // `PathTracer::sample_light`); `ok` where it gives a shadow ray.
+        let mut ok = [false; 4];
+        for k in 0..4 {
+            let (p, g, o, a) = (point.get(k), gn.get(k), wo.get(k), albedo.get(k));
+            let u = u_light[k];
+            let y = light.corner + light.edge_u * u.0 + light.edge_v * u.1;
+            let to = y - p;
+            let d2 = to.length_squared();
+            let distance = d2.sqrt();
+            let wi = to * (1.0 / distance);
+            let facing = if light.reversed { wi.dot(light.normal) } else { -wi.dot(light.normal) };
+            let cos_y = if light.two_sided { facing.abs() } else { facing };
+            let pdf = d2 / (cos_y * light.area);
+            let local = Vec3::new(wi.dot(ft.get(k)), wi.dot(fb.get(k)), wi.dot(g));
+            let f = lambertian::f(a, o, local);
+            let origin = offset_origin(p, g, wi, t[k], 0.0);
+            let remaining = distance - (origin - p).length();
+            let cos = local.z.abs();
+            let pl = 1.0 * pdf;
+            let w = power_heuristic(pl, lambertian::pdf(o, local));
+            ok[k] = shade[k]
+                && d2 > 0.0
+                && !(cos_y <= 0.0)
+                && pdf.is_finite()
+                && light.radiance != Rgb::ZERO
+                && (wi.dot(g) > 0.0) == (local.z > 0.0)
+                && f != Rgb::ZERO;
+            shadows.value.set(k, f * light.radiance * (cos * w / pl));
+            shadows.origin.set(k, origin);
+            shadows.dir.set(k, wi);
+            shadows.distance[k] = remaining;
         }
-        let wi_local = to_local(wi);
-        if (wi.dot(gn) > 0.0) != (wi_local.z > 0.0) {
-            return;
+        shadows.nee = shade;
+        shadows.ray = ok;
+        shadows.beta = paths.beta;
+        counts.shadow += ok.iter().filter(|&&b| b).count() as u64;
+        // The next segment, and Russian roulette.
+        let mut next = [false; 4];
+        for k in 0..4 {
+            let (g, wl) = (gn.get(k), wi_local.get(k));
+            let wi = ft.get(k) * wl.x + fb.get(k) * wl.y + g * wl.z;
+            let origin = offset_origin(point.get(k), g, wi, t[k], 0.0);
+            let a = albedo.get(k);
+            let mut on = shade[k] && bsdf_pdf[k] > 0.0 && (wi.dot(g) > 0.0) == (wl.z > 0.0) && a != Rgb::ZERO;
+            let mut beta = paths.beta.get(k) * a;
+            if paths.depth[k] >= tracer.rr_depth {
+                let survive = beta.max_element().min(1.0);
+                on = on && u_rr[k] < survive;
+                beta *= 1.0 / survive;
+            }
+            if on {
+                paths.beta.set(k, beta);
+                paths.prev_pdf[k] = bsdf_pdf[k];
+                paths.prev_delta[k] = false;
+                paths.origin.set(k, origin);
+                paths.dir.set(k, wi);
+                paths.depth[k] += 1;
+            }
+            next[k] = on;
         }
-        let f = lambertian::f(albedo, wo, wi_local);
-        if f == Rgb::ZERO {
-            return;
-        }
-        counts.shadow += 1;
-        let origin = offset_origin(point, gn, wi, t, 0.0);
-        let remaining = distance - (origin - point).length();
-        let cos = wi_local.z.abs();
-        let pl = 1.0 * pdf;
-        let w = power_heuristic(pl, lambertian::pdf(wo, wi_local));
-        shadows.value[l] = f * light.radiance * (cos * w / pl);
-        shadows.rays[l] = Some(Ray::unit(origin, wi));
-        shadows.distance[l] = remaining;
+        counts.secondary += next.iter().filter(|&&b| b).count() as u64;
+        next
     }
 
     /// The hit of the walk (where two objects tie) as a lane's: its
     /// parameter, its object's slot and the outward normal that the lane's
     /// hit record turns into the walk's.
-    pub(super) fn walked(&self, hit: &crate::scene::Hit) -> (f64, u32, Vec3) {
+    pub(super) fn walked(&self, hit: &crate::scene::Hit) -> LaneHit {
         let s = self.slot_of[hit.object];
         let faces_ray = hit.front_face != self.slots[s as usize].reversed;
         (hit.t, s, if faces_ray { hit.geometric_normal } else { -hit.geometric_normal })
