@@ -28,6 +28,8 @@ use crate::sampling::{Cone, PixelSampler};
 use crate::scene::{Hit, Scene, Sides};
 use crate::Error;
 
+// The lanes run on AVX2 (`accel/ray_lanes.rs`); elsewhere every row takes one sample at a time.
+#[cfg(target_arch = "x86_64")]
 mod lanes;
 
 /// What a map left of the unmapped normal `unmapped` where it turned the
