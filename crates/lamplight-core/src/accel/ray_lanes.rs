@@ -177,6 +177,13 @@ mod avx2 {
         Rays { o: [o(0), o(1), o(2)], d: [d(0), d(1), d(2)] }
     }
 
+    /// Four rays given coordinate by coordinate.
+    #[inline(always)]
+    unsafe fn coordinates(origin: [&[f64; 4]; 3], dir: [&[f64; 4]; 3]) -> Rays {
+        let l = |a: &[f64; 4]| _mm256_loadu_pd(a.as_ptr());
+        Rays { o: [l(origin[0]), l(origin[1]), l(origin[2])], d: [l(dir[0]), l(dir[1]), l(dir[2])] }
+    }
+
     #[inline(always)]
     unsafe fn splat(v: Vec3) -> [__m256d; 3] {
         [_mm256_set1_pd(v.x), _mm256_set1_pd(v.y), _mm256_set1_pd(v.z)]
@@ -281,7 +288,25 @@ mod avx2 {
         #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
         #[inline]
         pub unsafe fn closest(&self, rays: &[Ray; 4], t_max: f64, active: u8) -> Nearest4 {
-            let r = self::rays(rays);
+            self.closest_in(&self::rays(rays), t_max, active)
+        }
+
+        /// [`ObjectLanes::closest`] of rays given coordinate by coordinate
+        /// (lane `k` of `origin[axis]` is ray `k`'s origin on that axis).
+        ///
+        /// # Safety
+        /// The CPU must have [`crate::cpu::AVX2_FEATURES`].
+        #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
+        #[inline]
+        pub unsafe fn closest_coordinates(&self, origin: [&[f64; 4]; 3], dir: [&[f64; 4]; 3], t_max: f64, active: u8) -> Nearest4 {
+            self.closest_in(&coordinates(origin, dir), t_max, active)
+        }
+
+        /// The queries' body, compiled for AVX2 itself so that its closures
+        /// are too (without it their intrinsics became calls: 2.7x the time).
+        #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
+        #[inline]
+        unsafe fn closest_in(&self, r: &Rays, t_max: f64, active: u8) -> Nearest4 {
             let t_max = _mm256_set1_pd(t_max);
             let live = _mm256_castsi256_pd(_mm256_cmpgt_epi64(
                 _mm256_and_si256(_mm256_set1_epi64x(i64::from(active)), _mm256_setr_epi64x(1, 2, 4, 8)),
@@ -302,11 +327,11 @@ mod avx2 {
                 face = _mm256_blendv_pd(face, f, closer);
             };
             for (s, k) in &self.rectangles {
-                let (t, ok) = rectangle(s, &r, t_max);
+                let (t, ok) = rectangle(s, r, t_max);
                 keep(*k, t, ok, _mm256_setzero_pd());
             }
             for (s, k) in &self.slabs {
-                let (t, ok, f) = slab::<true>(s, &r, t_max);
+                let (t, ok, f) = slab::<true>(s, r, t_max);
                 keep(*k, t, ok, f);
             }
             let mut out = Nearest4::default();
@@ -328,7 +353,29 @@ mod avx2 {
         #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
         #[inline]
         pub unsafe fn blocked(&self, rays: &[Ray; 4], distance: &[f64; 4], ignore: &[u32; 4], active: u8) -> u8 {
-            let r = self::rays(rays);
+            self.blocked_in(&self::rays(rays), distance, ignore, active)
+        }
+
+        /// [`ObjectLanes::blocked`] of rays given coordinate by coordinate.
+        ///
+        /// # Safety
+        /// The CPU must have [`crate::cpu::AVX2_FEATURES`].
+        #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
+        #[inline]
+        pub unsafe fn blocked_coordinates(
+            &self,
+            origin: [&[f64; 4]; 3],
+            dir: [&[f64; 4]; 3],
+            distance: &[f64; 4],
+            ignore: &[u32; 4],
+            active: u8,
+        ) -> u8 {
+            self.blocked_in(&coordinates(origin, dir), distance, ignore, active)
+        }
+
+        #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
+        #[inline]
+        unsafe fn blocked_in(&self, r: &Rays, distance: &[f64; 4], ignore: &[u32; 4], active: u8) -> u8 {
             let t_max = _mm256_loadu_pd(distance.as_ptr());
             let ignore = _mm256_setr_epi64x(i64::from(ignore[0]), i64::from(ignore[1]), i64::from(ignore[2]), i64::from(ignore[3]));
             let mut blocked = 0u8;
@@ -343,13 +390,13 @@ mod avx2 {
                 }
             };
             for (s, k) in &self.rectangles {
-                blocked |= blocks(*k, rectangle(s, &r, t_max).1);
+                blocked |= blocks(*k, rectangle(s, r, t_max).1);
                 if blocked & active == active {
                     return active;
                 }
             }
             for (s, k) in &self.slabs {
-                blocked |= blocks(*k, slab::<false>(s, &r, t_max).1);
+                blocked |= blocks(*k, slab::<false>(s, r, t_max).1);
                 if blocked & active == active {
                     return active;
                 }

@@ -311,10 +311,8 @@ impl PathTracer {
                 break;
             }
             let [u_light, u_bsdf] = peek_2d_lanes([&samplers[0], &samplers[1], &samplers[2], &samplers[3]], (1, 3));
-            // Written out: `array::map` kept its closure out of line (5 % of the time).
-            let ray = |l: usize| Ray::unit(paths.origin.get(l), paths.dir.get(l));
-            let rays = [ray(0), ray(1), ray(2), ray(3)];
-            let nearest = lanes.closest(&rays, f64::INFINITY, active);
+            let (o, d) = (&paths.origin, &paths.dir);
+            let nearest = lanes.closest_coordinates([&o.x, &o.y, &o.z], [&d.x, &d.y, &d.z], f64::INFINITY, active);
             let mut hits = [(0.0, 0, Vec3::Z); 4];
             let mut live = [false; 4];
             let mut u_rr = [0.5; 4];
@@ -324,7 +322,8 @@ impl PathTracer {
                     continue;
                 }
                 let hit = if nearest.tie & bit != 0 {
-                    scene.first_intersect(&rays[l], f64::INFINITY).map(|h| diffuse.walked(&h))
+                    let ray = Ray::unit(paths.origin.get(l), paths.dir.get(l));
+                    scene.first_intersect(&ray, f64::INFINITY).map(|h| diffuse.walked(&h))
                 } else if nearest.hit & bit != 0 {
                     let slot = nearest.slot[l];
                     Some((nearest.t[l], slot, lanes.shape(slot).normal(nearest.face[l] as usize)))
@@ -345,14 +344,15 @@ impl PathTracer {
             }
             let on = diffuse.vertex(self, &mut paths, live, &hits, &u_light, &u_bsdf, &u_rr, &mut shadows, counts);
             let mut asked = 0u8;
-            let mut shadow_rays = rays;
             for l in 0..4 {
-                if shadows.ray[l] {
-                    shadow_rays[l] = Ray::unit(shadows.origin.get(l), shadows.dir.get(l));
-                    asked |= 1 << l;
-                }
+                asked |= u8::from(shadows.ray[l]) << l;
             }
-            let blocked = if asked != 0 { lanes.blocked(&shadow_rays, &shadows.distance, &own, asked) } else { 0 };
+            let (o, d) = (&shadows.origin, &shadows.dir);
+            let blocked = if asked != 0 {
+                lanes.blocked_coordinates([&o.x, &o.y, &o.z], [&d.x, &d.y, &d.z], &shadows.distance, &own, asked)
+            } else {
+                0
+            };
             for l in 0..4 {
                 if shadows.nee[l] {
                     let clear = asked & !blocked & (1 << l) != 0;
