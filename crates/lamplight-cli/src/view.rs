@@ -21,14 +21,17 @@ pub fn view_command(args: ViewArgs) -> anyhow::Result<()> {
     crate::signals::serving();
     let url = viewer.url();
     // A reader that went away (`| head -1`, a closed terminal) must not stop
-    // the server or its Ctrl-C: these writes ignore a closed stream.
-    let _ = writeln!(std::io::stdout(), "lamplight view: {url}");
-    let _ = std::io::stdout().flush();
+    // the server or its Ctrl-C: these writes ignore a closed stream. The hint
+    // goes out before the URL: a caller that stops the viewer as soon as it
+    // reads the URL then sees "stopped" last (with the hint after the URL, a
+    // Ctrl-C right away printed "stopped" before it, which failed a test).
     let _ = writeln!(
         std::io::stderr(),
         "open that URL in a browser (it holds the access token); saves go into {}; Ctrl-C stops the viewer",
         viewer.app.save_dir.display()
     );
+    let _ = writeln!(std::io::stdout(), "lamplight view: {url}");
+    let _ = std::io::stdout().flush();
     if args.open {
         open_browser(&url);
     }
