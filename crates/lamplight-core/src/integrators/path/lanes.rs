@@ -84,6 +84,10 @@ enum Shadow {
     Ray(Pending, Ray, f64, u32),
 }
 
+/// Most sample values the lanes keep at once before adding them to their
+/// pixels' sums (96 KB).
+const MAX_VALUES: usize = 4096;
+
 /// Adds each pixel's `per_pixel` values in `values` to its sum in `sums`, in
 /// sample order, as the one-sample loop does; the number dropped.
 fn add_in_order(values: &[Rgb], per_pixel: usize, clamp: f64, sums: &mut [PixelSum]) -> u64 {
@@ -112,6 +116,42 @@ impl PathTracer {
     /// [`PathTracer::lanes_fit`] must be true for `view`.
     #[cfg(target_arch = "x86_64")]
     pub(super) unsafe fn sample_row_lanes(
+        &self,
+        view: &View,
+        row: (u32, u32),
+        samples: Range<u32>,
+        counts: &mut RayCounts,
+        sums: &mut [PixelSum],
+    ) -> u64 {
+        // The values wait for their pixel's sum in a buffer of at most
+        // `MAX_VALUES`: a row's pixels in groups, or one pixel's samples in
+        // runs (in order, so the sums are the same), never a buffer that
+        // grows with the sample count (a pass of 2^19 samples of 16 pixels
+        // would have held 200 MB a thread).
+        let (x0, y) = row;
+        let per_pixel = samples.len();
+        let mut dropped = 0;
+        if per_pixel <= MAX_VALUES {
+            let group = (MAX_VALUES / per_pixel.max(1)).max(1);
+            for (k, chunk) in sums.chunks_mut(group).enumerate() {
+                dropped += self.row_lanes_compiled(view, (x0 + (k * group) as u32, y), samples.clone(), counts, chunk);
+            }
+        } else {
+            for (i, sum) in sums.iter_mut().enumerate() {
+                let mut start = samples.start;
+                while start < samples.end {
+                    let end = samples.end.min(start + MAX_VALUES as u32);
+                    dropped += self.row_lanes_compiled(view, (x0 + i as u32, y), start..end, counts, std::slice::from_mut(sum));
+                    start = end;
+                }
+            }
+        }
+        dropped
+    }
+
+    /// [`PathTracer::row_lanes`] through its compilation for this CPU.
+    #[cfg(target_arch = "x86_64")]
+    unsafe fn row_lanes_compiled(
         &self,
         view: &View,
         row: (u32, u32),

@@ -92,6 +92,32 @@ fn lanes_add_the_same_sums_as_one_sample_at_a_time() {
     }
 }
 
+/// Rows whose values would not fit the lanes' buffer at once (many pixels
+/// of hundreds of samples, or one pixel of thousands) are taken in parts,
+/// with the same sums.
+#[test]
+fn long_rows_add_the_same_sums() {
+    if !crate::cpu::avx2_features() {
+        eprintln!("skipped: this CPU lacks AVX2, and the lanes run only there");
+        return;
+    }
+    for variant in [0, 2] {
+        let scene = cornell(variant);
+        let tracer = PathTracer::new(&scene, 8);
+        let camera = scene.settings.camera.for_image(24, 16).unwrap();
+        let view = View::new(&scene, &*camera, 24, 16, 8192, 3);
+        for (x0, width, samples) in [(0, 24, 0..300), (5, 2, 100..(100 + 2 * MAX_VALUES as u32 + 7))] {
+            let (mut lanes, mut one) = (RayCounts::default(), RayCounts::default());
+            let mut sums = vec![PixelSum::default(); width];
+            let mut expected = sums.clone();
+            tracer.sample_row(&view, (x0, 9), samples.clone(), &mut lanes, &mut sums);
+            sample_row_one_by_one(&tracer, &view, (x0, 9), samples, &mut one, &mut expected);
+            assert_eq!((lanes.camera, lanes.secondary, lanes.shadow), (one.camera, one.secondary, one.shadow));
+            assert_eq!(sums, expected, "variant {variant}, from {x0}");
+        }
+    }
+}
+
 /// Scenes the lanes do not cover keep the one-sample loop.
 #[test]
 fn other_scenes_keep_one_sample_at_a_time() {
