@@ -278,13 +278,24 @@ fn sample_row_loop<I: Integrator + ?Sized>(
     let mut nonfinite = 0;
     for (x, sum) in (x0..).zip(sums.iter_mut()) {
         for s in samples.clone() {
-            match crate::film::kept(integrator.sample(view, x, y, s, counts), view.clamp) {
-                Some(l) => sum.add(l),
-                None => nonfinite += 1,
-            }
+            nonfinite += add_sample(sum, integrator.sample(view, x, y, s, counts), view.clamp);
         }
     }
     nonfinite
+}
+
+/// Adds sample value `l` to `sum` as the film takes it ([`crate::film::kept`]:
+/// clamped to `clamp`, dropped where not finite); 1 where dropped, else 0.
+/// Every row loop adds its samples through here, in sample order.
+#[inline(always)]
+pub(crate) fn add_sample(sum: &mut PixelSum, l: Rgb, clamp: f64) -> u64 {
+    match crate::film::kept(l, clamp) {
+        Some(l) => {
+            sum.add(l);
+            0
+        }
+        None => 1,
+    }
 }
 
 /// [`sample_row_loop`] compiled for [`crate::cpu::RENDER_FEATURES`] (the list is

@@ -46,7 +46,8 @@ use crate::math::{Rgb, Vec3};
 use crate::ray::{offset_origin, Ray};
 use crate::sampling::{peek_2d_lanes, PixelSampler};
 use crate::scene::{Hit, Scene, Sides};
-use diffuse::{Diffuse, Paths, Shadows};
+pub(super) use diffuse::Diffuse;
+use diffuse::{Paths, Shadows};
 
 /// One lane's path.
 #[derive(Clone, Debug)]
@@ -94,10 +95,7 @@ fn add_in_order(values: &[Rgb], per_pixel: usize, clamp: f64, sums: &mut [PixelS
     let mut nonfinite = 0;
     for (sum, pixel) in sums.iter_mut().zip(values.chunks_exact(per_pixel.max(1))) {
         for &l in pixel {
-            match crate::film::kept(l, clamp) {
-                Some(l) => sum.add(l),
-                None => nonfinite += 1,
-            }
+            nonfinite += crate::integrators::add_sample(sum, l, clamp);
         }
     }
     nonfinite
@@ -207,8 +205,8 @@ impl PathTracer {
         sums: &mut [PixelSum],
     ) -> u64 {
         let scene = view.scene;
-        if let Some(diffuse) = Diffuse::of(self, scene) {
-            return self.row_diffuse(&diffuse, view, (x0, y), samples, counts, sums);
+        if let Some(diffuse) = self.diffuse.as_ref().filter(|d| d.fits(scene)) {
+            return self.row_diffuse(diffuse, view, (x0, y), samples, counts, sums);
         }
         let per_pixel = samples.len();
         let total = sums.len() * per_pixel;

@@ -50,7 +50,7 @@ struct Light {
 
 /// The tables of a scene of this kind (module doc).
 #[derive(Clone, Debug)]
-pub(super) struct Diffuse {
+pub(in crate::integrators::path) struct Diffuse {
     slots: Vec<Slot>,
     light: Light,
     /// Per object of the scene, its slot in the lanes.
@@ -59,7 +59,7 @@ pub(super) struct Diffuse {
 
 impl Diffuse {
     /// The tables, where `scene` and `tracer` are of this kind; else `None`.
-    pub(super) fn of(tracer: &PathTracer, scene: &Scene) -> Option<Diffuse> {
+    pub(in crate::integrators::path) fn of(tracer: &PathTracer, scene: &Scene) -> Option<Diffuse> {
         let lanes = scene.object_lanes()?;
         let lights = &tracer.lights;
         if !tracer.all_opaque || scene.settings.sides != Sides::Geometric || !lights.delta.is_empty() || lights.environment.is_some() {
@@ -304,6 +304,13 @@ impl Diffuse {
         }
         counts.secondary += next.iter().filter(|&&b| b).count() as u64;
         next
+    }
+
+    /// Whether these tables can be those of `scene`: a tracer renders the
+    /// scene it was built for, and one given another scene of another size
+    /// runs the general lanes rather than index these tables.
+    pub(super) fn fits(&self, scene: &Scene) -> bool {
+        scene.object_lanes().is_some_and(|l| l.len() == self.slots.len()) && self.slot_of.len() == scene.objects.len()
     }
 
     /// The hit of the walk (where two objects tie) as a lane's: its
