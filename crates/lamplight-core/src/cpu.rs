@@ -16,7 +16,10 @@
 //! (`BENCHMARKS.md`, issue 24, which also measures what it gains). No test
 //! yet runs both compilations of one render side by side.
 //!
-//! Valgrind's CPU does not report GFNI, so instruction counts
+//! The path tracer's lanes have a fourth compilation, for
+//! [`AVX512_FEATURES`] (integer operations only differ: the same bits).
+//!
+//! Valgrind's CPU reports neither GFNI nor AVX-512, so instruction counts
 //! (`scripts/bench-guard.sh`) measure the [`AVX2_FEATURES`] code.
 
 /// The target features of the render loop's second compilation, as
@@ -28,9 +31,18 @@ pub const RENDER_FEATURES: &str = "avx2,bmi1,bmi2,lzcnt,popcnt,gfni";
 /// before Ice Lake) would otherwise run the baseline loop.
 pub const AVX2_FEATURES: &str = "avx2,bmi1,bmi2,lzcnt,popcnt";
 
-/// What [`render_features`] and [`avx2_features`] found, detected once: bit 0
-/// set when detection ran, bit 1 for [`RENDER_FEATURES`], bit 2 for
-/// [`AVX2_FEATURES`]. The scene's queries ask per ray; the standard library's
+/// [`RENDER_FEATURES`] with AVX-512 (foundation, doubleword and quadword,
+/// vector length, byte and word), for the path tracer's lanes only: their
+/// Sobol hashing multiplies 64-bit integers lane by lane, one `vpmullq` here
+/// and five instructions with AVX2 alone, and converts 32-bit integers to
+/// floats in one `vcvtudq2pd` (BENCHMARKS.md, session 33). The Whitted loop
+/// gained under 2 % from the same compilation and keeps [`RENDER_FEATURES`].
+pub const AVX512_FEATURES: &str = "avx2,bmi1,bmi2,lzcnt,popcnt,gfni,avx512f,avx512dq,avx512vl,avx512bw";
+
+/// What [`render_features`], [`avx2_features`] and [`avx512_features`]
+/// found, detected once: bit 0 set when detection ran, bit 1 for
+/// [`RENDER_FEATURES`], bit 2 for [`AVX2_FEATURES`], bit 3 for
+/// [`AVX512_FEATURES`]. The scene's queries ask per ray; the standard library's
 /// own cache tests each feature's flag separately (about twenty instructions
 /// and a call), this is one load and one test (issue 24).
 static DETECTED: std::sync::atomic::AtomicU8 = std::sync::atomic::AtomicU8::new(0);
@@ -55,7 +67,8 @@ fn detect() -> u8 {
         use std::arch::is_x86_feature_detected as has;
         let avx2 = has!("avx2") && has!("bmi1") && has!("bmi2") && has!("lzcnt") && has!("popcnt");
         let render = avx2 && has!("gfni");
-        1 | (u8::from(render) << 1) | (u8::from(avx2) << 2)
+        let avx512 = render && has!("avx512f") && has!("avx512dq") && has!("avx512vl") && has!("avx512bw");
+        1 | (u8::from(render) << 1) | (u8::from(avx2) << 2) | (u8::from(avx512) << 3)
     };
     #[cfg(not(target_arch = "x86_64"))]
     let bits = 1;
@@ -76,6 +89,12 @@ pub fn avx2_features() -> bool {
     detected() & 4 != 0
 }
 
+/// Whether this CPU has every feature of [`AVX512_FEATURES`].
+#[inline]
+pub fn avx512_features() -> bool {
+    detected() & 8 != 0
+}
+
 #[cfg(all(test, target_arch = "x86_64"))]
 mod tests {
     /// The cached answers are the standard library's, on the first call and after.
@@ -86,6 +105,8 @@ mod tests {
         for _ in 0..2 {
             assert_eq!(super::avx2_features(), avx2);
             assert_eq!(super::render_features(), avx2 && has!("gfni"));
+            let avx512 = has!("avx512f") && has!("avx512dq") && has!("avx512vl") && has!("avx512bw");
+            assert_eq!(super::avx512_features(), avx2 && has!("gfni") && avx512);
         }
     }
 }

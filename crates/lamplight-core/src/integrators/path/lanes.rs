@@ -157,11 +157,27 @@ impl PathTracer {
         counts: &mut RayCounts,
         sums: &mut [PixelSum],
     ) -> u64 {
-        if crate::cpu::render_features() {
+        if crate::cpu::avx512_features() {
+            self.row_lanes_avx512(view, row, samples, counts, sums)
+        } else if crate::cpu::render_features() {
             self.row_lanes_features(view, row, samples, counts, sums)
         } else {
             self.row_lanes_avx2(view, row, samples, counts, sums)
         }
+    }
+
+    /// [`PathTracer::row_lanes`] compiled for [`crate::cpu::AVX512_FEATURES`].
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt,gfni,avx512f,avx512dq,avx512vl,avx512bw")]
+    unsafe fn row_lanes_avx512(
+        &self,
+        view: &View,
+        row: (u32, u32),
+        samples: Range<u32>,
+        counts: &mut RayCounts,
+        sums: &mut [PixelSum],
+    ) -> u64 {
+        self.row_lanes(view, row, samples, counts, sums)
     }
 
     /// [`PathTracer::row_lanes`] compiled for [`crate::cpu::RENDER_FEATURES`].

@@ -132,3 +132,54 @@ fn other_scenes_keep_one_sample_at_a_time() {
     let spheres = b.build().unwrap();
     assert!(spheres.object_lanes().is_none(), "a sphere has no lane test yet");
 }
+
+/// Each compilation of the lanes this CPU can run (AVX-512, AVX2 with GFNI,
+/// AVX2) adds the same sums as the one-sample loop: the dispatch picks one,
+/// and the others would otherwise go untested here.
+#[test]
+fn every_compilation_adds_the_same_sums() {
+    let compiled: [(&str, bool, RowFn); 3] = [
+        ("avx512", crate::cpu::avx512_features(), |t, v, r, s, c, sums| unsafe { t.row_lanes_avx512(v, r, s, c, sums) }),
+        ("render", crate::cpu::render_features(), |t, v, r, s, c, sums| unsafe { t.row_lanes_features(v, r, s, c, sums) }),
+        ("avx2", crate::cpu::avx2_features(), |t, v, r, s, c, sums| unsafe { t.row_lanes_avx2(v, r, s, c, sums) }),
+    ];
+    for (name, available, row) in compiled {
+        if !available {
+            eprintln!("skipped the {name} compilation: this CPU lacks its features");
+            continue;
+        }
+        for variant in 0..4 {
+            let scene = cornell(variant);
+            let tracer = PathTracer::new(&scene, 8);
+            let camera = scene.settings.camera.for_image(24, 16).unwrap();
+            let view = View::new(&scene, &*camera, 24, 16, 12, 7);
+            for y in [0, 7, 15] {
+                let (mut lanes, mut one) = (RayCounts::default(), RayCounts::default());
+                let mut sums = vec![PixelSum::default(); 24];
+                let mut expected = sums.clone();
+                row(&tracer, &view, (0, y), 2..9, &mut lanes, &mut sums);
+                sample_row_one_by_one(&tracer, &view, (0, y), 2..9, &mut one, &mut expected);
+                assert_eq!((lanes.camera, lanes.secondary, lanes.shadow), (one.camera, one.secondary, one.shadow));
+                assert_eq!(sums, expected, "{name}, variant {variant}, row {y}");
+            }
+        }
+    }
+}
+
+/// A compilation of [`PathTracer::row_lanes`].
+type RowFn = fn(&PathTracer, &View, (u32, u32), Range<u32>, &mut RayCounts, &mut [PixelSum]) -> u64;
+
+/// The compilations' attributes name the feature lists of `cpu.rs` (the
+/// attribute takes a literal).
+#[test]
+fn the_compilations_name_the_detected_features() {
+    let source = include_str!("../lanes.rs");
+    for (features, name) in [
+        (crate::cpu::AVX512_FEATURES, "row_lanes_avx512"),
+        (crate::cpu::RENDER_FEATURES, "row_lanes_features"),
+        (crate::cpu::AVX2_FEATURES, "row_lanes_avx2"),
+    ] {
+        let attribute = format!("#[target_feature(enable = \"{features}\")]\n    unsafe fn {name}(");
+        assert!(source.contains(&attribute), "{name} must be compiled for {features}");
+    }
+}
