@@ -41,48 +41,28 @@ fn sobol1(mut i: u32) -> u32 {
     x
 }
 
-/// `reverse_bits(sobol1(i))`, by byte: the map is linear over GF(2) and bit
-/// reversal is a permutation, so it is the XOR of four table entries, one per byte
-/// of `i`, each the XOR of the reversed columns of that byte's set bits. A
-/// scrambled index has all 32 bits in play, so this replaces a 32-step loop and
-/// a bit reversal (a fifth of the path tracer's instructions).
+/// `reverse_bits(sobol1(i))` in five shift-and-XOR steps.
+///
+/// Generator column `k` of the second dimension is `2^31 (1 + t)^k` with `t`
+/// a shift right by one, so read as polynomials over GF(2) (bit `k` of `i`
+/// the coefficient of `s^k`, bit `j` of the reversed value that of `t^j`)
+/// the reversed value is `i(s)` at `s = 1 + t`: a Taylor shift by one. For a
+/// degree below 32 it splits into halves, `i = A + s^h B` with `h` 16, 8, 4,
+/// 2, 1, and since `(1 + t)^h = 1 + t^h` over GF(2) each level only adds
+/// every block's upper half into its lower half: `x ^= (x >> h) & mask`.
+/// The same bits as XOR-ing the columns of `i`'s set bits (the map is linear,
+/// so equality on the 32 unit vectors proves it for every `i`, which a test
+/// checks), without the 4 KB table whose four lookups per value became
+/// gathers in the path tracer's lanes (issue 24).
 #[inline]
-fn sobol1_reversed(i: u32) -> u32 {
-    let t = &SOBOL1_REVERSED;
-    t[0][(i & 0xff) as usize] ^ t[1][((i >> 8) & 0xff) as usize] ^ t[2][((i >> 16) & 0xff) as usize] ^ t[3][(i >> 24) as usize]
+fn sobol1_reversed(mut x: u32) -> u32 {
+    x ^= (x >> 16) & 0x0000_ffff;
+    x ^= (x >> 8) & 0x00ff_00ff;
+    x ^= (x >> 4) & 0x0f0f_0f0f;
+    x ^= (x >> 2) & 0x3333_3333;
+    x ^= (x >> 1) & 0x5555_5555;
+    x
 }
-
-/// `SOBOL1_REVERSED[b][x]`: XOR of the reversed generator columns `v_{8b + k}`
-/// over the set bits `k` of byte value `x`.
-static SOBOL1_REVERSED: [[u32; 256]; 4] = {
-    let mut columns = [0u32; 32];
-    let mut v = 1u32 << 31;
-    let mut k = 0;
-    while k < 32 {
-        columns[k] = v.reverse_bits();
-        v ^= v >> 1;
-        k += 1;
-    }
-    let mut table = [[0u32; 256]; 4];
-    let mut b = 0;
-    while b < 4 {
-        let mut x = 0;
-        while x < 256 {
-            let mut acc = 0u32;
-            let mut bit = 0;
-            while bit < 8 {
-                if x & (1 << bit) != 0 {
-                    acc ^= columns[8 * b + bit];
-                }
-                bit += 1;
-            }
-            table[b][x] = acc;
-            x += 1;
-        }
-        b += 1;
-    }
-    table
-};
 
 /// Laine and Karras' hash-based permutation, which flips each bit depending only on
 /// the bits below it: applied to bit-reversed values it is a nested uniform scramble.
@@ -292,6 +272,18 @@ mod tests {
         }
         for i in [0, 1, 2, 3, u32::MAX, 1 << 31] {
             assert_eq!(sobol1_reversed(i), sobol1(i).reverse_bits());
+        }
+    }
+
+    /// Both sides are linear over GF(2): equal on every unit vector, equal
+    /// for every index.
+    #[test]
+    fn the_taylor_shift_is_the_generator_matrix() {
+        for k in 0..32 {
+            assert_eq!(sobol1_reversed(1 << k), sobol1(1 << k).reverse_bits(), "column {k}");
+        }
+        for (a, b) in [(0x8000_0001u32, 0x7fff_fffeu32), (0x1234_5678, 0x0f0f_f0f0)] {
+            assert_eq!(sobol1_reversed(a ^ b), sobol1_reversed(a) ^ sobol1_reversed(b));
         }
     }
 
