@@ -16,8 +16,11 @@
 //! (`BENCHMARKS.md`, issue 24, which also measures what it gains). No test
 //! yet runs both compilations of one render side by side.
 //!
-//! The path tracer's lanes have a fourth compilation, for
-//! [`AVX512_FEATURES`] (integer operations only differ: the same bits).
+//! The path tracer's lanes and their queries (`accel/ray_lanes.rs`) have a
+//! fourth compilation, for [`AVX512_FEATURES`]: the same operations, so the
+//! same bits, with 64-bit multiplies and conversions the lanes' Sobol
+//! hashing lacks under AVX2, and 32 vector registers and mask registers for
+//! the queries.
 //!
 //! Valgrind's CPU reports neither GFNI nor AVX-512, so instruction counts
 //! (`scripts/bench-guard.sh`) measure the [`AVX2_FEATURES`] code.
@@ -35,7 +38,8 @@ pub const AVX2_FEATURES: &str = "avx2,bmi1,bmi2,lzcnt,popcnt";
 /// vector length, byte and word), for the path tracer's lanes only: their
 /// Sobol hashing multiplies 64-bit integers lane by lane, one `vpmullq` here
 /// and five instructions with AVX2 alone, and converts 32-bit integers to
-/// floats in one `vcvtudq2pd` (BENCHMARKS.md, session 33). The Whitted loop
+/// floats in one `vcvtudq2pd`; the queries keep every value in a register
+/// (BENCHMARKS.md, session 33). The Whitted loop
 /// gained under 2 % from the same compilation and keeps [`RENDER_FEATURES`].
 pub const AVX512_FEATURES: &str = "avx2,bmi1,bmi2,lzcnt,popcnt,gfni,avx512f,avx512dq,avx512vl,avx512bw";
 

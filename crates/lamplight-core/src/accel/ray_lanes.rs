@@ -288,7 +288,7 @@ mod avx2 {
         #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
         #[inline]
         pub unsafe fn closest(&self, rays: &[Ray; 4], t_max: f64, active: u8) -> Nearest4 {
-            self.closest_in(&self::rays(rays), t_max, active)
+            self.closest_dispatched(&self::rays(rays), t_max, active)
         }
 
         /// [`ObjectLanes::closest`] of rays given coordinate by coordinate
@@ -299,49 +299,7 @@ mod avx2 {
         #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
         #[inline]
         pub unsafe fn closest_coordinates(&self, origin: [&[f64; 4]; 3], dir: [&[f64; 4]; 3], t_max: f64, active: u8) -> Nearest4 {
-            self.closest_in(&coordinates(origin, dir), t_max, active)
-        }
-
-        /// The queries' body, compiled for AVX2 itself so that its closures
-        /// are too (without it their intrinsics became calls: 2.7x the time).
-        #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
-        #[inline]
-        unsafe fn closest_in(&self, r: &Rays, t_max: f64, active: u8) -> Nearest4 {
-            let t_max = _mm256_set1_pd(t_max);
-            let live = _mm256_castsi256_pd(_mm256_cmpgt_epi64(
-                _mm256_and_si256(_mm256_set1_epi64x(i64::from(active)), _mm256_setr_epi64x(1, 2, 4, 8)),
-                _mm256_setzero_si256(),
-            ));
-            let mut best = _mm256_set1_pd(f64::INFINITY);
-            let mut slot = _mm256_setzero_pd();
-            let mut face = _mm256_setzero_pd();
-            let mut tie = _mm256_setzero_pd();
-            // Keeps the nearer of each lane's best so far and object `k`'s hit.
-            let mut keep = |k: u32, t: __m256d, ok: __m256d, f: __m256d| {
-                let ok = _mm256_and_pd(ok, live);
-                let closer = _mm256_and_pd(ok, _mm256_cmp_pd::<_CMP_LT_OQ>(t, best));
-                let equal = _mm256_and_pd(ok, _mm256_cmp_pd::<_CMP_EQ_OQ>(t, best));
-                tie = _mm256_or_pd(_mm256_andnot_pd(closer, tie), equal);
-                best = _mm256_blendv_pd(best, t, closer);
-                slot = _mm256_blendv_pd(slot, _mm256_set1_pd(f64::from(k)), closer);
-                face = _mm256_blendv_pd(face, f, closer);
-            };
-            for (s, k) in &self.rectangles {
-                let (t, ok) = rectangle(s, r, t_max);
-                keep(*k, t, ok, _mm256_setzero_pd());
-            }
-            for (s, k) in &self.slabs {
-                let (t, ok, f) = slab::<true>(s, r, t_max);
-                keep(*k, t, ok, f);
-            }
-            let mut out = Nearest4::default();
-            _mm256_storeu_pd(out.t.as_mut_ptr(), best);
-            // Small whole numbers in `f64`: converted exactly.
-            _mm_storeu_si128(out.slot.as_mut_ptr().cast(), _mm256_cvttpd_epi32(slot));
-            _mm_storeu_si128(out.face.as_mut_ptr().cast(), _mm256_cvttpd_epi32(face));
-            out.hit = _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_LT_OQ>(best, _mm256_set1_pd(f64::INFINITY))) as u8;
-            out.tie = _mm256_movemask_pd(tie) as u8;
-            out
+            self.closest_dispatched(&coordinates(origin, dir), t_max, active)
         }
 
         /// The lanes of `active` whose segment from the origin along the unit
@@ -353,7 +311,7 @@ mod avx2 {
         #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
         #[inline]
         pub unsafe fn blocked(&self, rays: &[Ray; 4], distance: &[f64; 4], ignore: &[u32; 4], active: u8) -> u8 {
-            self.blocked_in(&self::rays(rays), distance, ignore, active)
+            self.blocked_dispatched(&self::rays(rays), distance, ignore, active)
         }
 
         /// [`ObjectLanes::blocked`] of rays given coordinate by coordinate.
@@ -370,40 +328,127 @@ mod avx2 {
             ignore: &[u32; 4],
             active: u8,
         ) -> u8 {
-            self.blocked_in(&coordinates(origin, dir), distance, ignore, active)
+            self.blocked_dispatched(&coordinates(origin, dir), distance, ignore, active)
         }
 
-        #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
-        #[inline]
-        unsafe fn blocked_in(&self, r: &Rays, distance: &[f64; 4], ignore: &[u32; 4], active: u8) -> u8 {
-            let t_max = _mm256_loadu_pd(distance.as_ptr());
-            let ignore = _mm256_setr_epi64x(i64::from(ignore[0]), i64::from(ignore[1]), i64::from(ignore[2]), i64::from(ignore[3]));
-            let mut blocked = 0u8;
-            // The lanes object `k` blocks.
-            let blocks = |k: u32, ok: __m256d| -> u8 {
-                let k = k as usize;
-                let own = _mm256_castsi256_pd(_mm256_cmpeq_epi64(ignore, _mm256_set1_epi64x(i64::from(self.objects[k]))));
-                if self.opaque[k] {
-                    _mm256_movemask_pd(_mm256_andnot_pd(own, ok)) as u8
-                } else {
-                    0
-                }
-            };
-            for (s, k) in &self.rectangles {
-                blocked |= blocks(*k, rectangle(s, r, t_max).1);
-                if blocked & active == active {
-                    return active;
-                }
+        /// The closest-hit query's body, through its compilation for this CPU.
+        #[inline(always)]
+        unsafe fn closest_dispatched(&self, r: &Rays, t_max: f64, active: u8) -> Nearest4 {
+            if crate::cpu::avx512_features() {
+                self.closest_in_avx512(r, t_max, active)
+            } else {
+                self.closest_in(r, t_max, active)
             }
-            for (s, k) in &self.slabs {
-                blocked |= blocks(*k, slab::<false>(s, r, t_max).1);
-                if blocked & active == active {
-                    return active;
-                }
+        }
+
+        /// The shadow query's body, through its compilation for this CPU.
+        #[inline(always)]
+        unsafe fn blocked_dispatched(&self, r: &Rays, distance: &[f64; 4], ignore: &[u32; 4], active: u8) -> u8 {
+            if crate::cpu::avx512_features() {
+                self.blocked_in_avx512(r, distance, ignore, active)
+            } else {
+                self.blocked_in(r, distance, ignore, active)
             }
-            blocked & active
+        }
+
+        /// [`ObjectLanes::closest`] with the AVX2 compilation whatever the
+        /// CPU, for the test that compares the two.
+        #[cfg(test)]
+        pub(in crate::accel) unsafe fn closest_avx2(&self, rays: &[Ray; 4], t_max: f64, active: u8) -> Nearest4 {
+            self.closest_in(&self::rays(rays), t_max, active)
+        }
+
+        /// [`ObjectLanes::blocked`] with the AVX2 compilation whatever the CPU.
+        #[cfg(test)]
+        pub(in crate::accel) unsafe fn blocked_avx2(&self, rays: &[Ray; 4], distance: &[f64; 4], ignore: &[u32; 4], active: u8) -> u8 {
+            self.blocked_in(&self::rays(rays), distance, ignore, active)
         }
     }
+
+    /// The queries' bodies, each compiled for its features itself so that
+    /// its closures are too (as plain inlined functions their intrinsics
+    /// became calls: 2.7x the time). Twice: for AVX2, and for
+    /// [`crate::cpu::AVX512_FEATURES`], where the same intrinsics get 32
+    /// registers (no spills) and compare into mask registers (no blends):
+    /// the same operations, so the same bits.
+    macro_rules! bodies {
+        ($features:literal, $closest:ident, $blocked:ident) => {
+            impl ObjectLanes {
+                #[target_feature(enable = $features)]
+                #[inline]
+                unsafe fn $closest(&self, r: &Rays, t_max: f64, active: u8) -> Nearest4 {
+                    let t_max = _mm256_set1_pd(t_max);
+                    let live = _mm256_castsi256_pd(_mm256_cmpgt_epi64(
+                        _mm256_and_si256(_mm256_set1_epi64x(i64::from(active)), _mm256_setr_epi64x(1, 2, 4, 8)),
+                        _mm256_setzero_si256(),
+                    ));
+                    let mut best = _mm256_set1_pd(f64::INFINITY);
+                    let mut slot = _mm256_setzero_pd();
+                    let mut face = _mm256_setzero_pd();
+                    let mut tie = _mm256_setzero_pd();
+                    // Keeps the nearer of each lane's best so far and object `k`'s hit.
+                    let mut keep = |k: u32, t: __m256d, ok: __m256d, f: __m256d| {
+                        let ok = _mm256_and_pd(ok, live);
+                        let closer = _mm256_and_pd(ok, _mm256_cmp_pd::<_CMP_LT_OQ>(t, best));
+                        let equal = _mm256_and_pd(ok, _mm256_cmp_pd::<_CMP_EQ_OQ>(t, best));
+                        tie = _mm256_or_pd(_mm256_andnot_pd(closer, tie), equal);
+                        best = _mm256_blendv_pd(best, t, closer);
+                        slot = _mm256_blendv_pd(slot, _mm256_set1_pd(f64::from(k)), closer);
+                        face = _mm256_blendv_pd(face, f, closer);
+                    };
+                    for (s, k) in &self.rectangles {
+                        let (t, ok) = rectangle(s, r, t_max);
+                        keep(*k, t, ok, _mm256_setzero_pd());
+                    }
+                    for (s, k) in &self.slabs {
+                        let (t, ok, f) = slab::<true>(s, r, t_max);
+                        keep(*k, t, ok, f);
+                    }
+                    let mut out = Nearest4::default();
+                    _mm256_storeu_pd(out.t.as_mut_ptr(), best);
+                    // Small whole numbers in `f64`: converted exactly.
+                    _mm_storeu_si128(out.slot.as_mut_ptr().cast(), _mm256_cvttpd_epi32(slot));
+                    _mm_storeu_si128(out.face.as_mut_ptr().cast(), _mm256_cvttpd_epi32(face));
+                    out.hit = _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_LT_OQ>(best, _mm256_set1_pd(f64::INFINITY))) as u8;
+                    out.tie = _mm256_movemask_pd(tie) as u8;
+                    out
+                }
+
+                #[target_feature(enable = $features)]
+                #[inline]
+                unsafe fn $blocked(&self, r: &Rays, distance: &[f64; 4], ignore: &[u32; 4], active: u8) -> u8 {
+                    let t_max = _mm256_loadu_pd(distance.as_ptr());
+                    let ignore = _mm256_setr_epi64x(i64::from(ignore[0]), i64::from(ignore[1]), i64::from(ignore[2]), i64::from(ignore[3]));
+                    let mut blocked = 0u8;
+                    // The lanes object `k` blocks.
+                    let blocks = |k: u32, ok: __m256d| -> u8 {
+                        let k = k as usize;
+                        let own = _mm256_castsi256_pd(_mm256_cmpeq_epi64(ignore, _mm256_set1_epi64x(i64::from(self.objects[k]))));
+                        if self.opaque[k] {
+                            _mm256_movemask_pd(_mm256_andnot_pd(own, ok)) as u8
+                        } else {
+                            0
+                        }
+                    };
+                    for (s, k) in &self.rectangles {
+                        blocked |= blocks(*k, rectangle(s, r, t_max).1);
+                        if blocked & active == active {
+                            return active;
+                        }
+                    }
+                    for (s, k) in &self.slabs {
+                        blocked |= blocks(*k, slab::<false>(s, r, t_max).1);
+                        if blocked & active == active {
+                            return active;
+                        }
+                    }
+                    blocked & active
+                }
+            }
+        };
+    }
+    bodies!("avx2,bmi1,bmi2,lzcnt,popcnt", closest_in, blocked_in);
+    bodies!("avx2,bmi1,bmi2,lzcnt,popcnt,gfni,avx512f,avx512dq,avx512vl,avx512bw", closest_in_avx512, blocked_in_avx512);
 }
 
 #[cfg(test)]

@@ -56,7 +56,8 @@ fn scalar_nearest(list: &[Arc<dyn Shape>], ray: &Ray, t_max: f64) -> (Option<(us
 
 /// Random rays through the room, from inside and outside, and rays leaving
 /// the points they hit (as a path's next segment, from the hit point itself:
-/// where the walk is most delicate), four at a time with some lanes idle.
+/// where the walk is most delicate), four at a time with some lanes idle;
+/// and both compilations of the queries (AVX2, AVX-512) answer alike.
 #[test]
 fn lanes_answer_as_each_shape_does() {
     if !crate::cpu::avx2_features() {
@@ -96,6 +97,13 @@ fn lanes_answer_as_each_shape_does() {
             let ignore = [0, 1, 2, 3].map(|lane| if (k + lane) % 5 == 0 { u32::MAX } else { 100 + ((k + lane) % list.len()) as u32 });
             // SAFETY: as above.
             let blocking = unsafe { lanes.blocked(&rays, &distance, &ignore, active) };
+            // Where the CPU has AVX-512, the queries above ran its compilation:
+            // the AVX2 one answers the same.
+            // SAFETY: as above.
+            let (answer_avx2, blocking_avx2) =
+                unsafe { (lanes.closest_avx2(&rays, t_max, active), lanes.blocked_avx2(&rays, &distance, &ignore, active)) };
+            assert_eq!(answer_avx2.t.map(f64::to_bits), answer.t.map(f64::to_bits));
+            assert_eq!((answer_avx2, blocking_avx2), (answer, blocking), "the AVX2 compilation differs");
             for (lane, ray) in rays.iter().enumerate() {
                 let bit = 1u8 << lane;
                 if active & bit == 0 {
@@ -136,4 +144,17 @@ fn lanes_hold_a_handful() {
     assert!(ObjectLanes::build(&[]).is_none());
     assert!(ObjectLanes::build(&vec![one; crate::accel::FLAT_MAX + 1]).is_none());
     assert_eq!(ObjectLanes::build(&vec![one; crate::accel::FLAT_MAX]).map(|l| l.len()), Some(crate::accel::FLAT_MAX));
+}
+
+/// The queries' two compilations name the feature lists of `cpu.rs` (the
+/// attribute takes a literal).
+#[test]
+fn the_compilations_name_the_detected_features() {
+    let source = include_str!("../ray_lanes.rs");
+    for (features, names) in
+        [(crate::cpu::AVX2_FEATURES, "closest_in, blocked_in"), (crate::cpu::AVX512_FEATURES, "closest_in_avx512, blocked_in_avx512")]
+    {
+        let invocation = format!("bodies!(\"{features}\", {names});");
+        assert!(source.contains(&invocation), "expected `{invocation}` in ray_lanes.rs");
+    }
 }
