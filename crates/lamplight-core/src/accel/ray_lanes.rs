@@ -288,18 +288,22 @@ mod avx2 {
         #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
         #[inline]
         pub unsafe fn closest(&self, rays: &[Ray; 4], t_max: f64, active: u8) -> Nearest4 {
-            self.closest_dispatched(&self::rays(rays), t_max, active)
+            let mut out = Nearest4::default();
+            self.closest_dispatched(&self::rays(rays), t_max, active, &mut out);
+            out
         }
 
         /// [`ObjectLanes::closest`] of rays given coordinate by coordinate
-        /// (lane `k` of `origin[axis]` is ray `k`'s origin on that axis).
+        /// (lane `k` of `origin[axis]` is ray `k`'s origin on that axis),
+        /// written into `out` (a copy of the answer right after the query's
+        /// stores would wait on them).
         ///
         /// # Safety
         /// The CPU must have [`crate::cpu::AVX2_FEATURES`].
         #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
         #[inline]
-        pub unsafe fn closest_coordinates(&self, origin: [&[f64; 4]; 3], dir: [&[f64; 4]; 3], t_max: f64, active: u8) -> Nearest4 {
-            self.closest_dispatched(&coordinates(origin, dir), t_max, active)
+        pub unsafe fn closest_coordinates(&self, origin: [&[f64; 4]; 3], dir: [&[f64; 4]; 3], t_max: f64, active: u8, out: &mut Nearest4) {
+            self.closest_dispatched(&coordinates(origin, dir), t_max, active, out);
         }
 
         /// The lanes of `active` whose segment from the origin along the unit
@@ -332,12 +336,15 @@ mod avx2 {
         }
 
         /// The closest-hit query's body, through its compilation for this CPU.
+        /// The answer is written into `out` where the caller keeps it: returned
+        /// by value, it was copied in 16-byte pieces that straddled the query's
+        /// own stores, and each piece waited on a failed store-forwarding.
         #[inline(always)]
-        unsafe fn closest_dispatched(&self, r: &Rays, t_max: f64, active: u8) -> Nearest4 {
+        unsafe fn closest_dispatched(&self, r: &Rays, t_max: f64, active: u8, out: &mut Nearest4) {
             if crate::cpu::avx512_features() {
-                self.closest_in_avx512(r, t_max, active)
+                self.closest_in_avx512(r, t_max, active, out)
             } else {
-                self.closest_in(r, t_max, active)
+                self.closest_in(r, t_max, active, out)
             }
         }
 
@@ -355,7 +362,9 @@ mod avx2 {
         /// CPU, for the test that compares the two.
         #[cfg(test)]
         pub(in crate::accel) unsafe fn closest_avx2(&self, rays: &[Ray; 4], t_max: f64, active: u8) -> Nearest4 {
-            self.closest_in(&self::rays(rays), t_max, active)
+            let mut out = Nearest4::default();
+            self.closest_in(&self::rays(rays), t_max, active, &mut out);
+            out
         }
 
         /// [`ObjectLanes::blocked`] with the AVX2 compilation whatever the CPU.
@@ -376,7 +385,7 @@ mod avx2 {
             impl ObjectLanes {
                 #[target_feature(enable = $features)]
                 #[inline]
-                unsafe fn $closest(&self, r: &Rays, t_max: f64, active: u8) -> Nearest4 {
+                unsafe fn $closest(&self, r: &Rays, t_max: f64, active: u8, out: &mut Nearest4) {
                     let t_max = _mm256_set1_pd(t_max);
                     let live = _mm256_castsi256_pd(_mm256_cmpgt_epi64(
                         _mm256_and_si256(_mm256_set1_epi64x(i64::from(active)), _mm256_setr_epi64x(1, 2, 4, 8)),
@@ -404,14 +413,12 @@ mod avx2 {
                         let (t, ok, f) = slab::<true>(s, r, t_max);
                         keep(*k, t, ok, f);
                     }
-                    let mut out = Nearest4::default();
                     _mm256_storeu_pd(out.t.as_mut_ptr(), best);
                     // Small whole numbers in `f64`: converted exactly.
                     _mm_storeu_si128(out.slot.as_mut_ptr().cast(), _mm256_cvttpd_epi32(slot));
                     _mm_storeu_si128(out.face.as_mut_ptr().cast(), _mm256_cvttpd_epi32(face));
                     out.hit = _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_LT_OQ>(best, _mm256_set1_pd(f64::INFINITY))) as u8;
                     out.tie = _mm256_movemask_pd(tie) as u8;
-                    out
                 }
 
                 #[target_feature(enable = $features)]

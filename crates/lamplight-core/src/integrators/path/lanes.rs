@@ -39,6 +39,7 @@
 use std::ops::Range;
 
 use super::{power_heuristic, unoccluded, PathTracer};
+use crate::accel::Nearest4;
 use crate::film::PixelSum;
 use crate::integrators::{RayCounts, View};
 use crate::lights::LiSample;
@@ -47,7 +48,7 @@ use crate::ray::{offset_origin, Ray};
 use crate::sampling::{peek_2d_lanes, PixelSampler};
 use crate::scene::{Hit, Scene, Sides};
 pub(super) use diffuse::Diffuse;
-use diffuse::{Paths, Shadows};
+use diffuse::{Hits, Paths, Shadows};
 
 /// One lane's path.
 #[derive(Clone, Debug)]
@@ -338,6 +339,10 @@ impl PathTracer {
         let mut next = 0;
         let mut shadows = Shadows::default();
         let own = [diffuse.light_object(); 4];
+        // Kept across rounds and written lane by lane: a lane that hits
+        // nothing keeps its last hit, which the vertex does not use.
+        let mut nearest = Nearest4::default();
+        let mut hits = Hits::default();
         loop {
             let mut active = 0u8;
             for l in 0..4 {
@@ -366,8 +371,7 @@ impl PathTracer {
             }
             let [u_light, u_bsdf] = peek_2d_lanes([&samplers[0], &samplers[1], &samplers[2], &samplers[3]], (1, 3));
             let (o, d) = (&paths.origin, &paths.dir);
-            let nearest = lanes.closest_coordinates([&o.x, &o.y, &o.z], [&d.x, &d.y, &d.z], f64::INFINITY, active);
-            let mut hits = [(0.0, 0, Vec3::Z); 4];
+            lanes.closest_coordinates([&o.x, &o.y, &o.z], [&d.x, &d.y, &d.z], f64::INFINITY, active, &mut nearest);
             let mut live = [false; 4];
             let mut u_rr = [0.5; 4];
             for l in 0..4 {
@@ -384,8 +388,9 @@ impl PathTracer {
                 } else {
                     None
                 };
-                if let Some(h) = hit {
-                    hits[l] = h;
+                if let Some((t, slot, normal)) = hit {
+                    (hits.t[l], hits.slot[l]) = (t, slot);
+                    hits.normal.set(l, normal);
                     live[l] = true;
                 }
                 if paths.depth[l] >= self.rr_depth {

@@ -170,6 +170,15 @@ pub(super) struct Shadows {
 /// and the outward normal there.
 pub(super) type LaneHit = (f64, u32, Vec3);
 
+/// The four lanes' hits, field by field (a `[LaneHit; 4]` made afresh each
+/// round was filled by copies that straddled its own stores).
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct Hits {
+    pub(super) t: [f64; 4],
+    pub(super) slot: [u32; 4],
+    pub(super) normal: L3,
+}
+
 impl Diffuse {
     /// One vertex of each path of `live` (the lanes hit, `hits` their hits),
     /// with the sample values drawn for it, stage by stage over the four
@@ -183,7 +192,7 @@ impl Diffuse {
         tracer: &PathTracer,
         paths: &mut Paths,
         live: [bool; 4],
-        hits: &[LaneHit; 4],
+        hits: &Hits,
         u_light: &[(f64, f64); 4],
         u_bsdf: &[(f64, f64); 4],
         u_rr: &[f64; 4],
@@ -198,7 +207,7 @@ impl Diffuse {
         let mut t = [0.0; 4];
         // The hit record, the emission, and which paths end here.
         for k in 0..4 {
-            let (tk, slot, n) = hits[k];
+            let (tk, slot, n) = (hits.t[k], hits.slot[k], hits.normal.get(k));
             let s = &self.slots[slot as usize];
             let dir = paths.dir.get(k);
             let faces_ray = dir.dot(n) < 0.0;
