@@ -423,9 +423,21 @@ mod avx2 {
 
                 #[target_feature(enable = $features)]
                 #[inline]
-                unsafe fn $blocked(&self, r: &Rays, distance: &[f64; 4], ignore: &[u32; 4], active: u8) -> u8 {
+                unsafe fn $blocked(&self, r: &Rays, distance: &[f64; 4], ignored: &[u32; 4], active: u8) -> u8 {
                     let t_max = _mm256_loadu_pd(distance.as_ptr());
-                    let ignore = _mm256_setr_epi64x(i64::from(ignore[0]), i64::from(ignore[1]), i64::from(ignore[2]), i64::from(ignore[3]));
+                    let ignore =
+                        _mm256_setr_epi64x(i64::from(ignored[0]), i64::from(ignored[1]), i64::from(ignored[2]), i64::from(ignored[3]));
+                    // An object that blocks no active lane whatever its test
+                    // answers (not opaque, or the one every active lane
+                    // ignores: a light's own shape for its shadow rays) is
+                    // not tested.
+                    let first = ignored[active.trailing_zeros().min(3) as usize];
+                    let shared = (0..4).all(|l| active & (1 << l) == 0 || ignored[l] == first);
+                    let all_ignore = if shared { first } else { u32::MAX };
+                    let idle = |k: u32| {
+                        let k = k as usize;
+                        !self.opaque[k] || self.objects[k] == all_ignore
+                    };
                     let mut blocked = 0u8;
                     // The lanes object `k` blocks.
                     let blocks = |k: u32, ok: __m256d| -> u8 {
@@ -438,12 +450,18 @@ mod avx2 {
                         }
                     };
                     for (s, k) in &self.rectangles {
+                        if idle(*k) {
+                            continue;
+                        }
                         blocked |= blocks(*k, rectangle(s, r, t_max).1);
                         if blocked & active == active {
                             return active;
                         }
                     }
                     for (s, k) in &self.slabs {
+                        if idle(*k) {
+                            continue;
+                        }
                         blocked |= blocks(*k, slab::<false>(s, r, t_max).1);
                         if blocked & active == active {
                             return active;
