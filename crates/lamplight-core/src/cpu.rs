@@ -13,8 +13,10 @@
 //! on CPUs that have the features, and a whole-program build with
 //! `-C target-cpu=x86-64-v3 -C target-feature=+gfni` wrote the same bytes as
 //! the baseline build for spheres, luxo and the path-traced Cornell box
-//! (`BENCHMARKS.md`, issue 24, which also measures what it gains). No test
-//! yet runs both compilations of one render side by side.
+//! (`BENCHMARKS.md`, issue 24, which also measures what it gains). The
+//! path tracer's lanes test each of their compilations this CPU has against
+//! the one-sample loop (`integrators/path/lanes/tests.rs`); no test yet runs
+//! the render loop's compilations side by side.
 //!
 //! The path tracer's lanes and their queries (`accel/ray_lanes.rs`) have a
 //! fourth compilation, for [`AVX512_FEATURES`]: the same operations, so the
