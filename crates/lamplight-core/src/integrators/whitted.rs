@@ -287,7 +287,13 @@ pub fn direct_light<T: WhittedTrace + ?Sized>(
 ) -> Rgb {
     // The material as evaluated at the hit (`Scene::material_at`): its colour is
     // constant, or the 3D checker, which needs only the point.
-    let color = material.color.evaluate(&crate::materials::ShadingPoint::at(hit.point));
+    // A constant colour is read here, and the colour `Texture::evaluate` (not
+    // inlined) returns through memory is read back a coordinate at a time
+    // (issue 24: `BENCHMARKS.md`, session 34, has the variants measured).
+    let color = match &material.color {
+        crate::materials::Texture::Constant(c) => *c,
+        texture => crate::math::read_forwarded(&texture.evaluate(&crate::materials::ShadingPoint::at(hit.point))),
+    };
     let emission = if material.emits_towards(hit.front_face) { material.emission } else { Rgb::ZERO };
     // The back of a one-sided surface scatters nothing, not even the ambient light.
     let scatters = material.scatters_at(hit.front_face);
@@ -499,40 +505,50 @@ fn smooth_directions<T: WhittedTrace + ?Sized>(
     // Relative index n_t / n_i for a boundary of index `ior`, entered from outside
     // when the ray is on the front face.
     let relative = |ior: f64| if hit.front_face { ior } else { 1.0 / ior };
-    let (reflection, how) = match &material.reflection {
-        Reflection::None => (Rgb::ZERO, ReflectionWeight::Constant),
-        Reflection::Constant(w) => (*w, ReflectionWeight::Constant),
+    // Whether the weight is nonzero is decided from the value it is made of:
+    // comparing the splatted `Rgb` read it back with a load across two of the
+    // splat's stores, a store-forwarding stall on every mirror hit (issue 24).
+    let (reflection, how, reflects) = match &material.reflection {
+        Reflection::None => (Rgb::ZERO, ReflectionWeight::Constant, false),
+        Reflection::Constant(w) => (*w, ReflectionWeight::Constant, *w != Rgb::ZERO),
         Reflection::Dielectric { ior, min, max } => {
             let fresnel = fresnel_dielectric(cos_i, relative(*ior));
-            (Rgb::splat(min + (max - min) * fresnel), ReflectionWeight::Dielectric { fresnel })
+            let w = min + (max - min) * fresnel;
+            (Rgb::splat(w), ReflectionWeight::Dielectric { fresnel }, w != 0.0)
         }
-        Reflection::Conductor { eta, k } => (fresnel_conductor(cos_i, *eta, *k), ReflectionWeight::Conductor),
+        Reflection::Conductor { eta, k } => {
+            let w = fresnel_conductor(cos_i, *eta, *k);
+            (w, ReflectionWeight::Conductor, w != Rgb::ZERO)
+        }
     };
-    if reflection != Rgb::ZERO {
+    if reflects {
         trace.reflection(how, reflection);
     }
     let refraction = match &material.refraction {
         Refraction::None => None,
         Refraction::Fresnel { ior } => {
             let eta = relative(*ior);
-            let refracted = refract(ray.dir, n, 1.0 / eta).map(|t| {
-                let fresnel = fresnel_dielectric(cos_i, eta);
-                trace.refraction(Some(fresnel), Some(Rgb::splat(1.0 - fresnel)));
-                (t, Rgb::splat(1.0 - fresnel))
-            });
-            if refracted.is_none() {
-                trace.refraction(None, None);
+            match refract(ray.dir, n, 1.0 / eta) {
+                Some(t) => {
+                    let fresnel = fresnel_dielectric(cos_i, eta);
+                    trace.refraction(Some(fresnel), Some(Rgb::splat(1.0 - fresnel)));
+                    // Tested as the scalar, as the reflection's weight above.
+                    (1.0 - fresnel != 0.0).then_some((t, Rgb::splat(1.0 - fresnel)))
+                }
+                None => {
+                    trace.refraction(None, None);
+                    None
+                }
             }
-            refracted
         }
         Refraction::Constant { ior, weight } => {
             let refracted = refract(ray.dir, n, 1.0 / relative(*ior)).map(|t| (t, *weight));
             trace.refraction(None, refracted.map(|(_, w)| w));
-            refracted
+            refracted.filter(|(_, w)| *w != Rgb::ZERO)
         }
     };
-    let reflected = (reflection != Rgb::ZERO).then(|| (reflect(ray.dir, n), reflection));
-    reflected.into_iter().chain(refraction.filter(|(_, w)| *w != Rgb::ZERO))
+    let reflected = reflects.then(|| (reflect(ray.dir, n), reflection));
+    reflected.into_iter().chain(refraction)
 }
 
 #[cfg(test)]
