@@ -6,8 +6,8 @@ use crate::camera::{Fov, Perspective};
 use crate::integrators::{sample_row_one_by_one, Integrator};
 use crate::lights::PointLight;
 use crate::materials::{Material, Texture};
-use crate::math::Mat4;
-use crate::scene::SceneBuilder;
+use crate::math::{Mat4, Vec3};
+use crate::scene::{Scene, SceneBuilder};
 use crate::shapes::{Cuboid, Rectangle};
 
 fn diffuse(c: Rgb) -> Material {
