@@ -89,6 +89,9 @@ struct Pending {
     depth: u32,
     /// Width of the ray's pixel footprint at its origin ([`Cone`]).
     width: f64,
+    /// The object whose surface the ray leaves (`usize::MAX` for the camera
+    /// ray): [`Scene::first_intersect_leaving`] looks near it first.
+    from: usize,
 }
 
 impl Integrator for Whitted {
@@ -202,10 +205,10 @@ impl Whitted {
         // The ray pushed last, which is taken next, kept out of the list: read
         // back right after it was written, the list's copy waited for the
         // push's stores (a store-forwarding stall, issue 24).
-        let mut next = Some(Pending { ray: *ray, weight: Rgb::ONE, depth: 1, width: cone.width });
+        let mut next = Some(Pending { ray: *ray, weight: Rgb::ONE, depth: 1, width: cone.width, from: usize::MAX });
         let max_depth = self.max_depth.min(MAX_DEPTH_LIMIT);
         loop {
-            let Pending { ray, weight, depth, width } = match next.take() {
+            let Pending { ray, weight, depth, width, from } = match next.take() {
                 Some(p) => p,
                 None if pending > 0 => {
                     pending -= 1;
@@ -218,7 +221,13 @@ impl Whitted {
             trace.ray(&ray, weight, depth);
             // Mitsuba's `hide_emitters`: the camera sees through emitters, and black sky.
             let hidden = depth == 1 && scene.settings.hide_emitters;
-            let mut found = if hidden { scene.first_camera_hit(&ray) } else { scene.first_intersect(&ray, f64::INFINITY) };
+            let mut found = if hidden {
+                scene.first_camera_hit(&ray)
+            } else if depth > 1 {
+                scene.first_intersect_leaving(&ray, from)
+            } else {
+                scene.first_intersect(&ray, f64::INFINITY)
+            };
             // Used in place, by reference, as the path tracer does: moving the
             // hit out of `found` copied it with wide loads over the query's
             // narrow stores, a store-forwarding stall on every hit (issue 24).
@@ -257,7 +266,13 @@ impl Whitted {
                 counts.secondary += 1;
                 let origin = offset_origin(hit.point, hit.geometric_normal, dir, hit.t, hit.error);
                 trace.branch(&hit.spawn(origin, dir), w, depth + 1, true);
-                if let Some(earlier) = next.replace(Pending { ray: hit.spawn(origin, dir), weight: w, depth: depth + 1, width }) {
+                if let Some(earlier) = next.replace(Pending {
+                    ray: hit.spawn(origin, dir),
+                    weight: w,
+                    depth: depth + 1,
+                    width,
+                    from: scene.leaving_into(hit, dir),
+                }) {
                     work[pending].write(earlier);
                     pending += 1;
                 }

@@ -145,6 +145,7 @@ impl SceneBuilder {
             if any_partial_shadow { vec![None; self.lights.len()] } else { light_buffers(&self.lights, &self.objects, &boxes, &bounded) };
         let eye_buffer = eye_buffer(&*self.settings.camera, &self.objects, &boxes, &bounded);
         let lanes = object_lanes(&self.objects, &bounded, &unbounded);
+        let neighbours = super::leaving::Neighbours::build(self.objects.len(), &bounded, &boxes, &unbounded, |i| &*self.objects[i].shape);
         let bsdfs = self
             .materials
             .iter()
@@ -178,6 +179,7 @@ impl SceneBuilder {
             light_buffers,
             eye: eye_buffer.as_ref().map_or(Vec3::NAN, EyeBuffer::eye),
             eye_buffer,
+            neighbours,
             lanes,
             objects: self.objects,
             materials: self.materials,

@@ -17,6 +17,7 @@ use crate::shapes::Shape;
 mod builder;
 mod eye;
 mod lanes;
+mod leaving;
 mod light_set;
 mod reach;
 mod settings;
@@ -112,6 +113,9 @@ pub struct Scene {
     light_buffers: Vec<Option<LightBuffer>>,
     /// The camera's eye's buffer, for rays that leave the eye (`accel/eye_buffer.rs`).
     eye_buffer: Option<EyeBuffer>,
+    /// Per object, the objects near it, for rays that leave its surface back
+    /// into it (`scene/leaving.rs`).
+    neighbours: leaving::Neighbours,
     /// Every object's test for four rays at once, where the scene is a handful
     /// of rectangles and boxes and nothing else (`scene/lanes.rs`).
     lanes: Option<ObjectLanes>,
