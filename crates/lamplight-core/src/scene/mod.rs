@@ -573,6 +573,8 @@ mod tests {
                 // SAFETY: as above.
                 let fresh = unsafe { scene.transmittance_fresh_avx2(&ray, distance, Some(own), &mut OccluderHint::default()) };
                 assert_eq!(scene.transmittance_in::<false>(&ray, distance, Some(own), &mut OccluderHint::default()), fresh);
+                // The public query, which sends a ray without a light's body to the fresh compilation.
+                assert_eq!(scene.transmittance(&ray, distance, None), shadow, "ray {ray:?} to {distance}");
             }
             assert!(hits > 400, "{balls} balls: only {hits} of 4000 rays hit, too few to compare");
         }
