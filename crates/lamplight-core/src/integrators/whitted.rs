@@ -302,12 +302,13 @@ pub fn direct_light<T: WhittedTrace + ?Sized>(
 ) -> Rgb {
     // The material as evaluated at the hit (`Scene::material_at`): its colour is
     // constant, or the 3D checker, which needs only the point.
-    // A constant colour is read here, and the colour `Texture::evaluate` (not
-    // inlined) returns through memory is read back a coordinate at a time
-    // (issue 24: `BENCHMARKS.md`, session 34, has the variants measured).
-    let color = match &material.color {
-        crate::materials::Texture::Constant(c) => *c,
-        texture => crate::math::read_forwarded(&texture.evaluate(&crate::materials::ShadingPoint::at(hit.point))),
+    // A constant colour and the 3D checker are worked out here; the colour
+    // `Texture::evaluate` (not inlined) returns through memory is read back a
+    // coordinate at a time (issue 24: `BENCHMARKS.md`, session 34, has the
+    // variants measured).
+    let color = match material.color.of_point(hit.point) {
+        Some(c) => c,
+        None => crate::math::read_forwarded(&material.color.evaluate(&crate::materials::ShadingPoint::at(hit.point))),
     };
     let emission = if material.emits_towards(hit.front_face) { material.emission } else { Rgb::ZERO };
     // The back of a one-sided surface scatters nothing, not even the ambient light.

@@ -184,19 +184,25 @@ pub enum Texture {
 }
 
 impl Texture {
+    /// The colour at the point `p` where the texture is a constant or the 3D
+    /// checker, `None` for the others: [`Texture::evaluate`]'s first two cases,
+    /// small enough to compile into a render loop (the Whitted tracer's floor;
+    /// `evaluate`, recursive, stays a call).
+    #[inline(always)]
+    pub fn of_point(&self, p: Vec3) -> Option<Rgb> {
+        match self {
+            Texture::Constant(c) => Some(*c),
+            Texture::Checker { size, even, odd, offset } => Some(checker(p, *size, *even, *odd, *offset)),
+            _ => None,
+        }
+    }
+
     /// The colour at the shading point.
     #[inline]
     pub fn evaluate(&self, at: &ShadingPoint) -> Rgb {
         match self {
             Texture::Constant(c) => *c,
-            Texture::Checker { size, even, odd, offset } => {
-                let cell = (at.p + *offset) / *size;
-                if cell_parity(cell) == 0 {
-                    *even
-                } else {
-                    *odd
-                }
-            }
+            Texture::Checker { size, even, odd, offset } => checker(at.p, *size, *even, *odd, *offset),
             Texture::UvChecker(c) => {
                 let [s, t] = c.transform.apply(at.uv);
                 if (s.floor() + t.floor()).rem_euclid(2.0) == 0.0 {
@@ -256,6 +262,17 @@ pub const CELL_SNAP: f64 = 1e-9;
 /// The part of the snap distance that grows with the cell coordinate `|v|`.
 pub const CELL_SNAP_RELATIVE: f64 = 1e-12;
 
+/// The 3D checker's colour at `p`: `even` where the cell `floor((p + offset) / size)`
+/// has an even coordinate sum ([`cell_parity`]), else `odd`.
+#[inline(always)]
+fn checker(p: Vec3, size: f64, even: Rgb, odd: Rgb, offset: Vec3) -> Rgb {
+    if cell_parity((p + offset) / size) == 0 {
+        even
+    } else {
+        odd
+    }
+}
+
 /// `(floor(x) + floor(y) + floor(z)) mod 2` for the checker's cell coordinates,
 /// where a coordinate within `CELL_SNAP + CELL_SNAP_RELATIVE |v|` below an integer
 /// counts as that integer. A surface lying in a cell boundary (a floor at
@@ -292,6 +309,29 @@ pub fn cell_parity(cell: Vec3) -> u8 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `of_point` answers for a constant and the 3D checker exactly as
+    /// `evaluate` does, and leaves every other texture to it.
+    #[test]
+    fn of_point_is_evaluate_for_the_colours_of_a_point() {
+        let checker =
+            Texture::Checker { size: 0.7, even: Rgb::splat(0.75), odd: Rgb::new(0.1, 0.2, 0.3), offset: Vec3::new(0.0, 0.5, 0.25) };
+        let constant = Texture::Constant(Rgb::new(0.4, 0.5, 0.6));
+        let mut rng = crate::sampling::Rng::for_sample(21, 0, 0);
+        let (mut even, mut odd) = (0, 0);
+        for _ in 0..2000 {
+            let p = Vec3::new(rng.uniform() - 0.5, rng.uniform() - 0.5, rng.uniform() - 0.5) * 20.0;
+            for t in [&checker, &constant] {
+                assert_eq!(t.of_point(p), Some(t.evaluate(&ShadingPoint::at(p))), "{t:?} at {p}");
+            }
+            match checker.of_point(p) {
+                Some(c) if c == Rgb::splat(0.75) => even += 1,
+                _ => odd += 1,
+            }
+        }
+        assert!(even > 800 && odd > 800, "{even} even and {odd} odd cells");
+        assert_eq!(Texture::VertexColor.of_point(Vec3::ZERO), None);
+    }
 
     #[test]
     fn cell_parity_equals_the_float_formula_away_from_boundaries() {
