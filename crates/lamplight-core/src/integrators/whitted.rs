@@ -301,11 +301,10 @@ pub fn direct_light<T: WhittedTrace + ?Sized>(
     trace: &mut T,
 ) -> Rgb {
     // The material as evaluated at the hit (`Scene::material_at`): its colour is
-    // constant, or the 3D checker, which needs only the point.
-    // A constant colour and the 3D checker are worked out here; the colour
-    // `Texture::evaluate` (not inlined) returns through memory is read back a
-    // coordinate at a time (issue 24: `BENCHMARKS.md`, session 34, has the
-    // variants measured).
+    // a constant or the 3D checker, worked out here from the point; any other
+    // colour `Texture::evaluate` (not inlined) returns through memory is read
+    // back a coordinate at a time (issue 24: `BENCHMARKS.md`, session 34, has
+    // the variants measured).
     let color = match material.color.of_point(hit.point) {
         Some(c) => c,
         None => crate::math::read_forwarded(&material.color.evaluate(&crate::materials::ShadingPoint::at(hit.point))),

@@ -38,6 +38,9 @@ const MAX_NEIGHBOURS: usize = 8;
 /// Box overlap tests the build may make per object before it gives up (a
 /// scene of long boxes that all overlap along `x`).
 const WORK_PER_OBJECT: usize = 64;
+/// Most objects the lists are built for: beyond, a scene is mostly instances
+/// or meshes, whose secondary rays are not worth a build of this size.
+const MAX_OBJECTS: usize = 1 << 16;
 /// The margin boxes grow by, relative to the size and place of the box: far
 /// above the rounding of a hit point (about `1e-16` of its coordinates), far
 /// below any gap between objects that matters.
@@ -66,7 +69,8 @@ pub(super) struct Neighbours {
 impl Neighbours {
     /// The lists for the BVH's objects `bounded` with boxes `boxes`, in a
     /// scene of `objects` objects; empty where some object's test depends on
-    /// `t_max` (`shape_of` gives each object's shape). A flat scene (the
+    /// `t_max` (`shape_of` gives each object's shape) or the scene has more
+    /// than [`MAX_OBJECTS`] bounded objects. A flat scene (the
     /// business card's five objects) gains too: without lists its Whitted
     /// render took 3.5 % longer.
     pub(super) fn build<'a>(
@@ -77,7 +81,7 @@ impl Neighbours {
         shape_of: impl Fn(usize) -> &'a dyn Shape,
     ) -> Neighbours {
         let every = bounded.iter().chain(unbounded);
-        if bounded.is_empty() || !every.clone().all(|p| shape_of(p.object as usize).hit_ignores_t_max()) {
+        if bounded.is_empty() || bounded.len() > MAX_OBJECTS || !every.clone().all(|p| shape_of(p.object as usize).hit_ignores_t_max()) {
             return Neighbours::default();
         }
         let grown: Vec<Aabb> = boxes.iter().map(|b| grow(*b)).collect();
