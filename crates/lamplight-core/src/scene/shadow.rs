@@ -111,9 +111,18 @@ impl Scene {
             return unsafe { self.transmittance_fresh_avx2(ray, distance, None, hint) };
         }
         // The light is seen where the ray first meets its own object: the ray ends there.
-        let own = ignore.and_then(|i| self.objects.get(i));
-        let distance = own.and_then(|o| o.shape.intersect(ray, 0.0, distance)).map_or(distance, |h| h.t);
+        let distance = ignore.and_then(|i| self.first_meeting(i, ray, distance)).unwrap_or(distance);
         self.transmittance_to(ray, distance, ignore, hint)
+    }
+
+    /// Where `ray` first meets object `object` within `distance` (its
+    /// parameter alone, [`crate::shapes::Shape::first_t`]). Out of line: the
+    /// Whitted loop, which inlines the shadow query's entry, stays as it was
+    /// for scenes whose lights have no body (`spheres` took 1.4 % more
+    /// instructions with it inlined).
+    #[inline(never)]
+    fn first_meeting(&self, object: usize, ray: &Ray, distance: f64) -> Option<f64> {
+        self.objects.get(object)?.shape.first_t(ray, 0.0, distance)
     }
 
     /// [`Scene::transmittance`] along a segment already known to end where it first

@@ -127,6 +127,14 @@ pub trait Shape: Send + Sync + std::fmt::Debug {
         self.intersect(ray, t_min, t_max).is_some()
     }
 
+    /// The parameter of [`Shape::intersect`]'s hit alone, the same bits (a
+    /// shadow ray ends where it first meets its light's body). The default
+    /// asks `intersect`; a shape whose normal costs more than its parameter
+    /// (a sphere's square root and division) may leave it out.
+    fn first_t(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<f64> {
+        self.intersect(ray, t_min, t_max).map(|h| h.t)
+    }
+
     /// False only when no point that [`Shape::intersect`] or
     /// [`Shape::intersect_p`] can report (rounding included) lies in `region`.
     /// Lets the light buffer ([`crate::accel::LightBuffer`]) list a shape whose

@@ -171,6 +171,36 @@ impl Shape for Sphere {
         Some(SurfaceHit::new(t, normal.normalize()))
     }
 
+    /// `intersect`'s parameter without its normal (whose square root and
+    /// division were most of a bulb's test in `luxo`'s shadow rays): the same
+    /// operations up to the choice of root, so the same bits (a test compares
+    /// the two). Written out rather than shared: a helper returning the parts
+    /// the normal needs cost `intersect` 1.4 % of `spheres`' instructions.
+    #[inline(always)]
+    fn first_t(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<f64> {
+        let f = ray.origin - self.center;
+        let b_half = f.dot(ray.dir);
+        let perpendicular = f - ray.dir * b_half;
+        let r2 = self.radius * self.radius;
+        let discriminant = r2 - perpendicular.length_squared();
+        if discriminant < 0.0 {
+            return None;
+        }
+        let c = f.length_squared() - r2;
+        let q = -(b_half + discriminant.sqrt().copysign(b_half));
+        let (mut t0, mut t1) = if q == 0.0 { (0.0, 0.0) } else { (q, c / q) };
+        if t0 > t1 {
+            std::mem::swap(&mut t0, &mut t1);
+        }
+        if t0 > t_min && t0 < t_max {
+            Some(t0)
+        } else if t1 > t_min && t1 < t_max {
+            Some(t1)
+        } else {
+            None
+        }
+    }
+
     fn surface_coords(&self, _p: Vec3, n: Vec3, _primitive: Option<u32>) -> SurfaceCoords {
         // On the sphere itself, not a rounding error off it, so that v stays in [0, 1].
         let q = self.rotation.transpose() * (n * self.radius);
@@ -228,6 +258,26 @@ mod tests {
         let dir = Vec3::new(1.0, 2.0, -2.0) / 3.0;
         let hit = s.intersect(&Ray::new(s.center - dir * 1e16 + Vec3::new(0.0, 0.1, 0.05), dir), 0.0, f64::INFINITY).unwrap();
         assert!(hit.normal.is_finite() && (hit.normal.length() - 1.0).abs() < 1e-12, "{}", hit.normal);
+    }
+
+    /// `first_t` is `intersect`'s parameter, bit for bit, over rays that hit,
+    /// graze and miss, from inside and outside, near and far.
+    #[test]
+    fn first_t_is_the_parameter_of_intersect() {
+        let s = Sphere::new(Vec3::new(0.3, -0.2, 0.1), 0.7).unwrap();
+        let mut rng = crate::sampling::Rng::for_sample(31, 0, 0);
+        let mut hits = 0;
+        for k in 0..4000 {
+            let scale = [1.0, 1e3, 1e-2][k % 3];
+            let origin = Vec3::new(rng.uniform() - 0.5, rng.uniform() - 0.5, rng.uniform() - 0.5) * 6.0 * scale;
+            let target = Vec3::new(rng.uniform() - 0.5, rng.uniform() - 0.5, rng.uniform() - 0.5) * 1.6;
+            let ray = Ray::unit(origin, (target - origin).normalize());
+            let t_max = if k % 2 == 0 { f64::INFINITY } else { rng.uniform() * 8.0 * scale };
+            let full = s.intersect(&ray, 0.0, t_max).map(|h| h.t.to_bits());
+            assert_eq!(s.first_t(&ray, 0.0, t_max).map(f64::to_bits), full, "{ray:?} to {t_max}");
+            hits += usize::from(full.is_some());
+        }
+        assert!(hits > 1000 && hits < 3900, "{hits} hits of 4000");
     }
 
     #[test]
