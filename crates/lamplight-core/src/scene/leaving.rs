@@ -85,7 +85,12 @@ impl Neighbours {
             return Neighbours::default();
         }
         let grown: Vec<Aabb> = boxes.iter().map(|b| grow(*b)).collect();
-        let mut order: Vec<usize> = (0..bounded.len()).filter(|&i| grown[i].is_finite()).collect();
+        // A box near the largest floats grows past them: it could not be
+        // swept, and every object must be in the sweep to be listed.
+        if !grown.iter().all(Aabb::is_finite) {
+            return Neighbours::default();
+        }
+        let mut order: Vec<usize> = (0..bounded.len()).collect();
         order.sort_by(|&a, &b| grown[a].min.x.total_cmp(&grown[b].min.x));
         // Sweep along x: each box meets only those that start before it ends.
         let mut near: Vec<Vec<u32>> = vec![Vec::new(); bounded.len()];
@@ -321,5 +326,13 @@ mod tests {
         assert_eq!(balls(20, false).entries.len(), 20);
         assert!(balls(20, true).entries.is_empty(), "a surface found by marching");
         assert_eq!(balls(3, false).entries.len(), 3, "a flat scene has lists too");
+        // A box whose margin overflows: no lists rather than one left out of them.
+        let mut b = SceneBuilder::new(Perspective::look_at(Vec3::Z, Vec3::ZERO, Vec3::Y, Fov::VerticalDeg(50.0)).unwrap());
+        let m = b.material(Material::default()).unwrap();
+        b.object(Sphere::new(Vec3::ZERO, 1.0).unwrap(), m).unwrap();
+        b.object(Sphere::new(Vec3::new(1.79769313486e308, 0.0, 0.0), 1e296).unwrap(), m).unwrap();
+        let scene = b.build().unwrap();
+        assert!(scene.objects[1].shape.bounds().is_finite(), "the test needs a finite box");
+        assert!(scene.neighbours.entries.is_empty(), "a box at the largest floats");
     }
 }
