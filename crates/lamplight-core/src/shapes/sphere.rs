@@ -65,7 +65,45 @@ pub struct Sphere {
     rotation: DMat3,
 }
 
+/// A ray's root on a sphere ([`Sphere::roots`]): the one reported, the
+/// smaller of the two, `f - (f.d) d` and the discriminant.
+struct Roots {
+    t: f64,
+    t0: f64,
+    perpendicular: Vec3,
+    discriminant: f64,
+}
+
 impl Sphere {
+    /// The root `t` in `(t_min, t_max)` that [`Shape::intersect`] reports
+    /// (module doc: the discriminant free of cancellation, the stable pair of
+    /// roots), with what its normal is made from where `p - c` cancels.
+    #[inline(always)]
+    fn roots(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Roots> {
+        let f = ray.origin - self.center;
+        let b_half = f.dot(ray.dir);
+        let perpendicular = f - ray.dir * b_half;
+        let r2 = self.radius * self.radius;
+        let discriminant = r2 - perpendicular.length_squared();
+        if discriminant < 0.0 {
+            return None;
+        }
+        let c = f.length_squared() - r2;
+        let q = -(b_half + discriminant.sqrt().copysign(b_half));
+        let (mut t0, mut t1) = if q == 0.0 { (0.0, 0.0) } else { (q, c / q) };
+        if t0 > t1 {
+            std::mem::swap(&mut t0, &mut t1);
+        }
+        let t = if t0 > t_min && t0 < t_max {
+            t0
+        } else if t1 > t_min && t1 < t_max {
+            t1
+        } else {
+            return None;
+        };
+        Some(Roots { t, t0, perpendicular, discriminant })
+    }
+
     /// A sphere; the radius must be positive and finite and the centre finite.
     pub fn new(center: Vec3, radius: f64) -> Result<Sphere, Error> {
         if !(radius > 0.0 && radius.is_finite()) {
@@ -138,27 +176,7 @@ impl Shape for Sphere {
     /// the stable pair `q = -(b + sign(b) sqrt(D))`, `t = q` and `t = c / q`.
     #[inline(always)]
     fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
-        let f = ray.origin - self.center;
-        let b_half = f.dot(ray.dir);
-        let perpendicular = f - ray.dir * b_half;
-        let r2 = self.radius * self.radius;
-        let discriminant = r2 - perpendicular.length_squared();
-        if discriminant < 0.0 {
-            return None;
-        }
-        let c = f.length_squared() - r2;
-        let q = -(b_half + discriminant.sqrt().copysign(b_half));
-        let (mut t0, mut t1) = if q == 0.0 { (0.0, 0.0) } else { (q, c / q) };
-        if t0 > t1 {
-            std::mem::swap(&mut t0, &mut t1);
-        }
-        let t = if t0 > t_min && t0 < t_max {
-            t0
-        } else if t1 > t_min && t1 < t_max {
-            t1
-        } else {
-            return None;
-        };
+        let Roots { t, t0, perpendicular, discriminant } = self.roots(ray, t_min, t_max)?;
         let mut normal = (ray.at(t) - self.center) * self.inv_radius;
         if (normal.length_squared() - 1.0).abs() > 1e-6 {
             // Far from the origin `ray.at(t) - c` cancels (a ray from 1e17 to a
@@ -173,32 +191,10 @@ impl Shape for Sphere {
 
     /// `intersect`'s parameter without its normal (whose square root and
     /// division were most of a bulb's test in `luxo`'s shadow rays): the same
-    /// operations up to the choice of root, so the same bits (a test compares
-    /// the two). Written out rather than shared: a helper returning the parts
-    /// the normal needs cost `intersect` 1.4 % of `spheres`' instructions.
+    /// roots, so the same bits (a test compares the two).
     #[inline(always)]
     fn first_t(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<f64> {
-        let f = ray.origin - self.center;
-        let b_half = f.dot(ray.dir);
-        let perpendicular = f - ray.dir * b_half;
-        let r2 = self.radius * self.radius;
-        let discriminant = r2 - perpendicular.length_squared();
-        if discriminant < 0.0 {
-            return None;
-        }
-        let c = f.length_squared() - r2;
-        let q = -(b_half + discriminant.sqrt().copysign(b_half));
-        let (mut t0, mut t1) = if q == 0.0 { (0.0, 0.0) } else { (q, c / q) };
-        if t0 > t1 {
-            std::mem::swap(&mut t0, &mut t1);
-        }
-        if t0 > t_min && t0 < t_max {
-            Some(t0)
-        } else if t1 > t_min && t1 < t_max {
-            Some(t1)
-        } else {
-            None
-        }
+        self.roots(ray, t_min, t_max).map(|r| r.t)
     }
 
     fn surface_coords(&self, _p: Vec3, n: Vec3, _primitive: Option<u32>) -> SurfaceCoords {
