@@ -34,9 +34,11 @@ use crate::math::Vec3;
 mod any_hit;
 
 /// Walks in flight in a batch query. Measured on the bunny and Igea-1M
-/// (`BENCHMARKS.md`, issue 24): 8 hides most of a miss to memory; more add
-/// bookkeeping without more overlap.
-pub const LANES: usize = 8;
+/// (`BENCHMARKS.md`, issue 24): once a step stopped clamping its prefetches
+/// (session 35), 12 walks beat 8 on Igea-1M's scattered rays by 8 % (any hit
+/// 7 %), whose nodes wait on main memory, and the bunny's by 1 %; 16 gained
+/// nothing more, 6 lost 9 % on Igea-1M.
+pub const LANES: usize = 12;
 
 /// One ray's walk, less its stack.
 #[derive(Clone, Copy)]
