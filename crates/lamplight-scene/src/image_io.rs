@@ -18,7 +18,6 @@ use std::fs::File;
 use std::io::{self, BufReader};
 use std::path::{Path, PathBuf};
 
-use image::ImageEncoder;
 use lamplight_core::film::Image;
 
 /// The extensions [`write_image`] understands, for messages.
@@ -144,13 +143,7 @@ fn encode(format: Format, image: &Image, transfer: Transfer) -> Result<Vec<u8>, 
         return Err(format!("{} pixels do not make a {width}x{height} image", image.pixels.len()));
     }
     match format {
-        Format::Png => {
-            let mut bytes = Vec::new();
-            image::codecs::png::PngEncoder::new(&mut bytes)
-                .write_image(&bytes8(), width, height, image::ExtendedColorType::Rgb8)
-                .map_err(|e| e.to_string())?;
-            Ok(bytes)
-        }
+        Format::Png => crate::png_write::encode(image, transfer),
         Format::Ppm => {
             let mut bytes = format!("P6\n{width} {height}\n255\n").into_bytes();
             bytes.extend_from_slice(&bytes8());

@@ -43,6 +43,7 @@ pub mod input;
 pub mod instantiate;
 pub mod memory;
 pub mod npy;
+mod png_write;
 pub mod registry;
 pub mod request;
 pub mod texture_files;

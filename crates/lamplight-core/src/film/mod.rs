@@ -89,7 +89,18 @@ impl Image {
     /// `round(255 clamp(x, 0, 1))`, NaN as 0 (for display-referred scenes whose
     /// numbers are already what a screen shows, as POV-Ray's `File_Gamma 1`).
     pub fn to_linear8(&self) -> Vec<u8> {
-        self.pixels.as_flattened().iter().map(|&c| if c > 0.0 { (c.min(1.0) * 255.0).round() as u8 } else { 0 }).collect()
+        self.pixels.as_flattened().iter().map(|&c| linear8(c)).collect()
+    }
+}
+
+/// `round(255 clamp(x, 0, 1))`, NaN as 0: a linear value as the 8-bit number
+/// itself ([`Image::to_linear8`]).
+#[inline]
+pub fn linear8(x: f32) -> u8 {
+    if x > 0.0 {
+        (x.min(1.0) * 255.0).round() as u8
+    } else {
+        0
     }
 }
 
