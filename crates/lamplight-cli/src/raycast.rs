@@ -127,7 +127,7 @@ pub fn raycast_command(args: RaycastArgs) -> anyhow::Result<()> {
     let build = start.elapsed();
     let mem = accel.memory();
     let mesh_bytes = positions.len() * 12 + indices.len() * 12;
-    println!(
+    say(format_args!(
         "build: {:.1} ms, {} triangles, {} threads; structure {:.1} bytes/triangle ({:.1} MB), with the mesh arrays {:.1} bytes/triangle",
         build.as_secs_f64() * 1e3,
         mem.triangles,
@@ -135,7 +135,7 @@ pub fn raycast_command(args: RaycastArgs) -> anyhow::Result<()> {
         mem.bytes_per_triangle,
         mem.bvh.bytes as f64 / 1e6,
         (mem.bvh.bytes + mesh_bytes) as f64 / mem.triangles.max(1) as f64
-    );
+    ));
 
     let n = origins.len();
     let mut t = vec![0f32; n];
@@ -162,16 +162,16 @@ pub fn raycast_command(args: RaycastArgs) -> anyhow::Result<()> {
     times.sort_by(f64::total_cmp);
     cpu_times.sort_by(f64::total_cmp);
     let median = times[times.len() / 2];
-    println!(
+    say(format_args!(
         "cast: {n} rays{} in {:.1} ms ({}), {:.2} Mrays/s on {threads} threads",
         if args.any_hit { " (any hit)" } else { "" },
         median * 1e3,
         if times.len() > 1 { format!("median of {}", times.len()) } else { "one run".to_string() },
         n as f64 / median / 1e6
-    );
+    ));
     if let Some(cpu) = cpu_times.get(cpu_times.len() / 2) {
         // CPU time is what to compare when other programs share the cores.
-        println!("cpu: {:.1} ms of CPU time, {:.2} Mrays per CPU-second", cpu * 1e3, n as f64 / cpu / 1e6);
+        say(format_args!("cpu: {:.1} ms of CPU time, {:.2} Mrays per CPU-second", cpu * 1e3, n as f64 / cpu / 1e6));
     }
     if args.any_hit {
         t = hits.iter().map(|&h| if h { 0.0 } else { f32::INFINITY }).collect();
@@ -211,4 +211,13 @@ fn load_mesh(args: &RaycastArgs) -> anyhow::Result<Mesh> {
         (None, Some(v), Some(i)) => Ok((npy::read_rows3_f32(v).map_err(npy_error)?, npy::read_rows3_u32(i).map_err(npy_error)?)),
         _ => Err(UsageError("give --mesh FILE, or --vertices V.npy with --indices I.npy".into()).into()),
     }
+}
+
+/// Prints one line of figures to standard output. A reader that has gone
+/// (`lamplight raycast ... | head -1`) no longer wants them, but the answers
+/// still go to their files: the write's error is dropped, where `println!`
+/// would panic.
+fn say(line: std::fmt::Arguments) {
+    use std::io::Write;
+    let _ = writeln!(std::io::stdout().lock(), "{line}");
 }

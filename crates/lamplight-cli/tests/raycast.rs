@@ -99,6 +99,34 @@ fn casts_rays_against_a_two_triangle_square() {
     assert_eq!(run(&[]).status.code(), Some(2));
 }
 
+/// A reader of the figures that has gone (`lamplight raycast ... | head -1`):
+/// no panic, exit 0, and the distances still written. Standard output is a
+/// pipe whose reading end is closed before the program starts.
+#[test]
+fn a_closed_standard_output_still_writes_the_answers() {
+    let dir = tempfile::tempdir().unwrap();
+    let origins = dir.path().join("o.npy");
+    write_npy(&origins, "<f4", "(1, 3)", &f32s(&[0.2, 0.2, 1.0]));
+    let (reader, writer) = std::io::pipe().unwrap();
+    drop(reader);
+    let p = |name: &str| dir.path().join(name);
+    write_npy(&p("v.npy"), "<f4", "(3, 3)", &f32s(&[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0]));
+    write_npy(&p("i.npy"), "<i4", "(1, 3)", &[0i32, 1, 2].iter().flat_map(|x| x.to_le_bytes()).collect::<Vec<u8>>());
+    write_npy(&p("d.npy"), "<f4", "(1, 3)", &f32s(&[0.0, 0.0, -1.0]));
+    let out = Command::new(env!("CARGO_BIN_EXE_lamplight"))
+        .arg("raycast")
+        .args(["--vertices", p("v.npy").to_str().unwrap(), "--indices", p("i.npy").to_str().unwrap()])
+        .args(["--origins", origins.to_str().unwrap(), "--directions", p("d.npy").to_str().unwrap()])
+        .args(["-o", p("t.npy").to_str().unwrap()])
+        .stdout(writer)
+        .stderr(std::process::Stdio::piped())
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(out.stderr.is_empty(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert_eq!(read_data(&p("t.npy")), f32s(&[1.0]));
+}
+
 /// Runs `lamplight raycast` on the square with `origins` as the origins file.
 fn raycast_with_origins(dir: &Path, origins: &Path, extra: &[&str]) -> std::process::Output {
     let p = |name: &str| dir.join(name);
