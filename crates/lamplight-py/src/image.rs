@@ -4,7 +4,6 @@
 
 use std::path::PathBuf;
 
-use image::ImageEncoder;
 use lamplight_core::film::tonemap::{self, ToneMap};
 use lamplight_core::film::Image;
 use lamplight_scene::exr_layers::ExtraLayer;
@@ -107,11 +106,7 @@ pub fn encode_png<'py>(
 ) -> PyResult<Bound<'py, PyBytes>> {
     let transfer = transfer_of(transfer)?;
     let image = display(to_image(&array)?, exposure, tonemap)?;
-    let bytes8 = if transfer == Transfer::Linear { image.to_linear8() } else { image.to_srgb8() };
-    let mut bytes = Vec::new();
-    image::codecs::png::PngEncoder::new(&mut bytes)
-        .write_image(&bytes8, image.width, image.height, image::ExtendedColorType::Rgb8)
-        .map_err(|e| PyValueError::new_err(format!("cannot encode PNG: {e}")))?;
+    let bytes = image_io::png_bytes(&image, transfer).map_err(|e| PyValueError::new_err(format!("cannot encode PNG: {e}")))?;
     Ok(PyBytes::new(py, &bytes))
 }
 

@@ -129,6 +129,13 @@ pub fn check_writable(path: &Path) -> Result<(), ImageError> {
     crate::atomic::check_writable(path).map_err(|io| ImageError::Write { path: path.to_path_buf(), io })
 }
 
+/// The bytes of a PNG file of `image` (8-bit, its values encoded with
+/// `transfer`): what [`write_image_as`] writes to a `.png` path, for callers
+/// that keep the file in memory (the Python package's notebook display).
+pub fn png_bytes(image: &Image, transfer: Transfer) -> Result<Vec<u8>, String> {
+    encode(Format::Png, image, transfer)
+}
+
 /// The file's bytes for `image` in `format`.
 fn encode(format: Format, image: &Image, transfer: Transfer) -> Result<Vec<u8>, String> {
     let bytes8 = || match transfer {
