@@ -35,10 +35,9 @@ pub struct Srgb8 {
     boundaries: [f32; 256],
     first_bucket: u32,
     /// Codes of the buckets from `first_bucket` on, padded to a power of two so
-    /// that a masked index needs no check.
-    bucket_codes: Box<[u8; BUCKET_TABLE]>,
-    /// The same codes as 32-bit words, which AVX2 gathers eight at a time.
-    bucket_words: Box<[u32; BUCKET_TABLE]>,
+    /// that a masked index needs no check; 32-bit words, which AVX2 gathers
+    /// eight at a time ([`Srgb8::encode_all`]).
+    bucket_codes: Box<[u32; BUCKET_TABLE]>,
 }
 
 /// Size of the bucket table: at least the 13 binades from `boundaries[0]` (about
@@ -70,16 +69,12 @@ impl Srgb8 {
         let first_bucket = boundaries[0].to_bits() >> BUCKET_SHIFT;
         let last_bucket = boundaries[254].to_bits() >> BUCKET_SHIFT;
         assert!(((last_bucket - first_bucket) as usize) < BUCKET_TABLE, "the bucket table covers [boundaries[0], 1)");
-        let mut bucket_codes = Box::new([255u8; BUCKET_TABLE]);
+        let mut bucket_codes = Box::new([255u32; BUCKET_TABLE]);
         for (bucket, code) in (first_bucket..=last_bucket).zip(bucket_codes.iter_mut()) {
             let lowest = f32::from_bits(bucket << BUCKET_SHIFT);
-            *code = boundaries[..255].partition_point(|&b| b <= lowest) as u8;
+            *code = boundaries[..255].partition_point(|&b| b <= lowest) as u32;
         }
-        let mut bucket_words = Box::new([0u32; BUCKET_TABLE]);
-        for (word, &code) in bucket_words.iter_mut().zip(bucket_codes.iter()) {
-            *word = u32::from(code);
-        }
-        Srgb8 { boundaries, first_bucket, bucket_codes, bucket_words }
+        Srgb8 { boundaries, first_bucket, bucket_codes }
     }
 
     /// The code of linear value `x` (clamped to `[0, 1]`; NaN gives 0).
@@ -93,7 +88,7 @@ impl Srgb8 {
             return 255;
         }
         let bucket = ((x.to_bits() >> BUCKET_SHIFT) - self.first_bucket) as usize;
-        let code = self.bucket_codes[bucket & (BUCKET_TABLE - 1)];
+        let code = self.bucket_codes[bucket & (BUCKET_TABLE - 1)] as u8;
         code + (x >= self.boundaries[code as usize]) as u8
     }
 
@@ -137,7 +132,7 @@ impl Srgb8 {
         for step in 0..steps {
             let at = 8 * step;
             // SAFETY: `at + 8 <= values.len() == out.len()`; every gather index
-            // is masked into `bucket_words` or is a code below 256, inside
+            // is masked into `bucket_codes` or is a code below 256, inside
             // `boundaries`.
             unsafe {
                 let x = _mm256_loadu_ps(values.as_ptr().add(at));
@@ -145,7 +140,7 @@ impl Srgb8 {
                 // subtraction only matters for lanes the selects below replace) ...
                 let bits = _mm256_srli_epi32::<{ BUCKET_SHIFT as i32 }>(_mm256_castps_si256(x));
                 let bucket = _mm256_and_si256(_mm256_sub_epi32(bits, first_bucket), index_mask);
-                let code = _mm256_i32gather_epi32::<4>(self.bucket_words.as_ptr() as *const i32, bucket);
+                let code = _mm256_i32gather_epi32::<4>(self.bucket_codes.as_ptr() as *const i32, bucket);
                 // ... one comparison with the next boundary (true is -1) ...
                 let boundary = _mm256_i32gather_ps::<4>(self.boundaries.as_ptr(), code);
                 let inside = _mm256_sub_epi32(code, _mm256_castps_si256(_mm256_cmp_ps::<_CMP_GE_OQ>(x, boundary)));
