@@ -83,6 +83,43 @@ impl EyeBuffer {
         Some((self.cells.always(), self.cells.cell_from_centre(dir)?))
     }
 
+    /// [`EyeBuffer::lists`] of four directions at once (lane `l` of each
+    /// coordinate), as cell numbers for [`EyeBuffer::list_of_cell`]:
+    /// `u32::MAX` where `lists` gives none for a direction not of unit length.
+    ///
+    /// # Safety
+    /// The CPU must have [`crate::cpu::AVX2_FEATURES`].
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
+    #[inline]
+    pub unsafe fn cells(&self, d: [std::arch::x86_64::__m256d; 3]) -> [u32; 4] {
+        use std::arch::x86_64::*;
+        let square = |c: __m256d| _mm256_mul_pd(c, c);
+        let length2 = _mm256_add_pd(_mm256_add_pd(square(d[0]), square(d[1])), square(d[2]));
+        let off = _mm256_andnot_pd(_mm256_set1_pd(-0.0), _mm256_sub_pd(length2, _mm256_set1_pd(1.0)));
+        let not_unit = _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_GT_OQ>(off, _mm256_set1_pd(1e-12)));
+        let mut cells = LightBuffer::cells_from_centre(d);
+        for (l, cell) in cells.iter_mut().enumerate() {
+            if not_unit & (1 << l) != 0 {
+                *cell = u32::MAX;
+            }
+        }
+        cells
+    }
+
+    /// The objects near the eye, which every ray tests ([`EyeBuffer::lists`]).
+    #[inline(always)]
+    pub fn always(&self) -> &[u32] {
+        self.cells.always()
+    }
+
+    /// The list of cell `cell` of [`EyeBuffer::cells`], nearest box first;
+    /// `None` where it lists too many (or for `u32::MAX`).
+    #[inline(always)]
+    pub fn list_of_cell(&self, cell: u32) -> Option<&[u32]> {
+        self.cells.list_of_cell(cell)
+    }
+
     /// A distance below every hit on object `i` by a ray from the eye: how
     /// near its box comes to the eye, less `REACH_ALLOWANCE` (1e-9) of the sizes
     /// involved. A list can stop at an object whose reach lies beyond the

@@ -59,5 +59,7 @@ pub use eye_buffer::EyeBuffer;
 pub use light_buffer::LightBuffer;
 pub use mesh_bvh::{MeshBvh, MeshBvhStats};
 pub use mesh_packet::{PacketRay, PACKET};
+#[cfg(target_arch = "x86_64")]
+pub(crate) use ray_lanes::{rays as lane_rays, rectangle as rectangle_lanes, sphere as sphere_lanes, Rays as LaneRays};
 pub use ray_lanes::{LaneShape, Nearest4, ObjectLanes, RectangleLane, SlabLane};
 pub use sah::Costs;

@@ -162,16 +162,16 @@ mod avx2 {
     use std::arch::x86_64::*;
 
     /// The four rays in registers.
-    struct Rays {
-        o: [__m256d; 3],
-        d: [__m256d; 3],
+    pub(crate) struct Rays {
+        pub(crate) o: [__m256d; 3],
+        pub(crate) d: [__m256d; 3],
     }
 
     /// The four rays, coordinate by coordinate, gathered from their fields
     /// in registers: written lane by lane into memory and read back as one
     /// vector, each coordinate would wait on a failed store-forwarding.
     #[inline(always)]
-    unsafe fn rays(q: &[Ray; 4]) -> Rays {
+    pub(crate) unsafe fn rays(q: &[Ray; 4]) -> Rays {
         let o = |axis: usize| _mm256_setr_pd(q[0].origin[axis], q[1].origin[axis], q[2].origin[axis], q[3].origin[axis]);
         let d = |axis: usize| _mm256_setr_pd(q[0].dir[axis], q[1].dir[axis], q[2].dir[axis], q[3].dir[axis]);
         Rays { o: [o(0), o(1), o(2)], d: [d(0), d(1), d(2)] }
@@ -198,7 +198,7 @@ mod avx2 {
     /// `Rectangle::hit_t` in each lane: the parameter and an all-ones mask
     /// where it is a hit in `(0, t_max)`.
     #[inline(always)]
-    unsafe fn rectangle(s: &RectangleLane, r: &Rays, t_max: __m256d) -> (__m256d, __m256d) {
+    pub(crate) unsafe fn rectangle(s: &RectangleLane, r: &Rays, t_max: __m256d) -> (__m256d, __m256d) {
         let zero = _mm256_setzero_pd();
         let n = splat(s.normal);
         let c = splat(s.corner);
@@ -223,6 +223,40 @@ mod avx2 {
             _mm256_and_pd(_mm256_cmp_pd::<_CMP_LE_OQ>(zero, v), _mm256_cmp_pd::<_CMP_LE_OQ>(v, one)),
         );
         (t, _mm256_and_pd(ok, inside))
+    }
+
+    /// [`crate::shapes::Sphere`]'s root in each lane (its `roots`, with
+    /// `t_min = 0`): the parameter and an all-ones mask where it is a hit in
+    /// `(0, t_max)`. The scalar operations in their order; a negative
+    /// discriminant, where the scalar test returns early, gives a NaN root
+    /// here, which no range holds.
+    #[inline(always)]
+    pub(crate) unsafe fn sphere(center: Vec3, radius: f64, r: &Rays, t_max: __m256d) -> (__m256d, __m256d) {
+        let zero = _mm256_setzero_pd();
+        let sign = _mm256_set1_pd(-0.0);
+        let c = splat(center);
+        let f = [_mm256_sub_pd(r.o[0], c[0]), _mm256_sub_pd(r.o[1], c[1]), _mm256_sub_pd(r.o[2], c[2])];
+        let b_half = dot(f, r.d);
+        let perpendicular = [
+            _mm256_sub_pd(f[0], _mm256_mul_pd(r.d[0], b_half)),
+            _mm256_sub_pd(f[1], _mm256_mul_pd(r.d[1], b_half)),
+            _mm256_sub_pd(f[2], _mm256_mul_pd(r.d[2], b_half)),
+        ];
+        let r2 = _mm256_set1_pd(radius * radius);
+        let discriminant = _mm256_sub_pd(r2, dot(perpendicular, perpendicular));
+        let c = _mm256_sub_pd(dot(f, f), r2);
+        // `-(b + sqrt(disc).copysign(b))`: negation and `copysign` move sign bits alone.
+        let root = _mm256_sqrt_pd(discriminant);
+        let signed = _mm256_or_pd(_mm256_andnot_pd(sign, root), _mm256_and_pd(sign, b_half));
+        let q = _mm256_xor_pd(_mm256_add_pd(b_half, signed), sign);
+        let q_zero = _mm256_cmp_pd::<_CMP_EQ_OQ>(q, zero);
+        let t0 = _mm256_andnot_pd(q_zero, q);
+        let t1 = _mm256_andnot_pd(q_zero, _mm256_div_pd(c, q));
+        let swap = _mm256_cmp_pd::<_CMP_GT_OQ>(t0, t1);
+        let (lo, hi) = (_mm256_blendv_pd(t0, t1, swap), _mm256_blendv_pd(t1, t0, swap));
+        let within = |t: __m256d| _mm256_and_pd(_mm256_cmp_pd::<_CMP_GT_OQ>(t, zero), _mm256_cmp_pd::<_CMP_LT_OQ>(t, t_max));
+        let (lo_ok, hi_ok) = (within(lo), within(hi));
+        (_mm256_blendv_pd(hi, lo, lo_ok), _mm256_or_pd(lo_ok, hi_ok))
     }
 
     /// `Cuboid::hit` in each lane: the entry of the slab interval where it
@@ -475,6 +509,10 @@ mod avx2 {
     bodies!("avx2,bmi1,bmi2,lzcnt,popcnt", closest_in, blocked_in);
     bodies!("avx2,bmi1,bmi2,lzcnt,popcnt,gfni,avx512f,avx512dq,avx512vl,avx512bw", closest_in_avx512, blocked_in_avx512);
 }
+
+/// The lane tests the eye's four-ray search uses (`scene/eye_lanes.rs`).
+#[cfg(target_arch = "x86_64")]
+pub(crate) use avx2::{rays, rectangle, sphere, Rays};
 
 #[cfg(test)]
 mod tests;

@@ -18,9 +18,11 @@
 
 use std::cell::Cell;
 use std::mem::MaybeUninit;
+use std::ops::Range;
 
 use super::trace::{LightRef, LightTerm, NoTrace, ReflectionWeight, Trace, Unlit, WhittedTrace};
-use super::{CameraSample, Integrator, IntegratorEntry, IntegratorSettings, RayCounts, Schedule, View};
+use super::{sample_row_one_by_one, CameraSample, Integrator, IntegratorEntry, IntegratorSettings, RayCounts, Schedule, View};
+use crate::film::PixelSum;
 use crate::lights::AreaLight;
 use crate::materials::{fresnel_conductor, fresnel_dielectric, Material, Reflection, Refraction};
 use crate::math::{max_component, Rgb, Vec3};
@@ -28,6 +30,9 @@ use crate::ray::{offset_origin, Ray};
 use crate::sampling::{stratified_2d, Cone, Rng};
 use crate::scene::{Hit, OccluderHint, Scene};
 use crate::Error;
+
+#[cfg(target_arch = "x86_64")]
+mod packets;
 
 /// The registry's entry.
 pub const ENTRY: IntegratorEntry = IntegratorEntry {
@@ -118,6 +123,17 @@ impl Integrator for Whitted {
     fn schedule(&self) -> Schedule {
         Schedule::OnePass
     }
+
+    /// Four pixels' camera rays at a time where they can share the eye's
+    /// search (`whitted/packets.rs`), else each sample on its own: the same values.
+    fn sample_row(&self, view: &View, row: (u32, u32), samples: Range<u32>, counts: &mut RayCounts, sums: &mut [PixelSum]) -> u64 {
+        #[cfg(target_arch = "x86_64")]
+        if packets::apply(view, &samples) && crate::cpu::avx2_features() {
+            // SAFETY: the CPU has every feature the compilation assumes.
+            return unsafe { packets::row_avx2(self, view, row, counts, sums) };
+        }
+        sample_row_one_by_one(self, view, row, samples, counts, sums)
+    }
 }
 
 /// The camera ray of sample `index` of pixel `(x, y)`, its position and lens
@@ -150,11 +166,29 @@ impl Whitted {
     /// [`Integrator::sample`], telling `trace` what it does.
     #[inline(always)]
     fn sample_with<T: WhittedTrace + ?Sized>(&self, view: &View, x: u32, y: u32, index: u32, counts: &mut RayCounts, trace: &mut T) -> Rgb {
+        self.sample_known(view, (x, y, index), None, counts, trace)
+    }
+
+    /// [`Whitted::sample_with`] of sample `index` of pixel `(x, y)`, its
+    /// camera sample and that ray's first hit given where the caller has
+    /// them (`whitted/packets.rs`), else made here.
+    #[inline(always)]
+    fn sample_known<T: WhittedTrace + ?Sized>(
+        &self,
+        view: &View,
+        (x, y, index): (u32, u32, u32),
+        known: Option<(&CameraSample, Option<Hit>)>,
+        counts: &mut RayCounts,
+        trace: &mut T,
+    ) -> Rgb {
         // Made only when a value is drawn: a single pinhole sample needs none.
         let mut rng = None;
         let mut uniform = || rng.get_or_insert_with(|| Rng::for_sample(view.seed, view.pixel_index(x, y), index as u64)).uniform();
-        let camera = camera_sample_from(view, x, y, index, &mut uniform);
-        self.trace_traced(view.scene, &camera.ray, camera.cone, &mut uniform, counts, trace)
+        let (camera, first) = match known {
+            Some((camera, hit)) => (*camera, Some(hit)),
+            None => (camera_sample_from(view, x, y, index, &mut uniform), None),
+        };
+        self.trace_traced(view.scene, &camera.ray, camera.cone, first, &mut uniform, counts, trace)
     }
 
     /// The tracer for `scene` (its area lights are collected here).
@@ -178,7 +212,7 @@ impl Whitted {
     /// [`Whitted::trace_with`] for a camera ray whose pixel footprint is `cone`
     /// (textures are filtered over it; a zero cone reads them unfiltered).
     pub fn trace_cone(&self, scene: &Scene, ray: &Ray, cone: Cone, uniform: &mut dyn FnMut() -> f64, counts: &mut RayCounts) -> Rgb {
-        self.trace_traced(scene, ray, cone, uniform, counts, &mut NoTrace)
+        self.trace_traced(scene, ray, cone, None, uniform, counts, &mut NoTrace)
     }
 
     /// [`Whitted::trace_cone`], telling `trace` each ray, hit, term and weight.
@@ -186,11 +220,13 @@ impl Whitted {
     /// ([`crate::cpu`]) covers it (a call of its own cost 0.35 % fewer
     /// instructions in the baseline compilation, `BENCHMARKS.md`).
     #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
     fn trace_traced<T: WhittedTrace + ?Sized>(
         &self,
         scene: &Scene,
         ray: &Ray,
         cone: Cone,
+        mut first: Option<Option<Hit>>,
         uniform: &mut dyn FnMut() -> f64,
         counts: &mut RayCounts,
         trace: &mut T,
@@ -226,7 +262,12 @@ impl Whitted {
             } else if depth > 1 {
                 scene.first_intersect_leaving(&ray, from)
             } else {
-                scene.first_intersect(&ray, f64::INFINITY)
+                // The camera ray's hit, when the caller has found it already
+                // (`whitted/packets.rs`): the query's answer.
+                match first.take() {
+                    Some(found) => found,
+                    None => scene.first_intersect(&ray, f64::INFINITY),
+                }
             };
             // Used in place, by reference, as the path tracer does: moving the
             // hit out of `found` copied it with wide loads over the query's

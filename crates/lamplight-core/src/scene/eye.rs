@@ -56,7 +56,7 @@ impl Scene {
     #[cfg(target_arch = "x86_64")]
     #[inline(never)]
     #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
-    unsafe fn first_intersect_walk_avx2(&self, ray: &Ray, t_max: f64) -> Option<Hit> {
+    pub(super) unsafe fn first_intersect_walk_avx2(&self, ray: &Ray, t_max: f64) -> Option<Hit> {
         self.first_intersect_in::<true>(ray, t_max)
     }
 
@@ -119,7 +119,7 @@ impl Scene {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use crate::camera::{Fov, Perspective, ThinLens};
     use crate::materials::Material;
@@ -127,18 +127,25 @@ mod tests {
     use crate::scene::SceneBuilder;
     use crate::shapes::{Cuboid, Implicit, Plane, Quadric, Rectangle, Sphere, TriangleMesh};
 
-    const EYE: Vec3 = Vec3::new(0.5, 3.0, 12.0);
+    pub(in crate::scene) const EYE: Vec3 = Vec3::new(0.5, 3.0, 12.0);
 
     /// Thirty balls, boxes, ellipsoids and a small mesh over a floor, seen from
     /// `EYE`, with an infinite plane behind them, a ball placed twice and two
     /// rectangles in one plane (exact ties, which the walk must decide).
     fn mixed_scene(camera: impl crate::camera::Camera + 'static) -> Scene {
+        mixed_scene_with(camera, true)
+    }
+
+    /// [`mixed_scene`], with the infinite plane behind only when `plane`.
+    pub(in crate::scene) fn mixed_scene_with(camera: impl crate::camera::Camera + 'static, plane: bool) -> Scene {
         let mut rng = crate::sampling::Rng::for_sample(3, 0, 0);
         let mut rand = move || rng.uniform();
         let mut builder = SceneBuilder::new(camera);
         let m = builder.material(Material::default()).unwrap();
         builder.object(Rectangle::horizontal(0.0, -8.0, 8.0, -8.0, 8.0).unwrap(), m).unwrap();
-        builder.object(Plane::new(Vec3::new(0.0, 0.0, -20.0), Vec3::Z).unwrap(), m).unwrap();
+        if plane {
+            builder.object(Plane::new(Vec3::new(0.0, 0.0, -20.0), Vec3::Z).unwrap(), m).unwrap();
+        }
         for k in 0..30 {
             let c = Vec3::new(rand() * 10.0 - 5.0, 0.3 + rand() * 3.0, rand() * 10.0 - 5.0);
             match k % 3 {
@@ -165,7 +172,7 @@ mod tests {
         builder.build().unwrap()
     }
 
-    fn pinhole() -> Perspective {
+    pub(in crate::scene) fn pinhole() -> Perspective {
         Perspective::look_at(EYE, Vec3::new(0.0, 1.0, 0.0), Vec3::Y, Fov::VerticalDeg(50.0)).unwrap()
     }
 

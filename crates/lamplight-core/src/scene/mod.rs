@@ -16,6 +16,7 @@ use crate::shapes::Shape;
 
 mod builder;
 mod eye;
+mod eye_lanes;
 mod lanes;
 mod leaving;
 mod light_set;

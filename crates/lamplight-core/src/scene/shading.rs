@@ -54,14 +54,23 @@ impl Scene {
     /// normal map ([`crate::materials::normal_map`]).
     /// The surface coordinates are computed once, and only when the material
     /// reads them.
-    #[inline]
+    /// The material of a plain surface is answered here, compiled into every
+    /// caller (the Whitted packets' loop called this out of line otherwise);
+    /// the rest goes to [`Scene::shade_textured`].
+    #[inline(always)]
     pub fn shade(&self, hit: &mut Hit, wo: Vec3, footprint: f64) -> Cow<'_, Material> {
-        let material = &self.materials[hit.material];
         // A colour of the point alone (the 3D checker) is evaluated where it is
         // used, as before textures: copying the material per hit slowed `spheres` (its floor).
         if self.plain[hit.material] {
-            return Cow::Borrowed(material);
+            return Cow::Borrowed(&self.materials[hit.material]);
         }
+        self.shade_textured(hit, wo, footprint)
+    }
+
+    /// [`Scene::shade`] of a material that is not plain.
+    #[inline]
+    fn shade_textured(&self, hit: &mut Hit, wo: Vec3, footprint: f64) -> Cow<'_, Material> {
+        let material = &self.materials[hit.material];
         let constant = matches!(self.bsdfs.get(hit.material), Some(Some(_)));
         let mut at = ShadingPoint::at(hit.point);
         let coords = material.needs_coords().then(|| self.surface_coords(hit));

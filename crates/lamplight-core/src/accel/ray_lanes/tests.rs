@@ -164,3 +164,52 @@ fn the_compilations_name_the_detected_features() {
         assert!(source.contains(&invocation), "expected `{invocation}` in ray_lanes.rs");
     }
 }
+
+/// The lane test of a ball against [`crate::shapes::Sphere`]'s own: over
+/// rays that miss, graze, start inside, start on the surface and meet it
+/// behind their origin, from near and far (a unit ball seen from 1e6
+/// away), and bounds that cut between the roots, the same hits and the
+/// same parameters, bit for bit.
+#[test]
+fn balls_in_lanes_answer_as_the_sphere_test() {
+    if !crate::cpu::avx2_features() {
+        eprintln!("skipped: this CPU lacks AVX2");
+        return;
+    }
+    use crate::shapes::Sphere;
+    use std::arch::x86_64::*;
+    let mut rng = crate::sampling::Rng::for_sample(17, 0, 0);
+    let mut rand = move || rng.uniform();
+    let (mut hits, mut inside) = (0, 0);
+    for k in 0..20_000 {
+        let scale = [1e-3, 1.0, 1e3][k % 3];
+        let ball = Sphere::new(Vec3::new(rand() - 0.5, rand() - 0.5, rand() - 0.5) * scale, (0.1 + rand()) * scale).unwrap();
+        let far = if k % 7 == 0 { 1e6 } else { 4.0 };
+        let rays: [Ray; 4] = std::array::from_fn(|l| {
+            let origin = match (k + l) % 5 {
+                // On the surface, as a ray leaving it.
+                0 => ball.center + Vec3::new(rand() - 0.5, rand() - 0.5, rand() - 0.5).normalize() * ball.radius,
+                1 => ball.center + Vec3::new(rand() - 0.5, rand() - 0.5, rand() - 0.5) * ball.radius,
+                _ => ball.center + Vec3::new(rand() - 0.5, rand() - 0.5, rand() - 0.5).normalize() * far * scale,
+            };
+            let aim = ball.center + Vec3::new(rand() - 0.5, rand() - 0.5, rand() - 0.5) * 2.4 * ball.radius;
+            Ray::unit(origin, (aim - origin).normalize())
+        });
+        let bounds: [f64; 4] = std::array::from_fn(|l| if (k + l) % 4 == 0 { rand() * far * scale } else { f64::INFINITY });
+        let mut t = [0.0; 4];
+        // SAFETY: the CPU has AVX2 (checked above).
+        let ok = unsafe {
+            let (lane_t, lane_ok) = avx2::sphere(ball.center, ball.radius, &avx2::rays(&rays), _mm256_loadu_pd(bounds.as_ptr()));
+            _mm256_storeu_pd(t.as_mut_ptr(), lane_t);
+            _mm256_movemask_pd(lane_ok)
+        };
+        for l in 0..4 {
+            let expected = ball.intersect(&rays[l], 0.0, bounds[l]).map(|h| h.t.to_bits());
+            let got = (ok & (1 << l) != 0).then(|| t[l].to_bits());
+            assert_eq!(got, expected, "ball {ball:?}, ray {:?} to {}", rays[l], bounds[l]);
+            hits += usize::from(expected.is_some());
+            inside += usize::from(expected.is_some() && (rays[l].origin - ball.center).length() < ball.radius);
+        }
+    }
+    assert!(hits > 30_000 && inside > 5_000, "{hits} hits, {inside} from inside");
+}
