@@ -403,7 +403,7 @@ impl LightBuffer {
     }
 }
 
-/// The cells of four directions at once: [`LightBuffer::list_towards`]'s
+/// The cells of four directions at once: `LightBuffer::list_towards`'s
 /// face and cell, lane by lane, with the same operations.
 #[cfg(target_arch = "x86_64")]
 impl LightBuffer {

@@ -56,7 +56,7 @@ impl Scene {
     /// reads them.
     /// The material of a plain surface is answered here, compiled into every
     /// caller (the Whitted packets' loop called this out of line otherwise);
-    /// the rest goes to [`Scene::shade_textured`].
+    /// the rest goes to `Scene::shade_textured`.
     #[inline(always)]
     pub fn shade(&self, hit: &mut Hit, wo: Vec3, footprint: f64) -> Cow<'_, Material> {
         // A colour of the point alone (the 3D checker) is evaluated where it is
