@@ -185,13 +185,13 @@ mod avx2 {
     }
 
     #[inline(always)]
-    unsafe fn splat(v: Vec3) -> [__m256d; 3] {
+    pub(super) unsafe fn splat(v: Vec3) -> [__m256d; 3] {
         [_mm256_set1_pd(v.x), _mm256_set1_pd(v.y), _mm256_set1_pd(v.z)]
     }
 
     /// `a.x * b.x + a.y * b.y + a.z * b.z`, in glam's order.
     #[inline(always)]
-    unsafe fn dot(a: [__m256d; 3], b: [__m256d; 3]) -> __m256d {
+    pub(super) unsafe fn dot(a: [__m256d; 3], b: [__m256d; 3]) -> __m256d {
         _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(a[0], b[0]), _mm256_mul_pd(a[1], b[1])), _mm256_mul_pd(a[2], b[2]))
     }
 
@@ -223,40 +223,6 @@ mod avx2 {
             _mm256_and_pd(_mm256_cmp_pd::<_CMP_LE_OQ>(zero, v), _mm256_cmp_pd::<_CMP_LE_OQ>(v, one)),
         );
         (t, _mm256_and_pd(ok, inside))
-    }
-
-    /// [`crate::shapes::Sphere`]'s root in each lane (its `roots`, with
-    /// `t_min = 0`): the parameter and an all-ones mask where it is a hit in
-    /// `(0, t_max)`. The scalar operations in their order; a negative
-    /// discriminant, where the scalar test returns early, gives a NaN root
-    /// here, which no range holds.
-    #[inline(always)]
-    pub(crate) unsafe fn sphere(center: Vec3, radius: f64, r: &Rays, t_max: __m256d) -> (__m256d, __m256d) {
-        let zero = _mm256_setzero_pd();
-        let sign = _mm256_set1_pd(-0.0);
-        let c = splat(center);
-        let f = [_mm256_sub_pd(r.o[0], c[0]), _mm256_sub_pd(r.o[1], c[1]), _mm256_sub_pd(r.o[2], c[2])];
-        let b_half = dot(f, r.d);
-        let perpendicular = [
-            _mm256_sub_pd(f[0], _mm256_mul_pd(r.d[0], b_half)),
-            _mm256_sub_pd(f[1], _mm256_mul_pd(r.d[1], b_half)),
-            _mm256_sub_pd(f[2], _mm256_mul_pd(r.d[2], b_half)),
-        ];
-        let r2 = _mm256_set1_pd(radius * radius);
-        let discriminant = _mm256_sub_pd(r2, dot(perpendicular, perpendicular));
-        let c = _mm256_sub_pd(dot(f, f), r2);
-        // `-(b + sqrt(disc).copysign(b))`: negation and `copysign` move sign bits alone.
-        let root = _mm256_sqrt_pd(discriminant);
-        let signed = _mm256_or_pd(_mm256_andnot_pd(sign, root), _mm256_and_pd(sign, b_half));
-        let q = _mm256_xor_pd(_mm256_add_pd(b_half, signed), sign);
-        let q_zero = _mm256_cmp_pd::<_CMP_EQ_OQ>(q, zero);
-        let t0 = _mm256_andnot_pd(q_zero, q);
-        let t1 = _mm256_andnot_pd(q_zero, _mm256_div_pd(c, q));
-        let swap = _mm256_cmp_pd::<_CMP_GT_OQ>(t0, t1);
-        let (lo, hi) = (_mm256_blendv_pd(t0, t1, swap), _mm256_blendv_pd(t1, t0, swap));
-        let within = |t: __m256d| _mm256_and_pd(_mm256_cmp_pd::<_CMP_GT_OQ>(t, zero), _mm256_cmp_pd::<_CMP_LT_OQ>(t, t_max));
-        let (lo_ok, hi_ok) = (within(lo), within(hi));
-        (_mm256_blendv_pd(hi, lo, lo_ok), _mm256_or_pd(lo_ok, hi_ok))
     }
 
     /// `Cuboid::hit` in each lane: the entry of the slab interval where it
@@ -510,9 +476,13 @@ mod avx2 {
     bodies!("avx2,bmi1,bmi2,lzcnt,popcnt,gfni,avx512f,avx512dq,avx512vl,avx512bw", closest_in_avx512, blocked_in_avx512);
 }
 
+#[cfg(target_arch = "x86_64")]
+mod balls;
 /// The lane tests the eye's four-ray search uses (`scene/eye_lanes.rs`).
 #[cfg(target_arch = "x86_64")]
-pub(crate) use avx2::{rays, rectangle, sphere, Rays};
+pub(crate) use avx2::{rays, rectangle, Rays};
+#[cfg(target_arch = "x86_64")]
+pub(crate) use balls::sphere;
 
 #[cfg(test)]
 mod tests;

@@ -199,7 +199,7 @@ fn balls_in_lanes_answer_as_the_sphere_test() {
         let mut t = [0.0; 4];
         // SAFETY: the CPU has AVX2 (checked above).
         let ok = unsafe {
-            let (lane_t, lane_ok) = avx2::sphere(ball.center, ball.radius, &avx2::rays(&rays), _mm256_loadu_pd(bounds.as_ptr()));
+            let (lane_t, lane_ok) = balls::sphere(ball.center, ball.radius, &avx2::rays(&rays), _mm256_loadu_pd(bounds.as_ptr()));
             _mm256_storeu_pd(t.as_mut_ptr(), lane_t);
             _mm256_movemask_pd(lane_ok)
         };
