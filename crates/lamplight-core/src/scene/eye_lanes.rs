@@ -14,9 +14,11 @@
 //! cell whose reach lies beyond its nearest hit. The lane tests compute
 //! the scalar tests' IEEE operations in their order (Rust never fuses a
 //! multiply and an add). The hit handed back is the one its object's own
-//! test gives, asked again with the bound it was found under. Lanes that do
-//! not share their cell's list, rays that leave from elsewhere and scenes
-//! with unbounded objects go to the one-ray query.
+//! test gives, asked again with the bound it was found under (or kept from
+//! it). The lanes are grouped by the list their cell holds, each group
+//! searched together; a lane whose cell has no list walks the BVH, as one
+//! ray does, and rays that leave from elsewhere and scenes with unbounded
+//! objects go to the one-ray query.
 
 use super::{Hit, Scene};
 use crate::ray::Ray;
@@ -74,8 +76,9 @@ impl Scene {
         true
     }
 
-    /// The one-ray search of `scene/eye.rs` for the lanes `group` of `rays`,
-    /// whose cell lists `lists`, written into their places of `out`.
+    /// The one-ray search of `scene/eye.rs` for the lanes `group` of `rays`
+    /// (`r` in registers), whose cell lists `cell` after the eye's `always`,
+    /// written into their places of `out`.
     #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
     #[inline]
     unsafe fn search_lanes(
