@@ -40,11 +40,11 @@ pub(super) unsafe fn row_avx2(whitted: &Whitted, view: &View, (x0, y): (u32, u32
     let mut x = x0;
     let mut fours = sums.chunks_exact_mut(4);
     for four in &mut fours {
-        // A single pinhole sample draws no value for its camera ray.
+        // A single pinhole sample draws no value for its camera ray (`apply`).
         let mut cameras = [const { MaybeUninit::<CameraSample>::uninit() }; 4];
         let mut rays = [const { MaybeUninit::<Ray>::uninit() }; 4];
         for l in 0..4 {
-            let camera = camera_sample_from(view, x + l as u32, y, 0, &mut || 0.5);
+            let camera = camera_sample_from(view, x + l as u32, y, 0, &mut || unreachable!("a pinhole's single sample draws no value"));
             rays[l].write(camera.ray);
             cameras[l].write(camera);
         }
