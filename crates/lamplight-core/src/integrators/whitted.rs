@@ -216,6 +216,8 @@ impl Whitted {
     }
 
     /// [`Whitted::trace_cone`], telling `trace` each ray, hit, term and weight.
+    /// `first`: the camera ray's first hit, where the caller has found it
+    /// already (`whitted/packets.rs`).
     /// Inlined into the render loop, so that the loop's second compilation
     /// ([`crate::cpu`]) covers it (a call of its own cost 0.35 % fewer
     /// instructions in the baseline compilation, `BENCHMARKS.md`).
