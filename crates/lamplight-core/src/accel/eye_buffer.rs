@@ -92,7 +92,7 @@ impl EyeBuffer {
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
     #[inline]
-    pub unsafe fn cells(&self, d: [std::arch::x86_64::__m256d; 3]) -> [u32; 4] {
+    pub(crate) unsafe fn cells(&self, d: [std::arch::x86_64::__m256d; 3]) -> [u32; 4] {
         use std::arch::x86_64::*;
         let square = |c: __m256d| _mm256_mul_pd(c, c);
         let length2 = _mm256_add_pd(_mm256_add_pd(square(d[0]), square(d[1])), square(d[2]));
@@ -109,14 +109,14 @@ impl EyeBuffer {
 
     /// The objects near the eye, which every ray tests ([`EyeBuffer::lists`]).
     #[inline(always)]
-    pub fn always(&self) -> &[u32] {
+    pub(crate) fn always(&self) -> &[u32] {
         self.cells.always()
     }
 
     /// The list of cell `cell` of [`EyeBuffer::cells`], nearest box first;
     /// `None` where it lists too many (or for `u32::MAX`).
     #[inline(always)]
-    pub fn list_of_cell(&self, cell: u32) -> Option<&[u32]> {
+    pub(crate) fn list_of_cell(&self, cell: u32) -> Option<&[u32]> {
         self.cells.list_of_cell(cell)
     }
 

@@ -376,7 +376,7 @@ impl LightBuffer {
     /// The list of cell `cell` (as [`LightBuffer::cells_from_centre`]
     /// numbers it); `None` where it was too long.
     #[inline(always)]
-    pub fn list_of_cell(&self, cell: u32) -> Option<&[u32]> {
+    pub(crate) fn list_of_cell(&self, cell: u32) -> Option<&[u32]> {
         let [start, end] = *self.spans.get(cell as usize)?;
         self.items.get(start as usize..end as usize)
     }

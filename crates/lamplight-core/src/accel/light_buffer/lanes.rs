@@ -13,7 +13,7 @@ impl LightBuffer {
     /// The CPU must have [`crate::cpu::AVX2_FEATURES`].
     #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
     #[inline]
-    pub unsafe fn cells_from_centre(e: [std::arch::x86_64::__m256d; 3]) -> [u32; 4] {
+    pub(crate) unsafe fn cells_from_centre(e: [std::arch::x86_64::__m256d; 3]) -> [u32; 4] {
         use std::arch::x86_64::*;
         let sign = _mm256_set1_pd(-0.0);
         let [mx, my, mz] = e.map(|c| _mm256_andnot_pd(sign, c));
