@@ -300,8 +300,7 @@ mod avx2 {
         ///
         /// # Safety
         /// The CPU must have [`crate::cpu::AVX2_FEATURES`].
-        #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
-        #[inline]
+        #[inline(always)]
         pub unsafe fn closest_coordinates(&self, origin: [&[f64; 4]; 3], dir: [&[f64; 4]; 3], t_max: f64, active: u8, out: &mut Nearest4) {
             self.closest_dispatched(&coordinates(origin, dir), t_max, active, out);
         }
@@ -322,8 +321,7 @@ mod avx2 {
         ///
         /// # Safety
         /// The CPU must have [`crate::cpu::AVX2_FEATURES`].
-        #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
-        #[inline]
+        #[inline(always)]
         pub unsafe fn blocked_coordinates(
             &self,
             origin: [&[f64; 4]; 3],
