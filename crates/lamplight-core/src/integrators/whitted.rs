@@ -278,7 +278,14 @@ impl Whitted {
                 let sky = if hidden {
                     Rgb::ZERO
                 } else {
-                    scene.settings.environment.as_ref().map_or(scene.settings.background, |env| env.radiance(ray.dir))
+                    // Read back a coordinate at a time: the map's lookup (out
+                    // of line) returns through memory, and the wide loads of
+                    // the sum below stalled on its stores (issue 24).
+                    scene
+                        .settings
+                        .environment
+                        .as_ref()
+                        .map_or(scene.settings.background, |env| crate::math::read_forwarded(&env.radiance(ray.dir)))
                 };
                 let contribution = weight * sky;
                 trace.miss(sky, contribution);
