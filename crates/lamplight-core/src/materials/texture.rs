@@ -266,11 +266,11 @@ pub const CELL_SNAP_RELATIVE: f64 = 1e-12;
 /// has an even coordinate sum ([`cell_parity`]), else `odd`.
 #[inline(always)]
 fn checker(p: Vec3, size: f64, even: Rgb, odd: Rgb, offset: Vec3) -> Rgb {
-    if cell_parity((p + offset) / size) == 0 {
-        even
-    } else {
-        odd
-    }
+    // Selected lane by lane: picking one of the two by a branch copied it
+    // through memory in pieces that the Whitted tracer's next wide load of
+    // the colour spanned, a store-forwarding stall on every floor hit of
+    // `luxo` (issue 24).
+    Rgb::select(glam::BVec3::splat(cell_parity((p + offset) / size) == 0), even, odd)
 }
 
 /// `(floor(x) + floor(y) + floor(z)) mod 2` for the checker's cell coordinates,
