@@ -11,6 +11,7 @@ use crate::math::{max_abs, Vec3};
 /// it ([`Ray::spawn`]): only moving shapes ([`crate::shapes::MovingInstance`])
 /// read it, and everything else stands as it is at the frame.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(C)]
 pub struct Ray {
     /// Start point.
     pub origin: Vec3,
@@ -48,6 +49,34 @@ impl Ray {
         // SAFETY: a reference to an initialized `f64`.
         let time = unsafe { std::ptr::read_volatile(&self.time) };
         Ray { origin: crate::math::read_forwarded(&self.origin), dir: crate::math::read_forwarded(&self.dir), time }
+    }
+
+    /// This ray copied into `out` with two overlapping 32-byte stores
+    /// (origin and `dir.x`, then `dir` and time), read one coordinate at a
+    /// time as [`Ray::read_forwarded`] reads it. A query then reads its
+    /// copy with loads that each lie within one store, so none waits for a
+    /// store to reach the cache; its own copy of a [`Ray::read_forwarded`]
+    /// had been stored a coordinate at a time and read back in pairs, a
+    /// stall on the shadow query's first pair (issue 24).
+    ///
+    /// # Safety
+    /// The CPU must have [`crate::cpu::AVX2_FEATURES`].
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
+    #[inline]
+    pub unsafe fn copy_forwarded_avx2(&self, out: &mut std::mem::MaybeUninit<Ray>) {
+        use std::arch::x86_64::*;
+        let (o, d) = (crate::math::read_forwarded(&self.origin), crate::math::read_forwarded(&self.dir));
+        let time = std::ptr::read_volatile(&self.time);
+        // `repr(C)`: the seven values in order, origin first.
+        // Each store written out, so that the compiler cannot split it (it
+        // had cut `_mm256_storeu_pd`'s into 16-byte halves).
+        let at = out.as_mut_ptr() as *mut f64;
+        let store = |to: *mut f64, v: __m256d| {
+            std::arch::asm!("vmovupd [{to}], {v}", to = in(reg) to, v = in(ymm_reg) v, options(nostack, preserves_flags));
+        };
+        store(at, _mm256_setr_pd(o.x, o.y, o.z, d.x));
+        store(at.add(3), _mm256_setr_pd(d.x, d.y, d.z, time));
     }
 
     /// The point at parameter `t`: `origin + dir * t`.
@@ -95,6 +124,16 @@ mod tests {
         let bits = |r: &Ray| (r.origin.to_array().map(f64::to_bits), r.dir.to_array().map(f64::to_bits), r.time.to_bits());
         for ray in rays {
             assert_eq!(bits(&ray.read_forwarded()), bits(&ray));
+            #[cfg(target_arch = "x86_64")]
+            if crate::cpu::avx2_features() {
+                // Copied over a copy of another ray, so that a field left
+                // unwritten would show.
+                let mut copy = std::mem::MaybeUninit::new(Ray { origin: Vec3::splat(7.0), dir: Vec3::splat(-7.0), time: 7.0 });
+                // SAFETY: the CPU has AVX2 (checked above).
+                unsafe { ray.copy_forwarded_avx2(&mut copy) };
+                // SAFETY: initialized above.
+                assert_eq!(bits(unsafe { copy.assume_init_ref() }), bits(&ray));
+            }
         }
     }
 }
