@@ -177,7 +177,7 @@ impl Whitted {
         &self,
         view: &View,
         (x, y, index): (u32, u32, u32),
-        known: Option<(&CameraSample, Option<Hit>)>,
+        known: Option<(&CameraSample, &mut Option<Hit>)>,
         counts: &mut RayCounts,
         trace: &mut T,
     ) -> Rgb {
@@ -228,7 +228,7 @@ impl Whitted {
         scene: &Scene,
         ray: &Ray,
         cone: Cone,
-        mut first: Option<Option<Hit>>,
+        mut first: Option<&mut Option<Hit>>,
         uniform: &mut dyn FnMut() -> f64,
         counts: &mut RayCounts,
         trace: &mut T,
@@ -245,6 +245,8 @@ impl Whitted {
         // push's stores (a store-forwarding stall, issue 24).
         let mut next = Some(Pending { ray: *ray, weight: Rgb::ONE, depth: 1, width: cone.width, from: usize::MAX });
         let max_depth = self.max_depth.min(MAX_DEPTH_LIMIT);
+        // The hit of the ray in hand, unless the caller holds it (`first`).
+        let mut own: Option<Hit>;
         loop {
             let Pending { ray, weight, depth, width, from } = match next.take() {
                 Some(p) => p,
@@ -259,16 +261,23 @@ impl Whitted {
             trace.ray(&ray, weight, depth);
             // Mitsuba's `hide_emitters`: the camera sees through emitters, and black sky.
             let hidden = depth == 1 && scene.settings.hide_emitters;
-            let mut found = if hidden {
-                scene.first_camera_hit(&ray)
+            let found: &mut Option<Hit> = if hidden {
+                own = scene.first_camera_hit(&ray);
+                &mut own
             } else if depth > 1 {
-                scene.first_intersect_leaving(&ray, from)
+                own = scene.first_intersect_leaving(&ray, from);
+                &mut own
             } else {
-                // The camera ray's hit, when the caller has found it already
-                // (`whitted/packets.rs`): the query's answer.
+                // The camera ray's hit, where the caller has found it already
+                // (`whitted/packets.rs`): the query's answer, used where the
+                // query stored it. Copied out, its wide loads waited on the
+                // query's narrower stores (issue 24).
                 match first.take() {
                     Some(found) => found,
-                    None => scene.first_intersect(&ray, f64::INFINITY),
+                    None => {
+                        own = scene.first_intersect(&ray, f64::INFINITY);
+                        &mut own
+                    }
                 }
             };
             // Used in place, by reference, as the path tracer does: moving the

@@ -59,7 +59,7 @@ pub(super) unsafe fn row_avx2(whitted: &Whitted, view: &View, (x0, y): (u32, u32
         for (l, sum) in four.iter_mut().enumerate() {
             // SAFETY: written above.
             let camera = cameras[l].assume_init_ref();
-            let value = whitted.sample_known(view, (x + l as u32, y, 0), Some((camera, hits[l].take())), counts, &mut NoTrace);
+            let value = whitted.sample_known(view, (x + l as u32, y, 0), Some((camera, &mut hits[l])), counts, &mut NoTrace);
             nonfinite += add_sample(sum, value, view.clamp);
         }
         x += 4;
