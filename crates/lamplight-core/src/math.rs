@@ -122,13 +122,21 @@ pub fn is_finite(v: Vec3) -> bool {
 /// order, using the cancellation-free form `q = -(b_half + sign(b_half) sqrt(D))`,
 /// `t0 = q / a`, `t1 = c / q` (Press et al., Numerical Recipes 5.6).
 /// `None` when there is no real root; a degenerate `a == 0` gives the linear root twice.
+#[inline]
 pub fn solve_quadratic(a: f64, b_half: f64, c: f64) -> Option<(f64, f64)> {
+    solve_quadratic_slope(a, b_half, c).map(|(roots, _)| roots)
+}
+
+/// [`solve_quadratic`], with `|a t + b_half|` at the roots: `sqrt(D)`, the
+/// square root the roots were made with (`|b_half|` when `a == 0`).
+#[inline]
+pub fn solve_quadratic_slope(a: f64, b_half: f64, c: f64) -> Option<((f64, f64), f64)> {
     if a == 0.0 {
         if b_half == 0.0 {
             return None;
         }
         let t = -c / (2.0 * b_half);
-        return Some((t, t));
+        return Some(((t, t), b_half.abs()));
     }
     let discriminant = b_half * b_half - a * c;
     if discriminant < 0.0 {
@@ -137,7 +145,7 @@ pub fn solve_quadratic(a: f64, b_half: f64, c: f64) -> Option<(f64, f64)> {
     let root = discriminant.sqrt();
     let q = -(b_half + root.copysign(b_half));
     let (t0, t1) = if q == 0.0 { (0.0, 0.0) } else { (q / a, c / q) };
-    Some(if t0 <= t1 { (t0, t1) } else { (t1, t0) })
+    Some((if t0 <= t1 { (t0, t1) } else { (t1, t0) }, root))
 }
 
 #[cfg(test)]

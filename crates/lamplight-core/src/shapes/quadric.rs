@@ -43,7 +43,7 @@ pub use named::Sheets;
 use super::surface::Meridian;
 use super::{Shape, SurfaceCoords, SurfaceHit};
 use crate::accel::Aabb;
-use crate::math::{solve_quadratic, Mat4, Vec3};
+use crate::math::{solve_quadratic, solve_quadratic_slope, Mat4, Vec3};
 use crate::ray::Ray;
 use crate::Error;
 use form::{Affine, Form};
@@ -187,14 +187,17 @@ impl Quadric {
                 return None; // parallel to the surface: inside, outside or on it, never crossing
             }
         }
-        let (t0, t1) = solve_quadratic(a, b_half, c)?;
-        // |2 (a t + b)| at a root, the rate at which f changes along the ray there.
-        let slope = if a == 0.0 { b_half.abs() } else { (b_half * b_half - a * c).max(0.0).sqrt() };
+        // |a t + b| at a root (half the rate at which f changes along the ray
+        // there): the square root the roots were made with.
+        let ((t0, t1), slope) = solve_quadratic_slope(a, b_half, c)?;
         // The entries of Q are below 2 and |d| = 1: the rounding of a, b and c (and
         // of f at the polished point) is below a few ulps of (x1 + 1 + 2 |t|)^2.
+        // A bound, not a value: multiplied by the reciprocal, one division for
+        // both roots (the safety factor covers its rounding).
         let s = x1 + 1.0;
+        let per_slope = 1.0 / slope;
         let bound = |t: f64| {
-            let m = POLISH_BOUND * f64::EPSILON * ((s + 2.0 * t.abs()).powi(2) / slope + t.abs());
+            let m = POLISH_BOUND * f64::EPSILON * ((s + 2.0 * t.abs()).powi(2) * per_slope + t.abs());
             if m.is_finite() {
                 m
             } else {
