@@ -58,7 +58,7 @@
 //!   `ka C La = kd C amb`), `kd = kd`, no Blinn highlight (`ks = 0`), `emission = kl C`,
 //!   `Reflection::Constant(ks)`, `Refraction::Constant { ior: ir, weight: kt }`,
 //!   `shadow_transmittance = 0` (every sphere blocks, as `intersect(P,U)==l` demands);
-//! - `ior = ir`: the core's [`refract`](lamplight_core::integrators::whitted::refract)
+//! - `ior = ir`: the core's `refract` (`integrators/whitted/optics.rs` in lamplight-core)
 //!   is the card's formula with `eta = n_i/n_t`, and the integrator passes
 //!   `eta = 1/ior` on the front face and `ior` on the back, as the card does with
 //!   `ir`: `ir` is the ordinary index of the sphere's inside (1.7 for the glass);
