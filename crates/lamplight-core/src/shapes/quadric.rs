@@ -152,6 +152,7 @@ impl Quadric {
     }
 
     /// True when `p` lies in every clip region (the surface is visible there).
+    #[inline(always)]
     pub fn is_visible(&self, p: Vec3) -> bool {
         self.clips.iter().all(|c| c.keeps(p))
     }
@@ -167,7 +168,7 @@ impl Quadric {
 
     /// The two roots of the ray equation in increasing order, before polishing,
     /// with the bound on how far polishing can move each (module doc).
-    #[inline]
+    #[inline(always)]
     fn unpolished(&self, ray: &Ray) -> Option<Unpolished> {
         let d = ray.dir;
         let (c, qs) = self.form.eval(ray.origin);
@@ -210,7 +211,7 @@ impl Quadric {
     /// The ray parameter of the first visible crossing in `(t_min, t_max)`: the
     /// answer of polishing both roots and trying them in increasing order, with
     /// the roots that cannot be it left unpolished (module doc).
-    #[inline]
+    #[inline(always)]
     fn crossing(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<f64> {
         let r = self.unpolished(ray)?;
         let [t0, t1] = r.t;
@@ -240,6 +241,7 @@ impl Quadric {
     /// `a dt^2 + 2 b' dt + f(ray.at(t)) = 0`, whose root nearest 0 is the
     /// correction. Its constant term is small and free of the cancellation that
     /// `c` suffers when the ray starts far from a small quadric.
+    #[inline(always)]
     fn polish(&self, ray: &Ray, a: f64, t: f64) -> f64 {
         if !t.is_finite() {
             return t;
@@ -259,6 +261,33 @@ impl Quadric {
     }
 }
 
+impl Quadric {
+    /// [`Shape::intersect`]: the crossing and the normal there.
+    #[inline(always)]
+    fn intersect_in(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
+        let t = self.crossing(ray, t_min, t_max)?;
+        // At a singular point (a cone's apex) the gradient vanishes and no normal
+        // exists; facing the ray keeps the hit usable and free of NaN.
+        let normal = self.form.eval(ray.at(t)).1.truncate().try_normalize().unwrap_or(-ray.dir);
+        Some(SurfaceHit::new(t, normal))
+    }
+
+    /// [`Quadric::intersect_in`] compiled for [`crate::cpu::AVX2_FEATURES`]:
+    /// the same operations, so the same bits.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
+    unsafe fn intersect_avx2(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
+        self.intersect_in(ray, t_min, t_max)
+    }
+
+    /// [`Quadric::crossing`] compiled for [`crate::cpu::AVX2_FEATURES`].
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
+    unsafe fn crossing_avx2(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<f64> {
+        self.crossing(ray, t_min, t_max)
+    }
+}
+
 impl Shape for Quadric {
     fn hit_ignores_t_max(&self) -> bool {
         true
@@ -273,11 +302,12 @@ impl Shape for Quadric {
     }
 
     fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
-        let t = self.crossing(ray, t_min, t_max)?;
-        // At a singular point (a cone's apex) the gradient vanishes and no normal
-        // exists; facing the ray keeps the hit usable and free of NaN.
-        let normal = self.form.eval(ray.at(t)).1.truncate().try_normalize().unwrap_or(-ray.dir);
-        Some(SurfaceHit::new(t, normal))
+        #[cfg(target_arch = "x86_64")]
+        if crate::cpu::avx2_features() {
+            // SAFETY: the CPU has every feature the compilation assumes.
+            return unsafe { self.intersect_avx2(ray, t_min, t_max) };
+        }
+        self.intersect_in(ray, t_min, t_max)
     }
 
     /// Where `f` can vanish over the part of `region` in the stored box
@@ -293,6 +323,11 @@ impl Shape for Quadric {
 
     /// `Quadric::crossing` without the normal.
     fn intersect_p(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
+        #[cfg(target_arch = "x86_64")]
+        if crate::cpu::avx2_features() {
+            // SAFETY: the CPU has every feature the compilation assumes.
+            return unsafe { self.crossing_avx2(ray, t_min, t_max).is_some() };
+        }
         self.crossing(ray, t_min, t_max).is_some()
     }
 

@@ -454,6 +454,15 @@ fn polishing_only_the_roots_that_matter_gives_the_same_bits() {
             let Some(ray) = Some(Ray::new(origin, target - origin)).filter(|r| r.dir.is_finite()) else { continue };
             let reference = crossing_polishing_both(q, &ray, 0.0, INF);
             assert_eq!(q.crossing(&ray, 0.0, INF).map(f64::to_bits), reference.map(f64::to_bits), "{ray:?}");
+            // The AVX2 compilation that `Shape::intersect` takes where it can
+            // answers as the baseline one, the normal included.
+            #[cfg(target_arch = "x86_64")]
+            if crate::cpu::avx2_features() {
+                let bits = |h: Option<SurfaceHit>| h.map(|h| (h.t.to_bits(), h.normal.to_array().map(f64::to_bits)));
+                // SAFETY: the CPU has AVX2 (checked above).
+                let avx2 = unsafe { q.intersect_avx2(&ray, 0.0, INF) };
+                assert_eq!(bits(avx2), bits(q.intersect_in(&ray, 0.0, INF)), "{ray:?}");
+            }
             // Windows whose ends sit a few ulps from each polished root, where a
             // root's polishing decides whether it is inside.
             if let Some((t0, t1)) = q.roots(&ray) {
