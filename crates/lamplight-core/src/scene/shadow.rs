@@ -100,11 +100,11 @@ impl Scene {
     /// is left as it was.
     #[inline]
     pub fn transmittance_hinted(&self, ray: &Ray, distance: f64, ignore: Option<usize>, hint: &mut OccluderHint) -> Rgb {
-        // A ray its caller has just built goes to the query that reads it a
-        // coordinate at a time: in `spheres` the plain query's first, wide
-        // loads of the ray waited on the caller's stores, 16 % of the query's
-        // time (issue 24). Towards a light with a body of its own, whose test
-        // comes first, the stores have landed (`transmittance_fresh_avx2`).
+        // A ray its caller has just built goes to the query that copies it
+        // first (`transmittance_fresh_avx2`): in `spheres` the plain query's
+        // first, wide loads of the ray waited on the caller's stores, 16 % of
+        // the query's time (issue 24). Towards a light with a body of its own
+        // the body's test comes first.
         #[cfg(target_arch = "x86_64")]
         if ignore.is_none() && crate::cpu::avx2_features() {
             // SAFETY: the CPU has every feature the compilation assumes.
@@ -112,6 +112,11 @@ impl Scene {
         }
         // The light is seen where the ray first meets its own object: the ray ends there.
         let distance = ignore.and_then(|i| self.first_meeting(i, ray, distance)).unwrap_or(distance);
+        #[cfg(target_arch = "x86_64")]
+        if crate::cpu::avx2_features() {
+            // SAFETY: the CPU has every feature the compilation assumes.
+            return unsafe { self.transmittance_fresh_avx2(ray, distance, ignore, hint) };
+        }
         self.transmittance_to(ray, distance, ignore, hint)
     }
 
@@ -170,9 +175,10 @@ impl Scene {
     /// at a time into a copy whose later reads each lie within one store
     /// ([`Ray::copy_forwarded_avx2`]): the path-traced Cornell box took 4 %
     /// less time reading it a coordinate at a time, and `spheres` 2-4 % less
-    /// again with the copy. Rays towards a light with a body of its own keep
-    /// the plain query: there the light's own object is tested first, which
-    /// gives the stores time to land, and the reads cost `luxo` 3-4 %.
+    /// again with the copy. Rays towards a light with a body of its own (the
+    /// bulb of `luxo`) took the plain query while the copy was read back in
+    /// pieces (it cost `luxo` 3-4 %); with the copy whole, they take this one
+    /// too (`luxo` 0.98-0.995 of the time).
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
     pub(super) unsafe fn transmittance_fresh_avx2(&self, ray: &Ray, distance: f64, ignore: Option<usize>, hint: &mut OccluderHint) -> Rgb {
