@@ -181,18 +181,23 @@ impl Scene {
         }
         for l in (0..4).filter(|l| group & (1 << l) != 0) {
             let ray = &rays[l];
-            out[l] = if tie & (1 << l) != 0 {
-                self.first_intersect_walk_avx2(ray, f64::INFINITY)
-            } else if best[l] == u32::MAX {
-                None
-            } else {
-                let prim = &self.bounded[best[l] as usize];
-                match found[l].or_else(|| self.hit_object(prim, ray, found_under[l])) {
-                    Some(h) => Some(self.hit_record(ray, prim.object as usize, h)),
-                    // Never: the same test, asked the same question.
-                    None => self.first_intersect(ray, f64::INFINITY),
-                }
-            };
+            // Each case writes `out[l]` itself: one value chosen among them
+            // was built in a temporary and copied out with loads wider than
+            // its stores, a stall on every camera ray's hit (issue 24).
+            if tie & (1 << l) != 0 {
+                out[l] = self.first_intersect_walk_avx2(ray, f64::INFINITY);
+                continue;
+            }
+            if best[l] == u32::MAX {
+                out[l] = None;
+                continue;
+            }
+            let prim = &self.bounded[best[l] as usize];
+            match found[l].or_else(|| self.hit_object(prim, ray, found_under[l])) {
+                Some(h) => out[l] = Some(self.hit_record(ray, prim.object as usize, h)),
+                // Never: the same test, asked the same question.
+                None => out[l] = self.first_intersect(ray, f64::INFINITY),
+            }
         }
     }
 }
