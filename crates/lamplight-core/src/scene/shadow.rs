@@ -100,18 +100,12 @@ impl Scene {
     /// is left as it was.
     #[inline]
     pub fn transmittance_hinted(&self, ray: &Ray, distance: f64, ignore: Option<usize>, hint: &mut OccluderHint) -> Rgb {
+        // The light is seen where the ray first meets its own object: the ray ends there.
+        let distance = ignore.and_then(|i| self.first_meeting(i, ray, distance)).unwrap_or(distance);
         // A ray its caller has just built goes to the query that copies it
         // first (`transmittance_fresh_avx2`): in `spheres` the plain query's
         // first, wide loads of the ray waited on the caller's stores, 16 % of
-        // the query's time (issue 24). Towards a light with a body of its own
-        // the body's test comes first.
-        #[cfg(target_arch = "x86_64")]
-        if ignore.is_none() && crate::cpu::avx2_features() {
-            // SAFETY: the CPU has every feature the compilation assumes.
-            return unsafe { self.transmittance_fresh_avx2(ray, distance, None, hint) };
-        }
-        // The light is seen where the ray first meets its own object: the ray ends there.
-        let distance = ignore.and_then(|i| self.first_meeting(i, ray, distance)).unwrap_or(distance);
+        // the query's time (issue 24).
         #[cfg(target_arch = "x86_64")]
         if crate::cpu::avx2_features() {
             // SAFETY: the CPU has every feature the compilation assumes.

@@ -259,9 +259,7 @@ impl Quadric {
             None => t, // grazing: rounding removed the local crossing; keep the first estimate
         }
     }
-}
 
-impl Quadric {
     /// [`Shape::intersect`]: the crossing and the normal there.
     #[inline(always)]
     fn intersect_in(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<SurfaceHit> {
